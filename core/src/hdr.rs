@@ -1,0 +1,568 @@
+//! Heuristic Drift Reduction (Borenstein & Ojeda, seed 000, enhanced algorithm Eqs. 7-14)
+//! as a streaming estimator, read exactly as methods.md fixes it. The batch `run` is the
+//! same `update` in a loop, plus the raw baseline and the metrics.
+
+use crate::error::{Error, Result};
+use crate::log::DriveLog;
+use crate::metrics::{self, Reference};
+use crate::preprocess::{self, Samples};
+use serde::{Deserialize, Serialize};
+
+/// HDR's five tunable parameters; defaults are the paper's Table III.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HdrParams {
+    /// Nominal increment i_c of the binary I-controller, deg/s (per second of time).
+    #[serde(alias = "i_c")]
+    pub i_c_dps: f64,
+    /// Low-pass filter time constant tau, s.
+    #[serde(alias = "tau")]
+    pub tau_s: f64,
+    /// Turn-switch threshold theta_w, deg/s.
+    #[serde(alias = "theta_w")]
+    pub theta_w_dps: f64,
+    /// Repetition attenuator constant c1 (> 0).
+    pub c1: f64,
+    /// Repetition attenuator power c2.
+    pub c2: f64,
+}
+
+impl Default for HdrParams {
+    /// Table III of the HDR paper.
+    fn default() -> Self {
+        HdrParams { i_c_dps: 0.0422, tau_s: 0.75, theta_w_dps: 0.564, c1: 0.16, c2: 1.80 }
+    }
+}
+
+impl HdrParams {
+    /// Table III of the HDR paper.
+    pub fn table_iii() -> Self {
+        Self::default()
+    }
+
+    /// Every parameter finite and in range: i_c, tau, theta_w >= 0, c1 > 0, c2 >= 0.
+    pub fn validate(&self) -> Result<()> {
+        let check = |name: &str, v: f64, ok: bool, what: &str| -> Result<()> {
+            if !v.is_finite() || !ok {
+                Err(Error::param(name, format!("{v} is not {what}")))
+            } else {
+                Ok(())
+            }
+        };
+        check("i_c", self.i_c_dps, self.i_c_dps >= 0.0, "a rate >= 0 deg/s")?;
+        check("tau", self.tau_s, self.tau_s >= 0.0, "a time >= 0 s")?;
+        check("theta_w", self.theta_w_dps, self.theta_w_dps >= 0.0, "a rate >= 0 deg/s")?;
+        check("c1", self.c1, self.c1 > 0.0, "a number > 0")?;
+        check("c2", self.c2, self.c2 >= 0.0, "a number >= 0")?;
+        Ok(())
+    }
+
+    /// Sets one parameter by its short name (i_c, tau, theta_w, c1, c2) or field name.
+    pub fn set(&mut self, key: &str, value: f64) -> Result<()> {
+        match key {
+            "i_c" | "i_c_dps" => self.i_c_dps = value,
+            "tau" | "tau_s" => self.tau_s = value,
+            "theta_w" | "theta_w_dps" => self.theta_w_dps = value,
+            "c1" => self.c1 = value,
+            "c2" => self.c2 = value,
+            _ => return Err(Error::param(key, "unknown HDR parameter (i_c, tau, theta_w, c1, c2)")),
+        }
+        Ok(())
+    }
+}
+
+/// SIGN(x) of the paper: 1, 0, -1 for x > 0, x == 0, x < 0.
+#[inline]
+pub fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// The repetition attenuator R = (1 + c1) / (1 + c1 r^c2) (Eq. 10).
+#[inline]
+pub fn attenuation(c1: f64, c2: f64, r: u64) -> f64 {
+    (1.0 + c1) / (1.0 + c1 * (r as f64).powf(c2))
+}
+
+/// One step's output of the estimator.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct HdrOutput {
+    pub time_s: f64,
+    /// Filtered rate omega' (Eq. 7), eps0 removed, deg/s.
+    pub rate_filtered_dps: f64,
+    /// Corrected rate omega = omega' + I (Eq. 12), deg/s.
+    pub rate_corrected_dps: f64,
+    /// De-lagged rate omega_d (Eq. 13), the one integrated, deg/s.
+    pub rate_delag_dps: f64,
+    /// Heading psi (Eq. 14), starting at 0, unwrapped, deg.
+    pub heading_deg: f64,
+    /// Controller output I, deg/s; -I is the drift estimate.
+    pub i_dps: f64,
+    /// Turn switch W (Eq. 8): true while HDR corrects (not turning).
+    pub turn_switch: bool,
+    /// Repetition count r (Eq. 9).
+    pub r: u64,
+    /// Repetition attenuation R (Eq. 10).
+    pub attenuation: f64,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct HdrState {
+    time_s: f64,
+    w_f: f64,
+    i: f64,
+    r: u64,
+    omega1: f64,
+    omega2: f64,
+    psi: f64,
+}
+
+/// The streaming HDR estimator: feed raw yaw-rate samples with `update`.
+#[derive(Debug, Clone)]
+pub struct Hdr {
+    params: HdrParams,
+    eps0_dps: f64,
+    state: Option<HdrState>,
+    /// R(r) for r = 0, 1, 2, ... computed with `powf` once each (bit-identical to Eq. 10).
+    r_table: Vec<f64>,
+}
+
+impl Hdr {
+    /// A new estimator with validated parameters and the static bias eps0 to remove.
+    pub fn new(params: HdrParams, eps0_dps: f64) -> Result<Self> {
+        params.validate()?;
+        if !eps0_dps.is_finite() {
+            return Err(Error::param("eps0", "the static bias must be finite"));
+        }
+        let mut r_table = Vec::with_capacity(64);
+        for r in 0..64u64 {
+            r_table.push(attenuation(params.c1, params.c2, r));
+        }
+        Ok(Hdr { params, eps0_dps, state: None, r_table })
+    }
+
+    pub fn params(&self) -> &HdrParams {
+        &self.params
+    }
+    pub fn eps0_dps(&self) -> f64 {
+        self.eps0_dps
+    }
+
+    #[inline]
+    fn r_factor(&mut self, r: u64) -> f64 {
+        let idx = r as usize;
+        if idx >= self.r_table.len() {
+            if idx > 1 << 20 {
+                return attenuation(self.params.c1, self.params.c2, r);
+            }
+            let (c1, c2) = (self.params.c1, self.params.c2);
+            let start = self.r_table.len() as u64;
+            self.r_table.extend((start..=r).map(|k| attenuation(c1, c2, k)));
+        }
+        self.r_table[idx]
+    }
+
+    /// One step of the enhanced algorithm (methods.md steps 1-9) for a raw rate sample.
+    /// Time must strictly increase and the rate be finite, or an error is returned.
+    #[inline]
+    pub fn update(&mut self, time_s: f64, rate_raw_dps: f64) -> Result<HdrOutput> {
+        if !rate_raw_dps.is_finite() || !time_s.is_finite() {
+            return Err(Error::data(format!("HDR update at {time_s} s: rate {rate_raw_dps} is not finite")));
+        }
+        // Step 1, Eq. 2: remove the static bias.
+        let x = rate_raw_dps - self.eps0_dps;
+        let Some(s) = self.state else {
+            // i = 0: w_f = x, I = 0, r = 1, omega_0 = w_f, psi_0 = 0, omega_d0 = omega_0.
+            self.state = Some(HdrState { time_s, w_f: x, i: 0.0, r: 1, omega1: x, omega2: x, psi: 0.0 });
+            return Ok(HdrOutput {
+                time_s,
+                rate_filtered_dps: x,
+                rate_corrected_dps: x,
+                rate_delag_dps: x,
+                heading_deg: 0.0,
+                i_dps: 0.0,
+                turn_switch: x.abs() < self.params.theta_w_dps,
+                r: 1,
+                attenuation: self.r_factor(1),
+            });
+        };
+        let dt = time_s - s.time_s;
+        if !(dt > 0.0) {
+            return Err(Error::data(format!(
+                "HDR update: time {time_s} s is not after the previous {} s",
+                s.time_s
+            )));
+        }
+        let p = self.params;
+        // Step 2, Eq. 7: first-order low-pass filter.
+        let w_f = (x * dt + p.tau_s * s.w_f) / (dt + p.tau_s);
+        // Step 3, Eq. 8 (inequality fixed): switch on while the previous corrected rate is small.
+        let w_on = s.omega1.abs() < p.theta_w_dps;
+        // Step 4, Eq. 9: count repetitions of the same sign (at i = 1, omega_{-1} := omega_0).
+        let sign1 = sign(s.omega1);
+        let r = if sign1 == sign(s.omega2) { s.r + 1 } else { 1 };
+        // Step 5, Eq. 10: repetition attenuator.
+        let big_r = self.r_factor(r);
+        // Step 6, Eq. 11: binary I-controller, i_c per second of time.
+        let i = if w_on { s.i - sign1 * big_r * p.i_c_dps * dt } else { s.i };
+        // Step 7, Eq. 12: corrected rate.
+        let omega = w_f + i;
+        // Step 8, Eq. 13: de-lag the filter.
+        let omega_d = omega + (p.tau_s / dt) * (omega - s.omega1);
+        // Step 9, Eq. 14 (fixed): integrate.
+        let psi = s.psi + omega_d * dt;
+        self.state = Some(HdrState { time_s, w_f, i, r, omega1: omega, omega2: s.omega1, psi });
+        Ok(HdrOutput {
+            time_s,
+            rate_filtered_dps: w_f,
+            rate_corrected_dps: omega,
+            rate_delag_dps: omega_d,
+            heading_deg: psi,
+            i_dps: i,
+            turn_switch: w_on,
+            r,
+            attenuation: big_r,
+        })
+    }
+
+    /// Forgets the state (keeps parameters and eps0).
+    pub fn reset(&mut self) {
+        self.state = None;
+    }
+}
+
+/// The paper's "without HDR" baseline: integrate (w_raw - eps0) with no filter.
+#[derive(Debug, Clone, Default)]
+pub struct RawIntegrator {
+    eps0_dps: f64,
+    last_time_s: Option<f64>,
+    heading_deg: f64,
+}
+
+impl RawIntegrator {
+    pub fn new(eps0_dps: f64) -> Self {
+        RawIntegrator { eps0_dps, last_time_s: None, heading_deg: 0.0 }
+    }
+    /// psi_i = psi_{i-1} + (w_raw_i - eps0) T_i; psi_0 = 0.
+    #[inline]
+    pub fn update(&mut self, time_s: f64, rate_raw_dps: f64) -> f64 {
+        if let Some(t) = self.last_time_s {
+            self.heading_deg += (rate_raw_dps - self.eps0_dps) * (time_s - t);
+        }
+        self.last_time_s = Some(time_s);
+        self.heading_deg
+    }
+}
+
+/// Options of a batch HDR run.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HdrOptions {
+    #[serde(flatten)]
+    pub params: HdrParams,
+    /// Static-bias window, s; None = the log's `# bias_s:` or 20 s.
+    pub bias_s: Option<f64>,
+    /// Block-average to 1 Hz first (the paper's pre-processing; default true).
+    pub resample: bool,
+}
+
+impl Default for HdrOptions {
+    fn default() -> Self {
+        HdrOptions { params: HdrParams::default(), bias_s: None, resample: true }
+    }
+}
+
+impl HdrOptions {
+    /// Sets a parameter by CLI key: i_c, tau, theta_w, c1, c2, bias_s.
+    pub fn set(&mut self, key: &str, value: f64) -> Result<()> {
+        match key {
+            "bias_s" => {
+                if !(value.is_finite() && value >= 0.0) {
+                    return Err(Error::param("bias_s", format!("{value} is not a time >= 0 s")));
+                }
+                self.bias_s = Some(value);
+                Ok(())
+            }
+            _ => self
+                .params
+                .set(key, value)
+                .map_err(|_| Error::param(key, "unknown key (i_c, tau, theta_w, c1, c2, bias_s)")),
+        }
+    }
+}
+
+/// Per-sample series of a batch run, at the estimator samples (blocks or rows).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct HdrTrace {
+    pub time_s: Vec<f64>,
+    /// Raw baseline heading, aligned to the reference (unshifted if there is none).
+    pub heading_raw_deg: Vec<f64>,
+    /// HDR heading, aligned to the reference (unshifted if there is none).
+    pub heading_hdr_deg: Vec<f64>,
+    pub rate_raw_dps: Vec<f64>,
+    pub rate_corrected_dps: Vec<f64>,
+    pub i_dps: Vec<f64>,
+    pub turn_switch: Vec<bool>,
+    pub attenuation: Vec<f64>,
+}
+
+/// The Result keys of methods.md for `hdr`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[allow(non_snake_case)]
+pub struct HdrResult {
+    pub E_psi_raw_deg: f64,
+    pub E_psi_hdr_deg: f64,
+    pub NE_psi_raw_deg_per_min: f64,
+    pub NE_psi_hdr_deg_per_min: f64,
+    pub improvement: f64,
+    pub duration_min: f64,
+    pub n_samples: usize,
+    pub n_processed: usize,
+    pub eps0_dps: f64,
+    pub resampled: bool,
+}
+
+/// A batch run: the trace always, the metrics when the log has a usable reference.
+#[derive(Debug, Clone)]
+pub struct HdrRun {
+    pub eps0_dps: f64,
+    pub trace: HdrTrace,
+    pub result: Result<HdrResult>,
+}
+
+/// Runs HDR and the raw baseline over prepared samples (no allocation per sample beyond
+/// the trace vectors).
+pub fn run_samples(samples: &Samples, params: HdrParams, eps0_dps: f64) -> Result<HdrTrace> {
+    let n = samples.len();
+    let mut hdr = Hdr::new(params, eps0_dps)?;
+    let mut raw = RawIntegrator::new(eps0_dps);
+    let mut tr = HdrTrace {
+        time_s: samples.time_s.clone(),
+        heading_raw_deg: Vec::with_capacity(n),
+        heading_hdr_deg: Vec::with_capacity(n),
+        rate_raw_dps: samples.rate_dps.clone(),
+        rate_corrected_dps: Vec::with_capacity(n),
+        i_dps: Vec::with_capacity(n),
+        turn_switch: Vec::with_capacity(n),
+        attenuation: Vec::with_capacity(n),
+    };
+    for (&t, &w) in samples.time_s.iter().zip(&samples.rate_dps) {
+        let o = hdr.update(t, w)?;
+        tr.heading_raw_deg.push(raw.update(t, w));
+        tr.heading_hdr_deg.push(o.heading_deg);
+        tr.rate_corrected_dps.push(o.rate_corrected_dps);
+        tr.i_dps.push(o.i_dps);
+        tr.turn_switch.push(o.turn_switch);
+        tr.attenuation.push(o.attenuation);
+    }
+    Ok(tr)
+}
+
+/// Only the headings, for tuning: HDR and raw E_psi without building a trace.
+pub fn headings_only(samples: &Samples, params: HdrParams, eps0_dps: f64, out_hdr: &mut Vec<f64>) -> Result<()> {
+    let mut hdr = Hdr::new(params, eps0_dps)?;
+    out_hdr.clear();
+    for (&t, &w) in samples.time_s.iter().zip(&samples.rate_dps) {
+        out_hdr.push(hdr.update(t, w)?.heading_deg);
+    }
+    Ok(())
+}
+
+/// Runs HDR on a log: static bias, optional 1 Hz blocks, estimator, baseline, metrics.
+/// Parameter and data errors are returned; a missing reference only fails `result`.
+pub fn run(log: &DriveLog, opts: &HdrOptions) -> Result<HdrRun> {
+    opts.params.validate()?;
+    let (eps0, samples) = preprocess::prepare(log, opts.bias_s, opts.resample)?;
+    let mut trace = run_samples(&samples, opts.params, eps0)?;
+    let result = Reference::from_log(log).and_then(|reference| {
+        let raw = metrics::score(&trace.time_s, &trace.heading_raw_deg, &reference)?;
+        let hdr = metrics::score(&trace.time_s, &trace.heading_hdr_deg, &reference)?;
+        trace.heading_raw_deg.iter_mut().for_each(|p| *p += raw.shift_deg);
+        trace.heading_hdr_deg.iter_mut().for_each(|p| *p += hdr.shift_deg);
+        let d = log.duration_min();
+        Ok(HdrResult {
+            E_psi_raw_deg: raw.e_psi_deg,
+            E_psi_hdr_deg: hdr.e_psi_deg,
+            NE_psi_raw_deg_per_min: metrics::ne_psi(raw.e_psi_deg, d),
+            NE_psi_hdr_deg_per_min: metrics::ne_psi(hdr.e_psi_deg, d),
+            improvement: metrics::improvement(raw.e_psi_deg, hdr.e_psi_deg),
+            duration_min: d,
+            n_samples: hdr.n_samples,
+            n_processed: samples.len(),
+            eps0_dps: eps0,
+            resampled: opts.resample,
+        })
+    });
+    Ok(HdrRun { eps0_dps: eps0, trace, result })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const EPS: f64 = 1e-12;
+
+    fn close(a: f64, b: f64) {
+        assert!((a - b).abs() < EPS * (1.0 + b.abs()), "{a} != {b}");
+    }
+
+    #[test]
+    fn sign_is_three_valued() {
+        assert_eq!(sign(2.0), 1.0);
+        assert_eq!(sign(-0.1), -1.0);
+        assert_eq!(sign(0.0), 0.0);
+        assert_eq!(sign(-0.0), 0.0);
+    }
+
+    #[test]
+    fn attenuation_eq10_hand_worked() {
+        // r = 1: (1 + c1) / (1 + c1) = 1
+        assert_eq!(attenuation(0.16, 1.8, 1), 1.0);
+        // r = 2, c2 = 2: 1.16 / (1 + 0.16 * 4) = 1.16 / 1.64
+        close(attenuation(0.16, 2.0, 2), 1.16 / 1.64);
+        // r = 10, c1 = 1, c2 = 1: 2 / 11
+        close(attenuation(1.0, 1.0, 10), 2.0 / 11.0);
+    }
+
+    #[test]
+    fn r_table_matches_powf_bit_for_bit() {
+        let p = HdrParams::default();
+        let mut h = Hdr::new(p, 0.0).unwrap();
+        for r in [1u64, 2, 63, 64, 65, 500, 3000] {
+            assert_eq!(h.r_factor(r).to_bits(), attenuation(p.c1, p.c2, r).to_bits());
+        }
+    }
+
+    #[test]
+    fn params_validation() {
+        assert!(HdrParams::default().validate().is_ok());
+        let bad = [
+            HdrParams { tau_s: -0.1, ..Default::default() },
+            HdrParams { i_c_dps: -1.0, ..Default::default() },
+            HdrParams { c1: 0.0, ..Default::default() },
+            HdrParams { c1: -1.0, ..Default::default() },
+            HdrParams { theta_w_dps: f64::NAN, ..Default::default() },
+            HdrParams { c2: f64::INFINITY, ..Default::default() },
+        ];
+        for p in bad {
+            assert!(matches!(p.validate(), Err(Error::Param { .. })), "{p:?}");
+        }
+        let e = HdrParams { tau_s: -0.1, ..Default::default() }.validate().unwrap_err();
+        assert_eq!(e.to_string(), "parameter tau: -0.1 is not a time >= 0 s");
+    }
+
+    #[test]
+    fn first_steps_value_by_value() {
+        // Parameters chosen for hand arithmetic: i_c = 0.1, tau = 1, theta_w = 0.5, c1 = 1, c2 = 1.
+        // eps0 = 1; raw rates 1.2, 1.0, 0.8, 3.0 at t = 0, 1, 2, 3 (T = 1 s).
+        let p = HdrParams { i_c_dps: 0.1, tau_s: 1.0, theta_w_dps: 0.5, c1: 1.0, c2: 1.0 };
+        let mut h = Hdr::new(p, 1.0).unwrap();
+        // i = 0: x = 0.2; w_f = 0.2; omega_0 = 0.2; psi 0.
+        let o0 = h.update(0.0, 1.2).unwrap();
+        close(o0.rate_filtered_dps, 0.2);
+        close(o0.rate_corrected_dps, 0.2);
+        assert_eq!(o0.heading_deg, 0.0);
+        assert_eq!(o0.r, 1);
+        // i = 1: x = 0; w_f = (0*1 + 1*0.2)/2 = 0.1; W = |0.2| < 0.5 -> 1;
+        // r = 2 (omega_{-1} := omega_0); R = 2/(1+2) = 2/3; I = 0 - 1 * 2/3 * 0.1 = -1/15;
+        // omega = 0.1 - 1/15 = 1/30; omega_d = 1/30 + (1/30 - 0.2) = -2/15; psi = -2/15.
+        let o1 = h.update(1.0, 1.0).unwrap();
+        close(o1.rate_filtered_dps, 0.1);
+        assert!(o1.turn_switch);
+        assert_eq!(o1.r, 2);
+        close(o1.attenuation, 2.0 / 3.0);
+        close(o1.i_dps, -1.0 / 15.0);
+        close(o1.rate_corrected_dps, 1.0 / 30.0);
+        close(o1.rate_delag_dps, -2.0 / 15.0);
+        close(o1.heading_deg, -2.0 / 15.0);
+        // i = 2: x = -0.2; w_f = (-0.2 + 0.1)/2 = -0.05; W: |1/30| < 0.5 -> 1;
+        // sign(omega_1) = sign(omega_0) = + -> r = 3, R = 2/4 = 0.5;
+        // I = -1/15 - 0.5*0.1 = -7/60; omega = -0.05 - 7/60 = -1/6;
+        // omega_d = -1/6 + (-1/6 - 1/30) = -11/30; psi = -2/15 - 11/30 = -1/2.
+        let o2 = h.update(2.0, 0.8).unwrap();
+        close(o2.rate_filtered_dps, -0.05);
+        assert_eq!(o2.r, 3);
+        close(o2.attenuation, 0.5);
+        close(o2.i_dps, -7.0 / 60.0);
+        close(o2.rate_corrected_dps, -1.0 / 6.0);
+        close(o2.rate_delag_dps, -11.0 / 30.0);
+        close(o2.heading_deg, -0.5);
+        // i = 3: x = 2; w_f = (2 - 0.05)/2 = 0.975; W: |-1/6| < 0.5 -> 1;
+        // sign(omega_2) = - != sign(omega_1) = + -> r = 1, R = 1; I = -7/60 + 0.1 = -1/60;
+        // omega = 0.975 - 1/60 = 0.958333..; omega_d = omega + (omega + 1/6) ; psi += omega_d.
+        let o3 = h.update(3.0, 3.0).unwrap();
+        assert_eq!(o3.r, 1);
+        close(o3.i_dps, -1.0 / 60.0);
+        let omega3 = 0.975 - 1.0 / 60.0;
+        close(o3.rate_corrected_dps, omega3);
+        close(o3.rate_delag_dps, omega3 + (omega3 + 1.0 / 6.0));
+        close(o3.heading_deg, -0.5 + omega3 + (omega3 + 1.0 / 6.0));
+        // i = 4: |omega_3| = 0.958 >= 0.5 -> switch off, I unchanged.
+        let o4 = h.update(4.0, 1.0).unwrap();
+        assert!(!o4.turn_switch);
+        close(o4.i_dps, -1.0 / 60.0);
+    }
+
+    #[test]
+    fn i_c_scales_with_sample_interval() {
+        // Eq. 11 with T = 0.5 s: the increment is i_c * 0.5.
+        let p = HdrParams { i_c_dps: 0.1, tau_s: 0.0, theta_w_dps: 1.0, c1: 1.0, c2: 0.0 };
+        let mut h = Hdr::new(p, 0.0).unwrap();
+        h.update(0.0, 0.3).unwrap();
+        let o = h.update(0.5, 0.3).unwrap();
+        // c2 = 0 -> R = 1 always; I = -0.1 * 0.5
+        close(o.i_dps, -0.05);
+        // tau = 0: w_f = x; omega = 0.3 - 0.05; de-lag term is 0; psi = 0.25 * 0.5
+        close(o.heading_deg, 0.125);
+    }
+
+    #[test]
+    fn update_rejects_bad_time_and_rate() {
+        let mut h = Hdr::new(HdrParams::default(), 0.0).unwrap();
+        h.update(1.0, 0.0).unwrap();
+        assert!(h.update(1.0, 0.0).is_err());
+        assert!(h.update(0.5, 0.0).is_err());
+        assert!(h.update(2.0, f64::NAN).is_err());
+        // state unchanged by the rejected samples
+        assert!(h.update(2.0, 0.0).is_ok());
+    }
+
+    #[test]
+    fn raw_integrator_hand_worked() {
+        let mut r = RawIntegrator::new(0.5);
+        assert_eq!(r.update(0.0, 9.0), 0.0);
+        assert_eq!(r.update(1.0, 1.5), 1.0);
+        assert_eq!(r.update(3.0, 0.0), 0.0);
+    }
+
+    #[test]
+    fn options_set_keys() {
+        let mut o = HdrOptions::default();
+        o.set("i_c", 0.01).unwrap();
+        o.set("tau", 2.0).unwrap();
+        o.set("theta_w", 0.3).unwrap();
+        o.set("c1", 0.5).unwrap();
+        o.set("c2", 1.0).unwrap();
+        o.set("bias_s", 10.0).unwrap();
+        assert_eq!(o.params, HdrParams { i_c_dps: 0.01, tau_s: 2.0, theta_w_dps: 0.3, c1: 0.5, c2: 1.0 });
+        assert_eq!(o.bias_s, Some(10.0));
+        assert!(o.set("gain", 1.0).is_err());
+        assert!(o.set("bias_s", -1.0).is_err());
+    }
+
+    #[test]
+    fn options_deserialize_with_defaults_and_aliases() {
+        let o: HdrOptions = serde_json::from_str(r#"{"i_c": 0.01, "resample": false}"#).unwrap();
+        assert_eq!(o.params.i_c_dps, 0.01);
+        assert_eq!(o.params.tau_s, 0.75);
+        assert!(!o.resample);
+        let o: HdrOptions = serde_json::from_str(r#"{"tau_s": 1.5}"#).unwrap();
+        assert_eq!(o.params.tau_s, 1.5);
+        assert!(serde_json::from_str::<HdrOptions>(r#"{"tau_s": "x"}"#).is_err());
+    }
+}

@@ -1,0 +1,25 @@
+//! gyrodrift: a cheap yaw-rate gyro turned into a usable heading source, with the three
+//! methods of the University of Michigan mobile-robotics lab read exactly as
+//! `shared/spec/methods.md` fixes them:
+//!
+//! - [`hdr`]: Heuristic Drift Reduction (Borenstein & Ojeda), streaming, Eqs. 7-14;
+//! - [`gyrodometry`]: odometry heading replaced by the gyro's while they disagree (Borenstein & Feng);
+//! - [`calibration`]: static bias, rate x temperature error model, compensation (Ojeda, Chung & Borenstein);
+//! - [`allan`]: overlapping Allan deviation, ARW and bias instability;
+//! - [`metrics`]: E_psi, NE_psi and improvement against a reference heading;
+//! - [`log`]: the drive-log CSV v1, parsed streaming from any `Read`.
+//!
+//! Pure Rust: no I/O beyond `Read`/`Write`, no wasm or browser types; errors, never panics,
+//! on bad input.
+
+pub mod allan;
+pub mod calibration;
+pub mod error;
+pub mod gyrodometry;
+pub mod hdr;
+pub mod log;
+pub mod metrics;
+pub mod preprocess;
+
+pub use error::{Error, Result};
+pub use log::{parse_log, parse_log_str, Column, DriveLog, LogKind, LogMeta};

@@ -1,0 +1,211 @@
+//! Heading metrics of the HDR seed (Eqs. 15-16) with methods.md details 3-6: unwrap the
+//! reference, align the trace at the first scored sample, interpolate, E_psi, NE_psi.
+
+use crate::error::{Error, Result};
+use crate::log::{Column, DriveLog};
+use serde::{Deserialize, Serialize};
+
+/// The valid reference samples of a log, unwrapped (detail 6).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Reference {
+    pub time_s: Vec<f64>,
+    pub heading_deg: Vec<f64>,
+}
+
+impl Reference {
+    /// The non-empty `ref_heading_deg` cells, unwrapped; an error if there are none.
+    pub fn from_log(log: &DriveLog) -> Result<Reference> {
+        let col = log.require(Column::RefHeadingDeg, "needed for the heading metrics")?;
+        let mut time_s = Vec::new();
+        let mut raw = Vec::new();
+        for (&t, &h) in log.time_s().iter().zip(col) {
+            if !h.is_nan() {
+                time_s.push(t);
+                raw.push(h);
+            }
+        }
+        if time_s.is_empty() {
+            return Err(Error::data(
+                "no valid reference heading: the ref_heading_deg column is empty, so E_psi cannot be computed",
+            ));
+        }
+        Ok(Reference { time_s, heading_deg: unwrap_deg(&raw) })
+    }
+}
+
+/// Wraps an angle difference into [-180, 180): `d - 360 * floor((d + 180) / 360)`.
+#[inline]
+pub fn wrap_diff_deg(d: f64) -> f64 {
+    d - 360.0 * ((d + 180.0) / 360.0).floor()
+}
+
+/// Unwraps headings: each steps to the equivalent value nearest the previous unwrapped
+/// one (detail 6); the first is kept as is.
+pub fn unwrap_deg(headings: &[f64]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(headings.len());
+    let mut prev = f64::NAN;
+    for &x in headings {
+        let u = if out.is_empty() { x } else { prev + wrap_diff_deg(x - prev) };
+        out.push(u);
+        prev = u;
+    }
+    out
+}
+
+/// Linear interpolation of a trace at `t` with j = last sample with `t_j <= t` (detail 4).
+/// `j` must satisfy that; returns psi_j at an exact hit or at the last sample.
+#[inline]
+pub fn interp_at(time_s: &[f64], psi: &[f64], j: usize, t: f64) -> f64 {
+    if time_s[j] == t || j + 1 == time_s.len() {
+        psi[j]
+    } else {
+        psi[j] + (psi[j + 1] - psi[j]) * (t - time_s[j]) / (time_s[j + 1] - time_s[j])
+    }
+}
+
+/// How a heading trace scores against the reference.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Score {
+    /// Constant added to the trace so it equals the reference at the first scored sample.
+    pub shift_deg: f64,
+    /// E_psi (Eq. 15): mean |psi(t_k) - ref_k| over the scored samples, no wrapping.
+    pub e_psi_deg: f64,
+    /// Scored reference samples (alignment sample included).
+    pub n_samples: usize,
+    /// Signed error (estimate minus reference) at the last scored sample.
+    pub final_err_deg: f64,
+}
+
+/// Scores a trace (unshifted, any start) against the reference (details 3-4).
+pub fn score(time_s: &[f64], psi_deg: &[f64], reference: &Reference) -> Result<Score> {
+    let (Some(&t_first), Some(&t_last)) = (time_s.first(), time_s.last()) else {
+        return Err(Error::data("the heading trace is empty"));
+    };
+    let mut j = 0usize;
+    let mut shift = f64::NAN;
+    let (mut sum, mut n, mut last_err) = (0.0, 0usize, 0.0);
+    for (&t, &r) in reference.time_s.iter().zip(&reference.heading_deg) {
+        if t < t_first {
+            continue;
+        }
+        if t > t_last {
+            break;
+        }
+        while j + 1 < time_s.len() && time_s[j + 1] <= t {
+            j += 1;
+        }
+        let psi = interp_at(time_s, psi_deg, j, t);
+        if n == 0 {
+            shift = r - psi;
+        }
+        let err = (psi + shift) - r;
+        sum += err.abs();
+        last_err = err;
+        n += 1;
+    }
+    if n == 0 {
+        return Err(Error::data(format!(
+            "no valid reference heading between {t_first} s and {t_last} s, where the heading trace is"
+        )));
+    }
+    Ok(Score { shift_deg: shift, e_psi_deg: sum / n as f64, n_samples: n, final_err_deg: last_err })
+}
+
+/// NE_psi (Eq. 16): E_psi per minute of drive.
+pub fn ne_psi(e_psi_deg: f64, duration_min: f64) -> f64 {
+    e_psi_deg / duration_min
+}
+
+/// Relative improvement E_psi(raw) / E_psi(method).
+pub fn improvement(e_raw_deg: f64, e_method_deg: f64) -> f64 {
+    e_raw_deg / e_method_deg
+}
+
+/// Mean and sample standard deviation (n - 1), as in the paper's average rows.
+pub fn mean_std(values: &[f64]) -> (f64, f64) {
+    let n = values.len();
+    if n == 0 {
+        return (f64::NAN, f64::NAN);
+    }
+    let mean = values.iter().sum::<f64>() / n as f64;
+    if n == 1 {
+        return (mean, 0.0);
+    }
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    (mean, var.sqrt())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_diff_range_and_half_turn() {
+        assert_eq!(wrap_diff_deg(190.0), -170.0);
+        assert_eq!(wrap_diff_deg(-190.0), 170.0);
+        assert_eq!(wrap_diff_deg(180.0), -180.0); // exact half turn steps by -180
+        assert_eq!(wrap_diff_deg(-180.0), -180.0);
+        assert_eq!(wrap_diff_deg(10.0), 10.0);
+        assert_eq!(wrap_diff_deg(720.0 + 5.0), 5.0);
+    }
+
+    #[test]
+    fn unwrap_hand_worked() {
+        let u = unwrap_deg(&[170.0, -170.0, -10.0, 170.0, 350.0]);
+        // 170 -> -170 is +20 -> 190; -10 is -200 from 190 -> +160 -> 350;
+        // 170 from 350: -180 -> 170; 350 from 170: +180 -> wraps to -180 -> -10
+        assert_eq!(u, vec![170.0, 190.0, 350.0, 170.0, -10.0]);
+    }
+
+    #[test]
+    fn interpolation_hand_worked() {
+        let t = [0.0, 1.0, 3.0];
+        let p = [0.0, 10.0, 30.0];
+        assert_eq!(interp_at(&t, &p, 1, 2.0), 20.0);
+        assert_eq!(interp_at(&t, &p, 1, 1.0), 10.0);
+        assert_eq!(interp_at(&t, &p, 0, 0.25), 2.5);
+        assert_eq!(interp_at(&t, &p, 2, 3.0), 30.0);
+    }
+
+    #[test]
+    fn score_aligns_at_first_sample_inside_span() {
+        // reference at 0.5 (before trace), 1, 2, 3.5 (after trace)
+        let reference = Reference {
+            time_s: vec![0.5, 1.0, 2.0, 3.5],
+            heading_deg: vec![99.0, 100.0, 100.0, 0.0],
+        };
+        let t = [1.0, 2.0, 3.0];
+        let psi = [0.0, 4.0, 8.0];
+        let s = score(&t, &psi, &reference).unwrap();
+        assert_eq!(s.shift_deg, 100.0);
+        assert_eq!(s.n_samples, 2);
+        assert_eq!(s.e_psi_deg, 2.0); // errors 0 and 4
+        assert_eq!(s.final_err_deg, 4.0);
+    }
+
+    #[test]
+    fn score_without_reference_in_span_is_an_error() {
+        let reference = Reference { time_s: vec![10.0], heading_deg: vec![0.0] };
+        assert!(score(&[0.0, 1.0], &[0.0, 0.0], &reference).is_err());
+    }
+
+    #[test]
+    fn e_psi_of_constant_bias_ramp_equals_closed_form() {
+        // psi(t) = b t against a zero reference sampled at t = 0..N: E = b * mean(0..N) = b N / 2
+        let b = 0.37;
+        let n = 600;
+        let t: Vec<f64> = (0..=n).map(|k| k as f64).collect();
+        let psi: Vec<f64> = t.iter().map(|t| b * t).collect();
+        let reference = Reference { time_s: t.clone(), heading_deg: vec![0.0; n + 1] };
+        let s = score(&t, &psi, &reference).unwrap();
+        let closed = b * n as f64 / 2.0;
+        assert!((s.e_psi_deg - closed).abs() < 1e-9, "{} vs {}", s.e_psi_deg, closed);
+    }
+
+    #[test]
+    fn mean_std_hand_worked() {
+        let (m, s) = mean_std(&[2.0, 4.0, 4.0, 4.0, 5.0, 5.0, 7.0, 9.0]);
+        assert_eq!(m, 5.0);
+        assert!((s - (32.0f64 / 7.0).sqrt()).abs() < 1e-12);
+    }
+}
