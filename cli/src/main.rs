@@ -1,1 +1,169 @@
-fn main(){}
+//! `gyrodrift`: the command-line front of the gyrodrift core. It reads files, parses
+//! options, calls core and prints; every number comes from core.
+
+mod output;
+
+use clap::{Parser, Subcommand};
+use gyrodrift::{calibration, gyrodometry, hdr, DriveLog, Error};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "gyrodrift", version, about = "Heading from a cheap yaw-rate gyro: HDR, Gyrodometry, calibration")]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Cmd,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Heuristic Drift Reduction on a drive log, scored against its reference heading.
+    Hdr {
+        log: PathBuf,
+        /// Run on the raw rows instead of the paper's 1 Hz blocks.
+        #[arg(long)]
+        no_resample: bool,
+        /// Parameter: i_c, tau, theta_w, c1, c2, bias_s (e.g. --set tau=1.0).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Print one JSON object with the Result keys.
+        #[arg(long)]
+        json: bool,
+        /// Write the per-sample heading trace (CSV) to this file.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<PathBuf>,
+    },
+    /// Gyrodometry on a robot log with wheel travel.
+    Gyrodometry {
+        log: PathBuf,
+        /// Parameter: thres_rate, wheelbase_m, bias_s.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Fit the rate x temperature error model to a turntable session.
+    Calibrate {
+        log: PathBuf,
+        /// Parameter: p, q, bias_s.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Overlapping Allan deviation of a (static) gyro log.
+    Allan {
+        log: PathBuf,
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// An error for the user: `file: message`, exit code 2.
+struct Failure(String);
+
+fn fail(path: &Path, e: Error) -> Failure {
+    Failure(format!("{}: {}", path.display(), e))
+}
+
+fn read_log(path: &Path) -> Result<DriveLog, Failure> {
+    let file = std::fs::File::open(path)
+        .map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
+    gyrodrift::parse_log(file).map_err(|e| fail(path, e))
+}
+
+/// Splits `key=value` and parses the value as a number.
+fn parse_set(s: &str) -> Result<(String, f64), Failure> {
+    let (k, v) = s
+        .split_once('=')
+        .ok_or_else(|| Failure(format!("--set {s}: expected KEY=VALUE")))?;
+    let value: f64 = v
+        .trim()
+        .parse()
+        .map_err(|_| Failure(format!("--set {s}: \"{v}\" is not a number")))?;
+    Ok((k.trim().to_string(), value))
+}
+
+fn apply_sets<F: FnMut(&str, f64) -> gyrodrift::Result<()>>(sets: &[String], mut f: F) -> Result<(), Failure> {
+    for s in sets {
+        let (k, v) = parse_set(s)?;
+        f(&k, v).map_err(|e| Failure(format!("--set {s}: {e}")))?;
+    }
+    Ok(())
+}
+
+fn print_json<T: serde::Serialize>(value: &T) -> Result<(), Failure> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| Failure(format!("JSON: {e}")))?;
+    println!("{text}");
+    Ok(())
+}
+
+fn run(cli: Cli) -> Result<(), Failure> {
+    match cli.cmd {
+        Cmd::Hdr { log, no_resample, set, json, trace } => {
+            let mut opts = hdr::HdrOptions { resample: !no_resample, ..Default::default() };
+            apply_sets(&set, |k, v| opts.set(k, v))?;
+            opts.params.validate().map_err(|e| Failure(e.to_string()))?;
+            let drive = read_log(&log)?;
+            let run = hdr::run(&drive, &opts).map_err(|e| fail(&log, e))?;
+            if let Some(path) = trace {
+                let f = std::fs::File::create(&path)
+                    .map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
+                run.trace.write_csv(f).map_err(|e| fail(&path, e))?;
+            }
+            let result = run.result.map_err(|e| fail(&log, e))?;
+            if json {
+                print_json(&result)
+            } else {
+                print!("{}", output::hdr_table(&log, &opts, &result));
+                Ok(())
+            }
+        }
+        Cmd::Gyrodometry { log, set, json } => {
+            let mut opts = gyrodometry::GyrodometryOptions::default();
+            apply_sets(&set, |k, v| opts.set(k, v))?;
+            let drive = read_log(&log)?;
+            let run = gyrodometry::run(&drive, &opts).map_err(|e| fail(&log, e))?;
+            let result = run.result.map_err(|e| fail(&log, e))?;
+            if json {
+                print_json(&result)
+            } else {
+                print!("{}", output::gyrodometry_table(&log, &result));
+                Ok(())
+            }
+        }
+        Cmd::Calibrate { log, set, json } => {
+            let mut opts = calibration::CalibrationOptions::default();
+            apply_sets(&set, |k, v| opts.set(k, v))?;
+            let drive = read_log(&log)?;
+            let run = calibration::run(&drive, &opts).map_err(|e| fail(&log, e))?;
+            if json {
+                print_json(&run.result)
+            } else {
+                print!("{}", output::calibration_table(&log, &run));
+                Ok(())
+            }
+        }
+        Cmd::Allan { log, json } => {
+            let drive = read_log(&log)?;
+            let result = gyrodrift::allan::run(&drive).map_err(|e| fail(&log, e))?;
+            if json {
+                print_json(&result)
+            } else {
+                print!("{}", output::allan_table(&log, &result));
+                Ok(())
+            }
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure(msg)) => {
+            eprintln!("{msg}");
+            ExitCode::from(2)
+        }
+    }
+}

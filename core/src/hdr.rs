@@ -311,6 +311,20 @@ pub struct HdrTrace {
     pub attenuation: Vec<f64>,
 }
 
+impl HdrTrace {
+    /// Writes the per-sample trace CSV of methods.md: time_s, heading_raw_deg, heading_hdr_deg.
+    pub fn write_csv<W: std::io::Write>(&self, out: W) -> Result<()> {
+        use std::io::Write as _;
+        let mut out = std::io::BufWriter::new(out);
+        writeln!(out, "time_s,heading_raw_deg,heading_hdr_deg")?;
+        for i in 0..self.time_s.len() {
+            writeln!(out, "{},{},{}", self.time_s[i], self.heading_raw_deg[i], self.heading_hdr_deg[i])?;
+        }
+        out.flush()?;
+        Ok(())
+    }
+}
+
 /// The Result keys of methods.md for `hdr`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[allow(non_snake_case)]

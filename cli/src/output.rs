@@ -1,0 +1,74 @@
+//! Human-readable tables with units. Formatting only: every number comes from core.
+
+use gyrodrift::allan::AllanResult;
+use gyrodrift::calibration::CalibrationRun;
+use gyrodrift::gyrodometry::GyrodometryResult;
+use gyrodrift::hdr::{HdrOptions, HdrResult};
+use std::fmt::Write;
+use std::path::Path;
+
+pub fn hdr_table(path: &Path, o: &HdrOptions, r: &HdrResult) -> String {
+    let p = &o.params;
+    let mut s = String::new();
+    let _ = writeln!(s, "{}: HDR, {:.1} min, {}", path.display(), r.duration_min,
+        if r.resampled { "1 Hz blocks" } else { "raw rows" });
+    let _ = writeln!(s, "  parameters   i_c {} deg/s, tau {} s, theta_w {} deg/s, c1 {}, c2 {}",
+        p.i_c_dps, p.tau_s, p.theta_w_dps, p.c1, p.c2);
+    let _ = writeln!(s, "               {:>12} {:>18}", "E_psi (deg)", "NE_psi (deg/min)");
+    let _ = writeln!(s, "  without HDR  {:>12.2} {:>18.3}", r.E_psi_raw_deg, r.NE_psi_raw_deg_per_min);
+    let _ = writeln!(s, "  with HDR     {:>12.2} {:>18.3}", r.E_psi_hdr_deg, r.NE_psi_hdr_deg_per_min);
+    let _ = writeln!(s, "  improvement  {:.2}x", r.improvement);
+    let _ = writeln!(s, "  static bias eps0 {:.4} deg/s; {} estimator samples; {} scored reference samples",
+        r.eps0_dps, r.n_processed, r.n_samples);
+    s
+}
+
+pub fn gyrodometry_table(path: &Path, r: &GyrodometryResult) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{}: Gyrodometry, {:.2} min, wheelbase {} m, threshold {} deg/s",
+        path.display(), r.duration_min, r.wheelbase_m, r.thres_rate_dps);
+    let _ = writeln!(s, "                {:>12} {:>18} {:>16}", "E_psi (deg)", "NE_psi (deg/min)", "final err (deg)");
+    for (name, e, ne, f) in [
+        ("odometry", r.E_psi_odo_deg, r.NE_psi_odo_deg_per_min, r.final_err_odo_deg),
+        ("gyro", r.E_psi_gyro_deg, r.NE_psi_gyro_deg_per_min, r.final_err_gyro_deg),
+        ("gyrodometry", r.E_psi_gyrodometry_deg, r.NE_psi_gyrodometry_deg_per_min, r.final_err_gyrodometry_deg),
+    ] {
+        let _ = writeln!(s, "  {name:<13} {e:>12.3} {ne:>18.3} {f:>16.3}");
+    }
+    let _ = writeln!(s, "  gyro used in {} intervals; eps0 {:.4} deg/s; {} scored reference samples",
+        r.n_gyro_intervals, r.eps0_dps, r.n_samples);
+    s
+}
+
+pub fn calibration_table(path: &Path, run: &CalibrationRun) -> String {
+    let r = &run.result;
+    let mut s = String::new();
+    let _ = writeln!(s, "{}: calibration, p = {}, q = {}, {} data sets", path.display(), r.p, r.q, r.n_sets);
+    let _ = writeln!(s, "  static bias w_s {:.5} deg/s; after compensation w_s* {:.5} deg/s", r.w_s_dps, r.w_s_star_dps);
+    let _ = writeln!(s, "  set-level fit residual RMS {:.5} deg/s", r.fit_residual_rms_dps);
+    let _ = writeln!(s, "                     {:>16} {:>18} {:>18}", "residual RMS", "360-deg err max", "360-deg err RMS");
+    let _ = writeln!(s, "                     {:>16} {:>18} {:>18}", "(deg/s)", "(deg)", "(deg)");
+    let _ = writeln!(s, "  static bias only   {:>16.5} {:>18.3} {:>18.3}", r.residual_rms_static_only_dps,
+        r.turn360_err_static_only_max_deg, r.turn360_err_static_only_rms_deg);
+    let _ = writeln!(s, "  compensated        {:>16.5} {:>18.3} {:>18.3}", r.residual_rms_compensated_dps,
+        r.turn360_err_compensated_max_deg, r.turn360_err_compensated_rms_deg);
+    let _ = writeln!(s, "  coefficients C[j][k] of T^j w_g^k:");
+    for (j, row) in r.c.iter().enumerate() {
+        let cells: Vec<String> = row.iter().map(|c| format!("{c:>13.5e}")).collect();
+        let _ = writeln!(s, "    T^{j}: {}", cells.join(" "));
+    }
+    s
+}
+
+pub fn allan_table(path: &Path, r: &AllanResult) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{}: Allan deviation, T0 = {} s", path.display(), r.T0_s);
+    let _ = writeln!(s, "  angle random walk   {:.5} deg/sqrt(s) = {:.4} deg/sqrt(h)", r.arw_deg_per_sqrt_s, r.arw_deg_per_sqrt_h);
+    let _ = writeln!(s, "  bias instability    {:.6} deg/s = {:.3} deg/h (minimum at tau = {} s)",
+        r.bias_instability_dps, r.bias_instability_dph, r.tau_at_min_s);
+    let _ = writeln!(s, "  {:>10} {:>14}", "tau (s)", "adev (deg/s)");
+    for (t, a) in r.tau_s.iter().zip(&r.adev_dps) {
+        let _ = writeln!(s, "  {t:>10} {a:>14.6}");
+    }
+    s
+}

@@ -1,0 +1,183 @@
+//! The CLI end to end: --json prints exactly the Result keys; bad input exits 2 with one
+//! line naming file, line and column; no panic.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_gyrodrift"))
+}
+
+fn write(name: &str, text: &str) -> PathBuf {
+    let p = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn run(args: &[&str]) -> Output {
+    bin().args(args).output().unwrap()
+}
+
+/// 10 Hz drive, 10 min: 20 s still, then legs and turns; gyro = truth + 1.0 + drift.
+fn drive_csv() -> String {
+    let mut s = String::from("# name: test drive\ntime_s,gyro_dps,ref_heading_deg,speed_mps\n");
+    let mut psi: f64 = 0.0;
+    for i in 0..=6000 {
+        let t = i as f64 / 10.0;
+        let w = if t > 20.0 && (t % 60.0) > 51.0 { 10.0 } else { 0.0 };
+        if i > 0 {
+            psi += w * 0.1;
+        }
+        let bias = 1.0 + if t > 20.0 { 0.03 } else { 0.0 };
+        let r = if i % 10 == 0 { format!("{}", (-psi).rem_euclid(360.0) * -1.0) } else { String::new() };
+        s.push_str(&format!("{t},{},{r},10\n", w + bias));
+    }
+    s
+}
+
+fn keys(json: &str) -> Vec<String> {
+    let v: serde_json::Value = serde_json::from_str(json).unwrap();
+    let mut k: Vec<String> = v.as_object().unwrap().keys().cloned().collect();
+    k.sort();
+    k
+}
+
+fn sorted(v: &[&str]) -> Vec<String> {
+    let mut k: Vec<String> = v.iter().map(|s| s.to_string()).collect();
+    k.sort();
+    k
+}
+
+#[test]
+fn hdr_json_has_exactly_the_result_keys() {
+    let p = write("drive.csv", &drive_csv());
+    let out = run(&["hdr", p.to_str().unwrap(), "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(
+        keys(&text),
+        sorted(&["E_psi_raw_deg", "E_psi_hdr_deg", "NE_psi_raw_deg_per_min", "NE_psi_hdr_deg_per_min", "improvement", "duration_min", "n_samples", "n_processed", "eps0_dps", "resampled"])
+    );
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["resampled"], true);
+    assert!(v["improvement"].as_f64().unwrap() > 2.0, "{text}");
+    assert!((v["duration_min"].as_f64().unwrap() - 10.0).abs() < 1e-12);
+}
+
+#[test]
+fn hdr_set_no_resample_and_trace() {
+    let p = write("drive2.csv", &drive_csv());
+    let trace = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("trace.csv");
+    let out = run(&["hdr", p.to_str().unwrap(), "--no-resample", "--set", "tau=1.5", "--set", "i_c=0.01", "--json", "--trace", trace.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["resampled"], false);
+    assert_eq!(v["n_processed"], 6001);
+    let t = std::fs::read_to_string(&trace).unwrap();
+    assert!(t.starts_with("time_s,heading_raw_deg,heading_hdr_deg\n"));
+    assert_eq!(t.lines().count(), 6002);
+    // the human table
+    let out = run(&["hdr", p.to_str().unwrap()]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("E_psi (deg)") && text.contains("improvement"), "{text}");
+}
+
+#[test]
+fn bad_cell_exits_2_with_file_line_column() {
+    let p = write("bad.csv", "time_s,gyro_dps\n0,1\n0.1,1.2.3\n");
+    let out = run(&["hdr", p.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.trim_end(), format!("{}: line 3, column gyro_dps: \"1.2.3\" is not a number", p.display()));
+    assert!(out.stdout.is_empty());
+}
+
+#[test]
+fn bad_inputs_exit_2_never_panic() {
+    let cases: &[(&str, &str, &str)] = &[
+        ("empty.csv", "", "empty file"),
+        ("header.csv", "time_s,gyro_dps\n", "no data rows"),
+        ("notime.csv", "gyro_dps\n1\n", "missing required column time_s"),
+        ("dup.csv", "time_s,time_s\n1,1\n", "duplicate column time_s"),
+        ("nan.csv", "time_s,gyro_dps\n0,nan\n", "line 2, column gyro_dps"),
+        ("back.csv", "time_s,gyro_dps\n0,1\n1,1\n1,1\n", "line 4, column time_s: time 1 repeats 1 on line 3"),
+        ("trunc.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1", "line 3: row has 2 fields"),
+        ("noref.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,\n1,1,\n", "no valid reference heading"),
+    ];
+    for (name, text, want) in cases {
+        let p = write(name, text);
+        let out = run(&["hdr", p.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{name}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(err.contains(want) && err.starts_with(&p.display().to_string()), "{name}: {err}");
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+    }
+    let out = run(&["hdr", "/nonexistent/x.csv"]);
+    assert_eq!(out.status.code(), Some(2));
+    let p = write("ok.csv", &drive_csv());
+    let out = run(&["hdr", p.to_str().unwrap(), "--set", "tau=-1"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("tau"));
+    let out = run(&["hdr", p.to_str().unwrap(), "--set", "gain=1"]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = run(&["gyrodometry", p.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(err.contains("wheelbase_m"), "{err}");
+}
+
+#[test]
+fn gyrodometry_calibrate_allan_json_keys() {
+    // robot: straight, one bump
+    let mut s = String::from("# wheelbase_m: 0.5\ntime_s,gyro_dps,odo_left_m,odo_right_m,ref_heading_deg\n");
+    for i in 0..=600 {
+        let t = i as f64 / 10.0;
+        let d = i as f64 * 0.01;
+        let r = d + if i >= 300 { 0.01 } else { 0.0 };
+        let h = if i % 10 == 0 { "0" } else { "" };
+        s.push_str(&format!("{t},0.0,{d},{r},{h}\n"));
+    }
+    let p = write("robot.csv", &s);
+    let out = run(&["gyrodometry", p.to_str().unwrap(), "--json", "--set", "bias_s=0"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(
+        keys(&text),
+        sorted(&["E_psi_odo_deg", "E_psi_gyro_deg", "E_psi_gyrodometry_deg", "NE_psi_odo_deg_per_min", "NE_psi_gyro_deg_per_min", "NE_psi_gyrodometry_deg_per_min", "final_err_odo_deg", "final_err_gyro_deg", "final_err_gyrodometry_deg", "n_gyro_intervals", "n_samples", "eps0_dps", "duration_min", "wheelbase_m", "thres_rate_dps"])
+    );
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["n_gyro_intervals"], 1);
+
+    // turntable: p = 1, q = 0 keeps it small
+    let mut s = String::from("time_s,gyro_dps,temp_c,table_rate_dps\n");
+    let mut i = 0;
+    for w in [0.0, -20.0, -10.0, 10.0, 20.0] {
+        for _ in 0..50 {
+            s.push_str(&format!("{},{},30,{w}\n", i as f64 / 10.0, 0.5 + 1.01 * w));
+            i += 1;
+        }
+    }
+    let p = write("table.csv", &s);
+    let out = run(&["calibrate", p.to_str().unwrap(), "--json", "--set", "p=1", "--set", "q=0", "--set", "bias_s=5"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(
+        keys(&text),
+        sorted(&["C", "p", "q", "n_sets", "fit_residual_rms_dps", "w_s_dps", "w_s_star_dps", "residual_rms_static_only_dps", "residual_rms_compensated_dps", "turn360_err_static_only_max_deg", "turn360_err_static_only_rms_deg", "turn360_err_compensated_max_deg", "turn360_err_compensated_rms_deg"])
+    );
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    // e(w_g) = w_g - (w_g - 0.5) / 1.01 = 0.5 / 1.01 + w_g (1 - 1 / 1.01)
+    assert!((v["C"][0][0].as_f64().unwrap() - 0.5 / 1.01).abs() < 1e-9, "{text}");
+    assert!((v["C"][0][1].as_f64().unwrap() - (1.0 - 1.0 / 1.01)).abs() < 1e-9, "{text}");
+    let out = run(&["calibrate", p.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("too few calibration sets"));
+
+    let out = run(&["allan", p.to_str().unwrap(), "--json"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(
+        keys(&text),
+        sorted(&["T0_s", "m", "tau_s", "adev_dps", "arw_deg_per_sqrt_s", "arw_deg_per_sqrt_h", "bias_instability_dps", "bias_instability_dph", "tau_at_min_s"])
+    );
+}
