@@ -71,16 +71,10 @@ impl HdrParams {
     }
 }
 
-/// SIGN(x) of the paper: 1, 0, -1 for x > 0, x == 0, x < 0.
+/// SIGN(x) of the paper: 1, 0, -1 for x > 0, x == 0, x < 0 (branch-free).
 #[inline]
 pub fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
+    ((x > 0.0) as i32 - (x < 0.0) as i32) as f64
 }
 
 /// The repetition attenuator R = (1 + c1) / (1 + c1 r^c2) (Eq. 10).
@@ -127,10 +121,14 @@ struct HdrState {
 pub struct Hdr {
     params: HdrParams,
     eps0_dps: f64,
-    state: Option<HdrState>,
-    /// R(r) for r = 0, 1, 2, ... computed with `powf` once each (bit-identical to Eq. 10).
+    started: bool,
+    s: HdrState,
+    /// R(r) for r = 0, 1, 2, ... computed with `powf` once each (bit-identical to Eq. 10;
+    /// `powf` per sample would cost ~30 ns, more than the rest of the step).
     r_table: Vec<f64>,
 }
+
+const R_TABLE_MAX: usize = 1 << 20;
 
 impl Hdr {
     /// A new estimator with validated parameters and the static bias eps0 to remove.
@@ -139,11 +137,9 @@ impl Hdr {
         if !eps0_dps.is_finite() {
             return Err(Error::param("eps0", "the static bias must be finite"));
         }
-        let mut r_table = Vec::with_capacity(64);
-        for r in 0..64u64 {
-            r_table.push(attenuation(params.c1, params.c2, r));
-        }
-        Ok(Hdr { params, eps0_dps, state: None, r_table })
+        let r_table = (0..256u64).map(|r| attenuation(params.c1, params.c2, r)).collect();
+        let s = HdrState { time_s: 0.0, w_f: 0.0, i: 0.0, r: 1, omega1: 0.0, omega2: 0.0, psi: 0.0 };
+        Ok(Hdr { params, eps0_dps, started: false, s, r_table })
     }
 
     pub fn params(&self) -> &HdrParams {
@@ -153,86 +149,188 @@ impl Hdr {
         self.eps0_dps
     }
 
-    #[inline]
+    /// R(r) from the table, extended on demand (rare: only when a run of equal signs
+    /// grows past every earlier one).
+    #[cfg(test)]
     fn r_factor(&mut self, r: u64) -> f64 {
-        let idx = r as usize;
-        if idx >= self.r_table.len() {
-            if idx > 1 << 20 {
-                return attenuation(self.params.c1, self.params.c2, r);
-            }
-            let (c1, c2) = (self.params.c1, self.params.c2);
-            let start = self.r_table.len() as u64;
-            self.r_table.extend((start..=r).map(|k| attenuation(c1, c2, k)));
+        match self.r_table.get(r as usize) {
+            Some(&v) => v,
+            None => extend_r_table(&mut self.r_table, self.params.c1, self.params.c2, r),
         }
-        self.r_table[idx]
     }
 
     /// One step of the enhanced algorithm (methods.md steps 1-9) for a raw rate sample.
-    /// Time must strictly increase and the rate be finite, or an error is returned.
+    /// Time must strictly increase and the rate be finite, or an error is returned and
+    /// the state is left unchanged.
     #[inline]
     pub fn update(&mut self, time_s: f64, rate_raw_dps: f64) -> Result<HdrOutput> {
-        if !rate_raw_dps.is_finite() || !time_s.is_finite() {
-            return Err(Error::data(format!("HDR update at {time_s} s: rate {rate_raw_dps} is not finite")));
+        step(&self.params, self.eps0_dps, &mut self.r_table, &mut self.s, &mut self.started, time_s, rate_raw_dps)
+    }
+
+    /// `update` over many samples, calling `sink` with each output: the same steps as
+    /// `update`, with the input checked first in one pass and the state held in registers
+    /// for the whole slice (the batch path). On an error the samples before it are kept.
+    #[inline]
+    pub fn update_slice<F: FnMut(&HdrOutput)>(&mut self, time_s: &[f64], rate_raw_dps: &[f64], mut sink: F) -> Result<()> {
+        if time_s.len() != rate_raw_dps.len() {
+            return Err(Error::data("time and rate series differ in length"));
         }
-        // Step 1, Eq. 2: remove the static bias.
-        let x = rate_raw_dps - self.eps0_dps;
-        let Some(s) = self.state else {
-            // i = 0: w_f = x, I = 0, r = 1, omega_0 = w_f, psi_0 = 0, omega_d0 = omega_0.
-            self.state = Some(HdrState { time_s, w_f: x, i: 0.0, r: 1, omega1: x, omega2: x, psi: 0.0 });
-            return Ok(HdrOutput {
-                time_s,
-                rate_filtered_dps: x,
-                rate_corrected_dps: x,
-                rate_delag_dps: x,
-                heading_deg: 0.0,
-                i_dps: 0.0,
-                turn_switch: x.abs() < self.params.theta_w_dps,
-                r: 1,
-                attenuation: self.r_factor(1),
-            });
-        };
-        let dt = time_s - s.time_s;
-        if !(dt > 0.0) {
-            return Err(Error::data(format!(
-                "HDR update: time {time_s} s is not after the previous {} s",
-                s.time_s
-            )));
+        let (mut t_prev, mut start) = (self.s.time_s, 0);
+        if !self.started {
+            let (Some(&t0), Some(&w0)) = (time_s.first(), rate_raw_dps.first()) else { return Ok(()) };
+            sink(&self.update(t0, w0)?);
+            (t_prev, start) = (t0, 1);
+        }
+        // The valid prefix: finite values, strictly increasing time.
+        let mut end = start;
+        for k in start..time_s.len() {
+            let (t, w) = (time_s[k], rate_raw_dps[k]);
+            if !(t.is_finite() && w.is_finite() && t > t_prev) {
+                break;
+            }
+            t_prev = t;
+            end = k + 1;
         }
         let p = self.params;
-        // Step 2, Eq. 7: first-order low-pass filter.
-        let w_f = (x * dt + p.tau_s * s.w_f) / (dt + p.tau_s);
-        // Step 3, Eq. 8 (inequality fixed): switch on while the previous corrected rate is small.
-        let w_on = s.omega1.abs() < p.theta_w_dps;
-        // Step 4, Eq. 9: count repetitions of the same sign (at i = 1, omega_{-1} := omega_0).
-        let sign1 = sign(s.omega1);
-        let r = if sign1 == sign(s.omega2) { s.r + 1 } else { 1 };
-        // Step 5, Eq. 10: repetition attenuator.
-        let big_r = self.r_factor(r);
-        // Step 6, Eq. 11: binary I-controller, i_c per second of time.
-        let i = if w_on { s.i - sign1 * big_r * p.i_c_dps * dt } else { s.i };
-        // Step 7, Eq. 12: corrected rate.
-        let omega = w_f + i;
-        // Step 8, Eq. 13: de-lag the filter.
-        let omega_d = omega + (p.tau_s / dt) * (omega - s.omega1);
-        // Step 9, Eq. 14 (fixed): integrate.
-        let psi = s.psi + omega_d * dt;
-        self.state = Some(HdrState { time_s, w_f, i, r, omega1: omega, omega2: s.omega1, psi });
-        Ok(HdrOutput {
-            time_s,
-            rate_filtered_dps: w_f,
-            rate_corrected_dps: omega,
-            rate_delag_dps: omega_d,
-            heading_deg: psi,
-            i_dps: i,
-            turn_switch: w_on,
-            r,
-            attenuation: big_r,
-        })
+        let mut st = self.s;
+        for k in start..end {
+            sink(&step_checked_input(&p, self.eps0_dps, &mut self.r_table, &mut st, time_s[k], rate_raw_dps[k]));
+        }
+        self.s = st;
+        if end < time_s.len() {
+            return Err(reject(time_s[end], rate_raw_dps[end], self.s.time_s));
+        }
+        Ok(())
     }
 
     /// Forgets the state (keeps parameters and eps0).
     pub fn reset(&mut self) {
-        self.state = None;
+        self.started = false;
+    }
+}
+
+/// One HDR step on explicit state (methods.md steps 1-9); shared by `update` and
+/// `update_slice` so that streaming and batch are the same code.
+#[inline(always)]
+fn step(
+    p: &HdrParams,
+    eps0_dps: f64,
+    r_table: &mut Vec<f64>,
+    st: &mut HdrState,
+    started: &mut bool,
+    time_s: f64,
+    rate_raw_dps: f64,
+) -> Result<HdrOutput> {
+    let dt = time_s - st.time_s;
+    if !(rate_raw_dps.is_finite() && time_s.is_finite() && (dt > 0.0 || !*started)) {
+        return Err(reject(time_s, rate_raw_dps, st.time_s));
+    }
+    if !*started {
+        let x = rate_raw_dps - eps0_dps;
+        // i = 0: w_f = x, I = 0, r = 1, omega_0 = w_f, psi_0 = 0, omega_d0 = omega_0;
+        // omega_{-1} := omega_0 so that r_1 = 2 (methods.md step 4).
+        *started = true;
+        *st = HdrState { time_s, w_f: x, i: 0.0, r: 1, omega1: x, omega2: x, psi: 0.0 };
+        return Ok(HdrOutput {
+            time_s,
+            rate_filtered_dps: x,
+            rate_corrected_dps: x,
+            rate_delag_dps: x,
+            heading_deg: 0.0,
+            i_dps: 0.0,
+            turn_switch: false,
+            r: 1,
+            attenuation: 1.0,
+        });
+    }
+    Ok(step_checked_input(p, eps0_dps, r_table, st, time_s, rate_raw_dps))
+}
+
+/// Steps 1-9 for i >= 1 on input already checked (finite, time after the previous).
+#[inline(always)]
+fn step_checked_input(
+    p: &HdrParams,
+    eps0_dps: f64,
+    r_table: &mut Vec<f64>,
+    st: &mut HdrState,
+    time_s: f64,
+    rate_raw_dps: f64,
+) -> HdrOutput {
+    let s = *st;
+    let dt = time_s - s.time_s;
+    // Step 1, Eq. 2: remove the static bias.
+    let x = rate_raw_dps - eps0_dps;
+    // Step 2, Eq. 7: first-order low-pass filter (x T + tau w_f) / (T + tau).
+    let w_f = (x * dt + p.tau_s * s.w_f) / (dt + p.tau_s);
+    // Step 3, Eq. 8 (inequality fixed): switch on while the previous corrected rate is small.
+    let w_on = s.omega1.abs() < p.theta_w_dps;
+    // Step 4, Eq. 9: count repetitions of the same sign. Branch-free: on straights the
+    // sign of the residual is noise, and a mispredicted branch costs more than the step.
+    let sg1 = sign_i(s.omega1);
+    let same = sg1 == sign_i(s.omega2);
+    // Step 5, Eq. 10: R(r_{i-1} + 1) is looked up before the sign test is known; R(1) = 1
+    // exactly, so the reset needs no lookup.
+    let r_cont = s.r + 1;
+    let big_r_cont = match r_table.get(r_cont as usize) {
+        Some(&v) => v,
+        None => extend_r_table(r_table, p.c1, p.c2, r_cont),
+    };
+    let r = std::hint::select_unpredictable(same, r_cont, 1);
+    let big_r = std::hint::select_unpredictable(same, big_r_cont, 1.0);
+    // Step 6, Eq. 11: binary I-controller, i_c per second of time.
+    // SIGN(omega_{i-1}) * W * R * i_c * T as a sign copy and a mask (exact, branch-free).
+    let magnitude = big_r * (p.i_c_dps * dt);
+    let signed = f64::from_bits(magnitude.to_bits() | (s.omega1.to_bits() & SIGN_BIT));
+    let step = f64::from_bits(signed.to_bits() & ((w_on & (sg1 != 0)) as u64).wrapping_neg());
+    let i = s.i - step;
+    // Step 7, Eq. 12: corrected rate.
+    let omega = w_f + i;
+    // Step 8, Eq. 13: de-lag the filter.
+    let omega_d = omega + (p.tau_s / dt) * (omega - s.omega1);
+    // Step 9, Eq. 14 (fixed: psi_0 only as the initial value): integrate.
+    let psi = s.psi + omega_d * dt;
+    *st = HdrState { time_s, w_f, i, r, omega1: omega, omega2: s.omega1, psi };
+    HdrOutput {
+        time_s,
+        rate_filtered_dps: w_f,
+        rate_corrected_dps: omega,
+        rate_delag_dps: omega_d,
+        heading_deg: psi,
+        i_dps: i,
+        turn_switch: w_on,
+        r,
+        attenuation: big_r,
+    }
+}
+
+const SIGN_BIT: u64 = 0x8000_0000_0000_0000;
+
+/// SIGN as an integer, branch-free.
+#[inline(always)]
+fn sign_i(x: f64) -> i64 {
+    (x > 0.0) as i64 - (x < 0.0) as i64
+}
+
+/// Extends the R(r) table up to r (doubling, capped) and returns R(r); past the cap, powf.
+#[cold]
+#[inline(never)]
+fn extend_r_table(table: &mut Vec<f64>, c1: f64, c2: f64, r: u64) -> f64 {
+    if r as usize >= R_TABLE_MAX {
+        return attenuation(c1, c2, r);
+    }
+    let start = table.len() as u64;
+    let end = (r + 1).max(start * 2).min(R_TABLE_MAX as u64);
+    table.extend((start..end).map(|k| attenuation(c1, c2, k)));
+    table[r as usize]
+}
+
+#[cold]
+#[inline(never)]
+fn reject(time_s: f64, rate_raw_dps: f64, prev_time_s: f64) -> Error {
+    if !rate_raw_dps.is_finite() || !time_s.is_finite() {
+        Error::data(format!("HDR update at {time_s} s: rate {rate_raw_dps} deg/s is not finite"))
+    } else {
+        Error::data(format!("HDR update: time {time_s} s is not after the previous {prev_time_s} s"))
     }
 }
 
@@ -366,14 +464,15 @@ pub fn run_samples(samples: &Samples, params: HdrParams, eps0_dps: f64) -> Resul
         attenuation: Vec::with_capacity(n),
     };
     for (&t, &w) in samples.time_s.iter().zip(&samples.rate_dps) {
-        let o = hdr.update(t, w)?;
         tr.heading_raw_deg.push(raw.update(t, w));
+    }
+    hdr.update_slice(&samples.time_s, &samples.rate_dps, |o| {
         tr.heading_hdr_deg.push(o.heading_deg);
         tr.rate_corrected_dps.push(o.rate_corrected_dps);
         tr.i_dps.push(o.i_dps);
         tr.turn_switch.push(o.turn_switch);
         tr.attenuation.push(o.attenuation);
-    }
+    })?;
     Ok(tr)
 }
 
@@ -381,10 +480,8 @@ pub fn run_samples(samples: &Samples, params: HdrParams, eps0_dps: f64) -> Resul
 pub fn headings_only(samples: &Samples, params: HdrParams, eps0_dps: f64, out_hdr: &mut Vec<f64>) -> Result<()> {
     let mut hdr = Hdr::new(params, eps0_dps)?;
     out_hdr.clear();
-    for (&t, &w) in samples.time_s.iter().zip(&samples.rate_dps) {
-        out_hdr.push(hdr.update(t, w)?.heading_deg);
-    }
-    Ok(())
+    hdr.update_slice(&samples.time_s, &samples.rate_dps, |o| out_hdr.push(o.heading_deg))
+
 }
 
 /// Runs HDR on a log: static bias, optional 1 Hz blocks, estimator, baseline, metrics.
@@ -447,7 +544,8 @@ mod tests {
     fn r_table_matches_powf_bit_for_bit() {
         let p = HdrParams::default();
         let mut h = Hdr::new(p, 0.0).unwrap();
-        for r in [1u64, 2, 63, 64, 65, 500, 3000] {
+        assert_eq!(attenuation(p.c1, p.c2, 1), 1.0, "R(1) = 1 exactly, used as the reset value");
+        for r in [1u64, 2, 255, 256, 257, 500, 3000, 2_000_000] {
             assert_eq!(h.r_factor(r).to_bits(), attenuation(p.c1, p.c2, r).to_bits());
         }
     }
