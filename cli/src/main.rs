@@ -51,12 +51,39 @@ enum Cmd {
         #[arg(long)]
         json: bool,
     },
+    /// Simulate a log with known truth: drive, robot, turntable or static.
+    Simulate {
+        #[arg(value_enum)]
+        kind: SimKindArg,
+        /// Drive: city, downtown, suburbs, rural, highway, mixed. Robot: straight, turns.
+        #[arg(long)]
+        scenario: Option<String>,
+        /// Length in minutes (drive 20, robot 2.33, static 120 by default).
+        #[arg(long)]
+        minutes: Option<f64>,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Written as `# name:` in the log.
+        #[arg(long)]
+        name: Option<String>,
+        /// Output file (stdout when absent).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Overlapping Allan deviation of a (static) gyro log.
     Allan {
         log: PathBuf,
         #[arg(long)]
         json: bool,
     },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum SimKindArg {
+    Drive,
+    Robot,
+    Turntable,
+    Static,
 }
 
 /// An error for the user: `file: message`, exit code 2.
@@ -142,6 +169,25 @@ fn run(cli: Cli) -> Result<(), Failure> {
             } else {
                 print!("{}", output::calibration_table(&log, &run));
                 Ok(())
+            }
+        }
+        Cmd::Simulate { kind, scenario, minutes, seed, name, out } => {
+            use gyrodrift::sim::{SimKind, SimRequest};
+            let kind = match kind {
+                SimKindArg::Drive => SimKind::Drive,
+                SimKindArg::Robot => SimKind::Robot,
+                SimKindArg::Turntable => SimKind::Turntable,
+                SimKindArg::Static => SimKind::Static,
+            };
+            let req = SimRequest { kind, scenario, minutes, seed, name };
+            let log = gyrodrift::sim::simulate(&req).map_err(|e| Failure(e.to_string()))?;
+            match out {
+                Some(path) => {
+                    let f = std::fs::File::create(&path)
+                        .map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
+                    log.write_csv(f).map_err(|e| fail(&path, e))
+                }
+                None => log.write_csv(std::io::stdout().lock()).map_err(|e| Failure(e.to_string())),
             }
         }
         Cmd::Allan { log, json } => {

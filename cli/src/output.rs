@@ -62,13 +62,20 @@ pub fn calibration_table(path: &Path, run: &CalibrationRun) -> String {
 
 pub fn allan_table(path: &Path, r: &AllanResult) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "{}: Allan deviation, T0 = {} s", path.display(), r.T0_s);
+    let _ = writeln!(s, "{}: Allan deviation, T0 = {} s", path.display(), trim(r.T0_s));
     let _ = writeln!(s, "  angle random walk   {:.5} deg/sqrt(s) = {:.4} deg/sqrt(h)", r.arw_deg_per_sqrt_s, r.arw_deg_per_sqrt_h);
     let _ = writeln!(s, "  bias instability    {:.6} deg/s = {:.3} deg/h (minimum at tau = {} s)",
-        r.bias_instability_dps, r.bias_instability_dph, r.tau_at_min_s);
+        r.bias_instability_dps, r.bias_instability_dph, trim(r.tau_at_min_s));
     let _ = writeln!(s, "  {:>10} {:>14}", "tau (s)", "adev (deg/s)");
     for (t, a) in r.tau_s.iter().zip(&r.adev_dps) {
-        let _ = writeln!(s, "  {t:>10} {a:>14.6}");
+        let _ = writeln!(s, "  {:>10} {a:>14.6}", trim(*t));
     }
     s
+}
+
+/// A number with at most 6 decimals and no trailing zeros (0.30000000000000004 -> 0.3).
+fn trim(x: f64) -> String {
+    let s = format!("{x:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    s.to_string()
 }

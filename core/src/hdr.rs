@@ -80,7 +80,7 @@ pub fn sign(x: f64) -> f64 {
 /// The repetition attenuator R = (1 + c1) / (1 + c1 r^c2) (Eq. 10).
 #[inline]
 pub fn attenuation(c1: f64, c2: f64, r: u64) -> f64 {
-    (1.0 + c1) / (1.0 + c1 * (r as f64).powf(c2))
+    (1.0 + c1) / (1.0 + c1 * libm::pow(r as f64, c2))
 }
 
 /// One step's output of the estimator.

@@ -20,6 +20,7 @@ pub mod hdr;
 pub mod log;
 pub mod metrics;
 pub mod preprocess;
+pub mod sim;
 
 pub use error::{Error, Result};
 pub use log::{parse_log, parse_log_str, Column, DriveLog, LogKind, LogMeta};
