@@ -51,6 +51,31 @@ enum Cmd {
         #[arg(long)]
         json: bool,
     },
+    /// The HDR paper's Table II for any set of drives.
+    Report {
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Parameter: i_c, tau, theta_w, c1, c2, bias_s.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(long)]
+        no_resample: bool,
+        #[arg(long, conflicts_with = "markdown")]
+        json: bool,
+        #[arg(long)]
+        markdown: bool,
+    },
+    /// Tune the five HDR parameters on training drives; report Table III vs tuned.
+    Tune {
+        #[arg(long, num_args = 1.., required = true)]
+        train: Vec<PathBuf>,
+        #[arg(long, num_args = 1..)]
+        test: Vec<PathBuf>,
+        #[arg(long, conflicts_with = "markdown")]
+        json: bool,
+        #[arg(long)]
+        markdown: bool,
+    },
     /// Simulate a log with known truth: drive, robot, turntable or static.
     Simulate {
         #[arg(value_enum)]
@@ -69,6 +94,11 @@ enum Cmd {
         /// Output file (stdout when absent).
         #[arg(long)]
         out: Option<PathBuf>,
+    },
+    /// Write every shipped sample log (bit-identical for the same version) under a folder.
+    Samples {
+        #[arg(long, default_value = "sample-logs")]
+        out: PathBuf,
     },
     /// Overlapping Allan deviation of a (static) gyro log.
     Allan {
@@ -97,6 +127,18 @@ fn read_log(path: &Path) -> Result<DriveLog, Failure> {
     let file = std::fs::File::open(path)
         .map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
     gyrodrift::parse_log(file).map_err(|e| fail(path, e))
+}
+
+/// Reads many logs, each named by its `# name:` or its file stem.
+fn read_logs(paths: &[PathBuf]) -> Result<Vec<(String, DriveLog)>, Failure> {
+    paths
+        .iter()
+        .map(|p| {
+            let log = read_log(p)?;
+            let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+            Ok((log.meta.name.clone().unwrap_or(stem), log))
+        })
+        .collect()
 }
 
 /// Splits `key=value` and parses the value as a number.
@@ -171,6 +213,40 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 Ok(())
             }
         }
+        Cmd::Report { files, set, no_resample, json, markdown } => {
+            let mut opts = hdr::HdrOptions { resample: !no_resample, ..Default::default() };
+            apply_sets(&set, |k, v| opts.set(k, v))?;
+            opts.params.validate().map_err(|e| Failure(e.to_string()))?;
+            let logs = read_logs(&files)?;
+            let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), l)).collect();
+            let report = gyrodrift::report::Report::build(&named, &opts).map_err(|e| Failure(e.to_string()))?;
+            if json {
+                print_json(&report)
+            } else {
+                print!("{}", if markdown { report.to_markdown() } else { report.to_text() });
+                Ok(())
+            }
+        }
+        Cmd::Tune { train, test, json, markdown } => {
+            use gyrodrift::tune;
+            let opts = hdr::HdrOptions::default();
+            let train_logs = read_logs(&train)?;
+            let test_logs = read_logs(&test)?;
+            let named = |v: &[(String, DriveLog)]| -> Vec<(String, DriveLog)> { v.to_vec() };
+            let prep = |v: Vec<(String, DriveLog)>| -> Result<Vec<tune::PreparedDrive>, Failure> {
+                let refs: Vec<(String, &DriveLog)> = v.iter().map(|(n, l)| (n.clone(), l)).collect();
+                tune::prepare_all(&refs, &opts).map_err(|e| Failure(e.to_string()))
+            };
+            let train_p = prep(named(&train_logs))?;
+            let test_p = prep(named(&test_logs))?;
+            let rep = tune::tune_and_report(&train_p, &test_p, &tune::TuneOptions::default())
+                .map_err(|e| Failure(e.to_string()))?;
+            if json {
+                return print_json(&rep);
+            }
+            print!("{}", output::tune_text(&rep, markdown));
+            Ok(())
+        }
         Cmd::Simulate { kind, scenario, minutes, seed, name, out } => {
             use gyrodrift::sim::{SimKind, SimRequest};
             let kind = match kind {
@@ -189,6 +265,20 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 }
                 None => log.write_csv(std::io::stdout().lock()).map_err(|e| Failure(e.to_string())),
             }
+        }
+        Cmd::Samples { out } => {
+            for s in gyrodrift::sim::samples::SAMPLE_LOGS {
+                let path = out.join(s.path);
+                if let Some(dir) = path.parent() {
+                    std::fs::create_dir_all(dir).map_err(|e| Failure(format!("{}: {e}", dir.display())))?;
+                }
+                let log = gyrodrift::sim::simulate(&s.request()).map_err(|e| Failure(e.to_string()))?;
+                let f = std::fs::File::create(&path)
+                    .map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
+                log.write_csv(f).map_err(|e| fail(&path, e))?;
+                eprintln!("wrote {}", path.display());
+            }
+            Ok(())
         }
         Cmd::Allan { log, json } => {
             let drive = read_log(&log)?;

@@ -79,3 +79,30 @@ fn trim(x: f64) -> String {
     let s = s.trim_end_matches('0').trim_end_matches('.');
     s.to_string()
 }
+
+pub fn tune_text(rep: &gyrodrift::tune::TuneReport, markdown: bool) -> String {
+    let p = &rep.result.params;
+    let mut s = String::new();
+    let _ = writeln!(s, "Tuned HDR parameters ({} evaluations): mean NE_psi over the training drives {:.4} -> {:.4} deg/min",
+        rep.result.n_evaluations, rep.result.objective_start_deg_per_min, rep.result.objective_tuned_deg_per_min);
+    let t = gyrodrift::hdr::HdrParams::table_iii();
+    let _ = writeln!(s, "  {:<8} {:>12} {:>12}", "", "Table III", "tuned");
+    for (name, a, b, unit) in [
+        ("i_c", t.i_c_dps, p.i_c_dps, "deg/s"),
+        ("tau", t.tau_s, p.tau_s, "s"),
+        ("theta_w", t.theta_w_dps, p.theta_w_dps, "deg/s"),
+        ("c1", t.c1, p.c1, ""),
+        ("c2", t.c2, p.c2, ""),
+    ] {
+        let _ = writeln!(s, "  {name:<8} {a:>12.4} {b:>12.4} {unit}");
+    }
+    let table = |r: &gyrodrift::report::Report| if markdown { r.to_markdown() } else { r.to_text() };
+    let sets = [("Training drives", Some(&rep.train)), ("Test drives", rep.test.as_ref())];
+    for (title, cmp) in sets {
+        if let Some(c) = cmp {
+            let _ = writeln!(s, "\n{title}, Table III parameters:\n{}", table(&c.table_iii));
+            let _ = writeln!(s, "{title}, tuned parameters:\n{}", table(&c.tuned));
+        }
+    }
+    s
+}

@@ -181,3 +181,45 @@ fn gyrodometry_calibrate_allan_json_keys() {
         sorted(&["T0_s", "m", "tau_s", "adev_dps", "arw_deg_per_sqrt_s", "arw_deg_per_sqrt_h", "bias_instability_dps", "bias_instability_dph", "tau_at_min_s"])
     );
 }
+
+#[test]
+fn simulate_report_tune() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    for (kind, extra) in [("drive", vec!["--scenario", "rural", "--minutes", "4"]), ("robot", vec![]), ("turntable", vec![]), ("static", vec!["--minutes", "3"])] {
+        let out = dir.join(format!("sim-{kind}.csv"));
+        let mut args = vec!["simulate", kind, "--seed", "7", "--out", out.to_str().unwrap()];
+        args.extend(extra);
+        let o = run(&args);
+        assert!(o.status.success(), "{kind}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(std::fs::metadata(&out).unwrap().len() > 1000);
+    }
+    let o = run(&["simulate", "drive", "--scenario", "moon"]);
+    assert_eq!(o.status.code(), Some(2));
+    let mut drives = vec![];
+    for seed in ["1", "2", "3"] {
+        let out = dir.join(format!("d{seed}.csv"));
+        let o = run(&["simulate", "drive", "--scenario", "city", "--minutes", "5", "--seed", seed, "--name", &format!("Drive {seed}"), "--out", out.to_str().unwrap()]);
+        assert!(o.status.success());
+        drives.push(out.to_str().unwrap().to_string());
+    }
+    let mut args = vec!["report", "--json"];
+    args.extend(drives.iter().map(String::as_str));
+    let o = run(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["rows"].as_array().unwrap().len(), 3);
+    assert_eq!(v["rows"][0]["name"], "Drive 1");
+    // the report's rows agree with `hdr --json` on each file
+    let h = run(&["hdr", &drives[1], "--json"]);
+    let h: serde_json::Value = serde_json::from_slice(&h.stdout).unwrap();
+    assert_eq!(v["rows"][1]["E_psi_hdr_deg"], h["E_psi_hdr_deg"]);
+    let mut args = vec!["report", "--markdown"];
+    args.extend(drives.iter().map(String::as_str));
+    let md = String::from_utf8(run(&args).stdout).unwrap();
+    assert!(md.starts_with("| Drive |") && md.contains("| Drive 2 |"), "{md}");
+    let o = run(&["tune", "--train", &drives[0], &drives[1], "--test", &drives[2], "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["result"]["objective_tuned_deg_per_min"].as_f64().unwrap() <= v["result"]["objective_start_deg_per_min"].as_f64().unwrap());
+    assert_eq!(v["test"]["tuned"]["rows"].as_array().unwrap().len(), 1);
+}

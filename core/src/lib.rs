@@ -20,7 +20,9 @@ pub mod hdr;
 pub mod log;
 pub mod metrics;
 pub mod preprocess;
+pub mod report;
 pub mod sim;
+pub mod tune;
 
 pub use error::{Error, Result};
 pub use log::{parse_log, parse_log_str, Column, DriveLog, LogKind, LogMeta};

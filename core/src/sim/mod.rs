@@ -9,6 +9,7 @@
 pub mod drive;
 pub mod gyro;
 pub mod robot;
+pub mod samples;
 pub mod turntable;
 
 use rand_xoshiro::rand_core::{Rng, SeedableRng};

@@ -1,0 +1,249 @@
+//! Automatic HDR parameter tuning: the five parameters that minimise the mean NE_psi over
+//! a set of training drives (the paper's "painstakingly hand-tuned" Table III, automated).
+//! Bounded Nelder-Mead (argmin) on coordinates scaled to the bounds; deterministic.
+//! Drives are prepared once (static bias, 1 Hz blocks, reference) and evaluated in parallel
+//! natively (feature `parallel`, rayon); the per-sample loop allocates nothing.
+
+use crate::error::{Error, Result};
+use crate::hdr::{self, HdrOptions, HdrParams};
+use crate::log::DriveLog;
+use crate::metrics::{self, Reference};
+use crate::preprocess::{self, Samples};
+use crate::report::{prefix, Report, ReportRow};
+use argmin::core::{CostFunction, Executor};
+use argmin::solver::neldermead::NelderMead;
+use serde::{Deserialize, Serialize};
+
+/// A drive made ready for many HDR evaluations.
+#[derive(Debug, Clone)]
+pub struct PreparedDrive {
+    pub name: String,
+    pub eps0_dps: f64,
+    pub samples: Samples,
+    pub reference: Reference,
+    pub duration_min: f64,
+    pub e_psi_raw_deg: f64,
+}
+
+impl PreparedDrive {
+    pub fn new(name: &str, log: &DriveLog, bias_s: Option<f64>, resample: bool) -> Result<Self> {
+        let wrap = |e| prefix(name, e);
+        let (eps0, samples) = preprocess::prepare(log, bias_s, resample).map_err(wrap)?;
+        let reference = Reference::from_log(log).map_err(wrap)?;
+        let mut raw = hdr::RawIntegrator::new(eps0);
+        let psi: Vec<f64> = samples.time_s.iter().zip(&samples.rate_dps).map(|(&t, &w)| raw.update(t, w)).collect();
+        let e_raw = metrics::score(&samples.time_s, &psi, &reference).map_err(wrap)?.e_psi_deg;
+        Ok(PreparedDrive {
+            name: name.to_string(),
+            eps0_dps: eps0,
+            samples,
+            reference,
+            duration_min: log.duration_min(),
+            e_psi_raw_deg: e_raw,
+        })
+    }
+
+    /// E_psi of HDR with these parameters.
+    pub fn e_psi_hdr_deg(&self, params: HdrParams, buf: &mut Vec<f64>) -> Result<f64> {
+        hdr::headings_only(&self.samples, params, self.eps0_dps, buf)?;
+        Ok(metrics::score(&self.samples.time_s, buf, &self.reference)?.e_psi_deg)
+    }
+
+    /// The report row for these parameters.
+    pub fn row(&self, params: HdrParams) -> Result<ReportRow> {
+        let e = self.e_psi_hdr_deg(params, &mut Vec::new())?;
+        Ok(ReportRow {
+            name: self.name.clone(),
+            duration_min: self.duration_min,
+            E_psi_raw_deg: self.e_psi_raw_deg,
+            NE_psi_raw_deg_per_min: metrics::ne_psi(self.e_psi_raw_deg, self.duration_min),
+            E_psi_hdr_deg: e,
+            NE_psi_hdr_deg_per_min: metrics::ne_psi(e, self.duration_min),
+            improvement: metrics::improvement(self.e_psi_raw_deg, e),
+        })
+    }
+}
+
+/// The report for prepared drives with given parameters.
+pub fn report(drives: &[PreparedDrive], params: HdrParams) -> Result<Report> {
+    Report::from_rows(drives.iter().map(|d| d.row(params)).collect::<Result<Vec<_>>>()?)
+}
+
+/// Mean NE_psi of HDR over the drives: the tuning objective.
+pub fn objective(drives: &[PreparedDrive], params: HdrParams) -> Result<f64> {
+    let ne = |d: &PreparedDrive| -> Result<f64> {
+        let mut buf = Vec::with_capacity(d.samples.len());
+        Ok(metrics::ne_psi(d.e_psi_hdr_deg(params, &mut buf)?, d.duration_min))
+    };
+    #[cfg(feature = "parallel")]
+    let values: Vec<Result<f64>> = {
+        use rayon::prelude::*;
+        drives.par_iter().map(ne).collect()
+    };
+    #[cfg(not(feature = "parallel"))]
+    let values: Vec<Result<f64>> = drives.iter().map(ne).collect();
+    let mut sum = 0.0;
+    for v in values {
+        sum += v?;
+    }
+    Ok(sum / drives.len().max(1) as f64)
+}
+
+/// Search bounds of the five parameters.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TuneOptions {
+    pub lower: HdrParams,
+    pub upper: HdrParams,
+    /// Where the search starts (Table III by default).
+    pub start: HdrParams,
+    /// Nelder-Mead iterations per restart.
+    pub max_iters: u64,
+    /// Restarts from the best point found (each with a fresh simplex).
+    pub restarts: u32,
+}
+
+impl Default for TuneOptions {
+    fn default() -> Self {
+        TuneOptions {
+            lower: HdrParams { i_c_dps: 0.0, tau_s: 0.0, theta_w_dps: 0.02, c1: 0.005, c2: 0.1 },
+            upper: HdrParams { i_c_dps: 0.3, tau_s: 5.0, theta_w_dps: 3.0, c1: 3.0, c2: 4.0 },
+            start: HdrParams::default(),
+            max_iters: 250,
+            restarts: 2,
+        }
+    }
+}
+
+fn to_vec(p: &HdrParams) -> [f64; 5] {
+    [p.i_c_dps, p.tau_s, p.theta_w_dps, p.c1, p.c2]
+}
+
+fn from_vec(v: &[f64]) -> HdrParams {
+    HdrParams { i_c_dps: v[0], tau_s: v[1], theta_w_dps: v[2], c1: v[3], c2: v[4] }
+}
+
+/// The outcome of a tuning run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TuneResult {
+    pub params: HdrParams,
+    /// Mean NE_psi over the training drives with the start parameters and with the tuned ones.
+    pub objective_start_deg_per_min: f64,
+    pub objective_tuned_deg_per_min: f64,
+    pub n_evaluations: u64,
+}
+
+struct Problem<'a> {
+    drives: &'a [PreparedDrive],
+    lo: [f64; 5],
+    hi: [f64; 5],
+    evals: &'a std::cell::Cell<u64>,
+}
+
+impl Problem<'_> {
+    /// Unit-cube coordinates to parameters, clamped into the bounds.
+    fn params(&self, u: &[f64]) -> HdrParams {
+        let v: Vec<f64> = (0..5).map(|k| self.lo[k] + (self.hi[k] - self.lo[k]) * u[k].clamp(0.0, 1.0)).collect();
+        let mut p = from_vec(&v);
+        p.c1 = p.c1.max(1e-9);
+        p
+    }
+}
+
+impl CostFunction for Problem<'_> {
+    type Param = Vec<f64>;
+    type Output = f64;
+    fn cost(&self, u: &Vec<f64>) -> std::result::Result<f64, argmin::core::Error> {
+        self.evals.set(self.evals.get() + 1);
+        // Outside the unit cube: the clamped cost plus a penalty, so the simplex walks back.
+        let outside: f64 = u.iter().map(|&x| (x - x.clamp(0.0, 1.0)).abs()).sum();
+        let c = objective(self.drives, self.params(u)).map_err(|e| argmin::core::Error::msg(e.to_string()))?;
+        Ok(c + outside)
+    }
+}
+
+/// Tunes the five HDR parameters on the training drives.
+pub fn tune(drives: &[PreparedDrive], opts: &TuneOptions) -> Result<TuneResult> {
+    if drives.is_empty() {
+        return Err(Error::data("no training drives"));
+    }
+    opts.start.validate()?;
+    let lo = to_vec(&opts.lower);
+    let hi = to_vec(&opts.upper);
+    for k in 0..5 {
+        if !(lo[k].is_finite() && hi[k].is_finite() && hi[k] > lo[k]) {
+            return Err(Error::param("bounds", "each upper bound must exceed its lower bound"));
+        }
+    }
+    let evals = std::cell::Cell::new(0);
+    let problem = Problem { drives, lo, hi, evals: &evals };
+    let start_cost = objective(drives, opts.start)?;
+    let s = to_vec(&opts.start);
+    let mut best_u: Vec<f64> = (0..5).map(|k| ((s[k] - lo[k]) / (hi[k] - lo[k])).clamp(0.0, 1.0)).collect();
+    let mut best_cost = start_cost;
+    let mut best_params = opts.start;
+    for round in 0..=opts.restarts {
+        let step = 0.15 / (1.0 + round as f64);
+        let mut simplex = vec![best_u.clone()];
+        for k in 0..5 {
+            let mut v = best_u.clone();
+            v[k] = if v[k] + step <= 1.0 { v[k] + step } else { v[k] - step };
+            simplex.push(v);
+        }
+        let solver = NelderMead::new(simplex)
+            .with_sd_tolerance(1e-7)
+            .map_err(|e| Error::data(format!("tuning: {e}")))?;
+        let round_problem = Problem { drives, lo, hi, evals: &evals };
+        let res = Executor::new(round_problem, solver)
+            .configure(|st| st.max_iters(opts.max_iters))
+            .run()
+            .map_err(|e| Error::data(format!("tuning: {e}")))?;
+        if let Some(u) = res.state.best_param {
+            let p = problem.params(&u);
+            let c = objective(drives, p)?;
+            if c < best_cost {
+                best_cost = c;
+                best_params = p;
+                best_u = u.iter().map(|x| x.clamp(0.0, 1.0)).collect();
+            }
+        }
+    }
+    Ok(TuneResult {
+        params: best_params,
+        objective_start_deg_per_min: start_cost,
+        objective_tuned_deg_per_min: best_cost,
+        n_evaluations: evals.get(),
+    })
+}
+
+/// Prepares named logs with the HDR options' bias window and resampling.
+pub fn prepare_all(logs: &[(String, &DriveLog)], opts: &HdrOptions) -> Result<Vec<PreparedDrive>> {
+    logs.iter().map(|(n, l)| PreparedDrive::new(n, l, opts.bias_s, opts.resample)).collect()
+}
+
+/// Table III against tuned parameters on one set of drives.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Comparison {
+    pub table_iii: Report,
+    pub tuned: Report,
+}
+
+/// Tuning plus the reports a user wants to see: training and (optional) test drives,
+/// each with Table III and with the tuned parameters.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TuneReport {
+    pub result: TuneResult,
+    pub train: Comparison,
+    pub test: Option<Comparison>,
+}
+
+/// Tunes on `train` and reports on both sets.
+pub fn tune_and_report(train: &[PreparedDrive], test: &[PreparedDrive], opts: &TuneOptions) -> Result<TuneReport> {
+    let result = tune(train, opts)?;
+    let compare = |set: &[PreparedDrive]| -> Result<Comparison> {
+        Ok(Comparison { table_iii: report(set, HdrParams::table_iii())?, tuned: report(set, result.params)? })
+    };
+    let train_cmp = compare(train)?;
+    let test_cmp = if test.is_empty() { None } else { Some(compare(test)?) };
+    Ok(TuneReport { result, train: train_cmp, test: test_cmp })
+}
