@@ -79,7 +79,7 @@ impl ErrorModel {
         e
     }
 
-    /// Least-squares fit of E = V C (Eqs. 9-11) over set averages, via SVD on a
+    /// Least-squares fit of E = V C (Eqs. 9-11) over set averages, via QR on a
     /// column-scaled V (the raw columns span many decades: T^2 w^3 ~ 1e9).
     pub fn fit(w_g_dps: &[f64], temp_c: &[f64], err_dps: &[f64], p: usize, q: usize) -> Result<ErrorModel> {
         let n = w_g_dps.len();
@@ -110,10 +110,23 @@ impl ErrorModel {
             }
         }
         let e = DVector::from_column_slice(err_dps);
-        let svd = v.svd(true, true);
-        let x = svd
-            .solve(&e, 1e-12)
-            .map_err(|msg| Error::data(format!("least squares failed: {msg}")))?;
+        // Householder QR (no hypot or other libm calls inside, unlike SVD's Givens
+        // rotations), so native and wasm agree bit for bit: R x = Q^T e.
+        let qr = v.qr();
+        let qte = qr.q().transpose() * e;
+        let r = qr.r();
+        let tiny = 1e-12 * r.diagonal().amax();
+        if r.diagonal().iter().any(|d| d.abs() <= tiny) {
+            return Err(Error::data(format!(
+                "the calibration sets do not determine the model (p = {p}, q = {q}): e.g. fewer than {} \
+                 distinct temperatures or {} distinct rates",
+                q + 1,
+                p + 1
+            )));
+        }
+        let x = r
+            .solve_upper_triangular(&qte)
+            .ok_or_else(|| Error::data("least squares failed: singular system"))?;
         let mut c = vec![vec![0.0; p + 1]; q + 1];
         for j in 0..=q {
             for k in 0..=p {
@@ -380,6 +393,14 @@ mod tests {
     fn too_few_sets_is_an_error() {
         let e = ErrorModel::fit(&[1.0; 11], &[20.0; 11], &[0.0; 11], 3, 2).unwrap_err();
         assert!(e.to_string().contains("too few calibration sets: 11"), "{e}");
+    }
+
+    #[test]
+    fn one_temperature_cannot_fit_a_temperature_model() {
+        let w: Vec<f64> = (0..20).map(|k| k as f64 * 10.0 - 100.0).collect();
+        let e = ErrorModel::fit(&w, &[30.0; 20], &[0.1; 20], 3, 2).unwrap_err();
+        assert!(e.to_string().contains("do not determine the model"), "{e}");
+        assert!(ErrorModel::fit(&w, &[30.0; 20], &[0.1; 20], 3, 0).is_ok());
     }
 
     #[test]

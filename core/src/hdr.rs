@@ -357,11 +357,10 @@ impl RawIntegrator {
     }
 }
 
-/// Options of a batch HDR run.
+/// Options of a batch HDR run. (De)serialized flat: the five parameters, bias_s, resample.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(from = "HdrOptionsFlat", into = "HdrOptionsFlat")]
 pub struct HdrOptions {
-    #[serde(flatten)]
     pub params: HdrParams,
     /// Static-bias window, s; None = the log's `# bias_s:` or 20 s.
     pub bias_s: Option<f64>,
@@ -372,6 +371,45 @@ pub struct HdrOptions {
 impl Default for HdrOptions {
     fn default() -> Self {
         HdrOptions { params: HdrParams::default(), bias_s: None, resample: true }
+    }
+}
+
+/// The flat wire form of `HdrOptions` (no `flatten`, so errors name the field).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+struct HdrOptionsFlat {
+    #[serde(alias = "i_c")]
+    i_c_dps: f64,
+    #[serde(alias = "tau")]
+    tau_s: f64,
+    #[serde(alias = "theta_w")]
+    theta_w_dps: f64,
+    c1: f64,
+    c2: f64,
+    bias_s: Option<f64>,
+    resample: bool,
+}
+
+impl Default for HdrOptionsFlat {
+    fn default() -> Self {
+        HdrOptions::default().into()
+    }
+}
+
+impl From<HdrOptionsFlat> for HdrOptions {
+    fn from(f: HdrOptionsFlat) -> Self {
+        HdrOptions {
+            params: HdrParams { i_c_dps: f.i_c_dps, tau_s: f.tau_s, theta_w_dps: f.theta_w_dps, c1: f.c1, c2: f.c2 },
+            bias_s: f.bias_s,
+            resample: f.resample,
+        }
+    }
+}
+
+impl From<HdrOptions> for HdrOptionsFlat {
+    fn from(o: HdrOptions) -> Self {
+        let p = o.params;
+        HdrOptionsFlat { i_c_dps: p.i_c_dps, tau_s: p.tau_s, theta_w_dps: p.theta_w_dps, c1: p.c1, c2: p.c2, bias_s: o.bias_s, resample: o.resample }
     }
 }
 
@@ -676,5 +714,13 @@ mod tests {
         let o: HdrOptions = serde_json::from_str(r#"{"tau_s": 1.5}"#).unwrap();
         assert_eq!(o.params.tau_s, 1.5);
         assert!(serde_json::from_str::<HdrOptions>(r#"{"tau_s": "x"}"#).is_err());
+    }
+}
+#[cfg(test)]
+mod serde_options {
+    #[test]
+    fn unknown_option_is_rejected() {
+        let e = serde_json::from_str::<super::HdrOptions>(r#"{"taus": 1.0}"#).unwrap_err();
+        assert!(e.to_string().contains("unknown field `taus`"), "{e}");
     }
 }

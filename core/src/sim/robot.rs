@@ -48,13 +48,14 @@ pub fn simulate_robot(cfg: &RobotConfig) -> DriveLog {
     ));
     let mut gyro = GyroModel::draw(&GyroSpec::robot_gyro(), 22.0, &mut rng);
     // Systematic odometry error after UMBmark calibration: tiny wheel-diameter mismatch.
-    let (e_left, e_right) = (1.0 + 0.0005 * rng.normal(), 1.0 + 0.0005 * rng.normal());
+    let (e_left, e_right) = (1.0 + 0.0001 * rng.normal(), 1.0 + 0.0001 * rng.normal());
     let total_s = cfg.minutes * 60.0;
-    // Bumps at random times while driving straight (15 in 2:20 min, as in the paper's Fig. 2).
+    // Bumps at random times while driving, all under one wheel (15 in 2:20 min under the
+    // right wheel, as in the paper's Fig. 2): +1 = left wheel (turns ccw first), -1 = right.
+    let side = rng.sign();
     let n_bumps = ((total_s - LEAD_IN_S) / 140.0 * 15.0).round().max(1.0) as usize;
     let mut bumps: Vec<Bump> = (0..n_bumps)
         .map(|_| {
-            let side = rng.sign(); // +1: left wheel (turns ccw first), -1: right wheel
             let amp = rng.range(5.0, 10.0);
             Bump {
                 start_s: rng.range(LEAD_IN_S + 2.0, total_s - 2.0),

@@ -1,0 +1,73 @@
+# Shared steps of scripts/serve.sh and scripts/test.sh: each installs what is missing
+# (idempotently) and builds. Sourced, not run.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+TOOLS="$ROOT/tools"
+export PATH="$TOOLS/bin:$ROOT/tests/node_modules/.bin:$HOME/.cargo/bin:$PATH"
+cd "$ROOT"
+
+say() { printf '\n== %s\n' "$*"; }
+
+ensure_wasm_target() {
+  if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+    say "adding the wasm32-unknown-unknown target"
+    rustup target add wasm32-unknown-unknown
+  fi
+}
+
+# The wasm-bindgen CLI must match the wasm-bindgen crate in Cargo.lock exactly.
+ensure_wasm_bindgen() {
+  local want have
+  want=$(awk '/^name = "wasm-bindgen"$/ {getline; gsub(/"/, "", $3); print $3; exit}' Cargo.lock)
+  have=$(wasm-bindgen --version 2>/dev/null | awk '{print $2}' || true)
+  if [ "$have" != "$want" ]; then
+    say "installing wasm-bindgen-cli $want into tools/ (about 2 min, once)"
+    # --locked fails here (its lockfile names a crate the registry lacks), so no --locked.
+    cargo install wasm-bindgen-cli --version "$want" --root "$TOOLS" --force
+  fi
+}
+
+# Node tools of the build and the tests (binaryen's wasm-opt, typescript, playwright-core),
+# pinned by tests/package-lock.json.
+ensure_node_tools() {
+  if [ ! -x tests/node_modules/.bin/wasm-opt ] || [ tests/package-lock.json -nt tests/node_modules/.stamp ]; then
+    say "installing node tools (tests/package.json)"
+    (cd tests && npm ci --no-audit --no-fund --loglevel=error && touch node_modules/.stamp)
+  fi
+}
+
+ensure_chromium() {
+  if ! command -v chromium >/dev/null 2>&1; then
+    say "installing Debian's chromium for the browser tests"
+    local sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq chromium chromium-driver >/dev/null
+  fi
+}
+
+# The npm package in web/pkg: ES module for browsers, CommonJS build for Node, types.
+build_wasm() {
+  say "building the wasm package into web/pkg"
+  cargo build --profile wasm-release --target wasm32-unknown-unknown -p gyrodrift-wasm
+  local wasm="target/wasm32-unknown-unknown/wasm-release/gyrodrift_wasm.wasm"
+  rm -rf web/pkg
+  wasm-bindgen --target web --weak-refs --out-dir web/pkg --out-name gyrodrift "$wasm"
+  wasm-bindgen --target nodejs --weak-refs --out-dir web/pkg/node --out-name gyrodrift "$wasm"
+  local f
+  for f in web/pkg/gyrodrift_bg.wasm web/pkg/node/gyrodrift_bg.wasm; do
+    wasm-opt -Oz --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
+      --enable-mutable-globals --enable-multivalue --enable-reference-types "$f" -o "$f"
+  done
+  cp wasm/npm/package.json wasm/npm/README.md web/pkg/
+  printf '{ "type": "commonjs" }\n' > web/pkg/node/package.json
+  # The tests and the Node example import the package by its name, as users do.
+  mkdir -p tests/node_modules examples/node/node_modules
+  ln -sfn ../../web/pkg tests/node_modules/gyrodrift
+  ln -sfn ../../../web/pkg examples/node/node_modules/gyrodrift
+}
+
+build_cli() {
+  say "building the CLI"
+  cargo build --release -p gyrodrift-cli
+}

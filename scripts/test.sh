@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Command 2 of the README: installs whatever the tests need (wasm target, wasm-bindgen CLI,
+# node tools, Debian's chromium), builds, and runs every test: native (unit, property,
+# integration, CLI), wasm under Node (wasm-bindgen-test), the npm package under Node, the
+# TypeScript types, and the dashboard in headless Chromium. Exits non-zero if any failed.
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+
+ensure_wasm_target
+ensure_node_tools
+ensure_wasm_bindgen
+ensure_chromium
+build_cli
+build_wasm
+
+passed=0
+failed=0
+failures=()
+suite() {
+  local name="$1"
+  shift
+  say "$name"
+  if "$@"; then
+    passed=$((passed + 1))
+  else
+    failed=$((failed + 1))
+    failures+=("$name")
+  fi
+}
+
+suite "native tests (cargo test --workspace)" cargo test --workspace --no-fail-fast
+suite "wasm tests under Node (wasm-bindgen-test)" \
+  cargo test -p gyrodrift-wasm --target wasm32-unknown-unknown --tests --no-fail-fast
+suite "npm package and Node example (node --test)" node --test tests/node/
+suite "TypeScript types (tsc --noEmit)" tsc -p tests/types
+if [ -d tests/browser ]; then
+  suite "dashboard in headless Chromium (playwright-core)" node --test --test-concurrency=1 tests/browser/
+fi
+
+echo
+for f in "${failures[@]}"; do echo "FAILED: $f"; done
+echo "suites: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]

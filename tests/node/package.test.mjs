@@ -1,0 +1,75 @@
+// The npm package under Node: same numbers as the native CLI bit for bit, errors, the
+// fleet example. Run: node --test tests/node/
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { readFileSync, readdirSync } from "node:fs";
+import { join } from "node:path";
+import { execFileSync } from "node:child_process";
+import * as gd from "gyrodrift";
+import { ROOT, SAMPLES, cli, plain } from "./helpers.mjs";
+
+const drives = ["train", "test"].flatMap((d) =>
+  readdirSync(join(SAMPLES, d)).filter((f) => f.endsWith(".csv")).sort().map((f) => join(SAMPLES, d, f)),
+);
+
+test("hdr on every sample drive equals the native CLI bit for bit", () => {
+  for (const file of drives) {
+    const log = gd.Log.parse(readFileSync(file, "utf8"));
+    for (const [opts, args] of [[{}, []], [{ resample: false, i_c_dps: 0.01 }, ["--no-resample", "--set", "i_c=0.01"]]]) {
+      const native = JSON.parse(cli("hdr", file, "--json", ...args));
+      assert.deepEqual(plain(gd.hdr(log, opts)), native, file);
+    }
+    log.free();
+  }
+});
+
+test("gyrodometry, calibrate and allan equal the native CLI", () => {
+  for (const f of readdirSync(join(SAMPLES, "robot"))) {
+    const file = join(SAMPLES, "robot", f);
+    const log = gd.Log.parse(readFileSync(file, "utf8"));
+    assert.deepEqual(plain(gd.gyrodometry(log, {})), JSON.parse(cli("gyrodometry", file, "--json")), file);
+  }
+  const tt = join(SAMPLES, "turntable", "session.csv");
+  const cal = plain(gd.calibrate(gd.Log.parse(readFileSync(tt, "utf8")), {}));
+  delete cal.sets;
+  const nativeCal = JSON.parse(cli("calibrate", tt, "--json"));
+  assert.deepEqual(cal, nativeCal);
+  const st = join(SAMPLES, "static", "static-2h.csv");
+  assert.deepEqual(plain(gd.allan(gd.Log.parse(readFileSync(st, "utf8")))), JSON.parse(cli("allan", st, "--json")));
+});
+
+test("bad input throws an Error with line and column, and the module keeps working", () => {
+  assert.throws(() => gd.Log.parse("time_s,gyro_dps\n0,1\n0.1,1.2.3\n"), {
+    name: "Error",
+    message: 'line 3, column gyro_dps: "1.2.3" is not a number',
+  });
+  assert.throws(() => gd.Log.parse("gyro_dps\n1\n"), /missing required column time_s/);
+  assert.throws(() => gd.hdr(gd.Log.parse("time_s,gyro_dps\n0,1\n1,2\n"), {}), /missing column ref_heading_deg/);
+  assert.throws(() => gd.hdr(gd.Log.parse(readFileSync(drives[0], "utf8")), { tau_s: "x" }), /hdr options: tau_s: invalid type/);
+  const est = new gd.HdrEstimator({}, 0);
+  est.update(0, 0.1);
+  assert.throws(() => est.update(0, 0.1), /not after/);
+  assert.equal(typeof est.update(1, 0.1), "number");
+  const ok = gd.hdr(gd.Log.parse(readFileSync(drives[0], "utf8")), {});
+  assert.ok(ok.E_psi_hdr_deg > 0);
+});
+
+test("simulate in wasm writes the same sample log as the native CLI", () => {
+  const log = gd.simulate({ kind: "turntable", seed: 401, name: "Turntable session" });
+  assert.equal(log.toCsv(), readFileSync(join(SAMPLES, "turntable", "session.csv"), "utf8"));
+});
+
+test("the Node fleet example prints the same report as the CLI", () => {
+  const dir = join(SAMPLES, "train");
+  const out = execFileSync("node", [join(ROOT, "examples", "node", "report.mjs"), dir], { encoding: "utf8" });
+  const files = readdirSync(dir).filter((f) => f.endsWith(".csv")).sort().map((f) => join(dir, f));
+  assert.equal(out, cli("report", "--markdown", ...files));
+  assert.match(out, /\| City 1 \|/);
+});
+
+test("typed arrays, not JS arrays, for sample series", () => {
+  const run = gd.runHdr(gd.Log.parse(readFileSync(drives[0], "utf8")), {});
+  assert.ok(run.trace.heading_hdr_deg instanceof Float64Array);
+  assert.ok(run.trace.turn_switch instanceof Uint8Array);
+  assert.equal(run.trace.time_s.length, run.result.n_processed);
+});

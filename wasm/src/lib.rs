@@ -1,0 +1,477 @@
+//! WebAssembly bindings of gyrodrift. Thin: they translate types (option objects in,
+//! plain result objects and Float64Array series out) and errors (every core error becomes a
+//! thrown JS `Error` with the same message the CLI prints). No science here, and no panic:
+//! every fallible call returns `Result`.
+
+use gyrodrift::hdr::{self, Hdr, HdrOptions, HdrParams};
+use gyrodrift::{allan, calibration, gyrodometry, report, sim, tune, DriveLog};
+use js_sys::{Array, Float64Array, Object, Reflect, Uint8Array};
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use std::cell::{Cell, RefCell};
+use std::collections::HashMap;
+use std::rc::Rc;
+use wasm_bindgen::prelude::*;
+
+mod types;
+
+type JsResult<T> = Result<T, JsValue>;
+
+/// A JS `Error` with the message.
+fn err(msg: impl std::fmt::Display) -> JsValue {
+    js_sys::Error::new(&msg.to_string()).into()
+}
+
+/// Options from JS: undefined/null = all defaults; missing fields take defaults; a wrong
+/// type or an unknown field is an error naming the field. Read through JSON so that
+/// `deny_unknown_fields` holds (serde-wasm-bindgen skips unknown keys silently).
+fn options<T: DeserializeOwned + Default>(what: &str, value: JsValue) -> JsResult<T> {
+    if value.is_undefined() || value.is_null() {
+        return Ok(T::default());
+    }
+    if !value.is_object() {
+        return Err(err(format!("{what} options: expected an object")));
+    }
+    let text: String = js_sys::JSON::stringify(&value)
+        .map_err(|_| err(format!("{what} options: not representable as JSON")))?
+        .into();
+    let mut de = serde_json::Deserializer::from_str(&text);
+    serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner().to_string();
+        // serde_json appends " at line 1 column N" of the JSON text: not the user's concern.
+        let msg = inner.split(" at line ").next().unwrap_or(&inner);
+        if path == "." {
+            err(format!("{what} options: {msg}"))
+        } else {
+            err(format!("{what} options: {path}: {msg}"))
+        }
+    })
+}
+
+/// A plain JS object (structs as objects, not Maps).
+fn to_js<T: Serialize>(value: &T) -> JsResult<JsValue> {
+    let ser = serde_wasm_bindgen::Serializer::new().serialize_maps_as_objects(true);
+    value.serialize(&ser).map_err(err)
+}
+
+fn set(obj: &Object, key: &str, value: &JsValue) -> JsResult<()> {
+    Reflect::set(obj, &JsValue::from_str(key), value).map(|_| ())
+}
+
+fn f64s(v: &[f64]) -> JsValue {
+    Float64Array::from(v).into()
+}
+
+fn bools(v: &[bool]) -> JsValue {
+    let bytes: Vec<u8> = v.iter().map(|&b| b as u8).collect();
+    Uint8Array::from(&bytes[..]).into()
+}
+
+thread_local! {
+    static LOGS: RefCell<HashMap<u32, Rc<DriveLog>>> = RefCell::new(HashMap::new());
+    static NEXT_ID: Cell<u32> = const { Cell::new(1) };
+}
+
+/// A parsed drive log. Pass it to the functions below as often as needed; `free()` it (or
+/// let the garbage collector do so) when done.
+#[wasm_bindgen]
+pub struct Log {
+    id: u32,
+    log: Rc<DriveLog>,
+    name: String,
+}
+
+impl Drop for Log {
+    fn drop(&mut self) {
+        let id = self.id;
+        LOGS.with(|m| m.borrow_mut().remove(&id));
+    }
+}
+
+impl Log {
+    fn new(log: DriveLog) -> Log {
+        let id = NEXT_ID.with(|n| {
+            let id = n.get();
+            n.set(id.wrapping_add(1).max(1));
+            id
+        });
+        let log = Rc::new(log);
+        LOGS.with(|m| m.borrow_mut().insert(id, log.clone()));
+        let name = log.meta.name.clone().unwrap_or_default();
+        Log { id, log, name }
+    }
+
+    /// The logs of a JS array of `Log` objects, with their names, without taking them.
+    fn from_array(value: &JsValue, what: &str) -> JsResult<Vec<(String, Rc<DriveLog>)>> {
+        if value.is_undefined() || value.is_null() {
+            return Ok(Vec::new());
+        }
+        let arr: &Array = value.dyn_ref().ok_or_else(|| err(format!("{what}: expected an array of Log")))?;
+        let mut out = Vec::with_capacity(arr.length() as usize);
+        for (i, item) in arr.iter().enumerate() {
+            let id = Reflect::get(&item, &JsValue::from_str("id"))
+                .ok()
+                .and_then(|v| v.as_f64())
+                .ok_or_else(|| err(format!("{what}[{i}]: not a Log")))?;
+            let name = Reflect::get(&item, &JsValue::from_str("name")).ok().and_then(|v| v.as_string());
+            let log = LOGS
+                .with(|m| m.borrow().get(&(id as u32)).cloned())
+                .ok_or_else(|| err(format!("{what}[{i}]: this Log was freed")))?;
+            let name = name.filter(|n| !n.is_empty()).unwrap_or_else(|| format!("log {}", i + 1));
+            out.push((name, log));
+        }
+        Ok(out)
+    }
+}
+
+#[wasm_bindgen]
+impl Log {
+    /// Parses CSV v1 text; a bad file throws an Error naming line and column.
+    pub fn parse(text: &str) -> JsResult<Log> {
+        gyrodrift::parse_log_str(text).map(Log::new).map_err(err)
+    }
+
+    /// Parses CSV v1 bytes (e.g. from a File's arrayBuffer()).
+    #[wasm_bindgen(js_name = fromBytes)]
+    pub fn from_bytes(bytes: &[u8]) -> JsResult<Log> {
+        gyrodrift::parse_log(bytes).map(Log::new).map_err(err)
+    }
+
+    /// An identifier, used when a Log is passed inside an array.
+    #[wasm_bindgen(getter)]
+    pub fn id(&self) -> u32 {
+        self.id
+    }
+
+    /// The log's `# name:` (settable; used in reports).
+    #[wasm_bindgen(getter)]
+    pub fn name(&self) -> String {
+        self.name.clone()
+    }
+    #[wasm_bindgen(setter)]
+    pub fn set_name(&mut self, name: String) {
+        self.name = name;
+    }
+
+    /// "drive", "robot", "turntable" or "static", from the columns.
+    #[wasm_bindgen(getter, unchecked_return_type = "LogKind")]
+    pub fn kind(&self) -> JsResult<JsValue> {
+        to_js(&self.log.kind())
+    }
+
+    /// Last minus first time, minutes.
+    #[wasm_bindgen(getter, js_name = durationMin)]
+    pub fn duration_min(&self) -> f64 {
+        self.log.duration_min()
+    }
+
+    /// Number of data rows.
+    #[wasm_bindgen(getter, js_name = rowCount)]
+    pub fn row_count(&self) -> usize {
+        self.log.len()
+    }
+
+    /// The `# key: value` metadata.
+    #[wasm_bindgen(unchecked_return_type = "LogMeta")]
+    pub fn meta(&self) -> JsResult<JsValue> {
+        to_js(&self.log.meta)
+    }
+
+    /// The known columns present in the file, in CSV v1 order.
+    pub fn columns(&self) -> Vec<String> {
+        self.log.present_columns().iter().map(|c| c.name().to_string()).collect()
+    }
+
+    /// One column's cells as a Float64Array (NaN = empty cell).
+    pub fn column(&self, name: &str) -> JsResult<Float64Array> {
+        let c = gyrodrift::Column::from_name(name).ok_or_else(|| err(format!("unknown column {name}")))?;
+        let v = self.log.require(c, "not in this log").map_err(err)?;
+        Ok(Float64Array::from(v))
+    }
+
+    /// The log as CSV v1 text.
+    #[wasm_bindgen(js_name = toCsv)]
+    pub fn to_csv(&self) -> JsResult<String> {
+        let mut buf = Vec::new();
+        self.log.write_csv(&mut buf).map_err(err)?;
+        String::from_utf8(buf).map_err(err)
+    }
+}
+
+/// HDR on a log: the Result keys of methods.md. Throws when the log has no usable reference.
+#[wasm_bindgen(unchecked_return_type = "HdrResult")]
+pub fn hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
+    let opts: HdrOptions = self::options("hdr", options)?;
+    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    to_js(&run.result.map_err(err)?)
+}
+
+/// HDR with its per-sample series (Float64Array) for plotting: `{ result, error, eps0_dps, trace }`;
+/// `result` is null and `error` says why when the log has no usable reference.
+#[wasm_bindgen(js_name = runHdr, unchecked_return_type = "HdrRun")]
+pub fn run_hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
+    let opts: HdrOptions = self::options("hdr", options)?;
+    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    let out = Object::new();
+    let (result, error) = match &run.result {
+        Ok(r) => (to_js(r)?, JsValue::NULL),
+        Err(e) => (JsValue::NULL, JsValue::from_str(&e.to_string())),
+    };
+    set(&out, "result", &result)?;
+    set(&out, "error", &error)?;
+    set(&out, "eps0_dps", &JsValue::from_f64(run.eps0_dps))?;
+    let t = &run.trace;
+    let trace = Object::new();
+    set(&trace, "time_s", &f64s(&t.time_s))?;
+    set(&trace, "heading_raw_deg", &f64s(&t.heading_raw_deg))?;
+    set(&trace, "heading_hdr_deg", &f64s(&t.heading_hdr_deg))?;
+    set(&trace, "rate_raw_dps", &f64s(&t.rate_raw_dps))?;
+    set(&trace, "rate_corrected_dps", &f64s(&t.rate_corrected_dps))?;
+    set(&trace, "i_dps", &f64s(&t.i_dps))?;
+    set(&trace, "turn_switch", &bools(&t.turn_switch))?;
+    set(&trace, "attenuation", &f64s(&t.attenuation))?;
+    set(&out, "trace", &trace)?;
+    Ok(out.into())
+}
+
+/// Gyrodometry on a robot log: the Result keys of methods.md.
+#[wasm_bindgen(unchecked_return_type = "GyrodometryResult")]
+pub fn gyrodometry(
+    log: &Log,
+    #[wasm_bindgen(unchecked_param_type = "GyrodometryOptions")] options: JsValue,
+) -> JsResult<JsValue> {
+    let opts: gyrodometry::GyrodometryOptions = self::options("gyrodometry", options)?;
+    let run = gyrodometry::run(&log.log, &opts).map_err(err)?;
+    to_js(&run.result.map_err(err)?)
+}
+
+/// Gyrodometry with its series: `{ result, error, eps0_dps, trace }`.
+#[wasm_bindgen(js_name = runGyrodometry, unchecked_return_type = "GyrodometryRun")]
+pub fn run_gyrodometry(
+    log: &Log,
+    #[wasm_bindgen(unchecked_param_type = "GyrodometryOptions")] options: JsValue,
+) -> JsResult<JsValue> {
+    let opts: gyrodometry::GyrodometryOptions = self::options("gyrodometry", options)?;
+    let run = gyrodometry::run(&log.log, &opts).map_err(err)?;
+    let out = Object::new();
+    let (result, error) = match &run.result {
+        Ok(r) => (to_js(r)?, JsValue::NULL),
+        Err(e) => (JsValue::NULL, JsValue::from_str(&e.to_string())),
+    };
+    set(&out, "result", &result)?;
+    set(&out, "error", &error)?;
+    set(&out, "eps0_dps", &JsValue::from_f64(run.eps0_dps))?;
+    let t = &run.trace;
+    let trace = Object::new();
+    set(&trace, "time_s", &f64s(&t.time_s))?;
+    set(&trace, "heading_odo_deg", &f64s(&t.heading_odo_deg))?;
+    set(&trace, "heading_gyro_deg", &f64s(&t.heading_gyro_deg))?;
+    set(&trace, "heading_gyrodometry_deg", &f64s(&t.heading_gyrodometry_deg))?;
+    set(&trace, "used_gyro", &bools(&t.used_gyro))?;
+    set(&out, "trace", &trace)?;
+    Ok(out.into())
+}
+
+/// Calibration of a turntable session: the Result keys plus the per-set table `sets`.
+#[wasm_bindgen(unchecked_return_type = "CalibrationRun")]
+pub fn calibrate(
+    log: &Log,
+    #[wasm_bindgen(unchecked_param_type = "CalibrationOptions")] options: JsValue,
+) -> JsResult<JsValue> {
+    let opts: calibration::CalibrationOptions = self::options("calibrate", options)?;
+    let run = calibration::run(&log.log, &opts).map_err(err)?;
+    let out: JsValue = to_js(&run.result)?;
+    let obj: &Object = out.unchecked_ref();
+    set(obj, "sets", &to_js(&run.sets)?)?;
+    Ok(out)
+}
+
+/// Overlapping Allan deviation of the log's gyro column (the Result keys; arrays as Float64Array).
+#[wasm_bindgen(unchecked_return_type = "AllanResult")]
+pub fn allan(log: &Log) -> JsResult<JsValue> {
+    let r = allan::run(&log.log).map_err(err)?;
+    let out: JsValue = to_js(&r)?;
+    let obj: &Object = out.unchecked_ref();
+    set(obj, "tau_s", &f64s(&r.tau_s))?;
+    set(obj, "adev_dps", &f64s(&r.adev_dps))?;
+    Ok(out)
+}
+
+/// The HDR paper's Table II over many logs (named by their `name`).
+#[wasm_bindgen(unchecked_return_type = "Report")]
+pub fn report(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+) -> JsResult<JsValue> {
+    let opts: HdrOptions = self::options("report", options)?;
+    let logs = Log::from_array(&logs, "logs")?;
+    let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), &**l)).collect();
+    to_js(&report::Report::build(&named, &opts).map_err(err)?)
+}
+
+/// The report as Markdown (the CLI's `report --markdown`).
+#[wasm_bindgen(js_name = reportMarkdown)]
+pub fn report_markdown(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+) -> JsResult<String> {
+    let opts: HdrOptions = self::options("report", options)?;
+    let logs = Log::from_array(&logs, "logs")?;
+    let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), &**l)).collect();
+    Ok(report::Report::build(&named, &opts).map_err(err)?.to_markdown())
+}
+
+/// Tunes the five HDR parameters on `train` and reports Table III vs tuned on both sets.
+#[wasm_bindgen(unchecked_return_type = "TuneReport")]
+pub fn tune(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] train: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Log[] | undefined")] test: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "TuneOptions")] options: JsValue,
+) -> JsResult<JsValue> {
+    let opts: tune::TuneOptions = self::options("tune", options)?;
+    let hdr_opts = HdrOptions::default();
+    let prep = |v: Vec<(String, Rc<DriveLog>)>| -> JsResult<Vec<tune::PreparedDrive>> {
+        let named: Vec<(String, &DriveLog)> = v.iter().map(|(n, l)| (n.clone(), &**l)).collect();
+        tune::prepare_all(&named, &hdr_opts).map_err(err)
+    };
+    let train = prep(Log::from_array(&train, "train")?)?;
+    let test = prep(Log::from_array(&test, "test")?)?;
+    to_js(&tune::tune_and_report(&train, &test, &opts).map_err(err)?)
+}
+
+/// Simulates a log with known truth (the CLI's `simulate`); the same seed gives the same
+/// log as the native CLI.
+#[wasm_bindgen]
+pub fn simulate(#[wasm_bindgen(unchecked_param_type = "SimRequest")] request: JsValue) -> JsResult<Log> {
+    let req: sim::SimRequest = self::options("simulate", request)?;
+    sim::simulate(&req).map(Log::new).map_err(err)
+}
+
+/// Table III of the HDR paper (the defaults).
+#[wasm_bindgen(js_name = tableIII, unchecked_return_type = "HdrParams")]
+pub fn table_iii() -> JsResult<JsValue> {
+    to_js(&HdrParams::table_iii())
+}
+
+/// Static bias eps0 of a log over its first `bias_s` seconds (the log's own, or 20 s).
+#[wasm_bindgen(js_name = staticBias)]
+pub fn static_bias(log: &Log, bias_s: Option<f64>) -> JsResult<f64> {
+    let gyro = log.log.require(gyrodrift::Column::GyroDps, "needed for the static bias").map_err(err)?;
+    gyrodrift::preprocess::static_bias_dps(log.log.time_s(), gyro, log.log.bias_s(bias_s)).map_err(err)
+}
+
+/// Streaming HDR for online use: `update(time_s, rate_raw_dps)` per sample returns the
+/// heading; the getters give the state after the last update. Call `free()` when done.
+#[wasm_bindgen]
+pub struct HdrEstimator {
+    inner: Hdr,
+    last: Option<hdr::HdrOutput>,
+}
+
+#[wasm_bindgen]
+impl HdrEstimator {
+    /// Parameters (Table III where missing) and the static bias to remove, deg/s.
+    #[wasm_bindgen(constructor)]
+    pub fn new(#[wasm_bindgen(unchecked_param_type = "HdrParams")] params: JsValue, eps0_dps: f64) -> JsResult<HdrEstimator> {
+        let p: HdrParams = options("HdrEstimator", params)?;
+        Ok(HdrEstimator { inner: Hdr::new(p, eps0_dps).map_err(err)?, last: None })
+    }
+
+    /// One raw sample; returns the heading (deg, starting at 0). Throws on a non-finite
+    /// value or a time that does not increase, leaving the state as it was.
+    pub fn update(&mut self, time_s: f64, rate_raw_dps: f64) -> JsResult<f64> {
+        let o = self.inner.update(time_s, rate_raw_dps).map_err(err)?;
+        self.last = Some(o);
+        Ok(o.heading_deg)
+    }
+
+    /// Many samples at once; returns their headings.
+    #[wasm_bindgen(js_name = updateMany)]
+    pub fn update_many(&mut self, time_s: &[f64], rate_raw_dps: &[f64]) -> JsResult<Float64Array> {
+        let mut out = Vec::with_capacity(time_s.len());
+        let mut last = self.last;
+        let r = self.inner.update_slice(time_s, rate_raw_dps, |o| {
+            out.push(o.heading_deg);
+            last = Some(*o);
+        });
+        self.last = last;
+        r.map_err(err)?;
+        Ok(Float64Array::from(&out[..]))
+    }
+
+    /// The full output of the last step (null before the first).
+    #[wasm_bindgen(unchecked_return_type = "HdrState | null")]
+    pub fn state(&self) -> JsResult<JsValue> {
+        match &self.last {
+            Some(o) => to_js(o),
+            None => Ok(JsValue::NULL),
+        }
+    }
+
+    #[wasm_bindgen(getter, js_name = headingDeg)]
+    pub fn heading_deg(&self) -> f64 {
+        self.last.map_or(0.0, |o| o.heading_deg)
+    }
+    /// The drift estimate -I, deg/s.
+    #[wasm_bindgen(getter, js_name = driftEstimateDps)]
+    pub fn drift_estimate_dps(&self) -> f64 {
+        self.last.map_or(0.0, |o| -o.i_dps)
+    }
+    #[wasm_bindgen(getter, js_name = rateCorrectedDps)]
+    pub fn rate_corrected_dps(&self) -> f64 {
+        self.last.map_or(0.0, |o| o.rate_corrected_dps)
+    }
+    #[wasm_bindgen(getter, js_name = turnSwitch)]
+    pub fn turn_switch(&self) -> bool {
+        self.last.is_some_and(|o| o.turn_switch)
+    }
+    #[wasm_bindgen(getter)]
+    pub fn r(&self) -> f64 {
+        self.last.map_or(1.0, |o| o.r as f64)
+    }
+    #[wasm_bindgen(getter)]
+    pub fn attenuation(&self) -> f64 {
+        self.last.map_or(1.0, |o| o.attenuation)
+    }
+}
+
+/// Streaming Gyrodometry: `update(time_s, rate_raw_dps, odo_left_m, odo_right_m)` per row.
+#[wasm_bindgen]
+pub struct GyrodometryEstimator {
+    inner: gyrodometry::Gyrodometry,
+    last: Option<gyrodometry::GyrodometryOutput>,
+}
+
+#[wasm_bindgen]
+impl GyrodometryEstimator {
+    #[wasm_bindgen(constructor)]
+    pub fn new(wheelbase_m: f64, thres_rate_dps: f64, eps0_dps: f64) -> JsResult<GyrodometryEstimator> {
+        let inner = gyrodometry::Gyrodometry::new(wheelbase_m, thres_rate_dps, eps0_dps).map_err(err)?;
+        Ok(GyrodometryEstimator { inner, last: None })
+    }
+
+    /// One row; returns the Gyrodometry heading, deg.
+    pub fn update(&mut self, time_s: f64, rate_raw_dps: f64, odo_left_m: f64, odo_right_m: f64) -> JsResult<f64> {
+        let o = self.inner.update(time_s, rate_raw_dps, odo_left_m, odo_right_m).map_err(err)?;
+        self.last = Some(o);
+        Ok(o.heading_deg)
+    }
+
+    #[wasm_bindgen(unchecked_return_type = "GyrodometryState | null")]
+    pub fn state(&self) -> JsResult<JsValue> {
+        match &self.last {
+            Some(o) => to_js(o),
+            None => Ok(JsValue::NULL),
+        }
+    }
+
+    #[wasm_bindgen(getter, js_name = headingDeg)]
+    pub fn heading_deg(&self) -> f64 {
+        self.last.map_or(0.0, |o| o.heading_deg)
+    }
+    #[wasm_bindgen(getter, js_name = usedGyro)]
+    pub fn used_gyro(&self) -> bool {
+        self.last.is_some_and(|o| o.used_gyro)
+    }
+}

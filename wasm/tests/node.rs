@@ -1,0 +1,145 @@
+//! The wasm bindings under Node (wasm-bindgen-test): streaming = batch, bad input throws an
+//! Error with line and column and the module keeps working, options take defaults, wrong
+//! types and unknown fields are named. Run: cargo test -p gyrodrift-wasm --target wasm32-unknown-unknown --tests
+#![cfg(target_arch = "wasm32")]
+
+use gyrodrift_wasm::*;
+use js_sys::{Array, Float64Array, Object, Reflect};
+use wasm_bindgen::prelude::*;
+use wasm_bindgen_test::*;
+
+const RURAL: &str = include_str!("../../sample-logs/train/rural-1.csv");
+const ROBOT: &str = include_str!("../../sample-logs/robot/straight.csv");
+
+fn get(obj: &JsValue, key: &str) -> JsValue {
+    Reflect::get(obj, &JsValue::from_str(key)).unwrap()
+}
+
+fn num(obj: &JsValue, key: &str) -> f64 {
+    get(obj, key).as_f64().unwrap_or_else(|| panic!("{key} is not a number"))
+}
+
+fn obj(pairs: &[(&str, JsValue)]) -> JsValue {
+    let o = Object::new();
+    for (k, v) in pairs {
+        Reflect::set(&o, &JsValue::from_str(k), v).unwrap();
+    }
+    o.into()
+}
+
+fn message(e: JsValue) -> String {
+    let e: js_sys::Error = e.dyn_into().expect("a JS Error");
+    e.message().into()
+}
+
+/// The same numbers as the native core computes on the same text (core is linked in too).
+#[wasm_bindgen_test]
+fn hdr_matches_core_bit_for_bit() {
+    let log = Log::parse(RURAL).unwrap();
+    let r = hdr(&log, JsValue::UNDEFINED).unwrap();
+    let native = gyrodrift::hdr::run(&gyrodrift::parse_log_str(RURAL).unwrap(), &Default::default()).unwrap().result.unwrap();
+    assert_eq!(num(&r, "E_psi_hdr_deg").to_bits(), native.E_psi_hdr_deg.to_bits());
+    assert_eq!(num(&r, "E_psi_raw_deg").to_bits(), native.E_psi_raw_deg.to_bits());
+    assert_eq!(get(&r, "resampled").as_bool(), Some(true));
+    assert!(num(&r, "improvement") > 1.0);
+}
+
+#[wasm_bindgen_test]
+fn streaming_equals_batch() {
+    let log = Log::parse(RURAL).unwrap();
+    let run = run_hdr(&log, obj(&[("resample", JsValue::FALSE)])).unwrap();
+    let trace = get(&run, "trace");
+    let t: Float64Array = get(&trace, "time_s").dyn_into().unwrap();
+    let batch: Float64Array = get(&trace, "heading_hdr_deg").dyn_into().unwrap();
+    let raw: Float64Array = get(&trace, "rate_raw_dps").dyn_into().unwrap();
+    let eps0 = num(&run, "eps0_dps");
+    let mut est = HdrEstimator::new(JsValue::UNDEFINED, eps0).unwrap();
+    let shift = batch.get_index(0);
+    for i in 0..t.length() {
+        let h = est.update(t.get_index(i), raw.get_index(i)).unwrap();
+        assert_eq!((h + shift).to_bits(), batch.get_index(i).to_bits(), "sample {i}");
+    }
+    // updateMany continues the same state
+    let mut est2 = HdrEstimator::new(JsValue::UNDEFINED, eps0).unwrap();
+    let all = est2.update_many(&t.to_vec(), &raw.to_vec()).unwrap();
+    assert_eq!(all.get_index(t.length() - 1).to_bits(), est.heading_deg().to_bits());
+    assert!(est.state().unwrap().is_object());
+}
+
+#[wasm_bindgen_test]
+fn bad_input_throws_with_line_and_column_and_module_keeps_working() {
+    let e = Log::parse("time_s,gyro_dps\n0,1\n0.1,1.2.3\n").err().unwrap();
+    assert_eq!(message(e), "line 3, column gyro_dps: \"1.2.3\" is not a number");
+    let e = Log::parse("").err().unwrap();
+    assert_eq!(message(e), "empty file: no header row");
+    let e = Log::parse("time_s,gyro_dps\n0,1\n0,1\n").err().unwrap();
+    assert!(message(e).contains("line 3, column time_s"));
+    let e = Log::from_bytes(b"time_s,gyro_dps\n0,\xff\n").err().unwrap();
+    assert!(message(e).contains("line 2"));
+    let mut est = HdrEstimator::new(JsValue::UNDEFINED, 0.0).unwrap();
+    est.update(1.0, 0.0).unwrap();
+    assert!(est.update(1.0, 0.0).is_err());
+    assert!(est.update(2.0, f64::NAN).is_err());
+    let noref = Log::parse("time_s,gyro_dps,ref_heading_deg\n0,1,\n1,1,\n").unwrap();
+    let e = hdr(&noref, JsValue::UNDEFINED).err().unwrap();
+    assert!(message(e).contains("no valid reference heading"));
+    let run = run_hdr(&noref, JsValue::UNDEFINED).unwrap();
+    assert!(get(&run, "result").is_null());
+    assert!(get(&run, "error").as_string().unwrap().contains("reference"));
+    let e = gyrodometry(&Log::parse(RURAL).unwrap(), JsValue::UNDEFINED).err().unwrap();
+    let m = message(e);
+    assert!(m.contains("wheelbase_m"), "{m}");
+    // after all of that the module still works
+    let log = Log::parse(RURAL).unwrap();
+    assert!(num(&hdr(&log, JsValue::UNDEFINED).unwrap(), "E_psi_hdr_deg") > 0.0);
+}
+
+#[wasm_bindgen_test]
+fn options_default_and_name_bad_fields() {
+    let log = Log::parse(RURAL).unwrap();
+    let a = hdr(&log, JsValue::UNDEFINED).unwrap();
+    let b = hdr(&log, obj(&[("tau_s", JsValue::from_f64(0.75))])).unwrap();
+    assert_eq!(num(&a, "E_psi_hdr_deg"), num(&b, "E_psi_hdr_deg"));
+    let c = hdr(&log, obj(&[("i_c", JsValue::from_f64(0.003))])).unwrap();
+    assert_ne!(num(&a, "E_psi_hdr_deg"), num(&c, "E_psi_hdr_deg"));
+    let e = hdr(&log, obj(&[("tau_s", JsValue::from_str("fast"))])).err().unwrap();
+    let m = message(e);
+    assert!(m.starts_with("hdr options: tau_s: invalid type"), "{m}");
+    let e = hdr(&log, obj(&[("taus", JsValue::from_f64(1.0))])).err().unwrap();
+    assert!(message(e).contains("unknown field `taus`"));
+    let e = hdr(&log, obj(&[("tau_s", JsValue::from_f64(-1.0))])).err().unwrap();
+    assert_eq!(message(e), "parameter tau: -1 is not a time >= 0 s");
+}
+
+#[wasm_bindgen_test]
+fn every_method_returns_result_keys() {
+    let robot = Log::parse(ROBOT).unwrap();
+    let g = gyrodometry(&robot, JsValue::UNDEFINED).unwrap();
+    assert!(num(&g, "E_psi_gyrodometry_deg") < num(&g, "E_psi_odo_deg"));
+    let sim_tt = simulate(obj(&[("kind", "turntable".into()), ("seed", JsValue::from_f64(3.0))])).unwrap();
+    let c = calibrate(&sim_tt, JsValue::UNDEFINED).unwrap();
+    assert!(num(&c, "residual_rms_compensated_dps") < num(&c, "residual_rms_static_only_dps"));
+    assert!(Array::is_array(&get(&c, "C")));
+    let st = simulate(obj(&[("kind", "static".into()), ("minutes", JsValue::from_f64(10.0))])).unwrap();
+    let a = allan(&st).unwrap();
+    assert!(get(&a, "adev_dps").is_instance_of::<Float64Array>());
+    assert!(num(&a, "arw_deg_per_sqrt_s") > 0.0);
+    let d1 = Log::parse(RURAL).unwrap();
+    let d2 = simulate(obj(&[("scenario", "city".into()), ("minutes", JsValue::from_f64(6.0)), ("name", "Sim".into())])).unwrap();
+    let logs = Array::of2(&JsValue::from(d1), &JsValue::from(d2));
+    let rep = report(logs.clone().into(), JsValue::UNDEFINED).unwrap();
+    let rows: Array = get(&rep, "rows").dyn_into().unwrap();
+    assert_eq!(rows.length(), 2);
+    assert_eq!(get(&rows.get(1), "name").as_string().as_deref(), Some("Sim"));
+    let t = tune(logs.into(), JsValue::UNDEFINED, obj(&[("max_iters", JsValue::from_f64(20.0)), ("restarts", JsValue::from_f64(0.0))])).unwrap();
+    let res = get(&t, "result");
+    assert!(num(&res, "objective_tuned_deg_per_min") <= num(&res, "objective_start_deg_per_min"));
+}
+
+#[wasm_bindgen_test]
+fn simulate_matches_the_shipped_sample_log() {
+    let s = gyrodrift::sim::samples::SAMPLE_LOGS.iter().find(|s| s.path == "robot/straight.csv").unwrap();
+    let req = obj(&[("kind", "robot".into()), ("scenario", "straight".into()), ("minutes", JsValue::from_f64(s.minutes.unwrap())), ("seed", JsValue::from_f64(s.seed as f64)), ("name", s.name.into())]);
+    let log = simulate(req).unwrap();
+    assert_eq!(log.to_csv().unwrap(), ROBOT, "wasm simulation differs from the native sample log");
+}
