@@ -109,6 +109,11 @@ pub fn allan(rate_dps: &[f64], t0_s: f64) -> Result<AllanResult> {
     })
 }
 
+/// The angle-random-walk line adev = ARW / sqrt(tau) (slope -1/2 on log-log axes).
+pub fn arw_line_dps(arw_deg_per_sqrt_s: f64, tau_s: &[f64]) -> Vec<f64> {
+    tau_s.iter().map(|t| arw_deg_per_sqrt_s / t.sqrt()).collect()
+}
+
 /// Allan deviation of a log's gyro column (rows with a gyro value).
 pub fn run(log: &DriveLog) -> Result<AllanResult> {
     let gyro = log.require(Column::GyroDps, "needed for Allan deviation")?;

@@ -448,6 +448,11 @@ pub struct HdrTrace {
 }
 
 impl HdrTrace {
+    /// The drift estimate -I at each sample, deg/s (the paper's Figs. 3 and 5).
+    pub fn drift_estimate_dps(&self) -> Vec<f64> {
+        self.i_dps.iter().map(|i| -i).collect()
+    }
+
     /// Writes the per-sample trace CSV of methods.md: time_s, heading_raw_deg, heading_hdr_deg.
     pub fn write_csv<W: std::io::Write>(&self, out: W) -> Result<()> {
         use std::io::Write as _;

@@ -14,6 +14,7 @@
 
 pub mod allan;
 pub mod calibration;
+pub mod decimate;
 pub mod error;
 pub mod gyrodometry;
 pub mod hdr;
@@ -22,6 +23,7 @@ pub mod metrics;
 pub mod preprocess;
 pub mod report;
 pub mod sim;
+pub mod track;
 pub mod tune;
 
 pub use error::{Error, Result};

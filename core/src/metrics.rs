@@ -111,6 +111,28 @@ pub fn score(time_s: &[f64], psi_deg: &[f64], reference: &Reference) -> Result<S
     Ok(Score { shift_deg: shift, e_psi_deg: sum / n as f64, n_samples: n, final_err_deg: last_err })
 }
 
+/// The signed error psi(t_k) - ref_k of an (aligned) trace at each scored reference sample,
+/// the terms whose mean absolute value is E_psi (for plotting error against time).
+pub fn error_series(time_s: &[f64], psi_deg: &[f64], reference: &Reference) -> (Vec<f64>, Vec<f64>) {
+    let (mut t_out, mut e_out) = (Vec::new(), Vec::new());
+    let (Some(&t_first), Some(&t_last)) = (time_s.first(), time_s.last()) else { return (t_out, e_out) };
+    let mut j = 0usize;
+    for (&t, &r) in reference.time_s.iter().zip(&reference.heading_deg) {
+        if t < t_first {
+            continue;
+        }
+        if t > t_last {
+            break;
+        }
+        while j + 1 < time_s.len() && time_s[j + 1] <= t {
+            j += 1;
+        }
+        t_out.push(t);
+        e_out.push(interp_at(time_s, psi_deg, j, t) - r);
+    }
+    (t_out, e_out)
+}
+
 /// NE_psi (Eq. 16): E_psi per minute of drive.
 pub fn ne_psi(e_psi_deg: f64, duration_min: f64) -> f64 {
     e_psi_deg / duration_min
@@ -200,6 +222,20 @@ mod tests {
         let s = score(&t, &psi, &reference).unwrap();
         let closed = b * n as f64 / 2.0;
         assert!((s.e_psi_deg - closed).abs() < 1e-9, "{} vs {}", s.e_psi_deg, closed);
+    }
+
+    #[test]
+    fn error_series_mean_abs_is_e_psi() {
+        let reference = Reference { time_s: vec![0.5, 1.0, 2.0, 2.5], heading_deg: vec![0.0, 1.0, 1.0, 3.0] };
+        let t = [1.0, 2.0, 3.0];
+        let psi = [0.0, 4.0, 8.0];
+        let s = score(&t, &psi, &reference).unwrap();
+        let shifted: Vec<f64> = psi.iter().map(|p| p + s.shift_deg).collect();
+        let (te, e) = error_series(&t, &shifted, &reference);
+        assert_eq!(te, vec![1.0, 2.0, 2.5]);
+        assert_eq!(e, vec![0.0, 4.0, 4.0]); // 1+5-1... psi(2.5) = 6 + 1 = 7, minus 3
+        let mean = e.iter().map(|v: &f64| v.abs()).sum::<f64>() / 3.0;
+        assert!((mean - s.e_psi_deg).abs() < 1e-12);
     }
 
     #[test]

@@ -9,10 +9,10 @@ use js_sys::{Array, Float64Array, Object, Reflect, Uint8Array};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::cell::{Cell, RefCell};
-use std::collections::HashMap;
 use std::rc::Rc;
 use wasm_bindgen::prelude::*;
 
+mod plot;
 mod types;
 
 type JsResult<T> = Result<T, JsValue>;
@@ -22,31 +22,45 @@ fn err(msg: impl std::fmt::Display) -> JsValue {
     js_sys::Error::new(&msg.to_string()).into()
 }
 
-/// Options from JS: undefined/null = all defaults; missing fields take defaults; a wrong
-/// type or an unknown field is an error naming the field. Read through JSON so that
-/// `deny_unknown_fields` holds (serde-wasm-bindgen skips unknown keys silently).
-fn options<T: DeserializeOwned + Default>(what: &str, value: JsValue) -> JsResult<T> {
+/// Short names accepted besides the fields' own (`#[serde(alias)]` in core).
+const ALIASES: &[&str] = &["i_c", "tau", "theta_w", "thres_rate"];
+
+/// Options from JS: undefined/null = all defaults; missing fields take defaults; an unknown
+/// field or a wrong type is an error naming the field.
+fn options<T: DeserializeOwned + Default + Serialize>(what: &str, value: JsValue) -> JsResult<T> {
     if value.is_undefined() || value.is_null() {
         return Ok(T::default());
     }
-    if !value.is_object() {
-        return Err(err(format!("{what} options: expected an object")));
-    }
-    let text: String = js_sys::JSON::stringify(&value)
-        .map_err(|_| err(format!("{what} options: not representable as JSON")))?
-        .into();
-    let mut de = serde_json::Deserializer::from_str(&text);
-    serde_path_to_error::deserialize(&mut de).map_err(|e| {
-        let path = e.path().to_string();
-        let inner = e.into_inner().to_string();
-        // serde_json appends " at line 1 column N" of the JSON text: not the user's concern.
-        let msg = inner.split(" at line ").next().unwrap_or(&inner);
-        if path == "." {
-            err(format!("{what} options: {msg}"))
-        } else {
-            err(format!("{what} options: {path}: {msg}"))
+    let obj: &Object = value.dyn_ref().filter(|_| value.is_object()).ok_or_else(|| err(format!("{what} options: expected an object")))?;
+    let defaults: JsValue = to_js(&T::default())?;
+    let known = Object::keys(defaults.unchecked_ref::<Object>());
+    let keys = Object::keys(obj);
+    for key in keys.iter() {
+        let k = key.as_string().unwrap_or_default();
+        if !known.includes(&key, 0) && !ALIASES.contains(&k.as_str()) {
+            let expected: Vec<String> = known.iter().filter_map(|v| v.as_string()).collect();
+            return Err(err(format!("{what} options: unknown field `{k}`, expected one of {}", expected.join(", "))));
         }
+    }
+    serde_wasm_bindgen::from_value(value.clone()).map_err(|e| {
+        // Name the field: the first key that fails on its own.
+        for key in keys.iter() {
+            let single = Object::new();
+            let v = Reflect::get(obj, &key).unwrap_or(JsValue::UNDEFINED);
+            if Reflect::set(&single, &key, &v).is_ok() {
+                if let Err(e1) = serde_wasm_bindgen::from_value::<T>(single.into()) {
+                    return err(format!("{what} options: {}: {}", key.as_string().unwrap_or_default(), js_message(e1)));
+                }
+            }
+        }
+        err(format!("{what} options: {}", js_message(e)))
     })
+}
+
+/// The message of a serde-wasm-bindgen error (a JS Error underneath).
+fn js_message(e: serde_wasm_bindgen::Error) -> String {
+    let v: JsValue = e.into();
+    v.dyn_ref::<js_sys::Error>().map(|e| String::from(e.message())).unwrap_or_else(|| format!("{v:?}"))
 }
 
 /// A plain JS object (structs as objects, not Maps).
@@ -69,7 +83,8 @@ fn bools(v: &[bool]) -> JsValue {
 }
 
 thread_local! {
-    static LOGS: RefCell<HashMap<u32, Rc<DriveLog>>> = RefCell::new(HashMap::new());
+    /// Live logs by id (a short list: a Vec beats a HashMap here in code size and speed).
+    static LOGS: RefCell<Vec<(u32, Rc<DriveLog>)>> = const { RefCell::new(Vec::new()) };
     static NEXT_ID: Cell<u32> = const { Cell::new(1) };
 }
 
@@ -85,7 +100,7 @@ pub struct Log {
 impl Drop for Log {
     fn drop(&mut self) {
         let id = self.id;
-        LOGS.with(|m| m.borrow_mut().remove(&id));
+        LOGS.with(|m| m.borrow_mut().retain(|(k, _)| *k != id));
     }
 }
 
@@ -97,7 +112,7 @@ impl Log {
             id
         });
         let log = Rc::new(log);
-        LOGS.with(|m| m.borrow_mut().insert(id, log.clone()));
+        LOGS.with(|m| m.borrow_mut().push((id, log.clone())));
         let name = log.meta.name.clone().unwrap_or_default();
         Log { id, log, name }
     }
@@ -116,7 +131,7 @@ impl Log {
                 .ok_or_else(|| err(format!("{what}[{i}]: not a Log")))?;
             let name = Reflect::get(&item, &JsValue::from_str("name")).ok().and_then(|v| v.as_string());
             let log = LOGS
-                .with(|m| m.borrow().get(&(id as u32)).cloned())
+                .with(|m| m.borrow().iter().find(|(k, _)| *k == id as u32).map(|(_, l)| l.clone()))
                 .ok_or_else(|| err(format!("{what}[{i}]: this Log was freed")))?;
             let name = name.filter(|n| !n.is_empty()).unwrap_or_else(|| format!("log {}", i + 1));
             out.push((name, log));
@@ -229,10 +244,63 @@ pub fn run_hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] o
     set(&trace, "rate_raw_dps", &f64s(&t.rate_raw_dps))?;
     set(&trace, "rate_corrected_dps", &f64s(&t.rate_corrected_dps))?;
     set(&trace, "i_dps", &f64s(&t.i_dps))?;
+    set(&trace, "drift_estimate_dps", &f64s(&t.drift_estimate_dps()))?;
     set(&trace, "turn_switch", &bools(&t.turn_switch))?;
     set(&trace, "attenuation", &f64s(&t.attenuation))?;
     set(&out, "trace", &trace)?;
+    // The unwrapped reference and the error of each heading at the scored samples.
+    let (reference, errors) = match (&run.result, gyrodrift::metrics::Reference::from_log(&log.log)) {
+        (Ok(_), Ok(r)) => {
+            let refo = Object::new();
+            set(&refo, "time_s", &f64s(&r.time_s))?;
+            set(&refo, "heading_deg", &f64s(&r.heading_deg))?;
+            let (te, e_raw) = gyrodrift::metrics::error_series(&t.time_s, &t.heading_raw_deg, &r);
+            let (_, e_hdr) = gyrodrift::metrics::error_series(&t.time_s, &t.heading_hdr_deg, &r);
+            let erro = Object::new();
+            set(&erro, "time_s", &f64s(&te))?;
+            set(&erro, "raw_deg", &f64s(&e_raw))?;
+            set(&erro, "hdr_deg", &f64s(&e_hdr))?;
+            (refo.into(), erro.into())
+        }
+        _ => (JsValue::NULL, JsValue::NULL),
+    };
+    set(&out, "reference", &reference)?;
+    set(&out, "errors", &errors)?;
     Ok(out.into())
+}
+
+/// Dead-reckoned paths (m) of a drive with speed: along the raw, HDR and reference headings.
+/// `{ raw: {x_m, y_m}, hdr: {...}, reference: {...} | null }` as Float64Array.
+#[wasm_bindgen(unchecked_return_type = "Tracks")]
+pub fn track(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
+    let opts: HdrOptions = self::options("track", options)?;
+    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    let t = &run.trace;
+    let path = |p: gyrodrift::track::Path| -> JsResult<JsValue> {
+        let o = Object::new();
+        set(&o, "x_m", &f64s(&p.x_m))?;
+        set(&o, "y_m", &f64s(&p.y_m))?;
+        Ok(o.into())
+    };
+    let out = Object::new();
+    set(&out, "raw", &path(gyrodrift::track::dead_reckon(&log.log, &t.time_s, &t.heading_raw_deg).map_err(err)?)?)?;
+    set(&out, "hdr", &path(gyrodrift::track::dead_reckon(&log.log, &t.time_s, &t.heading_hdr_deg).map_err(err)?)?)?;
+    let reference = match gyrodrift::track::reference_path(&log.log) {
+        Ok(p) => path(p)?,
+        Err(_) => JsValue::NULL,
+    };
+    set(&out, "reference", &reference)?;
+    Ok(out.into())
+}
+
+/// The per-sample heading trace CSV of methods.md (time_s, heading_raw_deg, heading_hdr_deg).
+#[wasm_bindgen(js_name = hdrTraceCsv)]
+pub fn hdr_trace_csv(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<String> {
+    let opts: HdrOptions = self::options("hdr", options)?;
+    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    let mut buf = Vec::new();
+    run.trace.write_csv(&mut buf).map_err(err)?;
+    String::from_utf8(buf).map_err(err)
 }
 
 /// Gyrodometry on a robot log: the Result keys of methods.md.
@@ -295,6 +363,7 @@ pub fn allan(log: &Log) -> JsResult<JsValue> {
     let obj: &Object = out.unchecked_ref();
     set(obj, "tau_s", &f64s(&r.tau_s))?;
     set(obj, "adev_dps", &f64s(&r.adev_dps))?;
+    set(obj, "arw_line_dps", &f64s(&allan::arw_line_dps(r.arw_deg_per_sqrt_s, &r.tau_s)))?;
     Ok(out)
 }
 

@@ -62,6 +62,8 @@ export interface HdrTrace {
   rate_corrected_dps: Float64Array;
   /** Controller output I; -I is the drift estimate. */
   i_dps: Float64Array;
+  /** The drift estimate -I, deg/s. */
+  drift_estimate_dps: Float64Array;
   /** 1 where the turn switch let HDR correct. */
   turn_switch: Uint8Array;
   attenuation: Float64Array;
@@ -73,6 +75,10 @@ export interface HdrRun {
   error: string | null;
   eps0_dps: number;
   trace: HdrTrace;
+  /** The valid reference samples, unwrapped (null without a usable reference). */
+  reference: { time_s: Float64Array; heading_deg: Float64Array } | null;
+  /** Signed heading errors (estimate minus reference) at the scored reference samples. */
+  errors: { time_s: Float64Array; raw_deg: Float64Array; hdr_deg: Float64Array } | null;
 }
 
 /** One step of the streaming HDR estimator. */
@@ -186,6 +192,8 @@ export interface AllanResult {
   m: number[];
   tau_s: Float64Array;
   adev_dps: Float64Array;
+  /** ARW / sqrt(tau) on the same taus: the -1/2 slope line (wasm only, not a Result key). */
+  arw_line_dps?: Float64Array;
   arw_deg_per_sqrt_s: number;
   arw_deg_per_sqrt_h: number;
   bias_instability_dps: number;
@@ -240,6 +248,46 @@ export interface TuneReport {
   result: TuneResult;
   train: Comparison;
   test: Comparison | null;
+}
+
+/** A path in metres. */
+export interface Path {
+  x_m: Float64Array;
+  y_m: Float64Array;
+}
+
+/** Dead-reckoned paths of a drive with speed. */
+export interface Tracks {
+  raw: Path;
+  hdr: Path;
+  reference: Path | null;
+}
+
+/** A chart for drawChart: series are decimated to the canvas width in core. */
+export interface ChartSpec {
+  title?: string;
+  x_label?: string;
+  y_label?: string;
+  x_range?: [number, number] | null;
+  y_range?: [number, number] | null;
+  log_x?: boolean;
+  log_y?: boolean;
+  series: { name: string; color: string; x: ArrayLike<number>; y: ArrayLike<number>; width?: number; points?: boolean; path?: boolean }[];
+  shade?: { x: ArrayLike<number>; mask: ArrayLike<number>; color: string; label?: string } | null;
+  cursor_x?: number | null;
+  dpr?: number;
+}
+
+/** Where drawChart put the plot area (canvas pixels) and its data ranges. */
+export interface ChartLayout {
+  left: number;
+  top: number;
+  right: number;
+  bottom: number;
+  x_min: number;
+  x_max: number;
+  y_min: number;
+  y_max: number;
 }
 
 /** What to simulate; the same seed gives the same log natively and in wasm. */

@@ -1,0 +1,87 @@
+//! Min/max decimation for drawing: a series reduced to at most four points per pixel
+//! column (first, min, max, last, in time order), so a 1 h 10 Hz log and a 10 M-sample log
+//! redraw alike and no peak is lost.
+
+/// Reduces (x, y) inside [x0, x1] to at most 4 points per column of `columns` columns.
+/// The samples just outside the window are kept so lines run to the edges. NaN y values
+/// break nothing: they are skipped.
+pub fn min_max(x: &[f64], y: &[f64], x0: f64, x1: f64, columns: usize) -> (Vec<f64>, Vec<f64>) {
+    let n = x.len().min(y.len());
+    let (mut ox, mut oy) = (Vec::new(), Vec::new());
+    if n == 0 || columns == 0 || !(x1 > x0) {
+        return (ox, oy);
+    }
+    let start = x[..n].partition_point(|&v| v < x0).saturating_sub(1);
+    let end = (x[..n].partition_point(|&v| v <= x1) + 1).min(n);
+    if end - start <= 4 * columns {
+        for i in start..end {
+            if !y[i].is_nan() {
+                ox.push(x[i]);
+                oy.push(y[i]);
+            }
+        }
+        return (ox, oy);
+    }
+    let scale = columns as f64 / (x1 - x0);
+    let mut i = start;
+    while i < end {
+        let col = ((x[i] - x0) * scale).floor();
+        let (mut first, mut last, mut lo, mut hi) = (usize::MAX, 0, usize::MAX, usize::MAX);
+        while i < end && ((x[i] - x0) * scale).floor() == col {
+            if !y[i].is_nan() {
+                if first == usize::MAX {
+                    first = i;
+                }
+                last = i;
+                if lo == usize::MAX || y[i] < y[lo] {
+                    lo = i;
+                }
+                if hi == usize::MAX || y[i] > y[hi] {
+                    hi = i;
+                }
+            }
+            i += 1;
+        }
+        if first == usize::MAX {
+            continue;
+        }
+        let mut idx = [first, lo, hi, last];
+        idx.sort_unstable();
+        let mut prev = usize::MAX;
+        for k in idx {
+            if k != prev {
+                ox.push(x[k]);
+                oy.push(y[k]);
+                prev = k;
+            }
+        }
+    }
+    (ox, oy)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keeps_extremes_per_column() {
+        let x: Vec<f64> = (0..1000).map(|i| i as f64).collect();
+        let mut y = vec![0.0; 1000];
+        y[500] = 7.0;
+        y[501] = -3.0;
+        let (dx, dy) = min_max(&x, &y, 0.0, 999.0, 10);
+        assert!(dx.len() <= 4 * 11);
+        assert!(dy.contains(&7.0) && dy.contains(&-3.0));
+        assert!(dx.windows(2).all(|w| w[0] < w[1]), "time order kept");
+    }
+
+    #[test]
+    fn small_series_pass_through_with_edges() {
+        let x = [0.0, 1.0, 2.0, 3.0];
+        let y = [1.0, f64::NAN, 3.0, 4.0];
+        let (dx, dy) = min_max(&x, &y, 1.5, 2.5, 100);
+        assert_eq!(dx, vec![2.0, 3.0]); // sample 1 (edge) is NaN and skipped
+        assert_eq!(dy, vec![3.0, 4.0]);
+        assert!(min_max(&x, &y, 2.0, 1.0, 10).0.is_empty());
+    }
+}

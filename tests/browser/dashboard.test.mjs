@@ -1,0 +1,139 @@
+// The dashboard end to end in Debian's headless Chromium (playwright-core): opens with a
+// sample drive plotted, sliders change metrics and plot, a loaded file shows the CLI's
+// numbers, a bad file shows its line/column error and keeps the rest, the URL round-trips
+// the parameters, every view draws. Screenshots go to test-artifacts/.
+import { test, before, after } from "node:test";
+import assert from "node:assert/strict";
+import { spawn } from "node:child_process";
+import { mkdirSync, mkdtempSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join } from "node:path";
+import { chromium } from "playwright-core";
+import { ROOT, SAMPLES, cli } from "../node/helpers.mjs";
+
+const ARTIFACTS = join(ROOT, "test-artifacts");
+mkdirSync(ARTIFACTS, { recursive: true });
+const PORT = 18000 + Math.floor(Math.random() * 2000);
+const URL0 = `http://127.0.0.1:${PORT}/`;
+let server, context, page;
+
+before(async () => {
+  server = spawn("node", [join(ROOT, "scripts", "serve.mjs"), String(PORT)], { stdio: ["ignore", "pipe", "inherit"] });
+  await new Promise((res) => server.stdout.once("data", res));
+  context = await chromium.launchPersistentContext(mkdtempSync(join(tmpdir(), "gd-chrome-")), {
+    executablePath: "/usr/bin/chromium",
+    headless: true,
+    viewport: { width: 1400, height: 1000 },
+    deviceScaleFactor: 1,
+    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+  });
+  page = context.pages()[0] || (await context.newPage());
+  page.on("pageerror", (e) => console.error("page error:", e.message));
+});
+
+after(async () => {
+  await context?.close();
+  server?.kill();
+});
+
+async function ready() {
+  await page.waitForFunction(() => document.body.dataset.ready === "1", null, { timeout: 30000 });
+}
+
+/** Non-white pixels of a canvas (it has been drawn on). */
+async function inked(id) {
+  return page.evaluate((id) => {
+    const c = document.getElementById(id);
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i] < 240 || d[i + 1] < 240 || d[i + 2] < 240) n++;
+    return n;
+  }, id);
+}
+
+async function canvasHash(id) {
+  return page.evaluate((id) => document.getElementById(id).toDataURL().length + ":" + document.getElementById(id).toDataURL().slice(-200), id);
+}
+
+test("opens with a sample drive plotted", async () => {
+  await page.goto(URL0);
+  await ready();
+  assert.equal(await page.locator("#logs li").count(), 5);
+  assert.match(await page.locator("#logs li.selected").innerText(), /City 1/);
+  assert.ok((await inked("c-heading")) > 5000, "heading chart drawn");
+  assert.ok((await inked("c-error")) > 3000);
+  assert.ok((await inked("c-rate")) > 3000);
+  const native = JSON.parse(cli("hdr", join(SAMPLES, "train", "city-1.csv"), "--json"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  await page.screenshot({ path: join(ARTIFACTS, "hdr.png"), fullPage: true });
+});
+
+test("moving a slider changes the metrics and the plot", async () => {
+  const before = await page.locator("#m-e-hdr").innerText();
+  const plot = await canvasHash("c-heading");
+  await page.locator("#p-i_c_dps").fill("0.01");
+  await page.waitForFunction((b) => document.getElementById("m-e-hdr").innerText !== b, before);
+  assert.notEqual(await canvasHash("c-heading"), plot);
+  const native = JSON.parse(cli("hdr", join(SAMPLES, "train", "city-1.csv"), "--json", "--set", "i_c=0.01"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  // slider-to-redraw time on the 52 min 10 Hz drive (Highway 1): re-run HDR and redraw 3 charts
+  await page.locator("#logs li", { hasText: "Highway 1" }).locator("button").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Highway 1"));
+  const ms = await page.evaluate(async () => {
+    const s = [];
+    for (let k = 0; k < 20; k++) {
+      const el = document.getElementById("p-tau_s");
+      el.value = String(0.5 + k * 0.05);
+      const t0 = performance.now();
+      el.dispatchEvent(new Event("input"));
+      await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+      s.push(Number(document.body.dataset.renderMs));
+    }
+    s.sort((a, b) => a - b);
+    return s[Math.floor(s.length / 2)];
+  });
+  console.log(`# slider -> re-run + redraw of the HDR view (Highway 1, 52.1 min at 10 Hz): median ${ms} ms`);
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button").click();
+});
+
+test("the URL round-trips the parameters and the view", async () => {
+  await page.waitForFunction(() => location.hash.includes("i_c_dps=0.01") && location.hash.includes("log=City"));
+  const url = page.url();
+  await page.goto("about:blank");
+  await page.goto(url);
+  await ready();
+  assert.equal(await page.locator("#p-i_c_dps").inputValue(), "0.01");
+  await page.locator("#reset").click();
+  assert.equal(await page.locator("#p-i_c_dps").inputValue(), "0.0422");
+});
+
+test("a loaded log shows the CLI's numbers; a bad one shows line and column and keeps the rest", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-logs-"));
+  const good = join(SAMPLES, "test", "rural-3.csv");
+  const bad = join(dir, "broken.csv");
+  writeFileSync(bad, "time_s,gyro_dps,ref_heading_deg\n0,1,0\n0.1,1.2.3,0\n");
+  await page.locator("#file-input").setInputFiles([good]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Rural 3"));
+  const native = JSON.parse(cli("hdr", good, "--json"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  assert.equal(await page.locator("#m-improvement").innerText(), native.improvement.toFixed(2));
+  const n = await page.locator("#logs li").count();
+  await page.locator("#file-input").setInputFiles([bad]);
+  await page.waitForSelector("#logs li.bad");
+  assert.match(await page.locator("#logs li.bad").innerText(), /broken\.csv: line 3, column gyro_dps: "1\.2\.3" is not a number/);
+  assert.equal(await page.locator("#logs li").count(), n + 1);
+  assert.match(await page.locator("#logs li.selected").innerText(), /Rural 3/);
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  await page.screenshot({ path: join(ARTIFACTS, "bad-file.png"), fullPage: true });
+});
+
+for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyrodometry"]], ["calibration", ["c-cal-before", "c-cal-after"]], ["allan", ["c-allan"]], ["report", []]]) {
+  test(`the ${view} view draws`, async () => {
+    await page.locator(`#tabs button[data-view="${view}"]`).click();
+    await page.waitForFunction((v) => !document.getElementById(`view-${v}`).hidden, view);
+    assert.equal(await page.locator("#view-error").isVisible(), false, await page.locator("#view-error").innerText());
+    for (const c of canvases) assert.ok((await inked(c)) > 3000, `${c} drawn`);
+    if (view === "report") assert.ok((await page.locator("#report-table tr").count()) >= 4);
+    await page.screenshot({ path: join(ARTIFACTS, `${view}.png`), fullPage: true });
+  });
+}

@@ -1,0 +1,316 @@
+//! Charts drawn from Rust with plotters-canvas. A chart spec (title, axis labels, ranges,
+//! series as Float64Array, optional shaded intervals and cursor) comes from the page;
+//! series are reduced by core's min/max decimation to the canvas width before drawing.
+//! Returns the plot area in canvas pixels and its ranges, so the page maps mouse to data.
+
+use gyrodrift::decimate;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters_canvas::CanvasBackend;
+use js_sys::{Array, Float64Array, Object, Reflect};
+use wasm_bindgen::prelude::*;
+use web_sys::HtmlCanvasElement;
+
+struct Series {
+    name: String,
+    color: String,
+    x: Vec<f64>,
+    y: Vec<f64>,
+    width: Option<u32>,
+    /// Draw markers instead of a line (e.g. the 1 Hz GPS reference, Allan points).
+    points: bool,
+    /// A path not ordered in x (a track): drawn as given, not decimated by x.
+    path: bool,
+}
+
+struct Shade {
+    x: Vec<f64>,
+    mask: Vec<f64>,
+    color: String,
+    label: String,
+}
+
+struct Spec {
+    title: String,
+    x_label: String,
+    y_label: String,
+    x_range: Option<[f64; 2]>,
+    y_range: Option<[f64; 2]>,
+    log_x: bool,
+    log_y: bool,
+    series: Vec<Series>,
+    shade: Option<Shade>,
+    cursor_x: Option<f64>,
+    /// Device pixel ratio (fonts and lines scale with it).
+    dpr: f64,
+}
+
+// The spec is read with Reflect rather than serde: typed arrays copy straight into Vec<f64>
+// and the package stays inside its size budget.
+fn prop(obj: &JsValue, key: &str) -> JsValue {
+    Reflect::get(obj, &JsValue::from_str(key)).unwrap_or(JsValue::UNDEFINED)
+}
+fn text(obj: &JsValue, key: &str) -> String {
+    prop(obj, key).as_string().unwrap_or_default()
+}
+fn flag(obj: &JsValue, key: &str) -> bool {
+    prop(obj, key).as_bool().unwrap_or(false)
+}
+fn number(obj: &JsValue, key: &str) -> Option<f64> {
+    prop(obj, key).as_f64()
+}
+fn numbers(obj: &JsValue, key: &str) -> Result<Vec<f64>, JsValue> {
+    let v = prop(obj, key);
+    if let Some(a) = v.dyn_ref::<Float64Array>() {
+        return Ok(a.to_vec());
+    }
+    if v.is_object() {
+        // Arrays and other typed arrays: through Float64Array.from.
+        return Ok(Float64Array::new(&v).to_vec());
+    }
+    Err(js_err(format!("chart spec: {key} must be an array of numbers")))
+}
+fn range(obj: &JsValue, key: &str) -> Result<Option<[f64; 2]>, JsValue> {
+    let v = prop(obj, key);
+    if v.is_undefined() || v.is_null() {
+        return Ok(None);
+    }
+    let r = numbers(obj, key)?;
+    Ok((r.len() == 2).then(|| [r[0], r[1]]))
+}
+
+impl Spec {
+    fn read(v: &JsValue) -> Result<Spec, JsValue> {
+        if !v.is_object() {
+            return Err(js_err("chart spec: expected an object"));
+        }
+        let arr: Array = prop(v, "series").dyn_into().map_err(|_| js_err("chart spec: series must be an array"))?;
+        let mut series = Vec::with_capacity(arr.length() as usize);
+        for s in arr.iter() {
+            series.push(Series {
+                name: text(&s, "name"),
+                color: text(&s, "color"),
+                x: numbers(&s, "x")?,
+                y: numbers(&s, "y")?,
+                width: number(&s, "width").map(|w| w.clamp(1.0, 20.0) as u32),
+                points: flag(&s, "points"),
+                path: flag(&s, "path"),
+            });
+        }
+        let sh = prop(v, "shade");
+        let shade = if sh.is_object() {
+            Some(Shade { x: numbers(&sh, "x")?, mask: numbers(&sh, "mask")?, color: text(&sh, "color"), label: text(&sh, "label") })
+        } else {
+            None
+        };
+        Ok(Spec {
+            title: text(v, "title"),
+            x_label: text(v, "x_label"),
+            y_label: text(v, "y_label"),
+            x_range: range(v, "x_range")?,
+            y_range: range(v, "y_range")?,
+            log_x: flag(v, "log_x"),
+            log_y: flag(v, "log_y"),
+            series,
+            shade,
+            cursor_x: number(v, "cursor_x"),
+            dpr: number(v, "dpr").unwrap_or(1.0),
+        })
+    }
+}
+
+/// Where the plot area is, for mouse mapping.
+struct Layout {
+    left: i32,
+    top: i32,
+    right: i32,
+    bottom: i32,
+    x_min: f64,
+    x_max: f64,
+    y_min: f64,
+    y_max: f64,
+}
+
+fn parse_color(s: &str) -> RGBColor {
+    let h = s.trim_start_matches('#');
+    let v = u32::from_str_radix(h, 16).unwrap_or(0x444444);
+    RGBColor((v >> 16) as u8, (v >> 8) as u8, v as u8)
+}
+
+fn js_err(e: impl std::fmt::Display) -> JsValue {
+    js_sys::Error::new(&e.to_string()).into()
+}
+
+fn finite_range(vals: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in vals.filter(|v| v.is_finite()) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    (lo <= hi).then_some((lo, hi))
+}
+
+/// Draws a chart on the canvas (sized to its CSS box times the device pixel ratio).
+#[wasm_bindgen(js_name = drawChart, unchecked_return_type = "ChartLayout")]
+pub fn draw_chart(canvas: HtmlCanvasElement, #[wasm_bindgen(unchecked_param_type = "ChartSpec")] spec: JsValue) -> Result<JsValue, JsValue> {
+    let spec = Spec::read(&spec)?;
+    let backend = CanvasBackend::with_canvas_object(canvas).ok_or_else(|| js_err("no 2D canvas context"))?;
+    let root = backend.into_drawing_area();
+    let layout = draw(&root, &spec).map_err(js_err)?;
+    root.present().map_err(js_err)?;
+    let o = Object::new();
+    for (k, v) in [
+        ("left", layout.left as f64),
+        ("top", layout.top as f64),
+        ("right", layout.right as f64),
+        ("bottom", layout.bottom as f64),
+        ("x_min", layout.x_min),
+        ("x_max", layout.x_max),
+        ("y_min", layout.y_min),
+        ("y_max", layout.y_max),
+    ] {
+        Reflect::set(&o, &JsValue::from_str(k), &JsValue::from_f64(v))?;
+    }
+    Ok(o.into())
+}
+
+fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout, Box<dyn std::error::Error>> {
+    root.fill(&WHITE)?;
+    let dpr = spec.dpr.clamp(0.5, 4.0);
+    let px = |v: f64| (v * dpr).round() as i32;
+    let (w, _h) = root.dim_in_pixel();
+    let columns = (w as usize).max(1);
+    let tx = |v: f64| if spec.log_x { v.log10() } else { v };
+    let ty = |v: f64| if spec.log_y { v.log10() } else { v };
+    // Ranges: given, or from the data (in the given x window).
+    let (x0, x1) = match spec.x_range {
+        Some([a, b]) if b > a => (a, b),
+        _ => finite_range(spec.series.iter().flat_map(|s| s.x.iter().copied())).unwrap_or((0.0, 1.0)),
+    };
+    let mut decimated = Vec::with_capacity(spec.series.len());
+    for s in &spec.series {
+        let (dx, dy) = if s.points || s.path { (s.x.clone(), s.y.clone()) } else { decimate::min_max(&s.x, &s.y, x0, x1, columns) };
+        decimated.push((s, dx, dy));
+    }
+    let (y0, y1) = match spec.y_range {
+        Some([a, b]) if b > a => (a, b),
+        _ => {
+            let r = finite_range(decimated.iter().flat_map(|(_, dx, dy)| {
+                dx.iter().zip(dy.iter()).filter(|(x, _)| **x >= x0 && **x <= x1).map(|(_, y)| *y)
+            }));
+            match r {
+                Some((a, b)) if b > a => {
+                    let pad = if spec.log_y { 0.0 } else { (b - a) * 0.05 };
+                    (a - pad, b + pad)
+                }
+                Some((a, _)) => (a - 1.0, a + 1.0),
+                None => (0.0, 1.0),
+            }
+        }
+    };
+    let (cx0, cx1, cy0, cy1) = (tx(x0), tx(x1), ty(y0), ty(y1));
+    let font = ("sans-serif", px(13.0)).into_font();
+    let mut chart = ChartBuilder::on(root)
+        .caption(&spec.title, ("sans-serif", px(15.0)).into_font())
+        .margin(px(8.0))
+        .x_label_area_size(px(34.0))
+        .y_label_area_size(px(62.0))
+        .build_cartesian_2d(cx0..cx1, cy0..cy1)?;
+    let fmt_x = |v: &f64| if spec.log_x { format!("{:.3}", 10f64.powf(*v)).trim_end_matches('0').trim_end_matches('.').to_string() } else { format!("{v}") };
+    let fmt_y = |v: &f64| if spec.log_y { format!("{:.1e}", 10f64.powf(*v)) } else { format!("{v:.3}").trim_end_matches('0').trim_end_matches('.').to_string() };
+    chart
+        .configure_mesh()
+        .x_desc(&spec.x_label)
+        .y_desc(&spec.y_label)
+        .label_style(font.clone())
+        .axis_desc_style(font.clone())
+        .x_label_formatter(&fmt_x)
+        .y_label_formatter(&fmt_y)
+        .x_max_light_lines(1)
+        .y_max_light_lines(1)
+        .light_line_style(RGBColor(242, 242, 242))
+        .draw()?;
+    // Shaded intervals where the mask is 1 (turn switch, gyro used, ...); gaps narrower than
+    // a pixel column are merged, so a flickering mask costs a few rectangles, not thousands.
+    if let Some(sh) = &spec.shade {
+        let c = parse_color(&sh.color).mix(0.18);
+        let n = sh.x.len().min(sh.mask.len());
+        let min_gap = (x1 - x0) / columns as f64;
+        let mut intervals: Vec<(f64, f64)> = Vec::new();
+        let mut start: Option<f64> = None;
+        for i in 0..=n {
+            let on = i < n && sh.mask[i] > 0.5;
+            match (on, start) {
+                (true, None) => start = Some(sh.x[i]),
+                (false, Some(s0)) => {
+                    let e = if i < n { sh.x[i] } else { sh.x[n - 1] };
+                    match intervals.last_mut() {
+                        Some(last) if s0 - last.1 < min_gap => last.1 = e,
+                        _ => intervals.push((s0, e)),
+                    }
+                    start = None;
+                }
+                _ => {}
+            }
+        }
+        let visible: Vec<(f64, f64)> = intervals.into_iter().filter(|(s0, e)| *e >= x0 && *s0 <= x1).collect();
+        if !visible.is_empty() {
+            let drawn = chart.draw_series(
+                visible.iter().map(|&(s0, e)| Rectangle::new([(tx(s0.max(x0)), cy0), (tx(e.min(x1)), cy1)], c.filled())),
+            )?;
+            if !sh.label.is_empty() {
+                drawn.label(sh.label.as_str()).legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 16, y + 5)], c.filled()));
+            }
+        }
+    }
+    for (s, dx, dy) in &decimated {
+        let color = parse_color(&s.color);
+        let width = px(s.width.unwrap_or(1) as f64).max(1) as u32;
+        let pts: Vec<(f64, f64)> = dx
+            .iter()
+            .zip(dy.iter())
+            .filter(|(x, y)| x.is_finite() && y.is_finite() && (!spec.log_x || **x > 0.0) && (!spec.log_y || **y > 0.0))
+            .map(|(x, y)| (tx(*x), ty(*y)))
+            .collect();
+        let style = ShapeStyle { color: color.to_rgba(), filled: true, stroke_width: width };
+        let drawn = if s.points {
+            // Square markers: a filled rect is far cheaper on a canvas than an arc.
+            let r = px(1.5);
+            chart.draw_series(
+                pts.iter()
+                    .filter(|(x, _)| *x >= cx0 && *x <= cx1)
+                    .map(|&p| EmptyElement::at(p) + Rectangle::new([(-r, -r), (r, r)], style)),
+            )?
+        } else {
+            chart.draw_series(LineSeries::new(pts, style))?
+        };
+        drawn
+            .label(s.name.as_str())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], ShapeStyle { color: color.to_rgba(), filled: true, stroke_width: 2 }));
+    }
+    if let Some(c) = spec.cursor_x {
+        if c >= x0 && c <= x1 {
+            chart.draw_series(LineSeries::new(vec![(tx(c), cy0), (tx(c), cy1)], RGBColor(120, 120, 120)))?;
+        }
+    }
+    chart
+        .configure_series_labels()
+        .label_font(font)
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(200, 200, 200))
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()?;
+    let (xr, yr) = chart.plotting_area().get_pixel_range();
+    Ok(Layout { left: xr.start, right: xr.end, top: yr.start, bottom: yr.end, x_min: x0, x_max: x1, y_min: y0, y_max: y1 })
+}
+
+/// The value of a series at time t, linearly interpolated (core's rule), NaN outside.
+#[wasm_bindgen(js_name = valueAt)]
+pub fn value_at(x: &[f64], y: &[f64], t: f64) -> f64 {
+    let n = x.len().min(y.len());
+    if n == 0 || !(t >= x[0] && t <= x[n - 1]) {
+        return f64::NAN;
+    }
+    let j = x[..n].partition_point(|&v| v <= t).saturating_sub(1);
+    gyrodrift::metrics::interp_at(&x[..n], &y[..n], j, t)
+}
