@@ -76,19 +76,8 @@ function writeUrlNow() {
 
 // ---------- loading ----------
 function addLog(name, bytes) {
-  try {
-    const log = gd.Log.fromBytes(bytes);
-    if (!log.name) log.name = name.replace(/\.csv$/, "");
-    const entry = { name: log.name, file: name, log, error: null, kind: log.kind, headline: "" };
-    entry.headline = headline(entry);
-    state.entries.push(entry);
-    return entry;
-  } catch (e) {
-    // a bad file shows its error and changes nothing else
-    const entry = { name, file: name, log: null, error: `${name}: ${e.message}`, kind: null, headline: "" };
-    state.entries.push(entry);
-    return entry;
-  }
+  // a bad file shows its error and changes nothing else
+  return addParsed(name, () => gd.Log.fromBytes(bytes));
 }
 
 function headline(entry) {
@@ -103,12 +92,64 @@ function headline(entry) {
   return "";
 }
 
+// Files above this size are parsed in a Web Worker with a progress bar; the page stays live.
+const WORKER_BYTES = 4 << 20;
+let worker = null;
+let jobs = 0;
+
+function parseInWorker(file, buffer) {
+  worker ||= new Worker(new URL("./worker.js", import.meta.url), { type: "module" });
+  const id = ++jobs;
+  const bar = $("progress");
+  bar.hidden = false;
+  bar.value = 0;
+  return new Promise((resolve) => {
+    const onMessage = (ev) => {
+      if (ev.data.id !== id) return;
+      if (ev.data.progress != null) {
+        bar.value = ev.data.progress;
+        $("status").textContent = `parsing ${file.name}: ${Math.round(ev.data.progress * 100)} %`;
+        return;
+      }
+      worker.removeEventListener("message", onMessage);
+      bar.hidden = true;
+      resolve(ev.data);
+    };
+    worker.addEventListener("message", onMessage);
+    worker.postMessage({ id, buffer }, [buffer]);
+  });
+}
+
+function addParsed(name, make) {
+  try {
+    const log = make();
+    if (!log.name) log.name = name.replace(/\.csv$/, "");
+    const entry = { name: log.name, file: name, log, error: null, kind: log.kind, headline: "" };
+    entry.headline = headline(entry);
+    state.entries.push(entry);
+    return entry;
+  } catch (e) {
+    const entry = { name, file: name, log: null, error: `${name}: ${e.message}`, kind: null, headline: "" };
+    state.entries.push(entry);
+    return entry;
+  }
+}
+
 async function loadFiles(files) {
   let last = null;
   for (const f of files) {
     $("status").textContent = `reading ${f.name}…`;
-    const bytes = new Uint8Array(await f.arrayBuffer());
-    const e = addLog(f.name, bytes);
+    const buffer = await f.arrayBuffer();
+    let e;
+    if (buffer.byteLength > WORKER_BYTES && window.Worker) {
+      const res = await parseInWorker(f, buffer);
+      e = addParsed(f.name, () => {
+        if (res.error) throw new Error(res.error);
+        return gd.Log.fromColumns(res.data);
+      });
+    } else {
+      e = addLog(f.name, new Uint8Array(buffer));
+    }
     if (!e.error) last = e;
   }
   $("status").textContent = "";

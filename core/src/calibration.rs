@@ -262,6 +262,9 @@ fn max_abs(v: impl Iterator<Item = f64>) -> f64 {
 
 /// Fits and evaluates the calibration on a turntable log.
 pub fn run(log: &DriveLog, opts: &CalibrationOptions) -> Result<CalibrationRun> {
+    if log.is_empty() {
+        return Err(Error::data("the log has no rows"));
+    }
     let gyro = log.require(Column::GyroDps, "needed by calibration")?;
     let temp = log.column(Column::TempC);
     let need_temp = opts.q > 0;

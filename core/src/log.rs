@@ -214,6 +214,49 @@ impl DriveLog {
     }
 }
 
+impl DriveLog {
+    /// A log from columns (e.g. handed over from a parsing worker), checked as the parser
+    /// checks: equal lengths, a finite strictly increasing time, finite or missing values.
+    pub fn from_columns(meta: LogMeta, line: Vec<u64>, columns: Vec<(Column, Vec<f64>)>) -> Result<DriveLog> {
+        let mut log = DriveLog { meta, line, ..DriveLog::default() };
+        for (c, v) in columns {
+            if log.columns[c.index()].is_some() {
+                return Err(Error::File(format!("duplicate column {}", c.name())));
+            }
+            log.columns[c.index()] = Some(v);
+        }
+        let n = log.columns[Column::TimeS.index()].as_ref().map(Vec::len).ok_or_else(|| Error::missing("time_s", "every log needs it"))?;
+        if n == 0 {
+            return Err(Error::File("no data rows".into()));
+        }
+        if log.line.len() != n {
+            log.line = (0..n as u64).map(|i| i + 2).collect();
+        }
+        for c in Column::ALL {
+            if let Some(v) = log.column(c) {
+                if v.len() != n {
+                    return Err(Error::File(format!("column {} has {} values, time_s has {n}", c.name(), v.len())));
+                }
+                if let Some(i) = v.iter().position(|x| x.is_infinite()) {
+                    return Err(Error::Cell { line: log.line[i], column: c.name().into(), message: "not a finite number".into() });
+                }
+            }
+        }
+        let t = log.time_s();
+        for i in 0..n {
+            if t[i].is_nan() || (i > 0 && !(t[i] > t[i - 1])) {
+                return Err(Error::Cell { line: log.line[i], column: "time_s".into(), message: "time must be present and strictly increase".into() });
+            }
+        }
+        Ok(log)
+    }
+
+    /// The present columns with their values (for handing a parsed log to another thread).
+    pub fn columns(&self) -> Vec<(Column, &[f64])> {
+        Column::ALL.iter().filter_map(|&c| self.column(c).map(|v| (c, v))).collect()
+    }
+}
+
 /// The kind of a log, decided by its columns.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -236,6 +279,12 @@ pub fn parse_log_str(text: &str) -> Result<DriveLog> {
 
 /// Parses a CSV v1 log, streaming: memory grows with the known columns only.
 pub fn parse_log_with<R: Read>(reader: R, opts: ParseOptions) -> Result<DriveLog> {
+    parse_log_progress(reader, opts, &mut |_| {})
+}
+
+/// As `parse_log_with`, calling `progress(bytes read so far)` every 65 536 rows (for a
+/// progress bar while a large file is parsed off the main thread).
+pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut dyn FnMut(u64)) -> Result<DriveLog> {
     let mut reader = BufReader::with_capacity(1 << 16, reader);
     let mut meta = LogMeta::default();
     let mut line_no: u64 = 0;
@@ -270,7 +319,6 @@ pub fn parse_log_with<R: Read>(reader: R, opts: ParseOptions) -> Result<DriveLog
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(true)
         .flexible(true)
-        .trim(csv::Trim::All)
         .from_reader(std::io::Cursor::new(header_line).chain(reader));
     let header = rdr.byte_headers().map_err(|e| csv_error(e, header_line_no - 1))?.clone();
 
@@ -340,6 +388,9 @@ pub fn parse_log_with<R: Read>(reader: R, opts: ParseOptions) -> Result<DriveLog
             });
         }
         rows += 1;
+        if rows % 65_536 == 0 {
+            progress(record.position().map_or(0, |p| p.byte()));
+        }
         if rows > opts.max_rows {
             return Err(Error::File(format!(
                 "too many rows: more than {} (line {line}); split the log or raise max_rows",
@@ -388,6 +439,7 @@ pub fn parse_log_with<R: Read>(reader: R, opts: ParseOptions) -> Result<DriveLog
 
 /// Empty (or whitespace) cell = NaN (missing); anything else must be a finite number.
 fn parse_cell(cell: &[u8], line: u64, column: &str) -> Result<f64> {
+    let cell = cell.trim_ascii();
     if cell.is_empty() {
         return Ok(f64::NAN);
     }
@@ -577,6 +629,32 @@ mod tests {
         assert_eq!(back.column(Column::GyroDps).unwrap()[0], 0.1 + 0.2);
         assert!(back.column(Column::GyroDps).unwrap()[1].is_nan());
         assert_eq!(back.column(Column::RefHeadingDeg).unwrap()[1], -12.5);
+    }
+
+    #[test]
+    fn from_columns_checks_like_the_parser() {
+        let log = parse_log_str("time_s,gyro_dps\n0,1\n1,\n").unwrap();
+        let cols: Vec<(Column, Vec<f64>)> = log.columns().into_iter().map(|(c, v)| (c, v.to_vec())).collect();
+        let back = DriveLog::from_columns(log.meta.clone(), log.line.clone(), cols).unwrap();
+        assert_eq!(back.time_s(), log.time_s());
+        assert_eq!(back.line, vec![2, 3]);
+        let bad = DriveLog::from_columns(LogMeta::default(), vec![], vec![(Column::TimeS, vec![0.0, 0.0])]);
+        assert!(bad.unwrap_err().to_string().contains("strictly increase"));
+        let bad = DriveLog::from_columns(LogMeta::default(), vec![], vec![(Column::TimeS, vec![0.0, 1.0]), (Column::GyroDps, vec![1.0])]);
+        assert!(bad.is_err());
+        assert!(DriveLog::from_columns(LogMeta::default(), vec![], vec![(Column::GyroDps, vec![1.0])]).is_err());
+    }
+
+    #[test]
+    fn progress_is_reported_on_large_inputs() {
+        let mut text = String::from("time_s\n");
+        for i in 0..140_000 {
+            text.push_str(&format!("{i}\n"));
+        }
+        let mut calls = vec![];
+        parse_log_progress(text.as_bytes(), ParseOptions::default(), &mut |b| calls.push(b)).unwrap();
+        assert_eq!(calls.len(), 2);
+        assert!(calls[0] > 0 && calls[1] > calls[0]);
     }
 
     #[test]

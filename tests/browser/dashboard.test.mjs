@@ -127,6 +127,17 @@ test("a loaded log shows the CLI's numbers; a bad one shows line and column and 
   await page.screenshot({ path: join(ARTIFACTS, "bad-file.png"), fullPage: true });
 });
 
+test("a large log is parsed in a Web Worker and gives the CLI's numbers", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-big-"));
+  const big = join(dir, "long-drive.csv");
+  cli("simulate", "drive", "--scenario", "mixed", "--minutes", "400", "--seed", "77", "--name", "Long drive", "--out", big);
+  await page.locator("#file-input").setInputFiles([big]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Long drive"), null, { timeout: 60000 });
+  const native = JSON.parse(cli("hdr", big, "--json"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  assert.equal(await page.locator("#progress").isVisible(), false);
+});
+
 for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyrodometry"]], ["calibration", ["c-cal-before", "c-cal-after"]], ["allan", ["c-allan"]], ["report", []]]) {
   test(`the ${view} view draws`, async () => {
     await page.locator(`#tabs button[data-view="${view}"]`).click();

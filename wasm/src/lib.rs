@@ -153,6 +153,50 @@ impl Log {
         gyrodrift::parse_log(bytes).map(Log::new).map_err(err)
     }
 
+    /// Parses CSV v1 bytes, calling `progress(fraction)` now and then (for a Web Worker
+    /// parsing a large file).
+    #[wasm_bindgen(js_name = fromBytesWithProgress)]
+    pub fn from_bytes_with_progress(bytes: &[u8], progress: &js_sys::Function) -> JsResult<Log> {
+        let total = bytes.len().max(1) as f64;
+        let mut cb = |b: u64| {
+            let _ = progress.call1(&JsValue::NULL, &JsValue::from_f64(b as f64 / total));
+        };
+        gyrodrift::log::parse_log_progress(bytes, Default::default(), &mut cb).map(Log::new).map_err(err)
+    }
+
+    /// The parsed log as plain data `{ meta, line, columns: { name: Float64Array } }`,
+    /// whose buffers can be transferred from a worker; `Log.fromColumns` takes it back.
+    #[wasm_bindgen(js_name = toColumns, unchecked_return_type = "LogColumns")]
+    pub fn to_columns(&self) -> JsResult<JsValue> {
+        let out = Object::new();
+        set(&out, "meta", &to_js(&self.log.meta)?)?;
+        let lines: Vec<f64> = self.log.line.iter().map(|&l| l as f64).collect();
+        set(&out, "line", &f64s(&lines))?;
+        let cols = Object::new();
+        for (c, v) in self.log.columns() {
+            set(&cols, c.name(), &f64s(v))?;
+        }
+        set(&out, "columns", &cols)?;
+        Ok(out.into())
+    }
+
+    /// A log from `toColumns()` data, checked as the parser checks.
+    #[wasm_bindgen(js_name = fromColumns)]
+    pub fn from_columns(#[wasm_bindgen(unchecked_param_type = "LogColumns")] data: JsValue) -> JsResult<Log> {
+        let get = |o: &JsValue, k: &str| Reflect::get(o, &JsValue::from_str(k)).unwrap_or(JsValue::UNDEFINED);
+        let meta: gyrodrift::LogMeta = serde_wasm_bindgen::from_value(get(&data, "meta")).unwrap_or_default();
+        let line: Vec<u64> = get(&data, "line").dyn_into::<Float64Array>().map(|a| a.to_vec().into_iter().map(|v| v as u64).collect()).unwrap_or_default();
+        let cols_obj = get(&data, "columns");
+        let mut cols = Vec::new();
+        for c in gyrodrift::Column::ALL {
+            let v = get(&cols_obj, c.name());
+            if let Some(a) = v.dyn_ref::<Float64Array>() {
+                cols.push((c, a.to_vec()));
+            }
+        }
+        DriveLog::from_columns(meta, line, cols).map(Log::new).map_err(err)
+    }
+
     /// An identifier, used when a Log is passed inside an array.
     #[wasm_bindgen(getter)]
     pub fn id(&self) -> u32 {

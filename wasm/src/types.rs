@@ -17,6 +17,13 @@ export interface LogMeta {
   other: Record<string, string>;
 }
 
+/** A parsed log as plain data (transferable from a worker). */
+export interface LogColumns {
+  meta: LogMeta;
+  line: Float64Array;
+  columns: Record<string, Float64Array>;
+}
+
 /** HDR's five parameters; missing ones take the paper's Table III. Short names (i_c, tau, theta_w) are accepted too. */
 export interface HdrParams {
   /** Nominal increment i_c, deg/s per second (Table III: 0.0422). */
