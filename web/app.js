@@ -97,27 +97,32 @@ const WORKER_BYTES = 4 << 20;
 let worker = null;
 let jobs = 0;
 
-function parseInWorker(file, buffer) {
+/** Runs a job in the worker; `onProgress(fraction)` as it goes; resolves with {data | error}. */
+function inWorker(message, transfer, onProgress) {
   worker ||= new Worker(new URL("./worker.js", import.meta.url), { type: "module" });
   const id = ++jobs;
-  const bar = $("progress");
-  bar.hidden = false;
-  bar.value = 0;
   return new Promise((resolve) => {
     const onMessage = (ev) => {
       if (ev.data.id !== id) return;
-      if (ev.data.progress != null) {
-        bar.value = ev.data.progress;
-        $("status").textContent = `parsing ${file.name}: ${Math.round(ev.data.progress * 100)} %`;
-        return;
-      }
+      if (ev.data.progress != null) return onProgress(ev.data.progress);
       worker.removeEventListener("message", onMessage);
-      bar.hidden = true;
       resolve(ev.data);
     };
     worker.addEventListener("message", onMessage);
-    worker.postMessage({ id, buffer }, [buffer]);
+    worker.postMessage({ ...message, id }, transfer);
   });
+}
+
+async function parseInWorker(file, buffer) {
+  const bar = $("progress");
+  bar.hidden = false;
+  bar.value = 0;
+  const res = await inWorker({ type: "parse", buffer }, [buffer], (f) => {
+    bar.value = f;
+    $("status").textContent = `parsing ${file.name}: ${Math.round(f * 100)} %`;
+  });
+  bar.hidden = true;
+  return res;
 }
 
 function addParsed(name, make) {
@@ -491,30 +496,42 @@ function reportTable(rep) {
   return t;
 }
 
-function runTune() {
-  const drives = state.entries.filter((e) => !e.error && e.kind === "drive").map((e) => e.log);
+async function runTune() {
+  const drives = state.entries.filter((e) => !e.error && e.kind === "drive");
   if (!drives.length) return;
-  $("tune-status").textContent = "tuning…";
-  setTimeout(() => {
-    try {
-      const t0 = performance.now();
-      const rep = gd.tune(drives, undefined, {});
-      const p = rep.result.params;
-      $("tune-status").textContent = `done in ${((performance.now() - t0) / 1000).toFixed(1)} s: mean NE_ψ ${fmt(rep.result.objective_start_deg_per_min, 4)} → ${fmt(rep.result.objective_tuned_deg_per_min, 4)} deg/min`;
-      const div = $("tune-result");
-      div.replaceChildren(reportTable(rep.train.tuned));
-      const b = document.createElement("button");
-      b.textContent = `Apply tuned parameters (i_c ${fmt(p.i_c_dps, 4)}, tau ${fmt(p.tau_s, 3)}, theta_w ${fmt(p.theta_w_dps, 3)}, c1 ${fmt(p.c1, 3)}, c2 ${fmt(p.c2, 3)})`;
-      b.addEventListener("click", () => {
-        Object.assign(state.params, p);
-        syncParams();
-        render();
-      });
-      div.append(b);
-    } catch (e) {
-      $("tune-status").textContent = e.message;
-    }
-  }, 10);
+  const button = $("tune");
+  const bar = $("tune-progress");
+  button.disabled = true;
+  bar.hidden = false;
+  bar.value = 0;
+  $("tune-status").textContent = "tuning in a worker…";
+  const train = drives.map((e) => ({ ...e.log.toColumns(), name: e.name }));
+  const transfer = train.flatMap((c) => [c.line.buffer, ...Object.values(c.columns).map((a) => a.buffer)]);
+  const t0 = performance.now();
+  const res = await inWorker({ type: "tune", train, options: {} }, transfer, (f) => {
+    bar.value = f;
+  });
+  bar.hidden = true;
+  button.disabled = false;
+  if (res.error) {
+    $("tune-status").textContent = res.error;
+    return;
+  }
+  const rep = res.data;
+  const p = rep.result.params;
+  $("tune-status").textContent = `done in ${((performance.now() - t0) / 1000).toFixed(1)} s: mean NE_ψ over the ${drives.length} drives ${fmt(rep.result.objective_start_deg_per_min, 4)} → ${fmt(rep.result.objective_tuned_deg_per_min, 4)} deg/min`;
+  const div = $("tune-result");
+  div.replaceChildren(reportTable(rep.train.tuned));
+  const b = document.createElement("button");
+  b.id = "apply-tuned";
+  b.textContent = `Apply tuned parameters (i_c ${fmt(p.i_c_dps, 4)}, tau ${fmt(p.tau_s, 3)}, theta_w ${fmt(p.theta_w_dps, 3)}, c1 ${fmt(p.c1, 3)}, c2 ${fmt(p.c2, 3)})`;
+  b.addEventListener("click", () => {
+    Object.assign(state.params, p);
+    syncParams();
+    state.view = "hdr";
+    render();
+  });
+  div.append(b);
 }
 
 // ---------- interaction on time charts ----------

@@ -1,20 +1,37 @@
-// Parses large logs off the main thread with the same wasm package, reports progress, and
-// hands the columns back (transferred, not copied); the page rebuilds the Log from them.
-import init, { Log } from "./pkg/gyrodrift.js";
+// Work off the main thread with the same wasm package, so the page never freezes:
+// - parse: a large log, with progress; the columns go back transferred, not copied, and
+//   the page rebuilds the Log from them;
+// - tune: the HDR parameters over the drives' columns, with progress.
+import init, { Log, tune } from "./pkg/gyrodrift.js";
 
 const ready = init();
 
+function progressReporter(id) {
+  let last = -1;
+  return (f) => {
+    if (f - last >= 0.02) {
+      last = f;
+      self.postMessage({ id, progress: f });
+    }
+  };
+}
+
 self.onmessage = async (ev) => {
   await ready;
-  const { id, buffer } = ev.data;
+  const { id, type } = ev.data;
   try {
-    let last = 0;
-    const log = Log.fromBytesWithProgress(new Uint8Array(buffer), (f) => {
-      if (f - last >= 0.02) {
-        last = f;
-        self.postMessage({ id, progress: f });
-      }
-    });
+    if (type === "tune") {
+      const logs = ev.data.train.map((c) => {
+        const log = Log.fromColumns(c);
+        log.name = c.name;
+        return log;
+      });
+      const report = tune(logs, undefined, ev.data.options || {}, progressReporter(id));
+      for (const l of logs) l.free();
+      self.postMessage({ id, data: report });
+      return;
+    }
+    const log = Log.fromBytesWithProgress(new Uint8Array(ev.data.buffer), progressReporter(id));
     const data = log.toColumns();
     log.free();
     const transfer = [data.line.buffer, ...Object.values(data.columns).map((a) => a.buffer)];

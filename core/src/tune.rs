@@ -138,6 +138,7 @@ struct Problem<'a> {
     lo: [f64; 5],
     hi: [f64; 5],
     evals: &'a std::cell::Cell<u64>,
+    progress: &'a dyn Fn(u64),
 }
 
 impl Problem<'_> {
@@ -155,6 +156,9 @@ impl CostFunction for Problem<'_> {
     type Output = f64;
     fn cost(&self, u: &Vec<f64>) -> std::result::Result<f64, argmin::core::Error> {
         self.evals.set(self.evals.get() + 1);
+        if self.evals.get() % 16 == 0 {
+            (self.progress)(self.evals.get());
+        }
         // Outside the unit cube: the clamped cost plus a penalty, so the simplex walks back.
         let outside: f64 = u.iter().map(|&x| (x - x.clamp(0.0, 1.0)).abs()).sum();
         let c = objective(self.drives, self.params(u)).map_err(|e| argmin::core::Error::msg(e.to_string()))?;
@@ -164,6 +168,16 @@ impl CostFunction for Problem<'_> {
 
 /// Tunes the five HDR parameters on the training drives.
 pub fn tune(drives: &[PreparedDrive], opts: &TuneOptions) -> Result<TuneResult> {
+    tune_with_progress(drives, opts, &|_| {})
+}
+
+/// An upper estimate of the objective evaluations a tuning run makes (for progress bars).
+pub fn expected_evaluations(opts: &TuneOptions) -> u64 {
+    (opts.restarts as u64 + 1) * (opts.max_iters * 2 + 6)
+}
+
+/// As `tune`, calling `progress(evaluations so far)` every 16 evaluations.
+pub fn tune_with_progress(drives: &[PreparedDrive], opts: &TuneOptions, progress: &dyn Fn(u64)) -> Result<TuneResult> {
     if drives.is_empty() {
         return Err(Error::data("no training drives"));
     }
@@ -176,7 +190,7 @@ pub fn tune(drives: &[PreparedDrive], opts: &TuneOptions) -> Result<TuneResult> 
         }
     }
     let evals = std::cell::Cell::new(0);
-    let problem = Problem { drives, lo, hi, evals: &evals };
+    let problem = Problem { drives, lo, hi, evals: &evals, progress };
     let start_cost = objective(drives, opts.start)?;
     let s = to_vec(&opts.start);
     let mut best_u: Vec<f64> = (0..5).map(|k| ((s[k] - lo[k]) / (hi[k] - lo[k])).clamp(0.0, 1.0)).collect();
@@ -193,7 +207,7 @@ pub fn tune(drives: &[PreparedDrive], opts: &TuneOptions) -> Result<TuneResult> 
         let solver = NelderMead::new(simplex)
             .with_sd_tolerance(1e-7)
             .map_err(|e| Error::data(format!("tuning: {e}")))?;
-        let round_problem = Problem { drives, lo, hi, evals: &evals };
+        let round_problem = Problem { drives, lo, hi, evals: &evals, progress };
         let res = Executor::new(round_problem, solver)
             .configure(|st| st.max_iters(opts.max_iters))
             .run()
@@ -239,7 +253,17 @@ pub struct TuneReport {
 
 /// Tunes on `train` and reports on both sets.
 pub fn tune_and_report(train: &[PreparedDrive], test: &[PreparedDrive], opts: &TuneOptions) -> Result<TuneReport> {
-    let result = tune(train, opts)?;
+    tune_and_report_with_progress(train, test, opts, &|_| {})
+}
+
+/// As `tune_and_report`, with a progress callback (evaluations so far).
+pub fn tune_and_report_with_progress(
+    train: &[PreparedDrive],
+    test: &[PreparedDrive],
+    opts: &TuneOptions,
+    progress: &dyn Fn(u64),
+) -> Result<TuneReport> {
+    let result = tune_with_progress(train, opts, progress)?;
     let compare = |set: &[PreparedDrive]| -> Result<Comparison> {
         Ok(Comparison { table_iii: report(set, HdrParams::table_iii())?, tuned: report(set, result.params)? })
     };

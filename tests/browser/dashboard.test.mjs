@@ -144,7 +144,17 @@ for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyro
     await page.waitForFunction((v) => !document.getElementById(`view-${v}`).hidden, view);
     assert.equal(await page.locator("#view-error").isVisible(), false, await page.locator("#view-error").innerText());
     for (const c of canvases) assert.ok((await inked(c)) > 3000, `${c} drawn`);
-    if (view === "report") assert.ok((await page.locator("#report-table tr").count()) >= 4);
+    if (view === "report") {
+      assert.ok((await page.locator("#report-table tr").count()) >= 4);
+      // Tune runs in the worker; the page stays responsive meanwhile, then offers the result.
+      await page.locator("#tune").click();
+      await page.waitForSelector("#apply-tuned", { timeout: 120000 });
+      assert.match(await page.locator("#tune-status").innerText(), /done in .* deg\/min/);
+      const before = await page.locator("#p-i_c_dps").inputValue();
+      await page.locator("#apply-tuned").click();
+      await page.waitForFunction(() => !document.getElementById("view-hdr").hidden);
+      assert.notEqual(await page.locator("#p-i_c_dps").inputValue(), before);
+    }
     await page.screenshot({ path: join(ARTIFACTS, `${view}.png`), fullPage: true });
   });
 }

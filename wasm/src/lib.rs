@@ -436,11 +436,13 @@ pub fn report_markdown(
 }
 
 /// Tunes the five HDR parameters on `train` and reports Table III vs tuned on both sets.
+/// `progress(fraction)`, if given, is called as the search goes (e.g. from a Web Worker).
 #[wasm_bindgen(unchecked_return_type = "TuneReport")]
 pub fn tune(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] train: JsValue,
     #[wasm_bindgen(unchecked_param_type = "Log[] | undefined")] test: JsValue,
     #[wasm_bindgen(unchecked_param_type = "TuneOptions")] options: JsValue,
+    progress: Option<js_sys::Function>,
 ) -> JsResult<JsValue> {
     let opts: tune::TuneOptions = self::options("tune", options)?;
     let hdr_opts = HdrOptions::default();
@@ -450,7 +452,13 @@ pub fn tune(
     };
     let train = prep(Log::from_array(&train, "train")?)?;
     let test = prep(Log::from_array(&test, "test")?)?;
-    to_js(&tune::tune_and_report(&train, &test, &opts).map_err(err)?)
+    let expected = tune::expected_evaluations(&opts).max(1) as f64;
+    let report = |n: u64| {
+        if let Some(f) = &progress {
+            let _ = f.call1(&JsValue::NULL, &JsValue::from_f64((n as f64 / expected).min(1.0)));
+        }
+    };
+    to_js(&tune::tune_and_report_with_progress(&train, &test, &opts, &report).map_err(err)?)
 }
 
 /// Simulates a log with known truth (the CLI's `simulate`); the same seed gives the same

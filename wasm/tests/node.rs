@@ -131,7 +131,7 @@ fn every_method_returns_result_keys() {
     let rows: Array = get(&rep, "rows").dyn_into().unwrap();
     assert_eq!(rows.length(), 2);
     assert_eq!(get(&rows.get(1), "name").as_string().as_deref(), Some("Sim"));
-    let t = tune(logs.into(), JsValue::UNDEFINED, obj(&[("max_iters", JsValue::from_f64(20.0)), ("restarts", JsValue::from_f64(0.0))])).unwrap();
+    let t = tune(logs.into(), JsValue::UNDEFINED, obj(&[("max_iters", JsValue::from_f64(20.0)), ("restarts", JsValue::from_f64(0.0))]), None).unwrap();
     let res = get(&t, "result");
     assert!(num(&res, "objective_tuned_deg_per_min") <= num(&res, "objective_start_deg_per_min"));
 }
