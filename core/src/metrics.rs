@@ -76,25 +76,33 @@ pub struct Score {
     pub final_err_deg: f64,
 }
 
+/// The metric sample set (detail 4): each valid reference sample inside the trace's span,
+/// as (t_k, psi(t_k) interpolated, ref_k).
+fn scored_samples<'a>(time_s: &'a [f64], psi_deg: &'a [f64], reference: &'a Reference) -> impl Iterator<Item = (f64, f64, f64)> + 'a {
+    let span = time_s.first().zip(time_s.last()).map(|(&a, &b)| (a, b));
+    let mut j = 0usize;
+    reference
+        .time_s
+        .iter()
+        .zip(&reference.heading_deg)
+        .skip_while(move |(&t, _)| span.is_some_and(|(a, _)| t < a))
+        .take_while(move |(&t, _)| span.is_some_and(|(_, b)| t <= b))
+        .map(move |(&t, &r)| {
+            while j + 1 < time_s.len() && time_s[j + 1] <= t {
+                j += 1;
+            }
+            (t, interp_at(time_s, psi_deg, j, t), r)
+        })
+}
+
 /// Scores a trace (unshifted, any start) against the reference (details 3-4).
 pub fn score(time_s: &[f64], psi_deg: &[f64], reference: &Reference) -> Result<Score> {
     let (Some(&t_first), Some(&t_last)) = (time_s.first(), time_s.last()) else {
         return Err(Error::data("the heading trace is empty"));
     };
-    let mut j = 0usize;
     let mut shift = f64::NAN;
     let (mut sum, mut n, mut last_err) = (0.0, 0usize, 0.0);
-    for (&t, &r) in reference.time_s.iter().zip(&reference.heading_deg) {
-        if t < t_first {
-            continue;
-        }
-        if t > t_last {
-            break;
-        }
-        while j + 1 < time_s.len() && time_s[j + 1] <= t {
-            j += 1;
-        }
-        let psi = interp_at(time_s, psi_deg, j, t);
+    for (_, psi, r) in scored_samples(time_s, psi_deg, reference) {
         if n == 0 {
             shift = r - psi;
         }
@@ -114,23 +122,7 @@ pub fn score(time_s: &[f64], psi_deg: &[f64], reference: &Reference) -> Result<S
 /// The signed error psi(t_k) - ref_k of an (aligned) trace at each scored reference sample,
 /// the terms whose mean absolute value is E_psi (for plotting error against time).
 pub fn error_series(time_s: &[f64], psi_deg: &[f64], reference: &Reference) -> (Vec<f64>, Vec<f64>) {
-    let (mut t_out, mut e_out) = (Vec::new(), Vec::new());
-    let (Some(&t_first), Some(&t_last)) = (time_s.first(), time_s.last()) else { return (t_out, e_out) };
-    let mut j = 0usize;
-    for (&t, &r) in reference.time_s.iter().zip(&reference.heading_deg) {
-        if t < t_first {
-            continue;
-        }
-        if t > t_last {
-            break;
-        }
-        while j + 1 < time_s.len() && time_s[j + 1] <= t {
-            j += 1;
-        }
-        t_out.push(t);
-        e_out.push(interp_at(time_s, psi_deg, j, t) - r);
-    }
-    (t_out, e_out)
+    scored_samples(time_s, psi_deg, reference).map(|(t, psi, r)| (t, psi - r)).unzip()
 }
 
 /// NE_psi (Eq. 16): E_psi per minute of drive.

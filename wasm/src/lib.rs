@@ -258,6 +258,19 @@ impl Log {
     }
 }
 
+/// `{ result, error, eps0_dps }` of a batch run: the Result keys, or why there are none.
+fn run_object<T: Serialize>(result: &gyrodrift::Result<T>, eps0_dps: f64) -> JsResult<Object> {
+    let out = Object::new();
+    let (r, e) = match result {
+        Ok(r) => (to_js(r)?, JsValue::NULL),
+        Err(e) => (JsValue::NULL, JsValue::from_str(&e.to_string())),
+    };
+    set(&out, "result", &r)?;
+    set(&out, "error", &e)?;
+    set(&out, "eps0_dps", &JsValue::from_f64(eps0_dps))?;
+    Ok(out)
+}
+
 /// HDR on a log: the Result keys of methods.md. Throws when the log has no usable reference.
 #[wasm_bindgen(unchecked_return_type = "HdrResult")]
 pub fn hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
@@ -272,14 +285,7 @@ pub fn hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] optio
 pub fn run_hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
     let opts: HdrOptions = self::options("hdr", options)?;
     let run = hdr::run(&log.log, &opts).map_err(err)?;
-    let out = Object::new();
-    let (result, error) = match &run.result {
-        Ok(r) => (to_js(r)?, JsValue::NULL),
-        Err(e) => (JsValue::NULL, JsValue::from_str(&e.to_string())),
-    };
-    set(&out, "result", &result)?;
-    set(&out, "error", &error)?;
-    set(&out, "eps0_dps", &JsValue::from_f64(run.eps0_dps))?;
+    let out = run_object(&run.result, run.eps0_dps)?;
     let t = &run.trace;
     let trace = Object::new();
     set(&trace, "time_s", &f64s(&t.time_s))?;
@@ -366,14 +372,7 @@ pub fn run_gyrodometry(
 ) -> JsResult<JsValue> {
     let opts: gyrodometry::GyrodometryOptions = self::options("gyrodometry", options)?;
     let run = gyrodometry::run(&log.log, &opts).map_err(err)?;
-    let out = Object::new();
-    let (result, error) = match &run.result {
-        Ok(r) => (to_js(r)?, JsValue::NULL),
-        Err(e) => (JsValue::NULL, JsValue::from_str(&e.to_string())),
-    };
-    set(&out, "result", &result)?;
-    set(&out, "error", &error)?;
-    set(&out, "eps0_dps", &JsValue::from_f64(run.eps0_dps))?;
+    let out = run_object(&run.result, run.eps0_dps)?;
     let t = &run.trace;
     let trace = Object::new();
     set(&trace, "time_s", &f64s(&t.time_s))?;
