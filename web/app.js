@@ -576,6 +576,22 @@ function attachTimeInteraction(id) {
     scheduleRender();
   }, { passive: false });
   c.addEventListener("dblclick", () => { state.zoom = null; scheduleRender(); });
+  // Keyboard: + / - zoom, arrow keys pan, 0 resets (the canvas is focusable).
+  c.tabIndex = 0;
+  c.addEventListener("keydown", (ev) => {
+    const L = state.layouts[id];
+    if (!L) return;
+    const [a, b] = [L.x_min, L.x_max];
+    const w = b - a, mid = (a + b) / 2;
+    const zoom = { "+": 0.8, "=": 0.8, "-": 1.25 }[ev.key];
+    if (zoom) state.zoom = [mid - (w * zoom) / 2, mid + (w * zoom) / 2];
+    else if (ev.key === "ArrowLeft") state.zoom = [a - w * 0.1, b - w * 0.1];
+    else if (ev.key === "ArrowRight") state.zoom = [a + w * 0.1, b + w * 0.1];
+    else if (ev.key === "0") state.zoom = null;
+    else return;
+    ev.preventDefault();
+    scheduleRender();
+  });
   c.addEventListener("mouseleave", () => { state.cursor = null; scheduleRender(); });
 }
 

@@ -96,6 +96,18 @@ test("moving a slider changes the metrics and the plot", async () => {
   await page.locator("#logs li", { hasText: "City 1" }).locator("button").click();
 });
 
+test("charts zoom with the keyboard and reset", async () => {
+  const full = await page.evaluate(() => window.gyrodrift.state.layouts["c-heading"].x_max - window.gyrodrift.state.layouts["c-heading"].x_min);
+  await page.locator("#c-heading").focus();
+  await page.keyboard.press("+");
+  await page.waitForFunction((f) => {
+    const L = window.gyrodrift.state.layouts["c-heading"];
+    return L.x_max - L.x_min < f * 0.9;
+  }, full);
+  await page.keyboard.press("0");
+  await page.waitForFunction(() => window.gyrodrift.state.zoom === null);
+});
+
 test("the URL round-trips the parameters and the view", async () => {
   await page.waitForFunction(() => location.hash.includes("i_c_dps=0.01") && location.hash.includes("log=City"));
   const url = page.url();
