@@ -232,13 +232,12 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let opts = hdr::HdrOptions::default();
             let train_logs = read_logs(&train)?;
             let test_logs = read_logs(&test)?;
-            let named = |v: &[(String, DriveLog)]| -> Vec<(String, DriveLog)> { v.to_vec() };
-            let prep = |v: Vec<(String, DriveLog)>| -> Result<Vec<tune::PreparedDrive>, Failure> {
+            let prep = |v: &[(String, DriveLog)]| -> Result<Vec<tune::PreparedDrive>, Failure> {
                 let refs: Vec<(String, &DriveLog)> = v.iter().map(|(n, l)| (n.clone(), l)).collect();
                 tune::prepare_all(&refs, &opts).map_err(|e| Failure(e.to_string()))
             };
-            let train_p = prep(named(&train_logs))?;
-            let test_p = prep(named(&test_logs))?;
+            let train_p = prep(&train_logs)?;
+            let test_p = prep(&test_logs)?;
             let rep = tune::tune_and_report(&train_p, &test_p, &tune::TuneOptions::default())
                 .map_err(|e| Failure(e.to_string()))?;
             if json {

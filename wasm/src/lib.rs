@@ -69,6 +69,11 @@ fn to_js<T: Serialize>(value: &T) -> JsResult<JsValue> {
     value.serialize(&ser).map_err(err)
 }
 
+/// A plain JS object, or null for None.
+fn to_js_or_null<T: Serialize>(value: &Option<T>) -> JsResult<JsValue> {
+    value.as_ref().map_or(Ok(JsValue::NULL), to_js)
+}
+
 fn set(obj: &Object, key: &str, value: &JsValue) -> JsResult<()> {
     Reflect::set(obj, &JsValue::from_str(key), value).map(|_| ())
 }
@@ -416,10 +421,15 @@ pub fn report(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
     #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
 ) -> JsResult<JsValue> {
+    to_js(&build_report(&logs, options)?)
+}
+
+/// Table II over a JS array of logs with HDR options (shared by `report` and `reportMarkdown`).
+fn build_report(logs: &JsValue, options: JsValue) -> JsResult<report::Report> {
     let opts: HdrOptions = self::options("report", options)?;
-    let logs = Log::from_array(&logs, "logs")?;
+    let logs = Log::from_array(logs, "logs")?;
     let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), &**l)).collect();
-    to_js(&report::Report::build(&named, &opts).map_err(err)?)
+    report::Report::build(&named, &opts).map_err(err)
 }
 
 /// The report as Markdown (the CLI's `report --markdown`).
@@ -428,10 +438,7 @@ pub fn report_markdown(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
     #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
 ) -> JsResult<String> {
-    let opts: HdrOptions = self::options("report", options)?;
-    let logs = Log::from_array(&logs, "logs")?;
-    let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), &**l)).collect();
-    Ok(report::Report::build(&named, &opts).map_err(err)?.to_markdown())
+    Ok(build_report(&logs, options)?.to_markdown())
 }
 
 /// Tunes the five HDR parameters on `train` and reports Table III vs tuned on both sets.
@@ -523,10 +530,7 @@ impl HdrEstimator {
     /// The full output of the last step (null before the first).
     #[wasm_bindgen(unchecked_return_type = "HdrState | null")]
     pub fn state(&self) -> JsResult<JsValue> {
-        match &self.last {
-            Some(o) => to_js(o),
-            None => Ok(JsValue::NULL),
-        }
+        to_js_or_null(&self.last)
     }
 
     #[wasm_bindgen(getter, js_name = headingDeg)]
@@ -580,10 +584,7 @@ impl GyrodometryEstimator {
 
     #[wasm_bindgen(unchecked_return_type = "GyrodometryState | null")]
     pub fn state(&self) -> JsResult<JsValue> {
-        match &self.last {
-            Some(o) => to_js(o),
-            None => Ok(JsValue::NULL),
-        }
+        to_js_or_null(&self.last)
     }
 
     #[wasm_bindgen(getter, js_name = headingDeg)]
