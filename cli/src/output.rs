@@ -106,3 +106,34 @@ pub fn tune_text(rep: &gyrodrift::tune::TuneReport, markdown: bool) -> String {
     }
     s
 }
+
+pub fn import_line(recipe: &Path, s: &gyrodrift::import::ImportSummary) -> String {
+    let mut out = format!(
+        "{}: {} rows ({} gyro, {} reference headings), {:.1} min",
+        recipe.display(), s.n_rows, s.n_gyro, s.n_reference, s.duration_min
+    );
+    if let Some(u) = s.up {
+        let _ = write!(out, ", up = ({:.3}, {:.3}, {:.3})", u[0], u[1], u[2]);
+    }
+    if let Some(l) = s.align_offset_s {
+        let _ = write!(out, ", gyro clock shifted by {l:+.2} s");
+    }
+    out
+}
+
+pub fn pipeline_table(path: &Path, r: &gyrodrift::pipeline::PipelineResult) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{}: {:.1} min, stops from {:?} ({:.0} s counted)", path.display(), r.duration_min, r.still_source, r.stop_s);
+    let _ = writeln!(s, "                    {:>12} {:>18} {:>12}", "E_psi (deg)", "NE_psi (deg/min)", "vs raw");
+    for (name, e, ne) in [
+        ("raw", r.E_psi_raw_deg, r.NE_psi_raw_deg_per_min),
+        ("HDR (Table III)", r.E_psi_hdr_deg, r.NE_psi_hdr_deg_per_min),
+        ("Fusion offset", r.E_psi_fusion_offset_deg, r.NE_psi_fusion_offset_deg_per_min),
+        ("ZARU at stops", r.E_psi_zaru_deg, r.NE_psi_zaru_deg_per_min),
+        ("pipeline", r.E_psi_pipeline_deg, r.NE_psi_pipeline_deg_per_min),
+    ] {
+        let _ = writeln!(s, "  {name:<17} {e:>12.2} {ne:>18.3} {:>11.2}x", r.E_psi_raw_deg / e);
+    }
+    let _ = writeln!(s, "  final bias {:.4} +- {:.4} deg/s", r.final_bias_dps, r.final_bias_sigma_dps);
+    s
+}

@@ -7,7 +7,11 @@
 //! - [`calibration`]: static bias, rate x temperature error model, compensation (Ojeda, Chung & Borenstein);
 //! - [`allan`]: overlapping Allan deviation, ARW and bias instability;
 //! - [`metrics`]: E_psi, NE_psi and improvement against a reference heading;
-//! - [`log`]: the drive-log CSV v1, parsed streaming from any `Read`.
+//! - [`log`]: the drive-log CSV v1, parsed streaming from any `Read`;
+//! - [`import`]: recorded logs in any tabular format to v1, by a declarative recipe;
+//! - [`pipeline`]: the recommended drift reduction beyond the paper (bias Kalman filter with
+//!   zero-rate updates at stops and HDR's straight-road heuristic as weak evidence), with
+//!   [`still`] detection and the [`peers`] it is compared with.
 //!
 //! Pure Rust: no I/O beyond `Read`/`Write`, no wasm or browser types; errors, never panics,
 //! on bad input.
@@ -18,11 +22,15 @@ pub mod decimate;
 pub mod error;
 pub mod gyrodometry;
 pub mod hdr;
+pub mod import;
 pub mod log;
 pub mod metrics;
+pub mod peers;
+pub mod pipeline;
 pub mod preprocess;
 pub mod report;
 pub mod sim;
+pub mod still;
 pub mod track;
 pub mod tune;
 

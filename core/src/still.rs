@@ -1,0 +1,218 @@
+//! Still detection on the 1 Hz blocks (methods.md detail 2's blocks): is the vehicle
+//! standing in a block? From the speed when the log has it, else from the wheel travel,
+//! else from the gyro alone (the block's spread no larger than the stationary lead-in's).
+//! The zero-angular-rate update of the pipeline and of the ZARU peer rests on it.
+
+use crate::error::{Error, Result};
+use crate::log::{Column, DriveLog};
+use serde::{Deserialize, Serialize};
+
+/// Thresholds of the still detector.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct StillOptions {
+    /// Standing when every speed of the block is below this, m/s.
+    pub still_speed_mps: f64,
+    /// Standing when the wheels travelled less than this in the block, m (no speed column).
+    pub still_travel_m: f64,
+    /// Gyro only: standing when the block's standard deviation is at most this times the
+    /// lead-in's (needs 5 rows per block and a lead-in of 10 rows).
+    pub still_gyro_factor: f64,
+}
+
+impl Default for StillOptions {
+    fn default() -> Self {
+        StillOptions { still_speed_mps: 0.2, still_travel_m: 0.05, still_gyro_factor: 1.5 }
+    }
+}
+
+/// What the still flags were decided from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StillSource {
+    Speed,
+    Odometry,
+    Gyro,
+    /// No speed, no wheels, and no lead-in to compare the gyro with: never still.
+    None,
+}
+
+/// The 1 Hz blocks of a log with what the pipeline needs per block.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Blocks {
+    /// Stamp of the block's last row (detail 2).
+    pub time_s: Vec<f64>,
+    /// Mean raw gyro of the block, deg/s.
+    pub rate_dps: Vec<f64>,
+    /// Mean temperature of the block, deg C (NaN without temperature).
+    pub temp_c: Vec<f64>,
+    /// The vehicle stood during the whole block.
+    pub still: Vec<bool>,
+}
+
+impl Blocks {
+    pub fn len(&self) -> usize {
+        self.time_s.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.time_s.is_empty()
+    }
+}
+
+#[derive(Default)]
+struct Acc {
+    n: usize,
+    sum: f64,
+    sum2: f64,
+    temp_sum: f64,
+    temp_n: usize,
+    speed_max: f64,
+    speed_n: usize,
+    odo_first: Option<(f64, f64)>,
+    odo_last: Option<(f64, f64)>,
+}
+
+/// Block-averages a log to 1 Hz (the same blocks and stamps as
+/// `preprocess::block_average_1hz`) and flags the blocks where the vehicle stood.
+pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Blocks, StillSource)> {
+    let t = log.time_s();
+    let gyro = log.require(Column::GyroDps, "needed for the yaw rate")?;
+    let speed = log.column(Column::SpeedMps);
+    let odo = log.column(Column::OdoLeftM).zip(log.column(Column::OdoRightM));
+    let temp = log.column(Column::TempC);
+    // Lead-in spread for the gyro-only detector.
+    let lead: Vec<f64> = match t.first() {
+        Some(&t0) => t.iter().zip(gyro).take_while(|(&ti, _)| ti - t0 < bias_s).filter(|(_, g)| g.is_finite()).map(|(_, &g)| g).collect(),
+        None => Vec::new(),
+    };
+    let lead_std = std_dev(&lead);
+    let source = if speed.is_some_and(|s| s.iter().any(|v| v.is_finite())) {
+        StillSource::Speed
+    } else if odo.is_some() {
+        StillSource::Odometry
+    } else if lead.len() >= 10 && lead_std > 0.0 {
+        StillSource::Gyro
+    } else {
+        StillSource::None
+    };
+    let mut out = Blocks::default();
+    let Some(&t0) = t.first() else {
+        return Err(Error::data("the log has no rows"));
+    };
+    let flush = |a: &Acc, stamp: f64, out: &mut Blocks| {
+        if a.n == 0 {
+            return;
+        }
+        let mean = a.sum / a.n as f64;
+        let still = match source {
+            StillSource::Speed => a.speed_n > 0 && a.speed_max < opts.still_speed_mps,
+            StillSource::Odometry => match (a.odo_first, a.odo_last) {
+                (Some(f), Some(l)) => (l.0 - f.0).abs() + (l.1 - f.1).abs() < opts.still_travel_m,
+                _ => false,
+            },
+            StillSource::Gyro => {
+                let var = (a.sum2 / a.n as f64 - mean * mean).max(0.0);
+                a.n >= 5 && var.sqrt() <= opts.still_gyro_factor * lead_std
+            }
+            StillSource::None => false,
+        };
+        out.time_s.push(stamp);
+        out.rate_dps.push(mean);
+        out.temp_c.push(if a.temp_n > 0 { a.temp_sum / a.temp_n as f64 } else { f64::NAN });
+        out.still.push(still);
+    };
+    let mut acc = Acc::default();
+    let mut k_cur = f64::NAN;
+    let mut stamp = t0;
+    for i in 0..t.len() {
+        let k = (t[i] - t0).floor();
+        if k != k_cur {
+            flush(&acc, stamp, &mut out);
+            acc = Acc::default();
+            k_cur = k;
+        }
+        stamp = t[i];
+        let g = gyro[i];
+        if g.is_finite() {
+            acc.n += 1;
+            acc.sum += g;
+            acc.sum2 += g * g;
+        }
+        if let Some(v) = temp.map(|c| c[i]).filter(|v| v.is_finite()) {
+            acc.temp_sum += v;
+            acc.temp_n += 1;
+        }
+        if let Some(v) = speed.map(|c| c[i]).filter(|v| v.is_finite()) {
+            acc.speed_max = if acc.speed_n == 0 { v.abs() } else { acc.speed_max.max(v.abs()) };
+            acc.speed_n += 1;
+        }
+        if let Some((l, r)) = odo {
+            if l[i].is_finite() && r[i].is_finite() {
+                if acc.odo_first.is_none() {
+                    acc.odo_first = Some((l[i], r[i]));
+                }
+                acc.odo_last = Some((l[i], r[i]));
+            }
+        }
+    }
+    flush(&acc, stamp, &mut out);
+    if out.is_empty() {
+        return Err(Error::data("the gyro_dps column has no values"));
+    }
+    Ok((out, source))
+}
+
+fn std_dev(v: &[f64]) -> f64 {
+    if v.len() < 2 {
+        return 0.0;
+    }
+    let m = v.iter().sum::<f64>() / v.len() as f64;
+    (v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (v.len() - 1) as f64).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::preprocess::block_average_1hz;
+
+    fn log(speed: bool) -> DriveLog {
+        let mut cols = vec![Column::GyroDps, Column::TempC];
+        if speed {
+            cols.push(Column::SpeedMps);
+        }
+        let mut l = DriveLog::with_columns(&cols);
+        for i in 0..100 {
+            let t = i as f64 * 0.1;
+            // stands for 5 s, drives 3 s, stands again
+            let v = if (5.0..8.0).contains(&t) { 3.0 } else { 0.05 };
+            let g = 0.1 + if i % 2 == 0 { 0.01 } else { -0.01 } + if (5.0..8.0).contains(&t) { 0.5 * (i % 3) as f64 } else { 0.0 };
+            l.push_row(&[(Column::TimeS, t), (Column::GyroDps, g), (Column::TempC, 20.0 + t), (Column::SpeedMps, v)]);
+        }
+        l
+    }
+
+    #[test]
+    fn blocks_equal_the_block_average_and_flag_stops_by_speed() {
+        let l = log(true);
+        let (b, src) = blocks(&l, 4.0, &StillOptions::default()).unwrap();
+        let s = block_average_1hz(l.time_s(), l.column(Column::GyroDps).unwrap());
+        assert_eq!(src, StillSource::Speed);
+        assert_eq!(b.time_s, s.time_s);
+        assert_eq!(b.rate_dps, s.rate_dps);
+        // block k holds t in [k, k+1): rows 20 + {k, k+.1, ..., k+.9} -> mean 20 + k + 0.45
+        assert!((b.temp_c[3] - 23.45).abs() < 1e-12);
+        assert_eq!(b.still, vec![true, true, true, true, true, false, false, false, true, true]);
+    }
+
+    #[test]
+    fn gyro_only_detector_uses_the_lead_in_spread() {
+        let l = log(false);
+        let (b, src) = blocks(&l, 4.0, &StillOptions::default()).unwrap();
+        assert_eq!(src, StillSource::Gyro);
+        assert_eq!(b.still, vec![true, true, true, true, true, false, false, false, true, true]);
+        // No lead-in: nothing to compare with, never still.
+        let (b, src) = blocks(&l, 0.0, &StillOptions::default()).unwrap();
+        assert_eq!(src, StillSource::None);
+        assert!(b.still.iter().all(|s| !s));
+    }
+}
