@@ -350,8 +350,15 @@ pub fn run(log: &DriveLog, params: &PipelineParams) -> Result<PipelineRun> {
 mod tests {
     use super::*;
 
+    /// Fixed constants, so the hand-worked numbers do not follow the tuned defaults.
     fn params() -> PipelineParams {
-        PipelineParams { temp_coeff_sigma_dps_per_c: 0.0, ..PipelineParams::default() }
+        PipelineParams {
+            temp_coeff_sigma_dps_per_c: 0.0,
+            road_sigma_dps: 0.5,
+            bias_walk_dps_per_sqrt_s: 0.0005,
+            gate_dps: 1.0,
+            ..PipelineParams::default()
+        }
     }
 
     #[test]
