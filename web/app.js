@@ -19,7 +19,7 @@ const SAMPLES = [
   "sample-logs/static/static-2h.csv",
 ];
 const VIEW_KIND = { hdr: "drive", track: "drive", gyrodometry: "robot", calibration: "turntable", allan: null, report: null };
-const COLORS = { ref: "#111111", raw: "#d1495b", hdr: "#1f5fbf", odo: "#e08e0b", gyro: "#8e44ad", fused: "#1f5fbf", zero: "#999999" };
+const COLORS = { ref: "#111111", raw: "#d1495b", hdr: "#1f5fbf", pipe: "#2e9d5b", odo: "#e08e0b", gyro: "#8e44ad", fused: "#1f5fbf", zero: "#999999" };
 
 const state = {
   entries: [], // { name, log: gd.Log | null, error: string | null, kind, headline }
@@ -320,8 +320,11 @@ function renderHdr() {
   const e = logFor("hdr");
   if (!e) return showError("Load a drive log (with gyro_dps and ref_heading_deg) for the HDR view.");
   const run = gd.runHdr(e.log, hdrOptions());
-  lastHdr = { entry: e, run };
+  // The recommended pipeline beside the paper's method, with the same static-bias window.
+  const pipe = gd.runPipeline(e.log, { bias_s: hdrOptions().bias_s ?? null });
+  lastHdr = { entry: e, run, pipe };
   const r = run.result;
+  const pr = pipe.result;
   const m = $("hdr-metrics");
   if (r) {
     m.innerHTML = `<span>E<sub>ψ</sub> raw <b id="m-e-raw">${fmt(r.E_psi_raw_deg, 2)}</b> deg</span>
@@ -329,7 +332,8 @@ function renderHdr() {
       <span>NE<sub>ψ</sub> raw <b>${fmt(r.NE_psi_raw_deg_per_min, 3)}</b> deg/min</span>
       <span>NE<sub>ψ</sub> HDR <b id="m-ne-hdr">${fmt(r.NE_psi_hdr_deg_per_min, 3)}</b> deg/min</span>
       <span>improvement <b id="m-improvement">${fmt(r.improvement, 2)}</b>×</span>
-      <span>ε<sub>0</sub> <b>${fmt(r.eps0_dps, 4)}</b> deg/s · ${r.n_processed} samples · ${fmt(r.duration_min, 1)} min</span>`;
+      <span>ε<sub>0</sub> <b>${fmt(r.eps0_dps, 4)}</b> deg/s · ${r.n_processed} samples · ${fmt(r.duration_min, 1)} min</span>` +
+      (pr ? `<span class="recommended" title="bias Kalman filter: zero-rate updates at stops, HDR's straight-road heuristic as weak evidence, temperature term (docs/pipeline.md)">pipeline (recommended): E<sub>ψ</sub> <b id="m-e-pipeline">${fmt(pr.E_psi_pipeline_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_deg_per_min, 3)}</b> deg/min · <b id="m-improvement-pipeline">${fmt(pr.improvement_pipeline, 2)}</b>× · stops ${fmt(pr.stop_s, 0)} s (${pr.still_source})</span>` : "");
   } else {
     m.textContent = run.error;
   }
@@ -339,6 +343,7 @@ function renderHdr() {
   if (run.reference) series.push({ name: "reference (GPS)", color: COLORS.ref, x: run.reference.time_s, y: run.reference.heading_deg, width: 3 });
   series.push({ name: "raw", color: COLORS.raw, x: t, y: run.trace.heading_raw_deg, width: 1 });
   series.push({ name: "HDR", color: COLORS.hdr, x: t, y: run.trace.heading_hdr_deg, width: 2 });
+  series.push({ name: "pipeline", color: COLORS.pipe, x: pipe.trace.time_s, y: pipe.trace.heading_deg, width: 2 });
   const cursor = state.cursor;
   chart("c-heading", { title: `${e.name}: heading`, x_label: "time (s)", y_label: "heading (deg)", x_range: xr, series, cursor_x: cursor });
   if (run.errors) {
@@ -348,6 +353,7 @@ function renderHdr() {
         { name: "zero", color: COLORS.zero, x: [xr[0], xr[1]], y: [0, 0] },
         { name: "raw", color: COLORS.raw, x: run.errors.time_s, y: run.errors.raw_deg },
         { name: "HDR", color: COLORS.hdr, x: run.errors.time_s, y: run.errors.hdr_deg, width: 2 },
+        ...(pipe.errors ? [{ name: "pipeline", color: COLORS.pipe, x: pipe.errors.time_s, y: pipe.errors.pipeline_deg, width: 2 }] : []),
       ],
     });
   }

@@ -74,6 +74,12 @@ enum Cmd {
         json: bool,
         #[arg(long)]
         markdown: bool,
+        /// Every method side by side (raw, HDR, pipeline, peers) instead of Table II.
+        #[arg(long)]
+        compare: bool,
+        /// With --compare: tune HDR on these training drives for a "HDR tuned" column.
+        #[arg(long, num_args = 1.., requires = "compare")]
+        tune_on: Vec<PathBuf>,
     },
     /// Tune the five HDR parameters on training drives; report Table III vs tuned.
     Tune {
@@ -250,7 +256,29 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 Ok(())
             }
         }
-        Cmd::Report { files, set, no_resample, json, markdown } => {
+        Cmd::Report { files, set, no_resample: _, json, markdown: _, compare: true, tune_on } => {
+            let mut params = gyrodrift::pipeline::PipelineParams::default();
+            apply_sets(&set, |k, v| params.set(k, v))?;
+            let tuned = if tune_on.is_empty() {
+                None
+            } else {
+                use gyrodrift::tune;
+                let train = read_logs(&tune_on)?;
+                let refs: Vec<(String, &DriveLog)> = train.iter().map(|(n, l)| (n.clone(), l)).collect();
+                let prepared = tune::prepare_all(&refs, &hdr::HdrOptions::default()).map_err(|e| Failure(e.to_string()))?;
+                Some(tune::tune(&prepared, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?.params)
+            };
+            let logs = read_logs(&files)?;
+            let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), l)).collect();
+            let c = gyrodrift::compare::compare(&named, &params, tuned).map_err(|e| Failure(e.to_string()))?;
+            if json {
+                print_json(&c)
+            } else {
+                print!("{}", c.to_markdown());
+                Ok(())
+            }
+        }
+        Cmd::Report { files, set, no_resample, json, markdown, .. } => {
             let mut opts = hdr::HdrOptions { resample: !no_resample, ..Default::default() };
             apply_sets(&set, |k, v| opts.set(k, v))?;
             opts.params.validate().map_err(|e| Failure(e.to_string()))?;

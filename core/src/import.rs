@@ -5,6 +5,7 @@
 //! row; speed, temperature and wheel travel are interpolated onto the rows; the reference
 //! heading is never resampled (methods.md, detail 2).
 //!
+//! Transcendental functions come from `libm`, so the wasm package imports bit-identically.
 //! Core reads the files through [`Files`] (any `Read`); the recipe arrives deserialized
 //! (the CLI reads TOML, the wasm package takes a JS object), so core knows no file system.
 
@@ -688,31 +689,32 @@ fn local_en(spec: &PositionsSpec, t: &Table) -> Result<(Vec<f64>, Vec<f64>, Vec<
         PositionKind::Ecef => {
             let (x, y, z) = (c[0][i0], c[1][i0], c[2][i0]);
             let p = (x * x + y * y).sqrt();
-            let mut lat = z.atan2(p * (1.0 - E2));
+            let mut lat = libm::atan2(z, p * (1.0 - E2));
             for _ in 0..5 {
-                let n = A / (1.0 - E2 * lat.sin().powi(2)).sqrt();
-                lat = (z + E2 * n * lat.sin()).atan2(p);
+                let s = libm::sin(lat);
+                let n = A / (1.0 - E2 * s * s).sqrt();
+                lat = libm::atan2(z + E2 * n * s, p);
             }
-            (lat, y.atan2(x))
+            (lat, libm::atan2(y, x))
         }
         _ => (0.0, 0.0),
     };
-    let s2 = lat0.sin().powi(2);
+    let s2 = libm::sin(lat0) * libm::sin(lat0);
     let r_n = A / (1.0 - E2 * s2).sqrt(); // prime vertical
-    let r_m = A * (1.0 - E2) / (1.0 - E2 * s2).powf(1.5); // meridional
+    let r_m = A * (1.0 - E2) / libm::pow(1.0 - E2 * s2, 1.5); // meridional
     for i in 0..t.time_s.len() {
         if !(0..need).all(|j| c[j][i].is_finite()) {
             continue;
         }
         let (de, dn) = match spec.kind {
             PositionKind::Latlon => (
-                (c[1][i].to_radians() - lon0) * r_n * lat0.cos(),
+                (c[1][i].to_radians() - lon0) * r_n * libm::cos(lat0),
                 (c[0][i].to_radians() - lat0) * r_m,
             ),
             PositionKind::Utm | PositionKind::Enu => (c[0][i] - c[0][i0], c[1][i] - c[1][i0]),
             PositionKind::Ecef => {
                 let d = [c[0][i] - c[0][i0], c[1][i] - c[1][i0], c[2][i] - c[2][i0]];
-                let (sl, cl, so, co) = (lat0.sin(), lat0.cos(), lon0.sin(), lon0.cos());
+                let (sl, cl, so, co) = (libm::sin(lat0), libm::cos(lat0), libm::sin(lon0), libm::cos(lon0));
                 (-so * d[0] + co * d[1], -sl * co * d[0] - sl * so * d[1] + cl * d[2])
             }
         };
@@ -736,7 +738,7 @@ pub fn course_from_positions(time_s: &[f64], east_m: &[f64], north_m: &[f64], mi
             let dt = time_s[i] - time_s[a];
             if d / dt >= min_speed_mps {
                 ts.push(0.5 * (time_s[i] + time_s[a]));
-                course.push(de.atan2(dn).to_degrees());
+                course.push(libm::atan2(de, dn).to_degrees());
             }
             a = i;
         } else if time_s[i] - time_s[a] > min_distance_m / min_speed_mps.max(1e-3) {

@@ -18,6 +18,7 @@
 
 pub mod allan;
 pub mod calibration;
+pub mod compare;
 pub mod decimate;
 pub mod error;
 pub mod gyrodometry;

@@ -178,7 +178,7 @@ impl Pipeline {
         }
         let dt = self.last_time_s.map_or(0.0, |t| time_s - t);
         // Predict: the bias wanders as a random walk.
-        self.cov[0][0] += self.p.bias_walk_dps_per_sqrt_s.powi(2) * dt;
+        self.cov[0][0] += self.p.bias_walk_dps_per_sqrt_s * self.p.bias_walk_dps_per_sqrt_s * dt;
         // Measurement row H = [1, T - T_ref].
         let h1 = if temp_c.is_finite() && self.p.temp_coeff_sigma_dps_per_c > 0.0 {
             temp_c - *self.temp_ref_c.get_or_insert(temp_c)
@@ -197,9 +197,9 @@ impl Pipeline {
         }
         let straight = !still && innovation.abs() < self.p.gate_dps;
         let r = if stop {
-            Some(self.p.stop_sigma_dps.powi(2))
+            Some(self.p.stop_sigma_dps * self.p.stop_sigma_dps)
         } else if straight {
-            Some(self.p.road_sigma_dps.powi(2))
+            Some(self.p.road_sigma_dps * self.p.road_sigma_dps)
         } else {
             None
         };

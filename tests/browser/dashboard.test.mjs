@@ -65,6 +65,10 @@ test("opens with a sample drive plotted", async () => {
   assert.ok((await inked("c-rate")) > 3000);
   const native = JSON.parse(cli("hdr", join(SAMPLES, "train", "city-1.csv"), "--json"));
   assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  // The recommended pipeline is shown beside HDR, with the CLI's numbers.
+  const pipe = JSON.parse(cli("pipeline", join(SAMPLES, "train", "city-1.csv"), "--json"));
+  assert.equal(await page.locator("#m-e-pipeline").innerText(), pipe.E_psi_pipeline_deg.toFixed(2));
+  assert.equal(await page.locator("#m-improvement-pipeline").innerText(), pipe.improvement_pipeline.toFixed(2));
   await page.screenshot({ path: join(ARTIFACTS, "hdr.png"), fullPage: true });
 });
 

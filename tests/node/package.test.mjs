@@ -76,3 +76,49 @@ test("typed arrays, not JS arrays, for sample series", () => {
   assert.ok(run.trace.turn_switch instanceof Uint8Array);
   assert.equal(run.trace.time_s.length, run.result.n_processed);
 });
+
+test("pipeline equals the native CLI; importLog reads a real-log recipe from Node Buffers", () => {
+  for (const file of drives.slice(0, 4)) {
+    const log = gd.Log.parse(readFileSync(file, "utf8"));
+    assert.deepEqual(plain(gd.pipeline(log, {})), JSON.parse(cli("pipeline", file, "--json")), file);
+    log.free();
+  }
+  // The recipe as JSON (the TOML of sample-logs/recipes), files from ../shared/real-logs.
+  const real = join(ROOT, "..", "shared", "real-logs");
+  let present = true;
+  try {
+    readdirSync(real);
+  } catch {
+    present = false;
+  }
+  if (!present) {
+    if (process.env.GYRODRIFT_NO_REAL_LOGS === "1") return console.log("SKIPPED: ../shared/real-logs missing (GYRODRIFT_NO_REAL_LOGS=1)");
+    assert.fail(`../shared/real-logs is missing at ${real}; set GYRODRIFT_NO_REAL_LOGS=1 to skip knowingly`);
+  }
+  const recipe = {
+    name: "smartLoc Berlin",
+    bias_s: 0,
+    table: [
+      { id: "odom", file: "Input.txt", format: "whitespace", record: "odom3", columns: ["type", "t", "vx", "vy", "vz", "wx", "wy", "wz"], time: { column: "t" } },
+      { id: "gt", file: "GT.txt", format: "whitespace", record: "point3", columns: ["type", "t", "x", "y", "z"], time: { column: "t" } },
+    ],
+    yaw_rate: { table: "odom", column: "wz", unit: "rad/s", positive: "ccw" },
+    positions: { table: "gt", kind: "ecef", columns: ["x", "y", "z"] },
+    heading: { source: "positions", min_distance_m: 3, min_speed_mps: 1 },
+    speed: { source: "column", table: "odom", column: "vx", unit: "m/s" },
+  };
+  const files = {
+    "Input.txt": readFileSync(join(real, "smartloc-berlin", "Berlin_Potsdamer_Platz_Input.txt")),
+    "GT.txt": readFileSync(join(real, "smartloc-berlin", "Berlin_Potsdamer_Platz_GT.txt")),
+  };
+  const { log, summary } = gd.importLog(recipe, files);
+  assert.equal(summary.n_gyro, 1372);
+  // The same log as the CLI's import with the shipped TOML recipe.
+  const out = join(ROOT, "target", "node-smartloc.csv");
+  cli("import", "--recipe", join(ROOT, "sample-logs", "recipes", "smartloc-berlin.toml"), "--data", real, "--out", out);
+  const native = JSON.parse(cli("pipeline", out, "--json"));
+  const r = plain(gd.pipeline(log, {}));
+  assert.equal(r.E_psi_pipeline_deg, native.E_psi_pipeline_deg);
+  assert.ok(r.E_psi_pipeline_deg < r.E_psi_hdr_deg && r.E_psi_pipeline_deg < r.E_psi_raw_deg);
+  assert.throws(() => gd.importLog({ ...recipe, yaw_rate: { ...recipe.yaw_rate, column: "nope" } }, files), /missing column nope/);
+});

@@ -1,6 +1,6 @@
 // Compiled with `tsc --noEmit`: the package's types describe options and results (no `any`).
-import { Log, hdr, runHdr, HdrEstimator, report, tune, simulate } from "gyrodrift";
-import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun } from "gyrodrift";
+import { Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, pipeline, runPipeline, compare } from "gyrodrift";
+import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, PipelineResult, PipelineRun, Compare } from "gyrodrift";
 
 const log: Log = Log.parse("time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1,0\n");
 const opts: HdrOptions = { i_c_dps: 0.0422, tau_s: 0.75, resample: true };
@@ -20,4 +20,21 @@ const c0: number = cal.C[0][0] + cal.sets[0].w_g_dps;
 hdr(log, { tau_s: "fast" });
 // @ts-expect-error: results are typed, no such key
 r.E_psi_gyro_deg;
-export { e, h, psi, st, rep, t, sim, c0 };
+const recipe: Recipe = {
+  table: [{ id: "imu", file: "imu.csv", time: { column: "t", unit: "ms" } }],
+  yaw_rate: { table: "imu", axes: ["gx", "gy", "gz"], gravity: { axes: ["ax", "ay", "az"] }, unit: "rad/s", positive: "cw" },
+  heading: { source: "column", table: "imu", column: "yaw", unit: "deg", positive: "ccw" },
+};
+const imp: ImportResult = importLog(recipe, { "imu.csv": new Uint8Array(0) });
+const rows: number = imp.log.rowCount + imp.summary.n_reference;
+const pr: PipelineResult = pipeline(log, { gate_dps: 0.5, still: { still_speed_mps: 0.3 } });
+const pe: number = pr.E_psi_pipeline_deg + pr.NE_psi_pipeline_deg_per_min + pr.improvement_pipeline;
+const prun: PipelineRun = runPipeline(log, {});
+const stops: Uint8Array = prun.trace.stop;
+const cmp: Compare = compare([log], {});
+const cm: number = cmp.mean.pipeline;
+// @ts-expect-error: a recipe's rate unit is one of the named units
+const badRecipe: Recipe = { ...recipe, yaw_rate: { ...recipe.yaw_rate, unit: "furlongs" } };
+// @ts-expect-error: pipeline results are typed, no such key
+pr.E_psi_kalman_deg;
+export { e, h, psi, st, rep, t, sim, c0, rows, pe, stops, cm, badRecipe };

@@ -596,3 +596,85 @@ impl GyrodometryEstimator {
         self.last.is_some_and(|o| o.used_gyro)
     }
 }
+
+/// Imports recorded files by a recipe (the same object as the CLI's TOML/JSON recipe):
+/// `files` maps each recipe `file` name to its bytes. Returns `{ log, summary }`; a bad
+/// recipe or file throws an Error naming the file, line and column.
+#[wasm_bindgen(js_name = importLog, unchecked_return_type = "ImportResult")]
+pub fn import_log(
+    #[wasm_bindgen(unchecked_param_type = "Recipe")] recipe: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Record<string, Uint8Array>")] files: JsValue,
+) -> JsResult<JsValue> {
+    let recipe: gyrodrift::import::Recipe =
+        serde_wasm_bindgen::from_value(recipe).map_err(|e| err(format!("recipe: {}", js_message(e))))?;
+    let obj: &Object = files.dyn_ref().filter(|_| files.is_object()).ok_or_else(|| err("files: expected an object of name -> Uint8Array"))?;
+    let mut map = std::collections::BTreeMap::new();
+    for key in Object::keys(obj).iter() {
+        let name = key.as_string().unwrap_or_default();
+        let v = Reflect::get(obj, &key)?;
+        let bytes: &Uint8Array = v.dyn_ref().ok_or_else(|| err(format!("files[\"{name}\"]: expected a Uint8Array")))?;
+        map.insert(name, bytes.to_vec());
+    }
+    let (log, summary) = gyrodrift::import::import(&recipe, &mut map).map_err(err)?;
+    let out = Object::new();
+    set(&out, "log", &JsValue::from(Log::new(log)))?;
+    set(&out, "summary", &to_js(&summary)?)?;
+    Ok(out.into())
+}
+
+/// The recommended drift-reduction pipeline with raw, Table-III HDR and the two peers:
+/// the pipeline Result keys. Throws when the log has no usable reference.
+#[wasm_bindgen(unchecked_return_type = "PipelineResult")]
+pub fn pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue) -> JsResult<JsValue> {
+    let p: gyrodrift::pipeline::PipelineParams = self::options("pipeline", options)?;
+    let run = gyrodrift::pipeline::run(&log.log, &p).map_err(err)?;
+    to_js(&run.result.map_err(err)?)
+}
+
+/// The pipeline with its per-block series: `{ result, error, still_source, trace }`.
+#[wasm_bindgen(js_name = runPipeline, unchecked_return_type = "PipelineRun")]
+pub fn run_pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue) -> JsResult<JsValue> {
+    let p: gyrodrift::pipeline::PipelineParams = self::options("pipeline", options)?;
+    let run = gyrodrift::pipeline::run(&log.log, &p).map_err(err)?;
+    let out = Object::new();
+    let (r, e) = match &run.result {
+        Ok(r) => (to_js(r)?, JsValue::NULL),
+        Err(e) => (JsValue::NULL, JsValue::from_str(&e.to_string())),
+    };
+    set(&out, "result", &r)?;
+    set(&out, "error", &e)?;
+    set(&out, "still_source", &to_js(&run.still_source)?)?;
+    let t = &run.trace;
+    let trace = Object::new();
+    set(&trace, "time_s", &f64s(&t.time_s))?;
+    set(&trace, "heading_deg", &f64s(&t.heading_deg))?;
+    set(&trace, "bias_dps", &f64s(&t.bias_dps))?;
+    set(&trace, "bias_sigma_dps", &f64s(&t.bias_sigma_dps))?;
+    set(&trace, "stop", &bools(&t.stop))?;
+    set(&out, "trace", &trace)?;
+    // The error of the (aligned) heading at the scored reference samples.
+    let errors = match (&run.result, gyrodrift::metrics::Reference::from_log(&log.log)) {
+        (Ok(_), Ok(r)) => {
+            let (te, e) = gyrodrift::metrics::error_series(&t.time_s, &t.heading_deg, &r);
+            let erro = Object::new();
+            set(&erro, "time_s", &f64s(&te))?;
+            set(&erro, "pipeline_deg", &f64s(&e))?;
+            erro.into()
+        }
+        _ => JsValue::NULL,
+    };
+    set(&out, "errors", &errors)?;
+    Ok(out.into())
+}
+
+/// Every method side by side (NE_psi per drive): raw, Table-III HDR, the pipeline, peers.
+#[wasm_bindgen(unchecked_return_type = "Compare")]
+pub fn compare(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue,
+) -> JsResult<JsValue> {
+    let p: gyrodrift::pipeline::PipelineParams = self::options("pipeline", options)?;
+    let logs = Log::from_array(&logs, "logs")?;
+    let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), l.as_ref())).collect();
+    to_js(&gyrodrift::compare::compare(&named, &p, None).map_err(err)?)
+}

@@ -306,4 +306,114 @@ export interface SimRequest {
   seed?: number;
   name?: string | null;
 }
+/** Import recipe (the CLI's TOML/JSON recipe as an object; see sample-logs/recipes/). */
+export type Sense = "ccw" | "cw";
+export interface RateSpec {
+  table: string;
+  column?: string;
+  axes?: [string, string, string];
+  signs?: [number, number, number];
+  gravity?: { axes: [string, string, string]; signs?: [number, number, number]; first_s?: number };
+  unit: "deg/s" | "rad/s" | "mrad/s" | "deg/h" | "counts";
+  scale?: number;
+  offset?: number;
+  positive: Sense;
+}
+export interface TableSpec {
+  id: string;
+  file: string;
+  format?: "csv" | "whitespace" | "nmea";
+  skip_lines?: number;
+  columns?: string[];
+  record?: string;
+  time: { column?: string; format?: "seconds" | "iso8601"; unit?: "s" | "ms" | "us" | "ns"; period_s?: number; relative?: boolean };
+  offset_s?: number;
+}
+export interface Recipe {
+  name?: string;
+  description?: string;
+  bias_s?: number;
+  table: TableSpec[];
+  yaw_rate: RateSpec;
+  positions?: { table: string; kind: "latlon" | "utm" | "ecef" | "enu"; columns: string[] };
+  heading?:
+    | { source: "column"; table: string; column: string; unit: "deg" | "rad"; positive: Sense; speed_column?: string; min_speed_mps?: number }
+    | { source: "positions"; min_distance_m?: number; min_speed_mps?: number };
+  speed?: { source: "column"; table: string; column: string; unit: "m/s" | "km/h" | "mph" } | { source: "positions"; window_s?: number };
+  odometry?: { table: string; left: string[]; right: string[]; kind: "speed" | "travel"; unit: string; track_m: number };
+  temperature?: { table: string; column: string; unit: "C" | "K" | "F" };
+  align?: { rate: RateSpec; max_lag_s?: number };
+}
+export interface ImportSummary {
+  n_rows: number;
+  n_gyro: number;
+  n_reference: number;
+  duration_min: number;
+  up: [number, number, number] | null;
+  align_offset_s: number | null;
+  start_time_s: number;
+}
+export interface ImportResult {
+  log: Log;
+  summary: ImportSummary;
+}
+
+/** Settings of the pipeline (all optional; defaults chosen on the training drives). */
+export interface PipelineOptions {
+  still?: { still_speed_mps?: number; still_travel_m?: number; still_gyro_factor?: number };
+  min_still_s?: number;
+  still_rate_dps?: number;
+  stop_sigma_dps?: number;
+  gate_dps?: number;
+  road_sigma_dps?: number;
+  bias_walk_dps_per_sqrt_s?: number;
+  prior_bias_sigma_dps?: number;
+  temp_coeff_sigma_dps_per_c?: number;
+  bias_s?: number | null;
+}
+export type StillSource = "speed" | "odometry" | "gyro" | "none";
+/** Result keys of `pipeline`. */
+export interface PipelineResult {
+  E_psi_raw_deg: number;
+  E_psi_hdr_deg: number;
+  E_psi_pipeline_deg: number;
+  NE_psi_raw_deg_per_min: number;
+  NE_psi_hdr_deg_per_min: number;
+  NE_psi_pipeline_deg_per_min: number;
+  improvement_pipeline: number;
+  duration_min: number;
+  E_psi_fusion_offset_deg: number;
+  E_psi_zaru_deg: number;
+  NE_psi_fusion_offset_deg_per_min: number;
+  NE_psi_zaru_deg_per_min: number;
+  still_source: StillSource;
+  stop_s: number;
+  final_bias_dps: number;
+  final_bias_sigma_dps: number;
+  n_samples: number;
+}
+export interface PipelineRun {
+  result: PipelineResult | null;
+  error: string | null;
+  still_source: StillSource;
+  /** Per 1 Hz block; heading aligned to the reference when there is one. */
+  trace: { time_s: Float64Array; heading_deg: Float64Array; bias_dps: Float64Array; bias_sigma_dps: Float64Array; stop: Uint8Array };
+  /** Signed heading errors at the scored reference samples (null without a reference). */
+  errors: { time_s: Float64Array; pipeline_deg: Float64Array } | null;
+}
+export interface CompareRow {
+  name: string;
+  duration_min: number;
+  raw: number;
+  hdr_table_iii: number;
+  hdr_tuned: number | null;
+  pipeline: number;
+  fusion_offset: number;
+  zaru: number;
+}
+export interface Compare {
+  rows: CompareRow[];
+  mean: CompareRow;
+  tuned_params: HdrParams | null;
+}
 "#;

@@ -143,3 +143,69 @@ fn simulate_matches_the_shipped_sample_log() {
     let log = simulate(req).unwrap();
     assert_eq!(log.to_csv().unwrap(), ROBOT, "wasm simulation differs from the native sample log");
 }
+
+/// importLog: a recipe object and in-memory files give the same log as core's import; a
+/// bad recipe throws an Error naming the problem, and the module keeps working.
+#[wasm_bindgen_test]
+fn import_log_by_recipe_and_pipeline_match_core() {
+    let imu = "t,w\n0,0.1\n0.5,0.1\n1,0.1\n1.5,0.2\n2,0.2\n2.5,0.2\n3,0.2\n";
+    let gps = "t,b,v\n0,10,0\n1,10,0\n2,12,6\n3,14,6\n";
+    let recipe_json = r#"{"bias_s": 1, "table": [
+        {"id": "imu", "file": "imu.csv", "time": {"column": "t"}},
+        {"id": "gps", "file": "gps.csv", "time": {"column": "t"}}],
+      "yaw_rate": {"table": "imu", "column": "w", "unit": "deg/s", "positive": "cw"},
+      "heading": {"source": "column", "table": "gps", "column": "b", "unit": "deg", "positive": "cw", "speed_column": "v", "min_speed_mps": 5},
+      "speed": {"source": "column", "table": "gps", "column": "v", "unit": "m/s"}}"#;
+    let recipe = js_sys::JSON::parse(recipe_json).unwrap();
+    let files = obj(&[
+        ("imu.csv", js_sys::Uint8Array::from(imu.as_bytes()).into()),
+        ("gps.csv", js_sys::Uint8Array::from(gps.as_bytes()).into()),
+    ]);
+    let out = import_log(recipe.clone(), files.clone()).unwrap();
+    let log: Log = {
+        // The Log inside the result object: re-import natively and compare columns.
+        let native: gyrodrift::import::Recipe = serde_json::from_str(recipe_json).unwrap();
+        let mut map = std::collections::BTreeMap::new();
+        map.insert("imu.csv".to_string(), imu.as_bytes().to_vec());
+        map.insert("gps.csv".to_string(), gps.as_bytes().to_vec());
+        let (nlog, _) = gyrodrift::import::import(&native, &mut map).unwrap();
+        let csv = {
+            let mut v = Vec::new();
+            nlog.write_csv(&mut v).unwrap();
+            String::from_utf8(v).unwrap()
+        };
+        Log::parse(&csv).unwrap()
+    };
+    let summary = get(&out, "summary");
+    assert_eq!(num(&summary, "n_gyro"), 7.0);
+    assert_eq!(num(&summary, "n_reference"), 2.0);
+    let wasm_log = get(&out, "log");
+    let rows = get(&wasm_log, "rowCount").as_f64().unwrap();
+    assert_eq!(rows, log.row_count() as f64);
+    let g = log.column("gyro_dps").unwrap();
+    assert_eq!(g.get_index(0), -0.1, "clockwise input -> counter-clockwise log");
+
+    // Errors: a missing file, a bad unit; then the module still works.
+    let e = import_log(recipe.clone(), obj(&[("imu.csv", js_sys::Uint8Array::from(imu.as_bytes()).into())])).unwrap_err();
+    assert!(message(e).contains("gps.csv"));
+    let bad = js_sys::JSON::parse(&recipe_json.replace("\"deg/s\"", "\"furlong\"")).unwrap();
+    assert!(message(import_log(bad, files.clone()).unwrap_err()).contains("not a rate unit"));
+    assert!(message(import_log(JsValue::from_str("x"), files.clone()).unwrap_err()).starts_with("recipe:"));
+    assert!(import_log(recipe, files).is_ok());
+
+    // pipeline == core, bit for bit; runPipeline has the trace; bad options are named.
+    let rural = Log::parse(RURAL).unwrap();
+    let r = pipeline(&rural, JsValue::UNDEFINED).unwrap();
+    let native = gyrodrift::pipeline::run(&gyrodrift::parse_log_str(RURAL).unwrap(), &Default::default()).unwrap().result.unwrap();
+    assert_eq!(num(&r, "E_psi_pipeline_deg").to_bits(), native.E_psi_pipeline_deg.to_bits());
+    assert_eq!(num(&r, "E_psi_zaru_deg").to_bits(), native.E_psi_zaru_deg.to_bits());
+    let run = run_pipeline(&rural, obj(&[("gate_dps", JsValue::from_f64(0.3))])).unwrap();
+    let trace = get(&run, "trace");
+    let h: Float64Array = get(&trace, "heading_deg").dyn_into().unwrap();
+    assert!(h.length() > 100);
+    assert_eq!(get(&run, "still_source").as_string().as_deref(), Some("speed"));
+    let e = pipeline(&rural, obj(&[("gate", JsValue::from_f64(1.0))])).unwrap_err();
+    assert!(message(e).contains("unknown field `gate`"));
+    let c = compare(Array::of1(&JsValue::from(rural)).into(), JsValue::UNDEFINED).unwrap();
+    assert_eq!(num(&get(&c, "mean"), "pipeline").to_bits(), native.NE_psi_pipeline_deg_per_min.to_bits());
+}

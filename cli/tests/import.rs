@@ -1,0 +1,260 @@
+//! `gyrodrift import` on small files with known content (units, signs, ISO time, projection
+//! on gravity, course from positions, wheel-speed odometry), its errors, and the pipeline
+//! and the method comparison on the result.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn dir(name: &str) -> PathBuf {
+    let p = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&p);
+    std::fs::create_dir_all(&p).unwrap();
+    p
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_gyrodrift")).args(args).output().unwrap()
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// 10 Hz phone-like IMU (ISO time, rad/s, clockwise positive on one axis) and 1 Hz GPS
+/// (bearing clockwise from north, speed): 30 s standing, then a right turn of 2 deg/s.
+fn phone_like(d: &Path) {
+    let mut imu = String::from("time,w\n");
+    for i in 0..600 {
+        let t = i as f64 / 10.0;
+        // + a bias step of 0.1 deg/s after the lead-in, so the methods have drift to reduce
+        let cw_dps: f64 = if t >= 30.0 { 2.1 } else { 0.0 };
+        let secs = 5 + i / 10; // starts 2023-08-06 10:48:05-04:00
+        imu.push_str(&format!("2023-08-06 10:{}:{:02}.{}-04:00,{}\n", 48 + secs / 60, secs % 60, i % 10, cw_dps.to_radians()));
+    }
+    std::fs::write(d.join("imu.csv"), imu).unwrap();
+    let mut gps = String::from("time,speed,bearing\n");
+    for k in 0..60 {
+        let t = k as f64;
+        let (v, b) = if t >= 30.0 { (8.0, (t - 30.0) * 2.0) } else { (0.0, 0.0) };
+        gps.push_str(&format!("2023-08-06 10:{}:{:02}-04:00,{v},{b}\n", 48 + (5 + k) / 60, (5 + k) % 60));
+    }
+    std::fs::write(d.join("gps.csv"), gps).unwrap();
+    std::fs::write(
+        d.join("r.toml"),
+        r#"name = "phone"
+bias_s = 10
+[[table]]
+id = "imu"
+file = "imu.csv"
+time = { column = "time", format = "iso8601" }
+[[table]]
+id = "gps"
+file = "gps.csv"
+time = { column = "time", format = "iso8601" }
+[yaw_rate]
+table = "imu"
+column = "w"
+unit = "rad/s"
+positive = "cw"
+[heading]
+source = "column"
+table = "gps"
+column = "bearing"
+unit = "deg"
+positive = "cw"
+speed_column = "speed"
+min_speed_mps = 5.0
+[speed]
+source = "column"
+table = "gps"
+column = "speed"
+unit = "m/s"
+"#,
+    )
+    .unwrap();
+}
+
+fn parse(p: &Path) -> gyrodrift::DriveLog {
+    gyrodrift::parse_log(std::fs::File::open(p).unwrap()).unwrap()
+}
+
+#[test]
+fn import_converts_units_signs_and_time_and_merges_on_time() {
+    let d = dir("import-phone");
+    phone_like(&d);
+    let out = d.join("drive.csv");
+    let o = run(&["import", "--recipe", s(&d.join("r.toml")), "--out", s(&out), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let sum: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(sum["n_gyro"], 600);
+    assert_eq!(sum["n_reference"], 30, "bearing kept only above 5 m/s");
+    // 2023-08-06 14:48:05 UTC
+    assert_eq!(sum["start_time_s"], 1_691_333_285.0);
+    let log = parse(&out);
+    use gyrodrift::Column::*;
+    let (t, g, r, v) = (log.time_s(), log.column(GyroDps).unwrap(), log.column(RefHeadingDeg).unwrap(), log.column(SpeedMps).unwrap());
+    assert_eq!(log.len(), 600, "GPS stamps fall on IMU rows: merged, not added");
+    assert_eq!(t[0], 0.0);
+    assert!((t[1] - 0.1).abs() < 1e-6);
+    let i = 350; // t = 35 s: turning right at 2 deg/s (+0.1 bias) = -2.1 deg/s CCW; bearing 10 -> ref -10
+    assert!((g[i] + 2.1).abs() < 1e-12, "{}", g[i]);
+    assert!((r[i] + 10.0).abs() < 1e-12, "{}", r[i]);
+    assert_eq!(v[i], 8.0);
+    assert!(r[355].is_nan(), "reference only at its own times");
+    assert!((v[355] - 8.0).abs() < 1e-12, "speed interpolated onto every row");
+    assert_eq!(log.meta.bias_s, Some(10.0));
+    // The pipeline and HDR run on it: 0.1 deg/s of drift over 30 s -> raw E_psi ~ 0.1 * 15.
+    let o = run(&["pipeline", s(&out), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let p: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let e_raw = p["E_psi_raw_deg"].as_f64().unwrap();
+    assert!((1.0..2.0).contains(&e_raw), "{p}");
+}
+
+#[test]
+fn pipeline_json_has_the_issue_keys() {
+    let d = dir("import-keys");
+    phone_like(&d);
+    let out = d.join("drive.csv");
+    assert!(run(&["import", "--recipe", s(&d.join("r.toml")), "--out", s(&out)]).status.success());
+    let o = run(&["pipeline", s(&out), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    for k in [
+        "E_psi_raw_deg",
+        "E_psi_hdr_deg",
+        "E_psi_pipeline_deg",
+        "NE_psi_raw_deg_per_min",
+        "NE_psi_hdr_deg_per_min",
+        "NE_psi_pipeline_deg_per_min",
+        "improvement_pipeline",
+        "duration_min",
+    ] {
+        assert!(v[k].is_number(), "{k} missing in {v}");
+    }
+    let e_raw = v["E_psi_raw_deg"].as_f64().unwrap();
+    let e_pipe = v["E_psi_pipeline_deg"].as_f64().unwrap();
+    assert_eq!(v["improvement_pipeline"].as_f64().unwrap(), e_raw / e_pipe);
+    let o = run(&["pipeline", s(&out), "--set", "gate_dps=-1"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("gate_dps"));
+    let o = run(&["report", "--compare", s(&out), s(&out)]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success() && text.contains("| phone |") && text.contains("**Mean of 2**"), "{text}");
+}
+
+#[test]
+fn projection_on_gravity_positions_course_and_wheel_odometry() {
+    let d = dir("import-proj");
+    // Tilted mount: up = (0, 0.6, 0.8) in the sensor frame; the vehicle turns left at
+    // 3 deg/s after 10 s, so the gyro reads 3 * up; it drives east at 10 m/s on a
+    // lat/lon track, wheel speeds differ by (3 deg/s in rad) * track 1.5 m.
+    let (mut imu, mut gps) = (String::from("t,gx,gy,gz,ax,ay,az\n"), String::from("t,lat,lon,vl,vr\n"));
+    for i in 0..400 {
+        let t = i as f64 * 0.05;
+        let w = if t >= 10.0 { 3.0 } else { 0.0 };
+        imu.push_str(&format!("{t},{},{},{},{},{},{}\n", 0.0, 0.6 * w, 0.8 * w, 0.0, 0.6 * 9.81, 0.8 * 9.81));
+    }
+    for k in 0..20 {
+        let t = k as f64;
+        let lon = 10.0 + (10.0 * t) / (6_378_137.0 * 50f64.to_radians().cos()) * 180.0 / std::f64::consts::PI;
+        let dv = if t >= 10.0 { 3f64.to_radians() * 1.5 / 2.0 } else { 0.0 };
+        gps.push_str(&format!("{t},50.0,{lon},{},{}\n", 10.0 - dv, 10.0 + dv));
+    }
+    std::fs::write(d.join("imu.csv"), imu).unwrap();
+    std::fs::write(d.join("gps.csv"), gps).unwrap();
+    std::fs::write(
+        d.join("r.toml"),
+        r#"bias_s = 5
+[[table]]
+id = "imu"
+file = "imu.csv"
+time = { column = "t" }
+[[table]]
+id = "gps"
+file = "gps.csv"
+time = { column = "t" }
+[yaw_rate]
+table = "imu"
+axes = ["gx", "gy", "gz"]
+gravity = { axes = ["ax", "ay", "az"], first_s = 5 }
+unit = "deg/s"
+positive = "ccw"
+[positions]
+table = "gps"
+kind = "latlon"
+columns = ["lat", "lon"]
+[heading]
+source = "positions"
+min_distance_m = 5.0
+[odometry]
+table = "gps"
+left = ["vl"]
+right = ["vr"]
+kind = "speed"
+unit = "m/s"
+track_m = 1.5
+"#,
+    )
+    .unwrap();
+    let out = d.join("x.csv");
+    let o = run(&["import", "--recipe", s(&d.join("r.toml")), "--out", s(&out), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let sum: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!((sum["up"][1].as_f64().unwrap() - 0.6).abs() < 1e-9 && (sum["up"][2].as_f64().unwrap() - 0.8).abs() < 1e-9);
+    let log = parse(&out);
+    use gyrodrift::Column::*;
+    let g = log.column(GyroDps).unwrap();
+    let t = log.time_s();
+    let i = t.iter().position(|&x| x >= 12.0).unwrap();
+    assert!((g[i] - 3.0).abs() < 1e-9, "projected rate {}", g[i]);
+    // Course 90 deg (east) -> ref -90 (CCW convention), at segment middles 0.5, 1.5, ...
+    let r = log.column(RefHeadingDeg).unwrap();
+    let refs: Vec<(f64, f64)> = t.iter().zip(r).filter(|(_, v)| v.is_finite()).map(|(&t, &v)| (t, v)).collect();
+    assert_eq!(refs.len(), 19);
+    assert!((refs[0].0 - 0.5).abs() < 1e-9);
+    assert!(refs.iter().all(|(_, v)| (v + 90.0).abs() < 0.01), "{refs:?}");
+    // Wheel odometry: (dR - dL) / track over the turn = 3 deg/s.
+    assert_eq!(log.meta.wheelbase_m, Some(1.5));
+    let o = run(&["gyrodometry", s(&out), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn bad_recipes_and_files_exit_2_naming_what_is_wrong() {
+    let d = dir("import-bad");
+    phone_like(&d);
+    let base = std::fs::read_to_string(d.join("r.toml")).unwrap();
+    let cases: Vec<(String, &str)> = vec![
+        (base.replace("column = \"w\"", "column = \"w_y\""), "missing column w_y"),
+        (base.replace("unit = \"rad/s\"", "unit = \"rad\""), "not a rate unit"),
+        (base.replace("file = \"gps.csv\"", "file = \"nope.csv\""), "nope.csv: cannot open"),
+        (base.replace("table = \"imu\"\ncolumn", "table = \"imux\"\ncolumn"), "no [[table]] with id \"imux\""),
+        (base.replace("positive = \"cw\"\n[heading]", "[heading]"), "missing field `positive`"),
+        (base.replace("format = \"iso8601\" }\n[[table]]", "format = \"iso8601\", colour = 1 }\n[[table]]"), "unknown field `colour`"),
+    ];
+    for (i, (text, want)) in cases.iter().enumerate() {
+        let r = d.join(format!("bad{i}.toml"));
+        std::fs::write(&r, text).unwrap();
+        let o = run(&["import", "--recipe", s(&r), "--out", s(&d.join("o.csv"))]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "case {i}: {err}");
+        assert!(err.contains(want), "case {i}: want {want:?} in {err:?}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    // A bad cell names file, line and column; a time that goes back too.
+    let imu = std::fs::read_to_string(d.join("imu.csv")).unwrap();
+    std::fs::write(d.join("imu.csv"), imu.replacen(",0\n", ",zero\n", 1)).unwrap();
+    let o = run(&["import", "--recipe", s(&d.join("r.toml")), "--out", s(&d.join("o.csv"))]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("imu.csv: line 2, column w: \"zero\" is not a number"), "{err}");
+    let lines: Vec<&str> = imu.lines().collect();
+    let mut swapped = lines.clone();
+    swapped.swap(5, 6);
+    std::fs::write(d.join("imu.csv"), swapped.join("\n")).unwrap();
+    let o = run(&["import", "--recipe", s(&d.join("r.toml")), "--out", s(&d.join("o.csv"))]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("imu.csv: line 7, column time") && err.contains("does not increase"), "{err}");
+    std::fs::write(d.join("imu.csv"), "").unwrap();
+    let o = run(&["import", "--recipe", s(&d.join("r.toml")), "--out", s(&d.join("o.csv"))]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("empty file"), "{}", String::from_utf8_lossy(&o.stderr));
+}

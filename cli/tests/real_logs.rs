@@ -1,0 +1,150 @@
+//! The recorded logs of `../shared/real-logs` (never copied into the project): every recipe
+//! of `sample-logs/recipes` imports, its signs and units agree with the numbers each
+//! SOURCE.md verified independently, and the pipeline runs on every drive.
+//!
+//! Without `../shared/real-logs` this test FAILS, saying so, unless GYRODRIFT_NO_REAL_LOGS=1
+//! is set; then it prints that it skipped. It never passes silently.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn real_logs() -> Option<PathBuf> {
+    let p = root().join("../shared/real-logs");
+    if p.is_dir() {
+        return Some(p);
+    }
+    let msg = format!("../shared/real-logs is missing (looked at {}): the real-log tests cannot run", p.display());
+    if std::env::var("GYRODRIFT_NO_REAL_LOGS").as_deref() == Ok("1") {
+        eprintln!("SKIPPED: {msg} (GYRODRIFT_NO_REAL_LOGS=1)");
+        None
+    } else {
+        panic!("{msg}; set GYRODRIFT_NO_REAL_LOGS=1 to skip them knowingly");
+    }
+}
+
+struct Imported {
+    summary: serde_json::Value,
+    log: gyrodrift::DriveLog,
+    path: PathBuf,
+}
+
+fn import(data: &Path, recipe: &str) -> Imported {
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("real-{recipe}.csv"));
+    let r = root().join("sample-logs/recipes").join(format!("{recipe}.toml"));
+    let o = Command::new(env!("CARGO_BIN_EXE_gyrodrift"))
+        .args(["import", "--recipe", r.to_str().unwrap(), "--data", data.to_str().unwrap(), "--out", out.to_str().unwrap(), "--json"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{recipe}: {}", String::from_utf8_lossy(&o.stderr));
+    let summary = serde_json::from_slice(&o.stdout).unwrap();
+    let log = gyrodrift::parse_log(std::fs::File::open(&out).unwrap()).unwrap();
+    Imported { summary, log, path: out }
+}
+
+/// Integral of (gyro - bias) over [t0, t1] of the rows, deg.
+fn integral(log: &gyrodrift::DriveLog, bias: f64, t0: f64, t1: f64) -> f64 {
+    let t = log.time_s();
+    let g = log.column(gyrodrift::Column::GyroDps).unwrap();
+    let (mut sum, mut prev) = (0.0, None::<f64>);
+    for i in 0..t.len() {
+        if !g[i].is_finite() || t[i] < t0 || t[i] > t1 {
+            continue;
+        }
+        if let Some(tp) = prev {
+            sum += (g[i] - bias) * (t[i] - tp);
+        }
+        prev = Some(t[i]);
+    }
+    sum
+}
+
+const DRIVES: [&str; 10] = [
+    "comma2k19-example",
+    "neu-vn100-circle",
+    "neu-vn100-town",
+    "pixel6a-20230806_144805",
+    "pixel6a-20230809_124742",
+    "pixel6a-20230809_163741",
+    "smartloc-berlin",
+    "wid-car-trial02",
+    "wid-car-trial10",
+    "wid-car-trial11",
+];
+
+#[test]
+fn every_recipe_imports_with_the_verified_signs_units_and_clocks() {
+    let Some(data) = real_logs() else { return };
+    let listed: Vec<String> = std::fs::read_dir(root().join("sample-logs/recipes"))
+        .unwrap()
+        .filter_map(|e| e.ok()?.file_name().to_str()?.strip_suffix(".toml").map(str::to_string))
+        .collect();
+    for d in DRIVES {
+        assert!(listed.iter().any(|l| l == d), "recipe {d} missing");
+    }
+    let mut all = std::collections::BTreeMap::new();
+    for name in &listed {
+        let imp = import(&data, name);
+        assert!(imp.summary["n_gyro"].as_u64().unwrap() > 1000, "{name}: {}", imp.summary);
+        all.insert(name.clone(), imp);
+    }
+    let import = |_: &Path, name: &str| -> &Imported { &all[name] };
+
+    // VN-100 town: gyro_z (clockwise) integrates to -371 deg with the 10 s static bias removed.
+    let town = import(&data, "neu-vn100-town");
+    let eps0 = gyrodrift::preprocess::static_bias_dps(town.log.time_s(), town.log.column(gyrodrift::Column::GyroDps).unwrap(), 10.0).unwrap();
+    let total = integral(&town.log, eps0, 0.0, 1e9);
+    assert!((total - 371.0).abs() < 6.0, "town: {total} (SOURCE: -371 clockwise)");
+    // smartLoc: wz (counter-clockwise) integrates to -92.5, -174.7 and +91.1 deg over
+    // 64-114, 114-185 and 185-235 s (SOURCE.md; its 0-64 s figure, +62.2, is not reproduced
+    // by any integration rule here: +56.2).
+    let berlin = import(&data, "smartloc-berlin");
+    for (a, b, want) in [(64.0, 114.0, -92.5), (114.0, 185.0, -174.7), (185.0, 235.0, 91.1)] {
+        let got = integral(&berlin.log, 0.0, a, b);
+        assert!((got - want).abs() < 1.5, "smartLoc {a}-{b} s: {got} vs {want}");
+    }
+    // WID: the DOT runs 0.2-0.3 s (trial02) and 9.3 s (trial11) behind the MRU's rows; its
+    // static bias is +0.31..0.35 deg/s (counter-clockwise up axis).
+    for (trial, lo, hi) in [("wid-car-trial02", 0.1, 0.45), ("wid-car-trial10", 0.1, 0.45), ("wid-car-trial11", 9.0, 9.6)] {
+        let w = import(&data, trial);
+        let lag = w.summary["align_offset_s"].as_f64().unwrap();
+        assert!((lo..=hi).contains(&lag), "{trial}: offset {lag}");
+    }
+    let w = import(&data, "wid-car-trial02");
+    let eps0 = gyrodrift::preprocess::static_bias_dps(w.log.time_s(), w.log.column(gyrodrift::Column::GyroDps).unwrap(), 4.0).unwrap();
+    assert!((0.30..=0.36).contains(&eps0), "DOT bias {eps0}");
+    // Pixel: the phone stands upright, up is the y axis.
+    let px = import(&data, "pixel6a-20230809_163741");
+    assert!(px.summary["up"][1].as_f64().unwrap() > 0.99, "{}", px.summary);
+    // comma2k19: rear wheels (RL - RR) / 1.6 m integrate to +15 deg in 60 s, i.e. the
+    // counter-clockwise odometry heading (RR - RL) / 1.6 m goes to -15 deg.
+    let c = import(&data, "comma2k19-example");
+    let (l, r) = (c.log.column(gyrodrift::Column::OdoLeftM).unwrap(), c.log.column(gyrodrift::Column::OdoRightM).unwrap());
+    let last = (0..l.len()).rev().find(|&i| l[i].is_finite() && r[i].is_finite()).unwrap();
+    let first = (0..l.len()).find(|&i| l[i].is_finite() && r[i].is_finite()).unwrap();
+    let odo_deg = ((r[last] - r[first]) - (l[last] - l[first])) / 1.6 * 180.0 / std::f64::consts::PI;
+    assert!((odo_deg + 15.0).abs() < 2.0, "comma odometry heading {odo_deg}");
+    assert_eq!(c.log.meta.wheelbase_m, Some(1.6));
+}
+
+#[test]
+fn pipeline_runs_on_every_real_drive_and_beats_table_iii_hdr() {
+    let Some(data) = real_logs() else { return };
+    let mut beats_raw = 0;
+    for d in DRIVES {
+        let imp = import(&data, d);
+        let run = gyrodrift::pipeline::run(&imp.log, &Default::default()).unwrap();
+        let r = run.result.unwrap_or_else(|e| panic!("{d} ({}): {e}", imp.path.display()));
+        assert!(r.E_psi_pipeline_deg.is_finite() && r.n_samples > 20, "{d}: {r:?}");
+        // Measured in this commit (README): better than Table-III HDR on every drive,
+        // better than raw integration on 6 of 10.
+        assert!(r.E_psi_pipeline_deg < r.E_psi_hdr_deg, "{d}: pipeline {} vs HDR {}", r.E_psi_pipeline_deg, r.E_psi_hdr_deg);
+        if r.E_psi_pipeline_deg < r.E_psi_raw_deg {
+            beats_raw += 1;
+        }
+    }
+    assert!(beats_raw >= 6, "pipeline beats raw on {beats_raw} of 10 real drives");
+}
