@@ -438,149 +438,156 @@ pub fn parse_iso8601(s: &str) -> Option<f64> {
     Some((days * 86_400 + h * 3600 + mi * 60 - offset_s) as f64 + sec)
 }
 
+/// Calls `row(line, fields)` for every data line after `skip_lines`, streaming: CSV and NMEA
+/// through one `csv` reader (quotes, trimmed fields), whitespace files line by line.
+fn for_each_row(spec: &TableSpec, reader: Box<dyn Read + '_>, row: &mut dyn FnMut(u64, &[&str]) -> Result<()>) -> Result<()> {
+    let mut reader = BufReader::with_capacity(1 << 16, reader);
+    let mut raw = Vec::new();
+    let mut line_no: u64 = 0;
+    for _ in 0..spec.skip_lines {
+        raw.clear();
+        if reader.read_until(b'\n', &mut raw)? == 0 {
+            return Err(Error::File("the file ends within the skipped lines".into()));
+        }
+        line_no += 1;
+    }
+    match spec.format {
+        TableFormat::Whitespace => loop {
+            raw.clear();
+            if reader.read_until(b'\n', &mut raw)? == 0 {
+                return Ok(());
+            }
+            line_no += 1;
+            if line_no == 1 && raw.starts_with(b"\xEF\xBB\xBF") {
+                raw.drain(..3);
+            }
+            let text = std::str::from_utf8(&raw).map_err(|_| Error::Line { line: line_no, message: "not valid UTF-8 text".into() })?;
+            let fields: Vec<&str> = text.split_whitespace().collect();
+            if !fields.is_empty() {
+                row(line_no, &fields)?;
+            }
+        },
+        TableFormat::Csv | TableFormat::Nmea => {
+            let mut rdr = csv::ReaderBuilder::new().has_headers(false).flexible(true).trim(csv::Trim::All).from_reader(reader);
+            let mut rec = csv::StringRecord::new();
+            loop {
+                let more = rdr.read_record(&mut rec).map_err(|e| {
+                    let line = e.position().map_or(0, |p| p.line()) + line_no;
+                    match e.kind() {
+                        csv::ErrorKind::Utf8 { .. } => Error::Line { line, message: "not valid UTF-8 text".into() },
+                        _ => Error::Line { line, message: e.to_string() },
+                    }
+                })?;
+                if !more {
+                    return Ok(());
+                }
+                let line = line_no + rec.position().map_or(0, |p| p.line());
+                let mut fields: Vec<&str> = rec.iter().collect();
+                if fields.iter().all(|f| f.is_empty()) {
+                    continue;
+                }
+                if spec.format == TableFormat::Nmea {
+                    if let Some(last) = fields.last_mut() {
+                        if let Some(star) = last.find('*') {
+                            *last = &last[..star];
+                        }
+                    }
+                }
+                row(line, &fields)?;
+            }
+        }
+    }
+}
+
 /// Reads the columns `wanted` (and the time) of one table, streaming.
 fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mut dyn Files) -> Result<Table> {
     let file = spec.file.clone();
     let at = |e: Error| -> Error { crate::report::prefix(&file, e) };
-    let reader = files.open(&spec.file)?;
-    let mut reader = BufReader::with_capacity(1 << 16, reader);
     let scale = time_unit(&spec.time.unit)?;
-    let mut line_no: u64 = 0;
-    let mut buf = String::new();
-    let mut next_line = |buf: &mut String, line_no: &mut u64| -> Result<bool> {
-        buf.clear();
-        let mut raw = Vec::new();
-        let n = reader.read_until(b'\n', &mut raw)?;
-        if n == 0 {
-            return Ok(false);
-        }
-        *line_no += 1;
-        if *line_no == 1 && raw.starts_with(b"\xEF\xBB\xBF") {
-            raw.drain(..3);
-        }
-        match String::from_utf8(raw) {
-            Ok(s) => {
-                buf.push_str(s.trim_end_matches(['\n', '\r']));
-                Ok(true)
-            }
-            Err(_) => Err(Error::Line { line: *line_no, message: "not valid UTF-8 text".into() }),
-        }
-    };
-    for _ in 0..spec.skip_lines {
-        if !next_line(&mut buf, &mut line_no).map_err(at)? {
-            return Err(at(Error::File("the file ends within the skipped lines".into())));
-        }
-    }
-    let split = |line: &str| -> Vec<String> {
-        match spec.format {
-            TableFormat::Whitespace => line.split_whitespace().map(str::to_string).collect(),
-            TableFormat::Csv | TableFormat::Nmea => {
-                let mut rdr = csv::ReaderBuilder::new().has_headers(false).trim(csv::Trim::All).from_reader(line.as_bytes());
-                let mut fields: Vec<String> = match rdr.records().next() {
-                    Some(Ok(r)) => r.iter().map(str::to_string).collect(),
-                    _ => line.split(',').map(|f| f.trim().to_string()).collect(),
-                };
-                if spec.format == TableFormat::Nmea {
-                    if let Some(last) = fields.last_mut() {
-                        if let Some(star) = last.find('*') {
-                            last.truncate(star);
-                        }
-                    }
-                }
-                fields
-            }
-        }
-    };
-    // The header: given, or the first non-empty line.
-    let header: Vec<String> = match &spec.columns {
-        Some(c) => c.clone(),
-        None => loop {
-            if !next_line(&mut buf, &mut line_no).map_err(at)? {
-                return Err(at(Error::File("empty file: no header row".into())));
-            }
-            if !buf.trim().is_empty() {
-                break split(&buf);
-            }
-        },
-    };
-    let index_of = |name: &str| header.iter().position(|h| h == name);
-    let mut idx: Vec<(String, usize)> = Vec::new();
-    for name in wanted {
-        match index_of(name) {
-            Some(j) => idx.push((name.clone(), j)),
-            None => {
-                return Err(at(Error::missing(name, &format!("named by the recipe for table {}; the header has: {}", spec.id, header.join(", ")))))
-            }
-        }
-    }
-    let time_idx = match &spec.time.column {
-        Some(c) => Some(index_of(c).ok_or_else(|| at(Error::missing(c, &format!("the time of table {}", spec.id))))?),
-        None => {
-            if spec.time.period_s.is_none() {
-                return Err(recipe_err(&format!("table {}", spec.id), "time needs a column or a period_s"));
-            }
-            None
-        }
-    };
     if let Some(p) = spec.time.period_s {
         if !(p.is_finite() && p > 0.0) {
             return Err(recipe_err(&format!("table {} time.period_s", spec.id), format!("{p} is not a period > 0")));
         }
+    } else if spec.time.column.is_none() {
+        return Err(recipe_err(&format!("table {}", spec.id), "time needs a column or a period_s"));
     }
+    let reader = files.open(&spec.file)?;
+    let mut header: Option<Vec<String>> = spec.columns.clone();
+    // Indices of the wanted columns and of the time, once the header is known.
+    let mut idx: Vec<(String, usize)> = Vec::new();
+    let mut time_idx: Option<usize> = None;
+    let mut resolved = false;
+    let time_name = spec.time.column.clone().unwrap_or_else(|| "time".into());
     let mut t = Table { file: file.clone(), time_s: Vec::new(), line: Vec::new(), cols: BTreeMap::new() };
-    let mut cols: Vec<Vec<f64>> = vec![Vec::new(); idx.len()];
-    let mut row: u64 = 0;
-    while next_line(&mut buf, &mut line_no).map_err(at)? {
-        if buf.trim().is_empty() {
-            continue;
+    let mut cols: Vec<Vec<f64>> = Vec::new();
+    let mut row_n: u64 = 0;
+    let mut on_row = |line: u64, fields: &[&str]| -> Result<()> {
+        let Some(h) = &header else {
+            header = Some(fields.iter().map(|f| f.to_string()).collect());
+            return Ok(());
+        };
+        if !resolved {
+            let index_of = |name: &str| h.iter().position(|x| x == name);
+            for name in wanted {
+                match index_of(name) {
+                    Some(j) => idx.push((name.clone(), j)),
+                    None => return Err(Error::missing(name, &format!("named by the recipe for table {}; the header has: {}", spec.id, h.join(", ")))),
+                }
+            }
+            if let Some(c) = &spec.time.column {
+                time_idx = Some(index_of(c).ok_or_else(|| Error::missing(c, &format!("the time of table {}", spec.id)))?);
+            }
+            cols = vec![Vec::new(); idx.len()];
+            resolved = true;
         }
-        let fields = split(&buf);
         if let Some(rec) = &spec.record {
-            if fields.first().map(String::as_str) != Some(rec.as_str()) {
-                continue;
+            if fields.first() != Some(&rec.as_str()) {
+                return Ok(());
             }
         }
         let cell = |j: usize, name: &str| -> Result<f64> {
-            let text = fields.get(j).map(String::as_str).unwrap_or("");
+            let text = fields.get(j).copied().unwrap_or("");
             if text.is_empty() || text.eq_ignore_ascii_case("nan") {
                 return Ok(f64::NAN);
             }
             match text.parse::<f64>() {
                 Ok(v) if v.is_finite() => Ok(v),
-                _ => Err(Error::Cell { line: line_no, column: name.to_string(), message: format!("\"{text}\" is not a number") }),
+                _ => Err(Error::Cell { line, column: name.to_string(), message: format!("\"{text}\" is not a number") }),
             }
         };
-        let time = match time_idx.filter(|_| spec.time.period_s.is_none()) {
-            None => row as f64 * spec.time.period_s.unwrap_or(f64::NAN),
-            Some(j) => {
-                let name = spec.time.column.as_deref().unwrap_or("time");
+        let time = match (spec.time.period_s, time_idx) {
+            (Some(p), _) => row_n as f64 * p,
+            (None, Some(j)) => {
                 let v = match spec.time.format {
-                    TimeFormat::Seconds => cell(j, name).map_err(at)? * scale,
+                    TimeFormat::Seconds => cell(j, &time_name)? * scale,
                     TimeFormat::Iso8601 => {
-                        let text = fields.get(j).map(String::as_str).unwrap_or("");
-                        parse_iso8601(text).ok_or_else(|| {
-                            at(Error::Cell { line: line_no, column: name.into(), message: format!("\"{text}\" is not an ISO 8601 time") })
-                        })?
+                        let text = fields.get(j).copied().unwrap_or("");
+                        parse_iso8601(text).ok_or_else(|| Error::Cell { line, column: time_name.clone(), message: format!("\"{text}\" is not an ISO 8601 time") })?
                     }
                 };
                 if v.is_nan() {
-                    return Err(at(Error::Cell { line: line_no, column: name.into(), message: "empty time".into() }));
+                    return Err(Error::Cell { line, column: time_name.clone(), message: "empty time".into() });
                 }
                 v
             }
+            (None, None) => return Err(recipe_err(&format!("table {}", spec.id), "time needs a column or a period_s")),
         };
         if let Some(&prev) = t.time_s.last() {
             if !(time > prev) {
-                let name = spec.time.column.as_deref().unwrap_or("time");
-                return Err(at(Error::Cell { line: line_no, column: name.into(), message: format!("time {time} does not increase (previous row {prev})") }));
+                return Err(Error::Cell { line, column: time_name.clone(), message: format!("time {time} does not increase (previous row {prev})") });
             }
         }
         for (k, (name, j)) in idx.iter().enumerate() {
-            cols[k].push(cell(*j, name).map_err(at)?);
+            cols[k].push(cell(*j, name)?);
         }
         t.time_s.push(time);
-        t.line.push(line_no);
-        row += 1;
+        t.line.push(line);
+        row_n += 1;
+        Ok(())
+    };
+    for_each_row(spec, reader, &mut on_row).map_err(at)?;
+    if header.is_none() {
+        return Err(at(Error::File("empty file: no header row".into())));
     }
     if t.time_s.is_empty() {
         return Err(at(Error::File(format!("table {} has no data rows", spec.id))));
