@@ -128,6 +128,25 @@ fn every_recipe_imports_with_the_verified_signs_units_and_clocks() {
     let odo_deg = ((r[last] - r[first]) - (l[last] - l[first])) / 1.6 * 180.0 / std::f64::consts::PI;
     assert!((odo_deg + 15.0).abs() < 2.0, "comma odometry heading {odo_deg}");
     assert_eq!(c.log.meta.wheelbase_m, Some(1.6));
+
+    // Static sets. LN-100 x up / down: the means differ by twice the vertical Earth rate,
+    // 15.041 deg/h x sin(51.08 deg) = 3.25e-3 deg/s (SOURCE: up +3.1885e-3, down -3.3295e-3).
+    let mean = |name: &str| {
+        let l = &all[name].log;
+        gyrodrift::preprocess::static_bias_dps(l.time_s(), l.column(gyrodrift::Column::GyroDps).unwrap(), 1e9).unwrap()
+    };
+    let (up, down) = (mean("ucalgary-ln100-up"), mean("ucalgary-ln100-down"));
+    assert!((up - 3.1885e-3).abs() < 2e-6 && (down + 3.3295e-3).abs() < 2e-6, "LN-100 {up} {down}");
+    let earth = 15.041 / 3600.0 * 51.08f64.to_radians().sin();
+    assert!(((up - down) / 2.0 - earth).abs() < 2e-5, "Earth rate {} vs {earth}", (up - down) / 2.0);
+    // IMU-TK: first 45 s of z, mean 32511.8 counts -> (32511.8 - 32768) / 6258 rad/s.
+    let z = mean("imutk-xsens-static");
+    let want = (32511.8 - 32768.0) / 6258.0 * 180.0 / std::f64::consts::PI;
+    assert!((z - want).abs() < 0.01, "IMU-TK z {z} vs {want} deg/s");
+    assert_eq!(all["imutk-xsens-static"].summary["n_gyro"], 4501, "span_s keeps 0..45 s at 100 Hz");
+    // VN-100 static capture: 30178 sentences at 40 Hz, ~2 deg/h (bias-compensated onboard).
+    assert_eq!(all["neu-vn100-static"].summary["n_gyro"], 30178);
+    assert!(mean("neu-vn100-static").abs() < 0.002);
 }
 
 #[test]

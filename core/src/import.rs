@@ -40,6 +40,8 @@ pub struct Recipe {
     pub temperature: Option<ValueSpec>,
     /// Shift the gyro table's clock onto the others' by cross-correlating rates.
     pub align: Option<AlignSpec>,
+    /// Keep only the rows with start <= time_s <= end (seconds from the first gyro sample).
+    pub span_s: Option<[f64; 2]>,
 }
 
 /// One input file.
@@ -352,6 +354,7 @@ fn rate_unit(unit: &str, field: &str) -> Result<f64> {
         "rad/s" => 180.0 / std::f64::consts::PI,
         "mrad/s" => 0.18 / std::f64::consts::PI,
         "deg/h" => 1.0 / 3600.0,
+        // Raw counts: `scale` converts them to deg/s.
         "counts" => 1.0,
         _ => return Err(recipe_err(field, format!("unit \"{unit}\" is not a rate unit (deg/s, rad/s, mrad/s, deg/h, counts)"))),
     })
@@ -1084,9 +1087,22 @@ pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, Impor
     let start = g0;
     let mut columns = vec![(Column::TimeS, times.iter().map(|t| t - start).collect::<Vec<f64>>())];
     columns.extend(data);
+    if let Some([a, b]) = recipe.span_s {
+        if !(a.is_finite() && b.is_finite() && a < b) {
+            return Err(recipe_err("span_s", format!("[{a}, {b}] is not a time span (start < end)")));
+        }
+        let keep: Vec<bool> = columns[0].1.iter().map(|&t| t >= a && t <= b).collect();
+        for (_, v) in columns.iter_mut() {
+            let mut k = keep.iter();
+            v.retain(|_| *k.next().unwrap_or(&false));
+        }
+        if columns[0].1.is_empty() {
+            return Err(Error::data(format!("span_s [{a}, {b}] keeps no rows: the log spans {} s", g1 - g0)));
+        }
+    }
     // Equal times after the shift to 0 are impossible (the shift is exact for distinct
     // doubles only up to rounding): merge rows that collapse.
-    let (columns, n_rows) = dedup_rows(columns);
+    let (columns, _) = dedup_rows(columns);
     let mut meta = LogMeta {
         name: recipe.name.clone(),
         description: recipe.description.clone(),
@@ -1099,10 +1115,11 @@ pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, Impor
         meta.other.insert("align_offset_s".into(), format!("{lag}"));
     }
     let log = DriveLog::from_columns(meta, Vec::new(), columns)?;
-    let n_reference = log.column(Column::RefHeadingDeg).map_or(0, |c| c.iter().filter(|v| v.is_finite()).count());
+    let finite = |c: Column| log.column(c).map_or(0, |v| v.iter().filter(|x| x.is_finite()).count());
+    let n_reference = finite(Column::RefHeadingDeg);
     let summary = ImportSummary {
-        n_rows,
-        n_gyro: gyro_v.len(),
+        n_rows: log.len(),
+        n_gyro: finite(Column::GyroDps),
         n_reference,
         duration_min: log.duration_min(),
         up,

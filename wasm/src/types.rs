@@ -343,6 +343,8 @@ export interface Recipe {
   odometry?: { table: string; left: string[]; right: string[]; kind: "speed" | "travel"; unit: string; track_m: number };
   temperature?: { table: string; column: string; unit: "C" | "K" | "F" };
   align?: { rate: RateSpec; max_lag_s?: number };
+  /** Keep only rows with start <= time_s <= end (s from the first gyro sample). */
+  span_s?: [number, number];
 }
 export interface ImportSummary {
   n_rows: number;
