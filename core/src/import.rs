@@ -847,6 +847,13 @@ pub fn best_lag_s(ta: &[f64], a: &[f64], tb: &[f64], b: &[f64], max_lag_s: f64) 
     let (Some(&b0), Some(&b1)) = (tb.first(), tb.last()) else {
         return Err(Error::data("alignment: the reference rate is empty"));
     };
+    if !(max_lag_s.is_finite() && max_lag_s > 0.0 && max_lag_s <= 600.0) {
+        return Err(recipe_err("align.max_lag_s", format!("{max_lag_s} is not a lag in (0, 600] s")));
+    }
+    // 20 Hz bins over the reference: a span of days means a wrong time unit, not a drive.
+    if !(b1 - b0 <= 86_400.0) {
+        return Err(Error::data(format!("alignment: the reference rate spans {} s (over a day): check the time units", b1 - b0)));
+    }
     let n = ((b1 - b0) / DT).floor() as usize + 1;
     let gb = bin_means(tb, b, b0, DT, n);
     let max_k = (max_lag_s / DT).round() as i64;
@@ -989,6 +996,9 @@ pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, Impor
             (ts, vs)
         }
         Some(HeadingSpec::Positions { min_distance_m, min_speed_mps }) => {
+            if !(min_distance_m.is_finite() && *min_distance_m > 0.0 && min_speed_mps.is_finite() && *min_speed_mps >= 0.0) {
+                return Err(recipe_err("heading", "min_distance_m must be > 0 and min_speed_mps >= 0"));
+            }
             let (pt, e, n) = positions.as_ref().ok_or_else(|| recipe_err("heading", "needs [positions]"))?;
             let (ts, course) = course_from_positions(pt, e, n, *min_distance_m, *min_speed_mps);
             (ts, course.iter().map(|c| crate::metrics::wrap_diff_deg(-c)).collect())
@@ -1002,6 +1012,9 @@ pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, Impor
             Some((t.time_s.clone(), t.col(column, "speed")?.iter().map(|v| v * k).collect()))
         }
         Some(SpeedSpec::Positions { window_s }) => {
+            if !(window_s.is_finite() && *window_s > 0.0) {
+                return Err(recipe_err("speed.window_s", format!("{window_s} is not a time > 0")));
+            }
             let (pt, e, n) = positions.as_ref().ok_or_else(|| recipe_err("speed", "needs [positions]"))?;
             Some(speed_from_positions(pt, e, n, *window_s))
         }
@@ -1197,6 +1210,46 @@ mod tests {
         assert_eq!(integrate_speed(&[0.0, 1.0, 3.0], &[2.0, 4.0, 4.0]), vec![0.0, 3.0, 11.0]);
         assert_eq!(interpolate(&[0.0, 2.0], &[0.0, 4.0], &[-1.0, 0.5, 2.0, 3.0])[1..3], [1.0, 4.0]);
         assert!(interpolate(&[0.0, 2.0], &[0.0, 4.0], &[-1.0])[0].is_nan());
+    }
+
+    fn recipe() -> Recipe {
+        let text = r#"{"table": [{"id": "a", "file": "a.csv", "time": {"column": "t"}},
+                                {"id": "b", "file": "b.txt", "format": "whitespace", "columns": ["t", "x", "y"], "time": {"column": "t"}}],
+            "yaw_rate": {"table": "a", "column": "w", "unit": "rad/s", "positive": "cw"},
+            "positions": {"table": "b", "kind": "utm", "columns": ["x", "y"]},
+            "heading": {"source": "positions"}, "speed": {"source": "positions"},
+            "align": {"rate": {"table": "a", "column": "w", "unit": "deg/s", "positive": "ccw"}}}"#;
+        serde_json::from_str(text).unwrap()
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+        /// Arbitrary bytes in either file: an error or a log, never a panic.
+        #[test]
+        fn import_never_panics(a in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..400),
+                               b in "[0-9 .\\-e\n]{0,300}") {
+            let mut files = BTreeMap::new();
+            let mut a_csv = b"t,w\n".to_vec();
+            a_csv.extend(&a);
+            files.insert("a.csv".to_string(), a_csv);
+            files.insert("b.txt".to_string(), b.into_bytes());
+            let _ = import(&recipe(), &mut files);
+        }
+
+        /// CSV-shaped rows with odd numbers (huge, tiny, negative times).
+        #[test]
+        fn import_numbers_never_panic(rows in proptest::collection::vec((-1e12f64..1e12, -1e6f64..1e6), 0..60)) {
+            let mut a = String::from("t,w\n");
+            let mut b = String::new();
+            for (i, (t, w)) in rows.iter().enumerate() {
+                a.push_str(&format!("{t},{w}\n"));
+                b.push_str(&format!("{} {} {}\n", t + i as f64, w, -w));
+            }
+            let mut files = BTreeMap::new();
+            files.insert("a.csv".to_string(), a.into_bytes());
+            files.insert("b.txt".to_string(), b.into_bytes());
+            let _ = import(&recipe(), &mut files);
+        }
     }
 
     #[test]
