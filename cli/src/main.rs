@@ -74,8 +74,9 @@ enum Cmd {
         json: bool,
         #[arg(long)]
         markdown: bool,
-        /// Every method side by side (raw, HDR, pipeline, peers) instead of Table II.
-        #[arg(long)]
+        /// Every method side by side (raw, HDR, pipeline, peers) instead of Table II, as
+        /// Markdown (or --json); the pipeline always runs on the 1 Hz blocks.
+        #[arg(long, conflicts_with = "no_resample")]
         compare: bool,
         /// With --compare: tune HDR on these training drives for a "HDR tuned" column.
         #[arg(long, num_args = 1.., requires = "compare")]
