@@ -482,6 +482,30 @@ function renderReport() {
   if (!drives.length) return showError("Load drive logs for the report.");
   const rep = gd.report(drives, hdrOptions());
   $("report-table").replaceChildren(reportTable(rep));
+  const cmp = gd.compare(drives, { bias_s: hdrOptions().bias_s ?? null });
+  $("compare-table").replaceChildren(compareTable(cmp));
+}
+
+function compareTable(cmp) {
+  const t = document.createElement("table");
+  const cols = [["raw", "raw"], ["hdr_table_iii", "HDR Table III"], ["fusion_offset", "Fusion offset"], ["zaru", "ZARU at stops"], ["pipeline", "pipeline"]];
+  t.innerHTML = `<thead><tr><th>drive</th><th>duration (min)</th>${cols.map(([, h]) => `<th>${h}</th>`).join("")}</tr></thead><tbody></tbody>`;
+  const body = t.querySelector("tbody");
+  for (const r of [...cmp.rows, cmp.mean]) {
+    const tr = document.createElement("tr");
+    tr.dataset.drive = r.name;
+    const best = Math.min(...cols.map(([k]) => r[k]));
+    const cells = [r.name, fmt(r.duration_min, 1), ...cols.map(([k]) => fmt(r[k], 3))];
+    cells.forEach((c, i) => {
+      const td = document.createElement("td");
+      td.textContent = c;
+      if (i >= 2 && r[cols[i - 2][0]] === best) td.className = "best";
+      if (i === cells.length - 1) td.className += " pipeline";
+      tr.append(td);
+    });
+    body.append(tr);
+  }
+  return t;
 }
 
 function reportTable(rep) {

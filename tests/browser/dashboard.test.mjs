@@ -162,6 +162,10 @@ for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyro
     for (const c of canvases) assert.ok((await inked(c)) > 3000, `${c} drawn`);
     if (view === "report") {
       assert.ok((await page.locator("#report-table tr").count()) >= 4);
+      // Every method side by side, one row per drive plus the mean; City 1's pipeline as the CLI's.
+      assert.equal(await page.locator("#compare-table tbody tr").count(), (await page.locator("#report-table tbody tr").count()));
+      const pipe = JSON.parse(cli("pipeline", join(SAMPLES, "train", "city-1.csv"), "--json"));
+      assert.equal(await page.locator('#compare-table tr[data-drive="City 1"] td.pipeline').innerText(), pipe.NE_psi_pipeline_deg_per_min.toFixed(3));
       // Tune runs in the worker; the page stays responsive meanwhile, then offers the result.
       await page.locator("#tune").click();
       await page.waitForSelector("#apply-tuned", { timeout: 120000 });
