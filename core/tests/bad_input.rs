@@ -13,6 +13,9 @@ fn run_everything(text: &str) {
         let _ = gyrodometry::run(&log, &gyrodometry::GyrodometryOptions { wheelbase_m: Some(0.5), ..Default::default() });
         let _ = calibration::run(&log, &calibration::CalibrationOptions { p: 1, q: 0, bias_s: Some(1.0) });
         let _ = allan::run(&log);
+        let _ = gyrodrift::pipeline::run(&log, &Default::default());
+        let _ = gyrodrift::pipeline::run(&log, &gyrodrift::pipeline::PipelineParams { bias_s: Some(0.0), ..Default::default() });
+        let _ = gyrodrift::compare::compare(&[("x".into(), &log)], &Default::default(), None);
     }
 }
 

@@ -10,5 +10,7 @@ fuzz_target!(|data: &[u8]| {
         let _ = gyrodrift::gyrodometry::run(&log, &gyrodrift::gyrodometry::GyrodometryOptions { wheelbase_m: Some(0.5), ..Default::default() });
         let _ = gyrodrift::calibration::run(&log, &gyrodrift::calibration::CalibrationOptions { p: 1, q: 1, bias_s: Some(1.0) });
         let _ = gyrodrift::allan::run(&log);
+        let _ = gyrodrift::pipeline::run(&log, &Default::default());
+        let _ = gyrodrift::compare::compare(&[("fuzz".into(), &log)], &Default::default(), None);
     }
 });
