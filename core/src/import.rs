@@ -16,7 +16,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::io::{BufRead, BufReader, Read};
 
 /// A whole import recipe (see `sample-logs/recipes/README.md` for the format by example).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Recipe {
     /// Written as `# name:`.
@@ -45,7 +45,7 @@ pub struct Recipe {
 }
 
 /// One input file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TableSpec {
     /// The name other sections use to refer to this table.
@@ -68,7 +68,7 @@ pub struct TableSpec {
 }
 
 /// How a table is split into fields.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum TableFormat {
     /// Comma-separated, quotes allowed, spaces around fields trimmed.
@@ -81,7 +81,7 @@ pub enum TableFormat {
 }
 
 /// The time of a table's rows.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TimeSpec {
     /// The time column; absent = row index times `period_s`.
@@ -103,7 +103,7 @@ fn default_time_unit() -> String {
     "s".into()
 }
 
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum TimeFormat {
     #[default]
@@ -112,7 +112,7 @@ pub enum TimeFormat {
 }
 
 /// Which way a positive value turns the vehicle, seen from above.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Sense {
     /// Counter-clockwise (left turn) positive: the v1 convention.
@@ -131,7 +131,7 @@ impl Sense {
 }
 
 /// A yaw rate: one column, or a 3-axis gyro projected on the up direction.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RateSpec {
     pub table: String,
@@ -161,7 +161,7 @@ fn one() -> f64 {
 }
 
 /// Up = the mean specific force over the first `first_s` seconds (vehicle at rest).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GravitySpec {
     /// Accelerometer x, y, z columns in the gyro's table and frame.
@@ -177,7 +177,7 @@ fn default_gravity_s() -> f64 {
 }
 
 /// Positions from which a course and a speed are derived.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PositionsSpec {
     pub table: String,
@@ -186,7 +186,7 @@ pub struct PositionsSpec {
     pub columns: Vec<String>,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum PositionKind {
     Latlon,
@@ -195,9 +195,10 @@ pub enum PositionKind {
     Enu,
 }
 
-/// The reference heading: an angle column, or the course of the positions.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "source", rename_all = "snake_case", deny_unknown_fields)]
+/// The reference heading: an angle column, or the course of the positions. Written flat
+/// with a `source` field (`source = "column"` or `"positions"`).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(try_from = "HeadingWire")]
 pub enum HeadingSpec {
     /// A heading, course or bearing column; kept only while the speed column is above
     /// `min_speed_mps` (a course is noise when standing).
@@ -209,29 +210,86 @@ pub enum HeadingSpec {
         positive: Sense,
         /// A speed column of the same table, m/s, gating the heading.
         speed_column: Option<String>,
-        #[serde(default)]
         min_speed_mps: f64,
     },
-    /// The course over ground between positions at least `min_distance_m` apart, stamped
-    /// at the middle of the segment, kept when the segment's speed is at least `min_speed_mps`.
-    Positions {
-        #[serde(default = "default_min_distance")]
-        min_distance_m: f64,
-        #[serde(default = "default_min_speed")]
-        min_speed_mps: f64,
-    },
+    /// The course over ground between positions at least `min_distance_m` apart (default
+    /// 2 m), stamped at the middle of the segment, kept when the segment's speed is at least
+    /// `min_speed_mps` (default 1 m/s).
+    Positions { min_distance_m: f64, min_speed_mps: f64 },
 }
 
-fn default_min_distance() -> f64 {
-    2.0
-}
-fn default_min_speed() -> f64 {
-    1.0
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum Source {
+    Column,
+    Positions,
 }
 
-/// Vehicle speed: a column, or derived from the positions over `window_s`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "source", rename_all = "snake_case", deny_unknown_fields)]
+/// The flat form of `heading` in a recipe (a plain struct: no buffering of tagged enums,
+/// which costs the wasm package size).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct HeadingWire {
+    source: Source,
+    table: Option<String>,
+    column: Option<String>,
+    unit: Option<String>,
+    positive: Option<Sense>,
+    speed_column: Option<String>,
+    min_speed_mps: Option<f64>,
+    min_distance_m: Option<f64>,
+}
+
+/// A field the chosen `source` needs, or an error naming it.
+fn needed<T>(v: Option<T>, section: &str, field: &str, source: &str) -> std::result::Result<T, String> {
+    v.ok_or_else(|| format!("{section}: source = \"{source}\" needs `{field}`"))
+}
+
+/// Fields that the chosen `source` does not use: an error naming the first one given.
+fn unused(section: &str, source: &str, given: &[(&str, bool)]) -> std::result::Result<(), String> {
+    match given.iter().find(|(_, g)| *g) {
+        Some((name, _)) => Err(format!("{section}: `{name}` is not used with source = \"{source}\"")),
+        None => Ok(()),
+    }
+}
+
+impl TryFrom<HeadingWire> for HeadingSpec {
+    type Error = String;
+    fn try_from(w: HeadingWire) -> std::result::Result<Self, String> {
+        match w.source {
+            Source::Column => {
+                unused("heading", "column", &[("min_distance_m", w.min_distance_m.is_some())])?;
+                Ok(HeadingSpec::Column {
+                    table: needed(w.table, "heading", "table", "column")?,
+                    column: needed(w.column, "heading", "column", "column")?,
+                    unit: needed(w.unit, "heading", "unit", "column")?,
+                    positive: needed(w.positive, "heading", "positive", "column")?,
+                    speed_column: w.speed_column,
+                    min_speed_mps: w.min_speed_mps.unwrap_or(0.0),
+                })
+            }
+            Source::Positions => {
+                unused(
+                    "heading",
+                    "positions",
+                    &[
+                        ("table", w.table.is_some()),
+                        ("column", w.column.is_some()),
+                        ("unit", w.unit.is_some()),
+                        ("positive", w.positive.is_some()),
+                        ("speed_column", w.speed_column.is_some()),
+                    ],
+                )?;
+                Ok(HeadingSpec::Positions { min_distance_m: w.min_distance_m.unwrap_or(2.0), min_speed_mps: w.min_speed_mps.unwrap_or(1.0) })
+            }
+        }
+    }
+}
+
+/// Vehicle speed: a column, or derived from the positions over `window_s` (default 1 s).
+/// Written flat with a `source` field.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(try_from = "SpeedWire")]
 pub enum SpeedSpec {
     Column {
         table: String,
@@ -239,15 +297,42 @@ pub enum SpeedSpec {
         /// m/s, km/h or mph.
         unit: String,
     },
-    Positions {
-        #[serde(default = "one")]
-        window_s: f64,
-    },
+    Positions { window_s: f64 },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SpeedWire {
+    source: Source,
+    table: Option<String>,
+    column: Option<String>,
+    unit: Option<String>,
+    window_s: Option<f64>,
+}
+
+impl TryFrom<SpeedWire> for SpeedSpec {
+    type Error = String;
+    fn try_from(w: SpeedWire) -> std::result::Result<Self, String> {
+        match w.source {
+            Source::Column => {
+                unused("speed", "column", &[("window_s", w.window_s.is_some())])?;
+                Ok(SpeedSpec::Column {
+                    table: needed(w.table, "speed", "table", "column")?,
+                    column: needed(w.column, "speed", "column", "column")?,
+                    unit: needed(w.unit, "speed", "unit", "column")?,
+                })
+            }
+            Source::Positions => {
+                unused("speed", "positions", &[("table", w.table.is_some()), ("column", w.column.is_some()), ("unit", w.unit.is_some())])?;
+                Ok(SpeedSpec::Positions { window_s: w.window_s.unwrap_or(1.0) })
+            }
+        }
+    }
 }
 
 /// Left and right wheel speeds (integrated) or cumulative travel; each side may average
 /// several columns (e.g. front and rear).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OdometrySpec {
     pub table: String,
@@ -260,7 +345,7 @@ pub struct OdometrySpec {
     pub track_m: f64,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum OdometryKind {
     Speed,
@@ -268,7 +353,7 @@ pub enum OdometryKind {
 }
 
 /// A plain value column (temperature: unit C, K or F).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ValueSpec {
     pub table: String,
@@ -278,7 +363,7 @@ pub struct ValueSpec {
 
 /// Finds the offset of the gyro table's clock by cross-correlating its yaw rate with a
 /// reference rate from another table (e.g. a reference unit's gyro), within `max_lag_s`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AlignSpec {
     pub rate: RateSpec,
