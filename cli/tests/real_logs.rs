@@ -33,7 +33,7 @@ struct Imported {
 }
 
 fn import(data: &Path, recipe: &str) -> Imported {
-    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("real-{recipe}.csv"));
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("real-{}.csv", recipe.replace('/', "-")));
     let r = root().join("sample-logs/recipes").join(format!("{recipe}.toml"));
     let o = Command::new(env!("CARGO_BIN_EXE_gyrodrift"))
         .args(["import", "--recipe", r.to_str().unwrap(), "--data", data.to_str().unwrap(), "--out", out.to_str().unwrap(), "--json"])
@@ -78,10 +78,15 @@ const DRIVES: [&str; 10] = [
 #[test]
 fn every_recipe_imports_with_the_verified_signs_units_and_clocks() {
     let Some(data) = real_logs() else { return };
-    let listed: Vec<String> = std::fs::read_dir(root().join("sample-logs/recipes"))
-        .unwrap()
-        .filter_map(|e| e.ok()?.file_name().to_str()?.strip_suffix(".toml").map(str::to_string))
-        .collect();
+    // Drives at the top of sample-logs/recipes, static sets under static/.
+    let list = |dir: &str, prefix: &str| -> Vec<String> {
+        std::fs::read_dir(root().join(dir))
+            .unwrap()
+            .filter_map(|e| e.ok()?.file_name().to_str()?.strip_suffix(".toml").map(|n| format!("{prefix}{n}")))
+            .collect()
+    };
+    let mut listed = list("sample-logs/recipes", "");
+    listed.extend(list("sample-logs/recipes/static", "static/"));
     for d in DRIVES {
         assert!(listed.iter().any(|l| l == d), "recipe {d} missing");
     }
@@ -135,18 +140,18 @@ fn every_recipe_imports_with_the_verified_signs_units_and_clocks() {
         let l = &all[name].log;
         gyrodrift::preprocess::static_bias_dps(l.time_s(), l.column(gyrodrift::Column::GyroDps).unwrap(), 1e9).unwrap()
     };
-    let (up, down) = (mean("ucalgary-ln100-up"), mean("ucalgary-ln100-down"));
+    let (up, down) = (mean("static/ucalgary-ln100-up"), mean("static/ucalgary-ln100-down"));
     assert!((up - 3.1885e-3).abs() < 2e-6 && (down + 3.3295e-3).abs() < 2e-6, "LN-100 {up} {down}");
     let earth = 15.041 / 3600.0 * 51.08f64.to_radians().sin();
     assert!(((up - down) / 2.0 - earth).abs() < 2e-5, "Earth rate {} vs {earth}", (up - down) / 2.0);
     // IMU-TK: first 45 s of z, mean 32511.8 counts -> (32511.8 - 32768) / 6258 rad/s.
-    let z = mean("imutk-xsens-static");
+    let z = mean("static/imutk-xsens-static");
     let want = (32511.8 - 32768.0) / 6258.0 * 180.0 / std::f64::consts::PI;
     assert!((z - want).abs() < 0.01, "IMU-TK z {z} vs {want} deg/s");
-    assert_eq!(all["imutk-xsens-static"].summary["n_gyro"], 4501, "span_s keeps 0..45 s at 100 Hz");
+    assert_eq!(all["static/imutk-xsens-static"].summary["n_gyro"], 4501, "span_s keeps 0..45 s at 100 Hz");
     // VN-100 static capture: 30178 sentences at 40 Hz, ~2 deg/h (bias-compensated onboard).
-    assert_eq!(all["neu-vn100-static"].summary["n_gyro"], 30178);
-    assert!(mean("neu-vn100-static").abs() < 0.002);
+    assert_eq!(all["static/neu-vn100-static"].summary["n_gyro"], 30178);
+    assert!(mean("static/neu-vn100-static").abs() < 0.002);
 }
 
 #[test]
