@@ -33,7 +33,10 @@ struct Imported {
 }
 
 fn import(data: &Path, recipe: &str) -> Imported {
-    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("real-{}.csv", recipe.replace('/', "-")));
+    // One file per call: the tests run in parallel and import the same recipes.
+    static N: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("real-{}-{n}.csv", recipe.replace('/', "-")));
     let r = root().join("sample-logs/recipes").join(format!("{recipe}.toml"));
     let o = Command::new(env!("CARGO_BIN_EXE_gyrodrift"))
         .args(["import", "--recipe", r.to_str().unwrap(), "--data", data.to_str().unwrap(), "--out", out.to_str().unwrap(), "--json"])
