@@ -881,34 +881,22 @@ pub fn integrate_speed(time_s: &[f64], speed_mps: &[f64]) -> Vec<f64> {
     out
 }
 
-/// Linear interpolation of the finite samples (ts, vs) at each of `at`; NaN outside their span.
+/// Linear interpolation of the finite samples (ts, vs) at each of the increasing times
+/// `at` (the metrics' rule, `metrics::interp_at`); NaN outside their span.
 pub fn interpolate(ts: &[f64], vs: &[f64], at: &[f64]) -> Vec<f64> {
-    let pts: Vec<(f64, f64)> = ts.iter().zip(vs).filter(|(_, v)| v.is_finite()).map(|(&t, &v)| (t, v)).collect();
-    let mut out = Vec::with_capacity(at.len());
+    let (pt, pv): (Vec<f64>, Vec<f64>) = ts.iter().zip(vs).filter(|(_, v)| v.is_finite()).map(|(&t, &v)| (t, v)).unzip();
     let mut j = 0usize;
-    for &t in at {
-        if pts.is_empty() || t < pts[0].0 || t > pts[pts.len() - 1].0 {
-            out.push(f64::NAN);
-            continue;
-        }
-        while j + 1 < pts.len() && pts[j + 1].0 <= t {
-            j += 1;
-        }
-        if j > 0 && pts[j].0 > t {
-            j = 0;
-            while j + 1 < pts.len() && pts[j + 1].0 <= t {
-                j += 1;
+    at.iter()
+        .map(|&t| match (pt.first(), pt.last()) {
+            (Some(&a), Some(&b)) if t >= a && t <= b => {
+                while j + 1 < pt.len() && pt[j + 1] <= t {
+                    j += 1;
+                }
+                crate::metrics::interp_at(&pt, &pv, j, t)
             }
-        }
-        let (t0, v0) = pts[j];
-        out.push(if t0 == t || j + 1 == pts.len() {
-            v0
-        } else {
-            let (t1, v1) = pts[j + 1];
-            v0 + (v1 - v0) * (t - t0) / (t1 - t0)
-        });
-    }
-    out
+            _ => f64::NAN,
+        })
+        .collect()
 }
 
 /// Means of (ts, vs) in bins of `dt` from `t0`, NaN where a bin is empty.

@@ -85,7 +85,7 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
         Some(&t0) => t.iter().zip(gyro).take_while(|(&ti, _)| ti - t0 < bias_s).filter(|(_, g)| g.is_finite()).map(|(_, &g)| g).collect(),
         None => Vec::new(),
     };
-    let lead_std = std_dev(&lead);
+    let lead_std = crate::metrics::mean_std(&lead).1;
     let source = if speed.is_some_and(|s| s.iter().any(|v| v.is_finite())) {
         StillSource::Speed
     } else if odo.is_some() {
@@ -160,14 +160,6 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
         return Err(Error::data("the gyro_dps column has no values"));
     }
     Ok((out, source))
-}
-
-fn std_dev(v: &[f64]) -> f64 {
-    if v.len() < 2 {
-        return 0.0;
-    }
-    let m = v.iter().sum::<f64>() / v.len() as f64;
-    (v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (v.len() - 1) as f64).sqrt()
 }
 
 #[cfg(test)]

@@ -263,8 +263,8 @@ impl Log {
     }
 }
 
-/// `{ result, error, eps0_dps }` of a batch run: the Result keys, or why there are none.
-fn run_object<T: Serialize>(result: &gyrodrift::Result<T>, eps0_dps: f64) -> JsResult<Object> {
+/// `{ result, error }` of a batch run: the Result keys, or why there are none.
+fn result_object<T: Serialize>(result: &gyrodrift::Result<T>) -> JsResult<Object> {
     let out = Object::new();
     let (r, e) = match result {
         Ok(r) => (to_js(r)?, JsValue::NULL),
@@ -272,6 +272,12 @@ fn run_object<T: Serialize>(result: &gyrodrift::Result<T>, eps0_dps: f64) -> JsR
     };
     set(&out, "result", &r)?;
     set(&out, "error", &e)?;
+    Ok(out)
+}
+
+/// `{ result, error, eps0_dps }` of a batch run with a static bias.
+fn run_object<T: Serialize>(result: &gyrodrift::Result<T>, eps0_dps: f64) -> JsResult<Object> {
+    let out = result_object(result)?;
     set(&out, "eps0_dps", &JsValue::from_f64(eps0_dps))?;
     Ok(out)
 }
@@ -636,13 +642,7 @@ pub fn pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOption
 pub fn run_pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue) -> JsResult<JsValue> {
     let p: gyrodrift::pipeline::PipelineParams = self::options("pipeline", options)?;
     let run = gyrodrift::pipeline::run(&log.log, &p).map_err(err)?;
-    let out = Object::new();
-    let (r, e) = match &run.result {
-        Ok(r) => (to_js(r)?, JsValue::NULL),
-        Err(e) => (JsValue::NULL, JsValue::from_str(&e.to_string())),
-    };
-    set(&out, "result", &r)?;
-    set(&out, "error", &e)?;
+    let out = result_object(&run.result)?;
     set(&out, "still_source", &to_js(&run.still_source)?)?;
     let t = &run.trace;
     let trace = Object::new();
