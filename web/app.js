@@ -19,7 +19,7 @@ const SAMPLES = [
   "sample-logs/static/static-2h.csv",
 ];
 const VIEW_KIND = { hdr: "drive", track: "drive", gyrodometry: "robot", calibration: "turntable", allan: null, report: null };
-const COLORS = { ref: "#111111", raw: "#d1495b", hdr: "#1f5fbf", pipe: "#2e9d5b", odo: "#e08e0b", gyro: "#8e44ad", fused: "#1f5fbf", zero: "#999999" };
+const COLORS = { ref: "#111111", raw: "#d1495b", hdr: "#1f5fbf", pipe: "#2e9d5b", smooth: "#7fc99b", odo: "#e08e0b", gyro: "#8e44ad", fused: "#1f5fbf", zero: "#999999" };
 
 const state = {
   entries: [], // { name, log: gd.Log | null, error: string | null, kind, headline }
@@ -333,7 +333,8 @@ function renderHdr() {
       <span>NE<sub>ψ</sub> HDR <b id="m-ne-hdr">${fmt(r.NE_psi_hdr_deg_per_min, 3)}</b> deg/min</span>
       <span>improvement <b id="m-improvement">${fmt(r.improvement, 2)}</b>×</span>
       <span>ε<sub>0</sub> <b>${fmt(r.eps0_dps, 4)}</b> deg/s · ${r.n_processed} samples · ${fmt(r.duration_min, 1)} min</span>` +
-      (pr ? `<span class="recommended" title="bias Kalman filter: zero-rate updates at stops, HDR's straight-road heuristic as weak evidence, temperature term (docs/pipeline.md)">pipeline (recommended): E<sub>ψ</sub> <b id="m-e-pipeline">${fmt(pr.E_psi_pipeline_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_deg_per_min, 3)}</b> deg/min · <b id="m-improvement-pipeline">${fmt(pr.improvement_pipeline, 2)}</b>× · stops ${fmt(pr.stop_s, 0)} s (${pr.still_source})</span>` : "");
+      (pr ? `<span class="recommended" title="bank of bias Kalman filters: zero-rate updates at stops, HDR's straight-road heuristic around the drive's dominant rate (docs/pipeline.md)">pipeline (recommended): E<sub>ψ</sub> <b id="m-e-pipeline">${fmt(pr.E_psi_pipeline_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_deg_per_min, 3)}</b> deg/min · <b id="m-improvement-pipeline">${fmt(pr.improvement_pipeline, 2)}</b>× · stops ${fmt(pr.stop_s, 0)} s (${pr.still_source})</span>
+      <span class="smoothed" title="forward-backward over the whole log: for recorded logs, not available live">smoothed (offline, non-causal): E<sub>ψ</sub> <b id="m-e-smoothed">${fmt(pr.E_psi_pipeline_smoothed_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_smoothed_deg_per_min, 3)}</b> deg/min</span>` : "");
   } else {
     m.textContent = run.error;
   }
@@ -344,6 +345,7 @@ function renderHdr() {
   series.push({ name: "raw", color: COLORS.raw, x: t, y: run.trace.heading_raw_deg, width: 1 });
   series.push({ name: "HDR", color: COLORS.hdr, x: t, y: run.trace.heading_hdr_deg, width: 2 });
   series.push({ name: "pipeline", color: COLORS.pipe, x: pipe.trace.time_s, y: pipe.trace.heading_deg, width: 2 });
+  series.push({ name: "smoothed (offline)", color: COLORS.smooth, x: pipe.trace.time_s, y: pipe.trace.heading_smoothed_deg, width: 1 });
   const cursor = state.cursor;
   chart("c-heading", { title: `${e.name}: heading`, x_label: "time (s)", y_label: "heading (deg)", x_range: xr, series, cursor_x: cursor });
   if (run.errors) {
@@ -353,7 +355,8 @@ function renderHdr() {
         { name: "zero", color: COLORS.zero, x: [xr[0], xr[1]], y: [0, 0] },
         { name: "raw", color: COLORS.raw, x: run.errors.time_s, y: run.errors.raw_deg },
         { name: "HDR", color: COLORS.hdr, x: run.errors.time_s, y: run.errors.hdr_deg, width: 2 },
-        ...(pipe.errors ? [{ name: "pipeline", color: COLORS.pipe, x: pipe.errors.time_s, y: pipe.errors.pipeline_deg, width: 2 }] : []),
+        ...(pipe.errors ? [{ name: "pipeline", color: COLORS.pipe, x: pipe.errors.time_s, y: pipe.errors.pipeline_deg, width: 2 },
+          { name: "smoothed (offline)", color: COLORS.smooth, x: pipe.errors.time_s, y: pipe.errors.smoothed_deg, width: 1 }] : []),
       ],
     });
   }
@@ -489,7 +492,7 @@ function renderReport() {
 function compareTable(cmp) {
   const t = document.createElement("table");
   const cols = [["raw", "raw"], ["hdr_table_iii", "HDR Table III"], ["fusion_offset", "Fusion offset"], ["zaru", "ZARU at stops"], ["pipeline", "pipeline"]];
-  t.innerHTML = `<thead><tr><th>drive</th><th>duration (min)</th>${cols.map(([, h]) => `<th>${h}</th>`).join("")}</tr></thead><tbody></tbody>`;
+  t.innerHTML = `<thead><tr><th>drive</th><th>duration (min)</th>${cols.map(([, h]) => `<th>${h}</th>`).join("")}<th title="offline, non-causal; not ranked">smoothed (offline)</th></tr></thead><tbody></tbody>`;
   const body = t.querySelector("tbody");
   for (const r of [...cmp.rows, cmp.mean]) {
     const tr = document.createElement("tr");
@@ -503,6 +506,10 @@ function compareTable(cmp) {
       if (i === cells.length - 1) td.className += " pipeline";
       tr.append(td);
     });
+    const sm = document.createElement("td");
+    sm.textContent = fmt(r.pipeline_smoothed, 3);
+    sm.className = "smoothed";
+    tr.append(sm);
     body.append(tr);
   }
   return t;

@@ -82,6 +82,30 @@ enum Cmd {
         #[arg(long, num_args = 1.., requires = "compare")]
         tune_on: Vec<PathBuf>,
     },
+    /// The robustness battery: recorded and simulated drives with gyro error classes added;
+    /// every method scored; training and scoring cases reported apart.
+    Battery {
+        /// Recipes of recorded drives (a folder's *.toml or files); none = simulated only.
+        #[arg(long, num_args = 1..)]
+        recipes: Vec<PathBuf>,
+        /// Folder the recipes' files are in (default: each recipe's folder).
+        #[arg(long)]
+        data: Option<PathBuf>,
+        /// training (where choices are made), scoring (only looked at), or all.
+        #[arg(long, default_value = "all")]
+        split: String,
+        /// Length of each simulated drive, min.
+        #[arg(long, default_value_t = 20.0)]
+        minutes: f64,
+        /// Print every case, not only the summaries.
+        #[arg(long)]
+        cases: bool,
+        /// Pipeline setting (as for `pipeline`).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(long)]
+        json: bool,
+    },
     /// Tune the five HDR parameters on training drives; report Table III vs tuned.
     Tune {
         #[arg(long, num_args = 1.., required = true)]
@@ -190,6 +214,41 @@ fn apply_sets<F: FnMut(&str, f64) -> gyrodrift::Result<()>>(sets: &[String], mut
         f(&k, v).map_err(|e| Failure(format!("--set {s}: {e}")))?;
     }
     Ok(())
+}
+
+/// Reads a recipe (TOML, or JSON by extension) and imports its files from `data` (default:
+/// the recipe's folder).
+fn import_recipe(recipe: &Path, data: Option<&Path>) -> Result<(DriveLog, gyrodrift::import::ImportSummary), Failure> {
+    let text = std::fs::read_to_string(recipe).map_err(|e| Failure(format!("{}: cannot read: {e}", recipe.display())))?;
+    let parsed: gyrodrift::import::Recipe = if recipe.extension().is_some_and(|e| e == "json") {
+        serde_json::from_str(&text).map_err(|e| Failure(format!("{}: {e}", recipe.display())))?
+    } else {
+        toml::from_str(&text).map_err(|e| Failure(format!("{}: {e}", recipe.display())))?
+    };
+    let root = data.map(Path::to_path_buf).unwrap_or_else(|| recipe.parent().map(Path::to_path_buf).unwrap_or_default());
+    let mut files = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
+        let path = root.join(name);
+        std::fs::File::open(&path)
+            .map(|f| Box::new(f) as Box<dyn std::io::Read>)
+            .map_err(|e| Error::File(format!("{}: cannot open: {e}", path.display())))
+    };
+    gyrodrift::import::import(&parsed, &mut files).map_err(|e| fail(recipe, e))
+}
+
+/// Recipe paths: files as given, folders as their *.toml files (sorted).
+fn expand_recipes(paths: &[PathBuf]) -> Result<Vec<PathBuf>, Failure> {
+    let mut out = Vec::new();
+    for p in paths {
+        if p.is_dir() {
+            let rd = std::fs::read_dir(p).map_err(|e| Failure(format!("{}: cannot list: {e}", p.display())))?;
+            let mut v: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|f| f.extension().is_some_and(|x| x == "toml")).collect();
+            v.sort();
+            out.extend(v);
+        } else {
+            out.push(p.clone());
+        }
+    }
+    Ok(out)
 }
 
 fn print_json<T: serde::Serialize>(value: &T) -> Result<(), Failure> {
@@ -345,22 +404,36 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Cmd::Import { recipe, data, out, json } => {
-            let text = std::fs::read_to_string(&recipe)
-                .map_err(|e| Failure(format!("{}: cannot read: {e}", recipe.display())))?;
-            let parsed: gyrodrift::import::Recipe = if recipe.extension().is_some_and(|e| e == "json") {
-                serde_json::from_str(&text).map_err(|e| Failure(format!("{}: {e}", recipe.display())))?
+        Cmd::Battery { recipes, data, split, minutes, cases, set, json } => {
+            use gyrodrift::battery;
+            let mut params = gyrodrift::pipeline::PipelineParams::default();
+            apply_sets(&set, |k, v| params.set(k, v))?;
+            let split = match split.as_str() {
+                "training" => battery::Split::Training,
+                "scoring" => battery::Split::Scoring,
+                "all" => battery::Split::All,
+                other => return Err(Failure(format!("--split {other}: expected training, scoring or all"))),
+            };
+            if !(minutes.is_finite() && minutes > 1.0 && minutes <= 600.0) {
+                return Err(Failure(format!("--minutes {minutes}: expected a length in (1, 600] min")));
+            }
+            let mut bases = Vec::new();
+            for r in expand_recipes(&recipes)? {
+                let (log, _) = import_recipe(&r, data.as_deref())?;
+                let stem = r.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+                bases.push(battery::recorded_base(&stem, log));
+            }
+            bases.extend(battery::simulated_bases(minutes));
+            let b = battery::run(&bases, &battery::profiles(), split, &params, None).map_err(|e| Failure(e.to_string()))?;
+            if json {
+                print_json(&b)
             } else {
-                toml::from_str(&text).map_err(|e| Failure(format!("{}: {e}", recipe.display())))?
-            };
-            let root = data.unwrap_or_else(|| recipe.parent().map(Path::to_path_buf).unwrap_or_default());
-            let mut files = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
-                let path = root.join(name);
-                std::fs::File::open(&path)
-                    .map(|f| Box::new(f) as Box<dyn std::io::Read>)
-                    .map_err(|e| Error::File(format!("{}: cannot open: {e}", path.display())))
-            };
-            let (log, summary) = gyrodrift::import::import(&parsed, &mut files).map_err(|e| fail(&recipe, e))?;
+                print!("{}", b.to_markdown(cases));
+                Ok(())
+            }
+        }
+        Cmd::Import { recipe, data, out, json } => {
+            let (log, summary) = import_recipe(&recipe, data.as_deref())?;
             match &out {
                 Some(path) => {
                     let f = std::fs::File::create(path)

@@ -131,8 +131,9 @@ pub fn pipeline_table(path: &Path, r: &gyrodrift::pipeline::PipelineResult) -> S
         ("Fusion offset", r.E_psi_fusion_offset_deg, r.NE_psi_fusion_offset_deg_per_min),
         ("ZARU at stops", r.E_psi_zaru_deg, r.NE_psi_zaru_deg_per_min),
         ("pipeline", r.E_psi_pipeline_deg, r.NE_psi_pipeline_deg_per_min),
+        ("smoothed (offline)", r.E_psi_pipeline_smoothed_deg, r.NE_psi_pipeline_smoothed_deg_per_min),
     ] {
-        let _ = writeln!(s, "  {name:<17} {e:>12.2} {ne:>18.3} {:>11.2}x", r.E_psi_raw_deg / e);
+        let _ = writeln!(s, "  {name:<18} {e:>11.2} {ne:>18.3} {:>11.2}x", r.E_psi_raw_deg / e);
     }
     let _ = writeln!(s, "  final bias {:.4} +- {:.4} deg/s", r.final_bias_dps, r.final_bias_sigma_dps);
     s

@@ -1,11 +1,12 @@
-//! Every method side by side on the same drives and the same metric code: raw integration,
-//! Table-III HDR, HDR tuned on training drives (optional), the pipeline, and its two peers
-//! (x-io Fusion offset, ZARU at stops). NE_psi per drive, means, and which goals hold.
+//! Every method side by side on the same drives and the same metric code (through
+//! `eval`): raw integration, Table-III HDR, HDR tuned on training drives (optional), the
+//! pipeline (causal and smoothed), and its two peers (x-io Fusion offset, ZARU at stops).
 
 use crate::error::{Error, Result};
-use crate::hdr::{self, HdrOptions, HdrParams};
+use crate::eval::{Method, Prepared};
+use crate::hdr::HdrParams;
 use crate::log::DriveLog;
-use crate::pipeline::{self, PipelineParams};
+use crate::pipeline::PipelineParams;
 use crate::report::prefix;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
@@ -20,6 +21,8 @@ pub struct CompareRow {
     /// HDR with the tuned parameters (None without training drives).
     pub hdr_tuned: Option<f64>,
     pub pipeline: f64,
+    /// The pipeline's offline smoothed mode (non-causal; not in the "best" column).
+    pub pipeline_smoothed: f64,
     pub fusion_offset: f64,
     pub zaru: f64,
 }
@@ -40,33 +43,42 @@ pub struct Compare {
     pub tuned_params: Option<HdrParams>,
 }
 
+/// One drive's row: the log prepared once, every method scored on it.
+pub fn compare_row(name: &str, log: &DriveLog, params: &PipelineParams, tuned: Option<HdrParams>) -> Result<CompareRow> {
+    let prep = Prepared::new(log, params.bias_s, &params.still)?;
+    let mut methods = vec![
+        Method::Raw,
+        Method::Hdr(HdrParams::table_iii()),
+        Method::FusionOffset,
+        Method::Zaru { min_still_s: params.min_still_s },
+        Method::Pipeline(*params),
+        Method::PipelineSmoothed(*params),
+    ];
+    if let Some(p) = tuned {
+        methods.push(Method::Hdr(p));
+    }
+    let s = prep.score_all(&methods)?;
+    let ne = |i: usize| s[i].ne_psi_deg_per_min;
+    Ok(CompareRow {
+        name: name.to_string(),
+        duration_min: prep.duration_min,
+        raw: ne(0),
+        hdr_table_iii: ne(1),
+        hdr_tuned: tuned.map(|_| ne(6)),
+        pipeline: ne(4),
+        pipeline_smoothed: ne(5),
+        fusion_offset: ne(2),
+        zaru: ne(3),
+    })
+}
+
 /// NE_psi of every method on each drive; `tuned` = HDR parameters for the tuned column.
 pub fn compare(drives: &[(String, &DriveLog)], params: &PipelineParams, tuned: Option<HdrParams>) -> Result<Compare> {
     if drives.is_empty() {
         return Err(Error::data("no drives to compare"));
     }
-    let mut rows = Vec::with_capacity(drives.len());
-    for (name, log) in drives {
-        let at = |e: Error| prefix(name, e);
-        let r = pipeline::run(log, params).map_err(at)?.result.map_err(at)?;
-        let hdr_tuned = match tuned {
-            Some(p) => {
-                let opts = HdrOptions { params: p, bias_s: params.bias_s, ..Default::default() };
-                Some(hdr::run(log, &opts).map_err(at)?.result.map_err(at)?.NE_psi_hdr_deg_per_min)
-            }
-            None => None,
-        };
-        rows.push(CompareRow {
-            name: name.clone(),
-            duration_min: r.duration_min,
-            raw: r.NE_psi_raw_deg_per_min,
-            hdr_table_iii: r.NE_psi_hdr_deg_per_min,
-            hdr_tuned,
-            pipeline: r.NE_psi_pipeline_deg_per_min,
-            fusion_offset: r.NE_psi_fusion_offset_deg_per_min,
-            zaru: r.NE_psi_zaru_deg_per_min,
-        });
-    }
+    params.validate()?;
+    let rows = drives.iter().map(|(name, log)| compare_row(name, log, params, tuned).map_err(|e| prefix(name, e))).collect::<Result<Vec<_>>>()?;
     let n = rows.len() as f64;
     let mean = |f: fn(&CompareRow) -> f64| rows.iter().map(f).sum::<f64>() / n;
     let mean_row = CompareRow {
@@ -76,6 +88,7 @@ pub fn compare(drives: &[(String, &DriveLog)], params: &PipelineParams, tuned: O
         hdr_table_iii: mean(|r| r.hdr_table_iii),
         hdr_tuned: tuned.map(|_| mean(|r| r.hdr_tuned.unwrap_or(f64::NAN))),
         pipeline: mean(|r| r.pipeline),
+        pipeline_smoothed: mean(|r| r.pipeline_smoothed),
         fusion_offset: mean(|r| r.fusion_offset),
         zaru: mean(|r| r.zaru),
     };
@@ -96,12 +109,12 @@ impl Compare {
         if tuned {
             let _ = write!(s, " HDR tuned |");
         }
-        let _ = writeln!(s, " Fusion offset | ZARU at stops | **pipeline** | pipeline beats raw and HDR |");
+        let _ = writeln!(s, " Fusion offset | ZARU at stops | **pipeline** | pipeline beats raw and HDR | smoothed (offline) |");
         let _ = write!(s, "|---|---:|---:|---:|");
         if tuned {
             let _ = write!(s, "---:|");
         }
-        let _ = writeln!(s, "---:|---:|---:|:---:|");
+        let _ = writeln!(s, "---:|---:|---:|:---:|---:|");
         for (i, r) in self.rows.iter().chain(std::iter::once(&self.mean)).enumerate() {
             let mut vals = vec![r.raw, r.hdr_table_iii];
             if tuned {
@@ -126,7 +139,7 @@ impl Compare {
             } else {
                 "no".into()
             };
-            let _ = writeln!(s, " {verdict} |");
+            let _ = writeln!(s, " {verdict} | {:.3} |", r.pipeline_smoothed);
         }
         s
     }
@@ -143,9 +156,11 @@ mod tests {
         let b = simulate(&SimRequest { kind: SimKind::Drive, scenario: Some("highway".into()), minutes: Some(4.0), seed: 4, name: None }).unwrap();
         let p = PipelineParams::default();
         let c = compare(&[("a".into(), &a), ("b".into(), &b)], &p, Some(HdrParams { i_c_dps: 0.01, ..Default::default() })).unwrap();
-        let ra = pipeline::run(&a, &p).unwrap().result.unwrap();
+        let ra = crate::pipeline::run(&a, &p).unwrap().result.unwrap();
         assert_eq!(c.rows[0].pipeline, ra.NE_psi_pipeline_deg_per_min);
         assert_eq!(c.rows[0].zaru, ra.NE_psi_zaru_deg_per_min);
+        assert_eq!(c.rows[0].pipeline_smoothed, ra.NE_psi_pipeline_smoothed_deg_per_min);
+        assert_eq!(c.rows[0].hdr_table_iii, ra.NE_psi_hdr_deg_per_min);
         assert_eq!(c.mean.raw, (c.rows[0].raw + c.rows[1].raw) / 2.0);
         let md = c.to_markdown();
         assert!(md.contains("| a | 4.0 |") && md.contains("**Mean of 2**") && md.contains("HDR tuned"));

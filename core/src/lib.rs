@@ -17,10 +17,12 @@
 //! on bad input.
 
 pub mod allan;
+pub mod battery;
 pub mod calibration;
 pub mod compare;
 pub mod decimate;
 pub mod error;
+pub mod eval;
 pub mod gyrodometry;
 pub mod hdr;
 pub mod import;

@@ -131,6 +131,18 @@ impl DriveLog {
     pub fn column(&self, c: Column) -> Option<&[f64]> {
         self.columns[c.index()].as_deref()
     }
+    /// The column's cells to change in place (the robustness battery's error injection).
+    pub fn column_mut(&mut self, c: Column) -> Option<&mut [f64]> {
+        self.columns[c.index()].as_deref_mut()
+    }
+    /// Keeps only the rows from index `first` on (e.g. to cut a stationary lead-in).
+    pub fn drop_first_rows(&mut self, first: usize) {
+        let first = first.min(self.len());
+        for col in self.columns.iter_mut().flatten() {
+            col.drain(..first);
+        }
+        self.line.drain(..first.min(self.line.len()));
+    }
     /// The column, or an error naming it and the method that needs it.
     pub fn require(&self, c: Column, needed_by: &str) -> Result<&[f64]> {
         self.column(c).ok_or_else(|| Error::missing(c.name(), needed_by))

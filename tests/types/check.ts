@@ -27,7 +27,7 @@ const recipe: Recipe = {
 };
 const imp: ImportResult = importLog(recipe, { "imu.csv": new Uint8Array(0) });
 const rows: number = imp.log.rowCount + imp.summary.n_reference;
-const pr: PipelineResult = pipeline(log, { gate_dps: 0.5, still: { still_speed_mps: 0.3 } });
+const pr: PipelineResult = pipeline(log, { road_gate_dps: 0.5, still: { still_speed_mps: 0.3 } });
 const pe: number = pr.E_psi_pipeline_deg + pr.NE_psi_pipeline_deg_per_min + pr.improvement_pipeline;
 const prun: PipelineRun = runPipeline(log, {});
 const stops: Uint8Array = prun.trace.stop;

@@ -648,17 +648,21 @@ pub fn run_pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOp
     let trace = Object::new();
     set(&trace, "time_s", &f64s(&t.time_s))?;
     set(&trace, "heading_deg", &f64s(&t.heading_deg))?;
+    set(&trace, "heading_smoothed_deg", &f64s(&t.heading_smoothed_deg))?;
     set(&trace, "bias_dps", &f64s(&t.bias_dps))?;
     set(&trace, "bias_sigma_dps", &f64s(&t.bias_sigma_dps))?;
+    set(&trace, "bias_smoothed_dps", &f64s(&t.bias_smoothed_dps))?;
     set(&trace, "stop", &bools(&t.stop))?;
     set(&out, "trace", &trace)?;
     // The error of the (aligned) heading at the scored reference samples.
     let errors = match (&run.result, gyrodrift::metrics::Reference::from_log(&log.log)) {
         (Ok(_), Ok(r)) => {
             let (te, e) = gyrodrift::metrics::error_series(&t.time_s, &t.heading_deg, &r);
+            let (_, es) = gyrodrift::metrics::error_series(&t.time_s, &t.heading_smoothed_deg, &r);
             let erro = Object::new();
             set(&erro, "time_s", &f64s(&te))?;
             set(&erro, "pipeline_deg", &f64s(&e))?;
+            set(&erro, "smoothed_deg", &f64s(&es))?;
             erro.into()
         }
         _ => JsValue::NULL,

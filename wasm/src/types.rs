@@ -360,17 +360,21 @@ export interface ImportResult {
   summary: ImportSummary;
 }
 
-/** Settings of the pipeline (all optional; defaults chosen on the training drives). */
+/** Settings of the pipeline (all optional; defaults chosen on the battery's training cases). */
 export interface PipelineOptions {
   still?: { still_speed_mps?: number; still_travel_m?: number; still_gyro_factor?: number };
   min_still_s?: number;
-  still_rate_dps?: number;
   stop_sigma_dps?: number;
-  gate_dps?: number;
+  max_bias_dps?: number;
+  jump_min_s?: number;
   road_sigma_dps?: number;
-  bias_walk_dps_per_sqrt_s?: number;
+  road_corr_s?: number;
+  road_window_s?: number;
+  road_gate_dps?: number;
+  bias_walk_min_dps_per_sqrt_s?: number;
+  bias_walk_max_dps_per_sqrt_s?: number;
   prior_bias_sigma_dps?: number;
-  temp_coeff_sigma_dps_per_c?: number;
+  forget_s?: number;
   bias_s?: number | null;
 }
 export type StillSource = "speed" | "odometry" | "gyro" | "none";
@@ -384,6 +388,9 @@ export interface PipelineResult {
   NE_psi_pipeline_deg_per_min: number;
   improvement_pipeline: number;
   duration_min: number;
+  /** The offline smoothed mode (non-causal: uses the whole log). */
+  E_psi_pipeline_smoothed_deg: number;
+  NE_psi_pipeline_smoothed_deg_per_min: number;
   E_psi_fusion_offset_deg: number;
   E_psi_zaru_deg: number;
   NE_psi_fusion_offset_deg_per_min: number;
@@ -399,9 +406,18 @@ export interface PipelineRun {
   error: string | null;
   still_source: StillSource;
   /** Per 1 Hz block; heading aligned to the reference when there is one. */
-  trace: { time_s: Float64Array; heading_deg: Float64Array; bias_dps: Float64Array; bias_sigma_dps: Float64Array; stop: Uint8Array };
+  trace: {
+    time_s: Float64Array;
+    heading_deg: Float64Array;
+    /** Offline smoothed heading (non-causal). */
+    heading_smoothed_deg: Float64Array;
+    bias_dps: Float64Array;
+    bias_sigma_dps: Float64Array;
+    bias_smoothed_dps: Float64Array;
+    stop: Uint8Array;
+  };
   /** Signed heading errors at the scored reference samples (null without a reference). */
-  errors: { time_s: Float64Array; pipeline_deg: Float64Array } | null;
+  errors: { time_s: Float64Array; pipeline_deg: Float64Array; smoothed_deg: Float64Array } | null;
 }
 export interface CompareRow {
   name: string;
@@ -410,6 +426,8 @@ export interface CompareRow {
   hdr_table_iii: number;
   hdr_tuned: number | null;
   pipeline: number;
+  /** Offline smoothed mode (non-causal). */
+  pipeline_smoothed: number;
   fusion_offset: number;
   zaru: number;
 }

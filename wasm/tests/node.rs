@@ -199,7 +199,7 @@ fn import_log_by_recipe_and_pipeline_match_core() {
     let native = gyrodrift::pipeline::run(&gyrodrift::parse_log_str(RURAL).unwrap(), &Default::default()).unwrap().result.unwrap();
     assert_eq!(num(&r, "E_psi_pipeline_deg").to_bits(), native.E_psi_pipeline_deg.to_bits());
     assert_eq!(num(&r, "E_psi_zaru_deg").to_bits(), native.E_psi_zaru_deg.to_bits());
-    let run = run_pipeline(&rural, obj(&[("gate_dps", JsValue::from_f64(0.3))])).unwrap();
+    let run = run_pipeline(&rural, obj(&[("road_gate_dps", JsValue::from_f64(0.3))])).unwrap();
     let trace = get(&run, "trace");
     let h: Float64Array = get(&trace, "heading_deg").dyn_into().unwrap();
     assert!(h.length() > 100);

@@ -195,6 +195,11 @@ fn mixed_style(block: usize) -> Scenario {
 
 /// Simulates a drive at 10 Hz: time_s, gyro_dps, temp_c, ref_heading_deg (1 Hz), speed_mps.
 pub fn simulate_drive(cfg: &DriveConfig) -> DriveLog {
+    simulate_drive_with(cfg, &GyroSpec::crs03_like())
+}
+
+/// As `simulate_drive`, with the gyro drawn from another spec (same road for the same seed).
+pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
     let mut rng = SimRng::new(cfg.seed ^ 0x0D21_5EED);
     let mut log = DriveLog::with_columns(&[Column::GyroDps, Column::TempC, Column::RefHeadingDeg, Column::SpeedMps]);
     log.meta.bias_s = Some(LEAD_IN_S);
@@ -206,7 +211,7 @@ pub fn simulate_drive(cfg: &DriveConfig) -> DriveLog {
     let temp_start = rng.range(0.0, 15.0);
     let temp_end = rng.range(20.0, 26.0);
     let warm_tau_s = rng.range(4.0, 12.0) * 60.0;
-    let mut gyro = GyroModel::draw(&GyroSpec::crs03_like(), temp_start, &mut rng);
+    let mut gyro = GyroModel::draw(spec, temp_start, &mut rng);
     let mut heading_deg = rng.range(0.0, 360.0);
     let (mut v, mut sway_rate, mut sway_dev) = (0.0f64, 0.0f64, 0.0f64);
     let mut phase = Phase::Still { left_s: LEAD_IN_S };

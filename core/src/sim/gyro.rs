@@ -42,6 +42,23 @@ impl GyroSpec {
         }
     }
 
+    /// A consumer MEMS gyro (phone or automotive IMU class) after factory calibration:
+    /// small offset and temperature drift, finer resolution. The robustness battery adds
+    /// its error classes on top.
+    pub fn consumer_mems() -> Self {
+        GyroSpec {
+            offset_max_dps: 0.05,
+            temp_coeff_dps_per_c: (0.0005, 0.002),
+            gm_sigma_dps: (0.002, 0.005),
+            gm_tau_s: (100.0, 600.0),
+            noise_dps: (0.03, 0.08),
+            scale_error_max: 0.005,
+            nonlinearity_max_dps: 0.05,
+            full_scale_dps: 250.0,
+            lsb_dps: 0.0076,
+        }
+    }
+
     /// A better gyro of the kind Gyrodometry used on the LabMate (Gyrostar class), on a robot.
     pub fn robot_gyro() -> Self {
         GyroSpec {

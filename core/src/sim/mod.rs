@@ -7,6 +7,7 @@
 //! The error model and its ranges are documented in `docs/simulator.md`.
 
 pub mod drive;
+pub mod errors;
 pub mod gyro;
 pub mod robot;
 pub mod samples;
@@ -16,6 +17,7 @@ use rand_xoshiro::rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 
+pub use errors::{inject, GyroErrors};
 pub use drive::{simulate_drive, DriveConfig, Scenario};
 pub use gyro::{GyroModel, GyroSpec};
 pub use robot::{simulate_robot, RobotConfig};

@@ -1,0 +1,311 @@
+//! The causal estimator: a bank of scalar Kalman filters on the gyro bias, one per
+//! bias-dynamics hypothesis (slow, medium, fast random walk), weighed by how well each
+//! predicted the stops. No evidence is gated by closeness to the current estimate, so a
+//! large unknown bias cannot lock it out:
+//!
+//! - stop blocks (judged by speed, wheels or the gyro's own spread; trimmed at both ends;
+//!   plausible, and steady within the stop): the true rate is zero;
+//! - moving blocks near the dominant rate of the recent drive (its half-sample mode, i.e.
+//!   "straight"): HDR's heuristic, counted once per road correlation time, not per block.
+//!
+//! A guard re-opens the bias uncertainty when a steady stop disagrees with the estimate
+//! beyond its uncertainty (a bias step, an OS re-calibration).
+
+use super::params::{PipelineParams, N_MODELS};
+use crate::error::{Error, Result};
+use std::collections::VecDeque;
+
+/// What one block did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PipelineOutput {
+    /// Heading from (rate - bias) integrated with the bias known before this block, deg.
+    pub heading_deg: f64,
+    /// Bias estimate used for this block (before its own evidence), deg/s.
+    pub bias_dps: f64,
+    /// Its standard deviation, deg/s.
+    pub bias_sigma_dps: f64,
+    /// The block brought stop evidence (possibly of an earlier, delayed stop block).
+    pub stop: bool,
+    /// A guard re-opened the bias uncertainty at this block.
+    pub reopened: bool,
+}
+
+/// One hypothesis: bias b with variance p, its random walk, and its log weight.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Model {
+    walk2: f64,
+    b: f64,
+    p: f64,
+    logw: f64,
+}
+
+/// Per-block prior and posterior of each hypothesis, for the offline smoother.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BlockRecord {
+    pub prior: [(f64, f64); N_MODELS],
+    pub post: [(f64, f64); N_MODELS],
+    pub weight: [f64; N_MODELS],
+}
+
+/// Running mean and spread of the current stop's evidence (Welford).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct StopStats {
+    n: usize,
+    first_s: f64,
+    last_s: f64,
+    mean: f64,
+    m2: f64,
+    reopened: bool,
+}
+
+impl StopStats {
+    fn add(&mut self, t: f64, z: f64) {
+        if self.n == 0 {
+            self.first_s = t;
+        }
+        self.last_s = t;
+        self.n += 1;
+        let d = z - self.mean;
+        self.mean += d / self.n as f64;
+        self.m2 += d * (z - self.mean);
+    }
+    fn std(&self) -> f64 {
+        if self.n < 2 {
+            f64::INFINITY
+        } else {
+            (self.m2 / (self.n - 1) as f64).sqrt()
+        }
+    }
+}
+
+const STOP_PRIOR: f64 = 0.95;
+
+/// Gaussian density of x with variance s.
+#[inline]
+fn normal_pdf(x: f64, s: f64) -> f64 {
+    libm::exp(-0.5 * x * x / s) / libm::sqrt(2.0 * std::f64::consts::PI * s)
+}
+
+/// The streaming drift reducer on 1 Hz blocks.
+#[derive(Debug, Clone)]
+pub struct Pipeline {
+    p: PipelineParams,
+    models: [Model; N_MODELS],
+    last_time_s: Option<f64>,
+    lead_in_end_s: f64,
+    heading_deg: f64,
+    stop_start_s: Option<f64>,
+    pending: VecDeque<(f64, f64)>,
+    stop: StopStats,
+    window: VecDeque<(f64, f64)>,
+}
+
+impl Pipeline {
+    /// Starts from a bias estimate and its standard deviation; blocks stamped before
+    /// `lead_in_end_s` are a declared stationary lead-in (stop evidence, no trimming).
+    pub fn new(params: PipelineParams, bias_dps: f64, bias_sigma_dps: f64, lead_in_end_s: f64) -> Result<Self> {
+        params.validate()?;
+        if !(bias_dps.is_finite() && bias_sigma_dps.is_finite() && bias_sigma_dps > 0.0) {
+            return Err(Error::param("prior_bias_sigma_dps", format!("start {bias_dps} +- {bias_sigma_dps} deg/s is not usable")));
+        }
+        let walks = params.bias_walks_dps_per_sqrt_s();
+        let models = std::array::from_fn(|i| Model { walk2: walks[i] * walks[i], b: bias_dps, p: bias_sigma_dps * bias_sigma_dps, logw: 0.0 });
+        Ok(Pipeline {
+            p: params,
+            models,
+            last_time_s: None,
+            lead_in_end_s,
+            heading_deg: 0.0,
+            stop_start_s: None,
+            pending: VecDeque::new(),
+            stop: StopStats::default(),
+            window: VecDeque::new(),
+        })
+    }
+
+    /// Normalised hypothesis weights.
+    pub fn weights(&self) -> [f64; N_MODELS] {
+        let m = self.models.iter().map(|m| m.logw).fold(f64::NEG_INFINITY, f64::max);
+        let e: [f64; N_MODELS] = std::array::from_fn(|i| libm::exp(self.models[i].logw - m));
+        let s: f64 = e.iter().sum();
+        std::array::from_fn(|i| e[i] / s)
+    }
+
+    /// The bank's bias estimate and variance (moment-matched mixture).
+    pub fn bias(&self) -> (f64, f64) {
+        let w = self.weights();
+        let b: f64 = (0..N_MODELS).map(|i| w[i] * self.models[i].b).sum();
+        let p: f64 = (0..N_MODELS).map(|i| w[i] * (self.models[i].p + (self.models[i].b - b).powi(2))).sum();
+        (b, p)
+    }
+
+    /// One block: its end time, mean raw rate, and whether the vehicle stood.
+    pub fn update(&mut self, time_s: f64, rate_dps: f64, still: bool) -> Result<PipelineOutput> {
+        self.update_recorded(time_s, rate_dps, still).map(|(o, _)| o)
+    }
+
+    /// As `update`, also returning what the smoother needs.
+    pub fn update_recorded(&mut self, time_s: f64, rate_dps: f64, still: bool) -> Result<(PipelineOutput, BlockRecord)> {
+        if !(time_s.is_finite() && rate_dps.is_finite()) || self.last_time_s.is_some_and(|t| !(time_s > t)) {
+            return Err(Error::data(format!("pipeline update at {time_s} s: rate {rate_dps} deg/s, time must be finite and increase")));
+        }
+        let dt = self.last_time_s.map_or(0.0, |t| time_s - t);
+        self.last_time_s = Some(time_s);
+        let (b_before, p_before) = self.bias();
+        self.heading_deg += (rate_dps - b_before) * dt;
+        // Predict: each hypothesis' random walk; weights forget toward equal.
+        let lam = libm::exp(-dt / self.p.forget_s);
+        for m in &mut self.models {
+            m.p += m.walk2 * dt;
+            m.logw *= lam;
+        }
+        // Gather this block's evidence, then the guards, then the updates.
+        let mut stops: Vec<f64> = Vec::new();
+        let lead_in = time_s < self.lead_in_end_s;
+        let mut reopened = false;
+        if lead_in {
+            stops.push(rate_dps);
+        } else if still {
+            let start = *self.stop_start_s.get_or_insert(time_s);
+            if start == time_s {
+                self.stop = StopStats::default();
+            }
+            self.pending.push_back((time_s, rate_dps));
+            while let Some(&(t, z)) = self.pending.front() {
+                if t - start < self.p.min_still_s {
+                    self.pending.pop_front();
+                } else if time_s - t >= self.p.min_still_s {
+                    self.pending.pop_front();
+                    if z.abs() <= self.p.max_bias_dps {
+                        stops.push(z);
+                    }
+                } else {
+                    break;
+                }
+            }
+        } else {
+            self.stop_start_s = None;
+            self.pending.clear();
+        }
+        if !lead_in {
+            // Steady within the stop: a block far from the stop's own mean is a slow turn.
+            let tol = 4.0 * self.p.stop_sigma_dps + 0.1;
+            let mean = self.stop.mean;
+            let n = self.stop.n;
+            stops.retain(|&z| n == 0 || (z - mean).abs() <= tol);
+        }
+        for &z in &stops {
+            self.stop.add(time_s, z);
+        }
+        if !stops.is_empty() && !self.stop.reopened && !lead_in {
+            reopened |= self.stop_guard();
+        }
+        let moving = !still && !lead_in;
+        let mut straight = false;
+        if moving {
+            self.window.push_back((time_s, rate_dps));
+            while self.window.front().is_some_and(|&(t, _)| time_s - t > self.p.road_window_s) {
+                self.window.pop_front();
+            }
+            if self.window.len() >= 5 {
+                // The dominant rate is a bias only if a bias could be that large (a drive
+                // in circles is not straight).
+                let mode = self.window_mode();
+                straight = mode.abs() <= self.p.max_bias_dps && (rate_dps - mode).abs() <= self.p.road_gate_dps;
+            }
+        }
+        let prior = std::array::from_fn(|i| (self.models[i].b, self.models[i].p));
+        for &z in &stops {
+            self.stop_update(z, !lead_in);
+        }
+        if straight && dt > 0.0 {
+            self.road_update(rate_dps, dt);
+        }
+        let post = std::array::from_fn(|i| (self.models[i].b, self.models[i].p));
+        let out = PipelineOutput { heading_deg: self.heading_deg, bias_dps: b_before, bias_sigma_dps: p_before.sqrt(), stop: !stops.is_empty(), reopened };
+        Ok((out, BlockRecord { prior, post, weight: self.weights() }))
+    }
+
+    /// A steady stop that the estimate cannot explain: the bias moved, re-open it.
+    fn stop_guard(&mut self) -> bool {
+        let s = self.stop;
+        let (b, p) = self.bias();
+        let r = self.p.stop_sigma_dps * self.p.stop_sigma_dps;
+        let steady = s.std() <= 3.0 * self.p.stop_sigma_dps;
+        let long = s.last_s - s.first_s >= self.p.jump_min_s;
+        if steady && long && (s.mean - b).abs() > 4.0 * (p + r / s.n as f64).sqrt() {
+            for m in &mut self.models {
+                m.p += (s.mean - m.b).powi(2);
+            }
+            self.stop.reopened = true;
+            return true;
+        }
+        false
+    }
+
+    /// The dominant rate of the recent moving blocks: where a road vehicle drives straight.
+    fn window_mode(&self) -> f64 {
+        let mut rates: Vec<f64> = self.window.iter().map(|w| w.1).collect();
+        half_sample_mode(&mut rates)
+    }
+
+    /// Stop evidence (a zero-rate update). Its likelihood weighs the hypotheses, with a
+    /// small outlier arm so one surprise does not end a hypothesis; `weigh` = false for the
+    /// declared lead-in (before any hypothesis could differ).
+    fn stop_update(&mut self, z: f64, weigh: bool) {
+        let r = self.p.stop_sigma_dps * self.p.stop_sigma_dps;
+        let u = (1.0 - STOP_PRIOR) / (2.0 * self.p.max_bias_dps);
+        for m in &mut self.models {
+            let nu = z - m.b;
+            let lik = STOP_PRIOR * normal_pdf(nu, m.p + r) + u;
+            if weigh {
+                m.logw += libm::log(lik);
+            }
+            let k = m.p / (m.p + r);
+            m.b += k * nu;
+            m.p *= 1.0 - k;
+        }
+    }
+
+    fn road_update(&mut self, rate_dps: f64, dt: f64) {
+        // One block of a road correlated over road_corr_s carries dt / road_corr_s of an
+        // independent measurement: R = sigma^2 road_corr_s / dt.
+        let r = self.p.road_sigma_dps * self.p.road_sigma_dps * self.p.road_corr_s / dt.min(self.p.road_corr_s);
+        for m in &mut self.models {
+            let nu = rate_dps - m.b;
+            let k = m.p / (m.p + r);
+            m.b += k * nu;
+            m.p *= 1.0 - k;
+        }
+    }
+}
+
+/// Bickel's half-sample mode: the densest point of a sample, robust to half of it being
+/// elsewhere (the turns). Sorts `x` in place; `x` must not be empty.
+pub fn half_sample_mode(x: &mut [f64]) -> f64 {
+    x.sort_by(f64::total_cmp);
+    let mut s = &x[..];
+    while s.len() > 3 {
+        let h = s.len().div_ceil(2);
+        let mut best = 0;
+        for i in 0..=s.len() - h {
+            if s[i + h - 1] - s[i] < s[best + h - 1] - s[best] {
+                best = i;
+            }
+        }
+        s = &s[best..best + h];
+    }
+    match s.len() {
+        3 => {
+            if s[1] - s[0] < s[2] - s[1] {
+                (s[0] + s[1]) / 2.0
+            } else if s[1] - s[0] > s[2] - s[1] {
+                (s[1] + s[2]) / 2.0
+            } else {
+                s[1]
+            }
+        }
+        2 => (s[0] + s[1]) / 2.0,
+        _ => s[0],
+    }
+}

@@ -1,0 +1,170 @@
+//! The recommended drift reduction, beyond the paper: a bank of bias Kalman filters
+//! (slow, medium, fast bias walk, weighed by their likelihood) fed by stops and, with a
+//! mixture likelihood, by HDR's straight-road heuristic; guards re-open the bias when the
+//! evidence says it moved. Causal and streaming ([`Pipeline`]), with an offline smoothed
+//! mode (Rauch-Tung-Striebel over the whole log, labelled non-causal). Design and what was
+//! tried and dropped: docs/pipeline.md. `gyrodrift hdr` stays the paper's exact method.
+
+pub mod filter;
+pub mod params;
+
+pub use filter::{half_sample_mode, BlockRecord, Pipeline, PipelineOutput};
+pub use params::{PipelineParams, N_MODELS};
+
+use crate::error::Result;
+use crate::eval::{Method, Prepared};
+use crate::log::DriveLog;
+use crate::still::{Blocks, StillSource};
+use serde::{Deserialize, Serialize};
+
+/// The per-block series of a pipeline run.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PipelineTrace {
+    pub time_s: Vec<f64>,
+    /// Causal heading (aligned to the reference when the log has one).
+    pub heading_deg: Vec<f64>,
+    /// Smoothed heading: uses the whole log, not available live (aligned likewise).
+    pub heading_smoothed_deg: Vec<f64>,
+    pub bias_dps: Vec<f64>,
+    pub bias_sigma_dps: Vec<f64>,
+    pub bias_smoothed_dps: Vec<f64>,
+    /// The block brought stop evidence.
+    pub stop: Vec<bool>,
+}
+
+/// Runs the filter over the blocks from bias 0 +- the prior, then the smoother; the
+/// heading traces are unaligned. Blocks stamped before `lead_in_end_s` are the lead-in.
+pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -> Result<PipelineTrace> {
+    let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
+    let n = blocks.len();
+    let mut tr = PipelineTrace { time_s: blocks.time_s.clone(), ..Default::default() };
+    let mut records = Vec::with_capacity(n);
+    for i in 0..n {
+        let (o, rec) = f.update_recorded(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
+        tr.heading_deg.push(o.heading_deg);
+        tr.bias_dps.push(o.bias_dps);
+        tr.bias_sigma_dps.push(o.bias_sigma_dps);
+        tr.stop.push(o.stop);
+        records.push(rec);
+    }
+    tr.bias_smoothed_dps = smooth(&records);
+    let mut h = 0.0;
+    for i in 0..n {
+        if i > 0 {
+            h += (blocks.rate_dps[i] - tr.bias_smoothed_dps[i]) * (blocks.time_s[i] - blocks.time_s[i - 1]);
+        }
+        tr.heading_smoothed_deg.push(h);
+    }
+    Ok(tr)
+}
+
+/// Rauch-Tung-Striebel smoothing of each hypothesis' random-walk bias, mixed with the
+/// block's hypothesis weights.
+pub fn smooth(records: &[BlockRecord]) -> Vec<f64> {
+    let n = records.len();
+    let mut out = vec![0.0; n];
+    for i in 0..N_MODELS {
+        let mut next = f64::NAN;
+        for k in (0..n).rev() {
+            let (b, p) = records[k].post[i];
+            let bs = if k + 1 == n {
+                b
+            } else {
+                let (b_prior, p_prior) = records[k + 1].prior[i];
+                let g = if p_prior > 0.0 { p / p_prior } else { 0.0 };
+                b + g * (next - b_prior)
+            };
+            next = bs;
+            out[k] += records[k].weight[i] * bs;
+        }
+    }
+    out
+}
+
+/// The pipeline's result keys (E_psi_*, NE_psi_*, improvement_pipeline, duration_min),
+/// the smoothed mode, the peers, and what the pipeline saw.
+#[allow(non_snake_case)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PipelineResult {
+    pub E_psi_raw_deg: f64,
+    pub E_psi_hdr_deg: f64,
+    pub E_psi_pipeline_deg: f64,
+    pub NE_psi_raw_deg_per_min: f64,
+    pub NE_psi_hdr_deg_per_min: f64,
+    pub NE_psi_pipeline_deg_per_min: f64,
+    /// E_psi(raw) / E_psi(pipeline).
+    pub improvement_pipeline: f64,
+    pub duration_min: f64,
+    /// The offline smoothed mode (non-causal: uses the whole log).
+    pub E_psi_pipeline_smoothed_deg: f64,
+    pub NE_psi_pipeline_smoothed_deg_per_min: f64,
+    /// The peers on the same metric: x-io Fusion's gyroscope offset and a plain zero-rate
+    /// update at stops.
+    pub E_psi_fusion_offset_deg: f64,
+    pub E_psi_zaru_deg: f64,
+    pub NE_psi_fusion_offset_deg_per_min: f64,
+    pub NE_psi_zaru_deg_per_min: f64,
+    /// Where the still flags came from: speed, odometry, gyro or none.
+    pub still_source: StillSource,
+    /// Time whose stop evidence was used, s.
+    pub stop_s: f64,
+    /// Bias estimate and its standard deviation at the end, deg/s.
+    pub final_bias_dps: f64,
+    pub final_bias_sigma_dps: f64,
+    pub n_samples: usize,
+}
+
+/// A batch run: the trace always, the metrics when the log has a usable reference.
+#[derive(Debug, Clone)]
+pub struct PipelineRun {
+    pub trace: PipelineTrace,
+    pub still_source: StillSource,
+    pub result: Result<PipelineResult>,
+}
+
+/// Runs the pipeline (causal and smoothed), raw integration, Table-III HDR and the two
+/// peers on a log, through the one evaluation path (`eval`).
+pub fn run(log: &DriveLog, params: &PipelineParams) -> Result<PipelineRun> {
+    params.validate()?;
+    let prep = Prepared::new(log, params.bias_s, &params.still)?;
+    let mut trace = prep.pipeline_trace(params)?;
+    let blocks = &prep.blocks;
+    let stop_s: f64 = (1..blocks.len()).filter(|&i| trace.stop[i]).map(|i| blocks.time_s[i] - blocks.time_s[i - 1]).sum();
+    let result = prep.reference().and_then(|reference| {
+        let pipe = crate::metrics::score(&trace.time_s, &trace.heading_deg, reference)?;
+        let smooth = crate::metrics::score(&trace.time_s, &trace.heading_smoothed_deg, reference)?;
+        trace.heading_deg.iter_mut().for_each(|p| *p += pipe.shift_deg);
+        trace.heading_smoothed_deg.iter_mut().for_each(|p| *p += smooth.shift_deg);
+        let raw = prep.score(&Method::Raw)?;
+        let hdr = prep.score(&Method::Hdr(Default::default()))?;
+        let fusion = prep.score(&Method::FusionOffset)?;
+        let zaru = prep.score(&Method::Zaru { min_still_s: params.min_still_s })?;
+        let d = prep.duration_min;
+        let ne = |e: f64| crate::metrics::ne_psi(e, d);
+        Ok(PipelineResult {
+            E_psi_raw_deg: raw.e_psi_deg,
+            E_psi_hdr_deg: hdr.e_psi_deg,
+            E_psi_pipeline_deg: pipe.e_psi_deg,
+            NE_psi_raw_deg_per_min: ne(raw.e_psi_deg),
+            NE_psi_hdr_deg_per_min: ne(hdr.e_psi_deg),
+            NE_psi_pipeline_deg_per_min: ne(pipe.e_psi_deg),
+            improvement_pipeline: crate::metrics::improvement(raw.e_psi_deg, pipe.e_psi_deg),
+            duration_min: d,
+            E_psi_pipeline_smoothed_deg: smooth.e_psi_deg,
+            NE_psi_pipeline_smoothed_deg_per_min: ne(smooth.e_psi_deg),
+            E_psi_fusion_offset_deg: fusion.e_psi_deg,
+            E_psi_zaru_deg: zaru.e_psi_deg,
+            NE_psi_fusion_offset_deg_per_min: ne(fusion.e_psi_deg),
+            NE_psi_zaru_deg_per_min: ne(zaru.e_psi_deg),
+            still_source: prep.source,
+            stop_s,
+            final_bias_dps: trace.bias_dps.last().copied().unwrap_or(f64::NAN),
+            final_bias_sigma_dps: trace.bias_sigma_dps.last().copied().unwrap_or(f64::NAN),
+            n_samples: pipe.n_samples,
+        })
+    });
+    Ok(PipelineRun { trace, still_source: prep.source, result })
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,148 @@
+//! Settings of the recommended drift reducer, with units in every name. The values are
+//! set by rule (docs/pipeline.md says which rule), not fitted to a table.
+
+use crate::error::{Error, Result};
+use crate::still::StillOptions;
+use serde::{Deserialize, Serialize};
+
+/// How many bias-dynamics hypotheses the filter bank runs (log-spaced bias walks).
+pub const N_MODELS: usize = 3;
+
+/// Settings of the pipeline.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PipelineParams {
+    pub still: StillOptions,
+    /// Stop blocks count only this far from both ends of a stop (braking, GPS speed lag,
+    /// pulling away into a turn), s. Delays the stop evidence by this much.
+    pub min_still_s: f64,
+    /// Noise of one 1 s stop block as a measurement of the bias (idle vibration), deg/s.
+    pub stop_sigma_dps: f64,
+    /// A stop block whose rate exceeds this is not standing (a slow turn with the GPS
+    /// speed held at zero), deg/s. Also the widest bias the filter will accept.
+    pub max_bias_dps: f64,
+    /// A steady stop this long that disagrees with the bias estimate means the bias has
+    /// moved (a step, a re-calibration): the filter re-opens its uncertainty, s.
+    pub jump_min_s: f64,
+    /// Yaw rate of "straight" road (curvature, sway) as seen by one block, deg/s.
+    pub road_sigma_dps: f64,
+    /// Correlation time of that road yaw rate: straight-road evidence counts once per this
+    /// long, not once per block, s.
+    pub road_corr_s: f64,
+    /// Window of moving blocks whose dominant rate (half-sample mode) marks straight
+    /// driving, s.
+    pub road_window_s: f64,
+    /// A moving block within this of the window's dominant rate is straight, deg/s.
+    pub road_gate_dps: f64,
+    /// Slowest and fastest bias random walk of the filter bank, deg/s per sqrt(s).
+    pub bias_walk_min_dps_per_sqrt_s: f64,
+    pub bias_walk_max_dps_per_sqrt_s: f64,
+    /// Bias uncertainty at the start when the log has no stationary lead-in, deg/s.
+    pub prior_bias_sigma_dps: f64,
+    /// Hypothesis weights forget with this time constant, so the bank can switch, s.
+    pub forget_s: f64,
+    /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
+    pub bias_s: Option<f64>,
+}
+
+impl Default for PipelineParams {
+    fn default() -> Self {
+        PipelineParams {
+            still: StillOptions::default(),
+            min_still_s: 2.0,
+            stop_sigma_dps: 0.05,
+            max_bias_dps: 5.0,
+            jump_min_s: 3.0,
+            road_sigma_dps: 0.15,
+            road_corr_s: 10.0,
+            road_window_s: 60.0,
+            road_gate_dps: 0.15,
+            bias_walk_min_dps_per_sqrt_s: 1e-4,
+            bias_walk_max_dps_per_sqrt_s: 1e-2,
+            prior_bias_sigma_dps: 0.5,
+            forget_s: 600.0,
+            bias_s: None,
+        }
+    }
+}
+
+impl PipelineParams {
+    /// The bias walks of the bank, log-spaced from the slowest to the fastest.
+    pub fn bias_walks_dps_per_sqrt_s(&self) -> [f64; N_MODELS] {
+        let (lo, hi) = (self.bias_walk_min_dps_per_sqrt_s, self.bias_walk_max_dps_per_sqrt_s);
+        std::array::from_fn(|i| {
+            if N_MODELS == 1 || lo == hi {
+                lo
+            } else {
+                lo * libm::pow(hi / lo, i as f64 / (N_MODELS - 1) as f64)
+            }
+        })
+    }
+
+    /// Every setting finite and in range.
+    pub fn validate(&self) -> Result<()> {
+        let pos = [
+            ("still_speed_mps", self.still.still_speed_mps),
+            ("still_travel_m", self.still.still_travel_m),
+            ("still_gyro_factor", self.still.still_gyro_factor),
+            ("stop_sigma_dps", self.stop_sigma_dps),
+            ("max_bias_dps", self.max_bias_dps),
+            ("road_sigma_dps", self.road_sigma_dps),
+            ("road_corr_s", self.road_corr_s),
+            ("road_window_s", self.road_window_s),
+            ("road_gate_dps", self.road_gate_dps),
+            ("bias_walk_min_dps_per_sqrt_s", self.bias_walk_min_dps_per_sqrt_s),
+            ("bias_walk_max_dps_per_sqrt_s", self.bias_walk_max_dps_per_sqrt_s),
+            ("prior_bias_sigma_dps", self.prior_bias_sigma_dps),
+            ("forget_s", self.forget_s),
+        ];
+        for (name, v) in pos {
+            if !(v.is_finite() && v > 0.0 && v < 1e6) {
+                return Err(Error::param(name, format!("{v} is not a number in (0, 1e6)")));
+            }
+        }
+        for (name, v) in [("min_still_s", self.min_still_s), ("jump_min_s", self.jump_min_s)] {
+            if !(v.is_finite() && (0.0..1e6).contains(&v)) {
+                return Err(Error::param(name, format!("{v} is not a time in [0, 1e6) s")));
+            }
+        }
+        if self.bias_walk_min_dps_per_sqrt_s > self.bias_walk_max_dps_per_sqrt_s {
+            return Err(Error::param("bias_walk_min_dps_per_sqrt_s", "is above bias_walk_max_dps_per_sqrt_s"));
+        }
+        if let Some(b) = self.bias_s {
+            if !(b.is_finite() && b >= 0.0) {
+                return Err(Error::param("bias_s", format!("{b} is not a time >= 0 s")));
+            }
+        }
+        Ok(())
+    }
+
+    /// Sets a setting by name (the field names; CLI `--set`).
+    pub fn set(&mut self, key: &str, value: f64) -> Result<()> {
+        match key {
+            "still_speed_mps" => self.still.still_speed_mps = value,
+            "still_travel_m" => self.still.still_travel_m = value,
+            "still_gyro_factor" => self.still.still_gyro_factor = value,
+            "min_still_s" => self.min_still_s = value,
+            "stop_sigma_dps" => self.stop_sigma_dps = value,
+            "max_bias_dps" => self.max_bias_dps = value,
+            "jump_min_s" => self.jump_min_s = value,
+            "road_sigma_dps" => self.road_sigma_dps = value,
+            "road_corr_s" => self.road_corr_s = value,
+            "road_window_s" => self.road_window_s = value,
+            "road_gate_dps" => self.road_gate_dps = value,
+            "bias_walk_min_dps_per_sqrt_s" => self.bias_walk_min_dps_per_sqrt_s = value,
+            "bias_walk_max_dps_per_sqrt_s" => self.bias_walk_max_dps_per_sqrt_s = value,
+            "prior_bias_sigma_dps" => self.prior_bias_sigma_dps = value,
+            "forget_s" => self.forget_s = value,
+            "bias_s" => self.bias_s = Some(value),
+            _ => {
+                return Err(Error::param(
+                    key,
+                    "unknown key (still_speed_mps, still_travel_m, still_gyro_factor, min_still_s, stop_sigma_dps, max_bias_dps, jump_min_s, road_sigma_dps, road_corr_s, road_window_s, road_gate_dps, bias_walk_min_dps_per_sqrt_s, bias_walk_max_dps_per_sqrt_s, prior_bias_sigma_dps, forget_s, bias_s)",
+                ))
+            }
+        }
+        self.validate()
+    }
+}

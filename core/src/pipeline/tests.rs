@@ -1,0 +1,191 @@
+//! Hand-worked steps of the filter bank and its behaviour on logs with known truth.
+
+use super::*;
+
+/// One hypothesis (walk min = max), so the numbers are a plain Kalman filter.
+fn one_model() -> PipelineParams {
+    PipelineParams { bias_walk_min_dps_per_sqrt_s: 0.001, bias_walk_max_dps_per_sqrt_s: 0.001, ..PipelineParams::default() }
+}
+
+fn pdf(x: f64, s: f64) -> f64 {
+    (-0.5 * x * x / s).exp() / (2.0 * std::f64::consts::PI * s).sqrt()
+}
+
+#[test]
+fn walks_are_log_spaced() {
+    let w = PipelineParams::default().bias_walks_dps_per_sqrt_s();
+    assert!((w[0] - 1e-4).abs() < 1e-18 && (w[1] - 1e-3).abs() < 1e-15 && (w[2] - 1e-2).abs() < 1e-15);
+}
+
+#[test]
+fn road_step_hand_worked() {
+    // Straight evidence needs 5 moving blocks in the window; at t = 4 all five read 0.3, so
+    // the dominant rate is 0.3 and the block is straight: P = 0.25 + 4 * 0.001^2,
+    // R = 0.15^2 * 10 s / 1 s = 0.225, K = P / (P + R), b = 0.3 K.
+    let mut f = Pipeline::new(one_model(), 0.0, 0.5, f64::NEG_INFINITY).unwrap();
+    for t in 0..4 {
+        f.update(t as f64, 0.3, false).unwrap();
+        assert_eq!(f.bias().0, 0.0, "no straight evidence before 5 moving blocks");
+    }
+    let o = f.update(4.0, 0.3, false).unwrap();
+    assert!((o.heading_deg - 1.2).abs() < 1e-12, "integrates rate - bias(before) = 0.3 deg/s over 4 s");
+    let p = 0.25 + 4.0 * 1e-6;
+    let k = p / (p + 0.225);
+    let (b, var) = f.bias();
+    assert!((b - 0.3 * k).abs() < 1e-14, "{b} vs {}", 0.3 * k);
+    assert!((var - (1.0 - k) * p).abs() < 1e-14);
+    // A turn block (far from the dominant rate) is not evidence.
+    f.update(5.0, 12.0, false).unwrap();
+    assert_eq!(f.bias().0, b);
+}
+
+#[test]
+fn stop_evidence_waits_for_both_ends_of_the_stop() {
+    // min_still 2 s: blocks of a stop from t=10..=16 count from t=12 on, each applied once
+    // the stop has lasted 2 s beyond it: block 12 at 14, ..., block 14 at 16.
+    let mut f = Pipeline::new(one_model(), 0.0, 0.5, f64::NEG_INFINITY).unwrap();
+    f.update(9.0, 5.0, false).unwrap();
+    let stops: Vec<bool> = (10..=16).map(|t| f.update(t as f64, 0.2, true).unwrap().stop).collect();
+    assert_eq!(stops, vec![false, false, false, false, true, true, true]);
+    // Pulling away discards the pending (last 2 s) blocks.
+    assert!(!f.update(17.0, 8.0, false).unwrap().stop);
+}
+
+#[test]
+fn stop_step_hand_worked_and_heading_is_not_held() {
+    // A lead-in block is stop evidence with no trimming and no outlier arm: P = 0.25,
+    // R = 0.05^2, rate 0.4: K = P / (P + R).
+    let mut f = Pipeline::new(one_model(), 0.0, 0.5, 5.0).unwrap();
+    let o = f.update(0.0, 0.4, true).unwrap();
+    assert!(o.stop && o.heading_deg == 0.0);
+    let k = 0.25 / (0.25 + 0.0025);
+    assert!((f.bias().0 - 0.4 * k).abs() < 1e-14);
+    // After the lead-in, stop blocks are trimmed: block 2 of a stop starting at 0 is applied
+    // at t = 4: P = 0.25 + 4e-6, K = P / (P + R).
+    let mut g = Pipeline::new(one_model(), 0.0, 0.5, f64::NEG_INFINITY).unwrap();
+    for t in 0..5 {
+        g.update(t as f64, 0.4, true).unwrap();
+    }
+    let p = 0.25 + 4.0 * 1e-6;
+    let k = p / (p + 0.0025);
+    let mut h = Pipeline::new(one_model(), 0.0, 0.5, f64::NEG_INFINITY).unwrap();
+    for t in 0..4 {
+        h.update(t as f64, 0.4, true).unwrap();
+    }
+    assert_eq!(h.bias().0, 0.0, "blocks 0-1 trimmed, block 2 waits until t = 4");
+    assert!((g.bias().0 - 0.4 * k).abs() < 1e-14, "block 2 applied at t = 4: {}", g.bias().0);
+    // The heading integrates rate - bias at stops too.
+    let b = f.bias().0;
+    let o = f.update(1.0, 0.4, true).unwrap();
+    assert!((o.heading_deg - (0.4 - b)).abs() < 1e-15);
+}
+
+#[test]
+fn a_large_bias_at_a_stop_is_acquired_not_locked_out() {
+    // Prior 0 +- 0.5, no lead-in, true bias 3 deg/s (6 sigma outside the prior): stop evidence
+    // is not gated by closeness to the estimate, so the first stop takes the bias.
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 0.5, f64::NEG_INFINITY).unwrap();
+    for t in 0..30 {
+        f.update(t as f64, 3.0 + 0.01 * ((t % 3) as f64 - 1.0), true).unwrap();
+    }
+    assert!((f.bias().0 - 3.0).abs() < 0.01, "bias {}", f.bias().0);
+}
+
+#[test]
+fn a_bias_step_at_a_later_stop_reopens_the_estimate() {
+    // A long stop pins the bias at 0 (small P); 5 min later the bias has stepped to 1 deg/s:
+    // the next steady stop disagrees far beyond P and re-opens it. One slow hypothesis only,
+    // so the bank's fast hypothesis cannot take the step first.
+    let slow = PipelineParams { bias_walk_min_dps_per_sqrt_s: 1e-4, bias_walk_max_dps_per_sqrt_s: 1e-4, ..PipelineParams::default() };
+    let mut f = Pipeline::new(slow, 0.0, 0.5, f64::NEG_INFINITY).unwrap();
+    let mut t = 0.0;
+    for _ in 0..120 {
+        f.update(t, 0.0, true).unwrap();
+        t += 1.0;
+    }
+    let (_, p) = f.bias();
+    assert!(p.sqrt() < 0.01);
+    for i in 0..300 {
+        f.update(t, if (i / 20) % 2 == 0 { 20.0 } else { -20.0 }, false).unwrap();
+        t += 1.0;
+    }
+    let mut reopened = false;
+    for _ in 0..30 {
+        reopened |= f.update(t, 1.0, true).unwrap().reopened;
+        t += 1.0;
+    }
+    assert!(reopened);
+    assert!((f.bias().0 - 1.0).abs() < 0.02, "bias {}", f.bias().0);
+}
+
+#[test]
+fn the_bank_moves_to_the_fast_hypothesis_on_a_step() {
+    // Same step with the default bank: the fast hypothesis predicts the stop and takes the weight.
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 0.5, f64::NEG_INFINITY).unwrap();
+    let mut t = 0.0;
+    for _ in 0..120 {
+        f.update(t, 0.0, true).unwrap();
+        t += 1.0;
+    }
+    for i in 0..300 {
+        f.update(t, if (i / 20) % 2 == 0 { 20.0 } else { -20.0 }, false).unwrap();
+        t += 1.0;
+    }
+    for _ in 0..30 {
+        f.update(t, 1.0, true).unwrap();
+        t += 1.0;
+    }
+    let w = f.weights();
+    assert!(w[2] > w[0] && w[2] > 0.5, "weights {w:?}");
+    assert!((f.bias().0 - 1.0).abs() < 0.02, "bias {}", f.bias().0);
+}
+
+#[test]
+fn a_large_bias_without_stops_is_acquired_from_the_road() {
+    // No stops at all: straights at the bias (3 deg/s) with turns in between; the road guard
+    // re-opens after a window and the straight-road evidence takes the bias.
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 0.5, f64::NEG_INFINITY).unwrap();
+    for i in 0..900 {
+        let turn = if (i / 15) % 4 == 3 { 12.0 * if (i / 60) % 2 == 0 { 1.0 } else { -1.0 } } else { 0.0 };
+        let sway = 0.1 * ((i as f64) * 0.7).sin();
+        f.update(i as f64, 3.0 + turn + sway, false).unwrap();
+    }
+    assert!((f.bias().0 - 3.0).abs() < 0.1, "bias {}", f.bias().0);
+}
+
+#[test]
+fn smoother_of_a_constant_bias_is_constant_and_uses_later_stops() {
+    // Moving at 0.1 deg/s bias from the start (no lead-in), a long stop at the end: the
+    // smoothed bias at the start already knows the stop's 0.1, the causal one does not.
+    let n = 400;
+    let blocks = Blocks {
+        time_s: (0..n).map(|i| i as f64).collect(),
+        rate_dps: (0..n).map(|i| 0.1 + if i < 300 && (i / 20) % 3 == 2 { 15.0 } else { 0.0 }).collect(),
+        temp_c: vec![f64::NAN; n],
+        still: (0..n).map(|i| i >= 300).collect(),
+    };
+    let tr = run_blocks(&blocks, PipelineParams::default(), f64::NEG_INFINITY).unwrap();
+    let (es, ec) = ((tr.bias_smoothed_dps[3] - 0.1).abs(), (tr.bias_dps[3] - 0.1).abs());
+    assert!(es < 0.005 && es < ec / 4.0, "smoothed error {es}, causal error {ec}");
+    assert!((tr.bias_dps[n - 1] - 0.1).abs() < 0.005);
+}
+
+#[test]
+fn half_sample_mode_finds_the_dense_cluster() {
+    let mut x = vec![0.5, 0.51, 0.49, 0.5, 0.52, 10.0, -8.0, 4.0, 0.48, 20.0];
+    assert!((half_sample_mode(&mut x) - 0.5).abs() < 0.02);
+    assert_eq!(half_sample_mode(&mut [2.0]), 2.0);
+    assert_eq!(half_sample_mode(&mut [1.0, 3.0]), 2.0);
+}
+
+#[test]
+fn bad_updates_and_params_are_errors() {
+    let mut f = Pipeline::new(one_model(), 0.0, 0.5, f64::NEG_INFINITY).unwrap();
+    f.update(1.0, 0.0, false).unwrap();
+    assert!(f.update(1.0, 0.0, false).is_err());
+    assert!(f.update(2.0, f64::NAN, false).is_err());
+    assert!(PipelineParams { road_gate_dps: 0.0, ..one_model() }.validate().is_err());
+    assert!(PipelineParams { road_sigma_dps: 1e300, ..one_model() }.validate().is_err());
+    assert!(PipelineParams::default().set("nope", 1.0).is_err());
+    assert!(Pipeline::new(one_model(), 0.0, 0.0, 0.0).is_err());
+}

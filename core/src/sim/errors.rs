@@ -1,0 +1,246 @@
+//! Gyro error classes added to a log's yaw rate: the robustness battery puts them on
+//! recorded drives (real roads, real GPS truth) and on simulated ones, so a drift reducer
+//! is judged on gyros nobody tuned it to. Every class is a field of [`GyroErrors`]; they
+//! combine. Deterministic: same seed, same errors (xoshiro + libm, as the simulator).
+
+use super::SimRng;
+use crate::error::{Error, Result};
+use crate::log::{Column, DriveLog};
+use serde::{Deserialize, Serialize};
+
+/// Errors to add to the recorded rate `w`: bias(t) + scale * w + rate_dep * |w| + g-sensitivity
+/// * lateral acceleration + noise, then quantisation. Zero everywhere = no change.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct GyroErrors {
+    /// Constant turn-on bias, deg/s.
+    pub bias_dps: f64,
+    /// Warm-up drift: this much extra bias at the start, decaying with `warmup_tau_s`, deg/s.
+    pub warmup_dps: f64,
+    pub warmup_tau_s: f64,
+    /// Bias random walk, deg/s per sqrt(s).
+    pub walk_dps_per_sqrt_s: f64,
+    /// Bias steps (an OS re-calibration): size of each step, random sign, deg/s, and the
+    /// mean time between steps (exponential), s (0 = no steps).
+    pub step_dps: f64,
+    pub step_every_s: f64,
+    /// Scale-factor error (fraction of the rate).
+    pub scale: f64,
+    /// Rate-dependent bias, deg/s per deg/s of |rate| (an asymmetric scale error).
+    pub rate_dep: f64,
+    /// Bias per m/s^2 of lateral acceleration (speed x yaw rate), deg/s per m/s^2
+    /// (g-sensitivity; needs speed_mps, else nothing is added).
+    pub g_sens_dps_per_mps2: f64,
+    /// White noise added per row, deg/s.
+    pub noise_dps: f64,
+    /// Quantisation step of the output, deg/s (0 = none).
+    pub lsb_dps: f64,
+    /// Cut the stationary lead-in (`# bias_s:` rows) so the drive starts moving, with
+    /// bias_s = 0 (no static bias is removed).
+    pub cut_lead_in: bool,
+    pub seed: u64,
+}
+
+impl Default for GyroErrors {
+    fn default() -> Self {
+        GyroErrors {
+            bias_dps: 0.0,
+            warmup_dps: 0.0,
+            warmup_tau_s: 600.0,
+            walk_dps_per_sqrt_s: 0.0,
+            step_dps: 0.0,
+            step_every_s: 0.0,
+            scale: 0.0,
+            rate_dep: 0.0,
+            g_sens_dps_per_mps2: 0.0,
+            noise_dps: 0.0,
+            lsb_dps: 0.0,
+            cut_lead_in: false,
+            seed: 1,
+        }
+    }
+}
+
+impl GyroErrors {
+    /// Every setting finite and in range.
+    pub fn validate(&self) -> Result<()> {
+        let all = [
+            ("bias_dps", self.bias_dps),
+            ("warmup_dps", self.warmup_dps),
+            ("warmup_tau_s", self.warmup_tau_s),
+            ("walk_dps_per_sqrt_s", self.walk_dps_per_sqrt_s),
+            ("step_dps", self.step_dps),
+            ("step_every_s", self.step_every_s),
+            ("scale", self.scale),
+            ("rate_dep", self.rate_dep),
+            ("g_sens_dps_per_mps2", self.g_sens_dps_per_mps2),
+            ("noise_dps", self.noise_dps),
+            ("lsb_dps", self.lsb_dps),
+        ];
+        for (name, v) in all {
+            if !v.is_finite() {
+                return Err(Error::param(name, format!("{v} is not a finite number")));
+            }
+        }
+        for (name, v) in [("warmup_tau_s", self.warmup_tau_s), ("walk_dps_per_sqrt_s", self.walk_dps_per_sqrt_s), ("step_every_s", self.step_every_s), ("noise_dps", self.noise_dps), ("lsb_dps", self.lsb_dps)] {
+            if v < 0.0 {
+                return Err(Error::param(name, format!("{v} is negative")));
+            }
+        }
+        if self.warmup_dps != 0.0 && self.warmup_tau_s <= 0.0 {
+            return Err(Error::param("warmup_tau_s", "must be > 0 with a warm-up"));
+        }
+        Ok(())
+    }
+}
+
+/// The bias of the injected errors over time (without the rate-dependent terms), deg/s:
+/// one value per row of `time_s`. Exposed so tests can check each class.
+pub fn bias_series(time_s: &[f64], e: &GyroErrors) -> Vec<f64> {
+    let mut rng = SimRng::new(e.seed ^ 0xB1A5_E77E);
+    let Some(&t0) = time_s.first() else { return Vec::new() };
+    let mut walk = 0.0;
+    let mut steps = 0.0;
+    let mut next_step = if e.step_every_s > 0.0 { t0 - e.step_every_s * libm::log(1.0 - rng.uniform()) } else { f64::INFINITY };
+    let mut prev = t0;
+    let mut out = Vec::with_capacity(time_s.len());
+    for &t in time_s {
+        let dt = (t - prev).max(0.0);
+        prev = t;
+        if e.walk_dps_per_sqrt_s > 0.0 {
+            walk += e.walk_dps_per_sqrt_s * libm::sqrt(dt) * rng.normal();
+        }
+        while t >= next_step {
+            steps += e.step_dps * rng.sign();
+            next_step -= e.step_every_s * libm::log(1.0 - rng.uniform());
+        }
+        let warm = if e.warmup_dps != 0.0 { e.warmup_dps * libm::exp(-(t - t0) / e.warmup_tau_s) } else { 0.0 };
+        out.push(e.bias_dps + warm + walk + steps);
+    }
+    out
+}
+
+/// A copy of the log with the errors added to gyro_dps (empty cells stay empty).
+pub fn inject(log: &DriveLog, e: &GyroErrors) -> Result<DriveLog> {
+    e.validate()?;
+    let mut out = log.clone();
+    if e.cut_lead_in {
+        let bias_s = log.bias_s(None);
+        let t = log.time_s();
+        if let Some(&t0) = t.first() {
+            let first = t.iter().position(|&ti| ti - t0 >= bias_s).unwrap_or(t.len());
+            out.drop_first_rows(first);
+        }
+        out.meta.bias_s = Some(0.0);
+    }
+    let time_s = out.time_s().to_vec();
+    if time_s.is_empty() {
+        return Err(Error::data("no rows left to add gyro errors to"));
+    }
+    let bias = bias_series(&time_s, e);
+    let speed = out.column(Column::SpeedMps).map(|s| s.to_vec());
+    let mut rng = SimRng::new(e.seed ^ 0x4E01_5E00);
+    let gyro = out.column_mut(Column::GyroDps).ok_or_else(|| Error::missing("gyro_dps", "needed to add gyro errors"))?;
+    for (i, g) in gyro.iter_mut().enumerate() {
+        if g.is_nan() {
+            continue;
+        }
+        let w = *g;
+        let lat = match &speed {
+            Some(s) if s[i].is_finite() => s[i] * w.to_radians(),
+            _ => 0.0,
+        };
+        let mut v = w + bias[i] + e.scale * w + e.rate_dep * w.abs() + e.g_sens_dps_per_mps2 * lat;
+        if e.noise_dps > 0.0 {
+            v += e.noise_dps * rng.normal();
+        }
+        if e.lsb_dps > 0.0 {
+            v = libm::round(v / e.lsb_dps) * e.lsb_dps;
+        }
+        *g = v;
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flat_log(n: usize, dt: f64, rate: f64, speed: f64) -> DriveLog {
+        let mut l = DriveLog::with_columns(&[Column::GyroDps, Column::SpeedMps]);
+        for i in 0..n {
+            l.push_row(&[(Column::TimeS, i as f64 * dt), (Column::GyroDps, rate), (Column::SpeedMps, speed)]);
+        }
+        l.meta.bias_s = Some(5.0);
+        l
+    }
+
+    #[test]
+    fn constant_bias_scale_and_rate_dependence_add_as_specified() {
+        let l = flat_log(10, 1.0, 10.0, 0.0);
+        let e = GyroErrors { bias_dps: 0.5, scale: 0.02, rate_dep: 0.01, ..Default::default() };
+        let g = inject(&l, &e).unwrap();
+        // 10 + 0.5 + 0.02 * 10 + 0.01 * 10 = 10.8
+        assert!(g.column(Column::GyroDps).unwrap().iter().all(|&v| (v - 10.8).abs() < 1e-12));
+    }
+
+    #[test]
+    fn warm_up_decays_with_its_time_constant() {
+        let t: Vec<f64> = (0..1000).map(|i| i as f64).collect();
+        let b = bias_series(&t, &GyroErrors { warmup_dps: 1.0, warmup_tau_s: 100.0, ..Default::default() });
+        assert_eq!(b[0], 1.0);
+        assert!((b[100] - (-1.0f64).exp()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn random_walk_grows_as_sqrt_time() {
+        // Variance of the walk at 400 s over many seeds: q^2 t = 0.01^2 * 400 = 0.04.
+        let t: Vec<f64> = (0..=400).map(|i| i as f64).collect();
+        let n = 2000;
+        let var: f64 = (0..n)
+            .map(|s| {
+                let b = bias_series(&t, &GyroErrors { walk_dps_per_sqrt_s: 0.01, seed: s, ..Default::default() });
+                b[400] * b[400]
+            })
+            .sum::<f64>()
+            / n as f64;
+        assert!((var - 0.04).abs() < 0.006, "{var}");
+    }
+
+    #[test]
+    fn steps_have_the_given_size_and_rate() {
+        let t: Vec<f64> = (0..100_000).map(|i| i as f64).collect();
+        let b = bias_series(&t, &GyroErrors { step_dps: 0.1, step_every_s: 1000.0, ..Default::default() });
+        let jumps: Vec<f64> = b.windows(2).map(|w| w[1] - w[0]).filter(|d| d.abs() > 1e-9).collect();
+        // ~100 steps expected; each +-0.1 (two steps in one row are rare at this rate)
+        assert!((70..130).contains(&jumps.len()), "{}", jumps.len());
+        assert!(jumps.iter().filter(|d| (d.abs() - 0.1).abs() < 1e-9).count() as f64 > 0.95 * jumps.len() as f64);
+    }
+
+    #[test]
+    fn g_sensitivity_uses_lateral_acceleration() {
+        // 10 m/s at 5.7296 deg/s (0.1 rad/s) -> 1 m/s^2 -> +0.05 deg/s
+        let l = flat_log(3, 1.0, 0.1f64.to_degrees(), 10.0);
+        let g = inject(&l, &GyroErrors { g_sens_dps_per_mps2: 0.05, ..Default::default() }).unwrap();
+        assert!((g.column(Column::GyroDps).unwrap()[1] - (0.1f64.to_degrees() + 0.05)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn quantisation_and_lead_in_cut() {
+        let l = flat_log(10, 1.0, 0.123, 0.0);
+        let g = inject(&l, &GyroErrors { lsb_dps: 0.05, cut_lead_in: true, ..Default::default() }).unwrap();
+        assert_eq!(g.len(), 5, "rows with t < 5 s cut");
+        assert_eq!(g.time_s()[0], 5.0);
+        assert_eq!(g.meta.bias_s, Some(0.0));
+        assert!(g.column(Column::GyroDps).unwrap().iter().all(|&v| (v - 0.1).abs() < 1e-12));
+        assert!(inject(&l, &GyroErrors { bias_dps: f64::NAN, ..Default::default() }).is_err());
+    }
+
+    #[test]
+    fn same_seed_same_errors() {
+        let l = flat_log(500, 0.1, 0.0, 0.0);
+        let e = GyroErrors { walk_dps_per_sqrt_s: 0.01, noise_dps: 0.1, step_dps: 0.1, step_every_s: 10.0, seed: 7, ..Default::default() };
+        assert_eq!(inject(&l, &e).unwrap(), inject(&l, &e).unwrap());
+        assert_ne!(inject(&l, &e).unwrap(), inject(&l, &GyroErrors { seed: 8, ..e }).unwrap());
+    }
+}
