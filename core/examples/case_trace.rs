@@ -1,18 +1,43 @@
-//! Prints one battery case's bias estimates over time (pipeline causal and smoothed, HDR's
-//! drift estimate) for a simulated base: `cargo run --release --example case_trace -- BASE PROFILE`.
-use gyrodrift::{battery, eval::Prepared, hdr, sim::inject};
+//! Prints one simulated battery case's bias over time: the truth (the same drive with an
+//! ideal gyro subtracted), the pipeline (causal, smoothed) and HDR's drift estimate.
+//! `cargo run --release --example case_trace -- BASE PROFILE` (BASE as `gyrodrift battery` names it).
+use gyrodrift::{battery, eval::Prepared, hdr, preprocess::block_average_1hz, sim, Column};
 fn main() {
     let a: Vec<String> = std::env::args().collect();
-    let bases = battery::simulated_bases(20.0);
-    let base = bases.iter().find(|b| b.name == a[1]).expect("base");
+    let base = battery::simulated_bases(20.0).into_iter().find(|b| b.name == a[1]).expect("base");
     let prof = battery::profiles().into_iter().find(|p| p.name == a[2]).expect("profile");
-    let log = inject(&base.log, &prof.errors).unwrap();
-    let params = Default::default();
+    // Same seed, same road: an ideal gyro gives the true rate.
+    let parts: Vec<&str> = a[1].split('-').collect();
+    let seed: u64 = parts[3].parse().unwrap();
+    let cfg = sim::DriveConfig { scenario: parts[1].parse().unwrap(), minutes: 20.0, seed };
+    let ideal = sim::GyroSpec {
+        offset_max_dps: 0.0, temp_coeff_dps_per_c: (0.0, 0.0), gm_sigma_dps: (0.0, 0.0), gm_tau_s: (1.0, 1.0),
+        noise_dps: (0.0, 0.0), scale_error_max: 0.0, nonlinearity_max_dps: 0.0, full_scale_dps: 1e9, lsb_dps: 1e-9,
+    };
+    let truth = sim::drive::simulate_drive_with(&cfg, &ideal);
+    let log = sim::inject(&base.log, &prof.errors).unwrap();
+    let skip = base.log.len() - log.len();
+    let t = log.time_s();
+    let err: Vec<f64> = log.column(Column::GyroDps).unwrap().iter().zip(&truth.column(Column::GyroDps).unwrap()[skip..]).map(|(g, w)| g - w).collect();
+    let true_bias = block_average_1hz(t, &err);
     let prep = Prepared::new(&log, None, &Default::default()).unwrap();
-    let tr = prep.pipeline_trace(&params).unwrap();
+    let tr = prep.pipeline_trace(&Default::default()).unwrap();
     let h = hdr::run(&log, &Default::default()).unwrap();
     let drift = h.trace.drift_estimate_dps();
-    for i in (0..tr.time_s.len()).step_by(30) {
-        println!("{:6.0} stop {} rate {:8.3} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}", tr.time_s[i], tr.stop[i] as u8, prep.blocks.rate_dps[i], tr.bias_dps[i], tr.bias_sigma_dps[i], tr.bias_smoothed_dps[i], drift[i] + h.eps0_dps);
+    let mut f = gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, 0.5, prep.lead_in_end_s()).unwrap();
+    let mut n_straight = 0;
+    let mut w = Vec::new();
+    for i in 0..prep.blocks.len() {
+        let o = f.update(prep.blocks.time_s[i], prep.blocks.rate_dps[i], prep.blocks.still[i]).unwrap();
+        n_straight += o.straight as usize;
+        w.push(f.weights());
+    }
+    println!("straight blocks {n_straight} of {}", prep.blocks.len());
+    let step: usize = a.get(3).map_or(60, |s| s.parse().unwrap());
+    for i in (0..tr.time_s.len()).step_by(step) {
+        println!(
+            "{:6.0} w {:.2} {:.2} {:.2} stop {} rate {:8.3} true {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
+            tr.time_s[i], w[i][0]+w[i][1]+w[i][2], w[i][3]+w[i][4]+w[i][5], w[i][12]+w[i][13]+w[i][14], tr.stop[i] as u8, prep.blocks.rate_dps[i], true_bias.rate_dps[i], tr.bias_dps[i], tr.bias_sigma_dps[i], tr.bias_smoothed_dps[i], drift[i] + h.eps0_dps
+        );
     }
 }

@@ -50,7 +50,7 @@ pub fn compare_row(name: &str, log: &DriveLog, params: &PipelineParams, tuned: O
         Method::Raw,
         Method::Hdr(HdrParams::table_iii()),
         Method::FusionOffset,
-        Method::Zaru { min_still_s: params.min_still_s },
+        Method::Zaru { min_still_s: crate::peers::ZARU_MIN_STILL_S },
         Method::Pipeline(*params),
         Method::PipelineSmoothed(*params),
     ];

@@ -11,6 +11,10 @@ use crate::log::DriveLog;
 use crate::preprocess;
 use crate::still::Blocks;
 
+/// The ZARU peer counts a stop after this long, s (fixed: a peer does not follow the
+/// pipeline's settings).
+pub const ZARU_MIN_STILL_S: f64 = 2.0;
+
 /// x-io Fusion's `FusionOffset`, one axis.
 #[derive(Debug, Clone)]
 pub struct FusionOffset {

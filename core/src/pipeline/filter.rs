@@ -1,17 +1,20 @@
-//! The causal estimator: a bank of scalar Kalman filters on the gyro bias, one per
-//! bias-dynamics hypothesis (slow, medium, fast random walk), weighed by how well each
-//! predicted the stops. No evidence is gated by closeness to the current estimate, so a
-//! large unknown bias cannot lock it out:
+//! The causal estimator: a bank of small Kalman filters, one per bias-dynamics hypothesis
+//! (slow, medium, fast random walk), weighed by how well each predicted the evidence.
+//! State x = [b, c]: the gyro bias and the yaw rate of the "straight" road (curvature and
+//! sway, a Gauss-Markov process with the road's correlation time), so consecutive
+//! straight blocks are not counted as independent and the innovations stay white under a
+//! right hypothesis (which is what lets them weigh the hypotheses). No evidence is gated by
+//! closeness to the current estimate, so a large unknown bias cannot lock it out:
 //!
 //! - stop blocks (judged by speed, wheels or the gyro's own spread; trimmed at both ends;
-//!   plausible, and steady within the stop): the true rate is zero;
+//!   plausible, and steady within the stop): rate = b;
 //! - moving blocks near the dominant rate of the recent drive (its half-sample mode, i.e.
-//!   "straight"): HDR's heuristic, counted once per road correlation time, not per block.
+//!   "straight", HDR's heuristic): rate = b + c.
 //!
 //! A guard re-opens the bias uncertainty when a steady stop disagrees with the estimate
 //! beyond its uncertainty (a bias step, an OS re-calibration).
 
-use super::params::{PipelineParams, N_MODELS};
+use super::params::{PipelineParams, N_MODELS, N_ROADS};
 use crate::error::{Error, Result};
 use std::collections::VecDeque;
 
@@ -26,24 +29,63 @@ pub struct PipelineOutput {
     pub bias_sigma_dps: f64,
     /// The block brought stop evidence (possibly of an earlier, delayed stop block).
     pub stop: bool,
+    /// The block was straight-road evidence.
+    pub straight: bool,
     /// A guard re-opened the bias uncertainty at this block.
     pub reopened: bool,
 }
 
-/// One hypothesis: bias b with variance p, its random walk, and its log weight.
+/// State [bias, road rate] and its covariance.
+pub type State = ([f64; 2], [[f64; 2]; 2]);
+
+/// One hypothesis: its bias random walk, state, and log weight.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Model {
     walk2: f64,
-    b: f64,
-    p: f64,
+    road_var: f64,
+    x: [f64; 2],
+    p: [[f64; 2]; 2],
     logw: f64,
+}
+
+impl Model {
+    /// Predict over dt: bias random walk, road rate Gauss-Markov with factor `a`.
+    fn predict(&mut self, dt: f64, a: f64) {
+        let road_var = self.road_var;
+        self.x[1] *= a;
+        self.p[0][0] += self.walk2 * dt;
+        self.p[0][1] *= a;
+        self.p[1][0] *= a;
+        self.p[1][1] = a * a * self.p[1][1] + road_var * (1.0 - a * a);
+    }
+
+    /// Scalar measurement z = h x + noise(r); returns the innovation's log likelihood.
+    fn update(&mut self, h: [f64; 2], z: f64, r: f64) -> f64 {
+        let ph = [self.p[0][0] * h[0] + self.p[0][1] * h[1], self.p[1][0] * h[0] + self.p[1][1] * h[1]];
+        let s = h[0] * ph[0] + h[1] * ph[1] + r;
+        let nu = z - (h[0] * self.x[0] + h[1] * self.x[1]);
+        let k = [ph[0] / s, ph[1] / s];
+        self.x[0] += k[0] * nu;
+        self.x[1] += k[1] * nu;
+        for i in 0..2 {
+            for j in 0..2 {
+                self.p[i][j] -= k[i] * ph[j];
+            }
+        }
+        let off = 0.5 * (self.p[0][1] + self.p[1][0]);
+        self.p[0][1] = off;
+        self.p[1][0] = off;
+        -0.5 * nu * nu / s - 0.5 * libm::log(2.0 * std::f64::consts::PI * s)
+    }
 }
 
 /// Per-block prior and posterior of each hypothesis, for the offline smoother.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BlockRecord {
-    pub prior: [(f64, f64); N_MODELS],
-    pub post: [(f64, f64); N_MODELS],
+    /// Road-rate factor of the prediction into this block.
+    pub a: f64,
+    pub prior: [State; N_MODELS],
+    pub post: [State; N_MODELS],
     pub weight: [f64; N_MODELS],
 }
 
@@ -78,13 +120,6 @@ impl StopStats {
     }
 }
 
-const STOP_PRIOR: f64 = 0.95;
-
-/// Gaussian density of x with variance s.
-#[inline]
-fn normal_pdf(x: f64, s: f64) -> f64 {
-    libm::exp(-0.5 * x * x / s) / libm::sqrt(2.0 * std::f64::consts::PI * s)
-}
 
 /// The streaming drift reducer on 1 Hz blocks.
 #[derive(Debug, Clone)]
@@ -109,7 +144,11 @@ impl Pipeline {
             return Err(Error::param("prior_bias_sigma_dps", format!("start {bias_dps} +- {bias_sigma_dps} deg/s is not usable")));
         }
         let walks = params.bias_walks_dps_per_sqrt_s();
-        let models = std::array::from_fn(|i| Model { walk2: walks[i] * walks[i], b: bias_dps, p: bias_sigma_dps * bias_sigma_dps, logw: 0.0 });
+        let roads = params.road_sigmas_dps();
+        let models = std::array::from_fn(|i| {
+            let (w, r) = (walks[i / N_ROADS], roads[i % N_ROADS]);
+            Model { walk2: w * w, road_var: r * r, x: [bias_dps, 0.0], p: [[bias_sigma_dps * bias_sigma_dps, 0.0], [0.0, r * r]], logw: 0.0 }
+        });
         Ok(Pipeline {
             p: params,
             models,
@@ -134,8 +173,8 @@ impl Pipeline {
     /// The bank's bias estimate and variance (moment-matched mixture).
     pub fn bias(&self) -> (f64, f64) {
         let w = self.weights();
-        let b: f64 = (0..N_MODELS).map(|i| w[i] * self.models[i].b).sum();
-        let p: f64 = (0..N_MODELS).map(|i| w[i] * (self.models[i].p + (self.models[i].b - b).powi(2))).sum();
+        let b: f64 = (0..N_MODELS).map(|i| w[i] * self.models[i].x[0]).sum();
+        let p: f64 = (0..N_MODELS).map(|i| w[i] * (self.models[i].p[0][0] + (self.models[i].x[0] - b).powi(2))).sum();
         (b, p)
     }
 
@@ -153,10 +192,11 @@ impl Pipeline {
         self.last_time_s = Some(time_s);
         let (b_before, p_before) = self.bias();
         self.heading_deg += (rate_dps - b_before) * dt;
-        // Predict: each hypothesis' random walk; weights forget toward equal.
+        // Predict: each hypothesis' random walk and the road rate; weights forget toward equal.
         let lam = libm::exp(-dt / self.p.forget_s);
+        let a = libm::exp(-dt / self.p.road_corr_s);
         for m in &mut self.models {
-            m.p += m.walk2 * dt;
+            m.predict(dt, a);
             m.logw *= lam;
         }
         // Gather this block's evidence, then the guards, then the updates.
@@ -214,16 +254,16 @@ impl Pipeline {
                 straight = mode.abs() <= self.p.max_bias_dps && (rate_dps - mode).abs() <= self.p.road_gate_dps;
             }
         }
-        let prior = std::array::from_fn(|i| (self.models[i].b, self.models[i].p));
+        let prior = std::array::from_fn(|i| (self.models[i].x, self.models[i].p));
         for &z in &stops {
             self.stop_update(z, !lead_in);
         }
-        if straight && dt > 0.0 {
-            self.road_update(rate_dps, dt);
+        if straight {
+            self.road_update(rate_dps);
         }
-        let post = std::array::from_fn(|i| (self.models[i].b, self.models[i].p));
-        let out = PipelineOutput { heading_deg: self.heading_deg, bias_dps: b_before, bias_sigma_dps: p_before.sqrt(), stop: !stops.is_empty(), reopened };
-        Ok((out, BlockRecord { prior, post, weight: self.weights() }))
+        let post = std::array::from_fn(|i| (self.models[i].x, self.models[i].p));
+        let out = PipelineOutput { heading_deg: self.heading_deg, bias_dps: b_before, bias_sigma_dps: p_before.sqrt(), stop: !stops.is_empty(), straight, reopened };
+        Ok((out, BlockRecord { a, prior, post, weight: self.weights() }))
     }
 
     /// A steady stop that the estimate cannot explain: the bias moved, re-open it.
@@ -235,7 +275,7 @@ impl Pipeline {
         let long = s.last_s - s.first_s >= self.p.jump_min_s;
         if steady && long && (s.mean - b).abs() > 4.0 * (p + r / s.n as f64).sqrt() {
             for m in &mut self.models {
-                m.p += (s.mean - m.b).powi(2);
+                m.p[0][0] += (s.mean - m.x[0]).powi(2);
             }
             self.stop.reopened = true;
             return true;
@@ -249,33 +289,23 @@ impl Pipeline {
         half_sample_mode(&mut rates)
     }
 
-    /// Stop evidence (a zero-rate update). Its likelihood weighs the hypotheses, with a
-    /// small outlier arm so one surprise does not end a hypothesis; `weigh` = false for the
-    /// declared lead-in (before any hypothesis could differ).
+    /// Stop evidence (rate = b). Its likelihood weighs the hypotheses; `weigh` = false for
+    /// the declared lead-in (before any hypothesis could differ).
     fn stop_update(&mut self, z: f64, weigh: bool) {
         let r = self.p.stop_sigma_dps * self.p.stop_sigma_dps;
-        let u = (1.0 - STOP_PRIOR) / (2.0 * self.p.max_bias_dps);
         for m in &mut self.models {
-            let nu = z - m.b;
-            let lik = STOP_PRIOR * normal_pdf(nu, m.p + r) + u;
+            let ll = m.update([1.0, 0.0], z, r);
             if weigh {
-                m.logw += libm::log(lik);
+                m.logw += ll;
             }
-            let k = m.p / (m.p + r);
-            m.b += k * nu;
-            m.p *= 1.0 - k;
         }
     }
 
-    fn road_update(&mut self, rate_dps: f64, dt: f64) {
-        // One block of a road correlated over road_corr_s carries dt / road_corr_s of an
-        // independent measurement: R = sigma^2 road_corr_s / dt.
-        let r = self.p.road_sigma_dps * self.p.road_sigma_dps * self.p.road_corr_s / dt.min(self.p.road_corr_s);
+    /// Straight-road evidence (rate = b + c, block noise on top); weighs the hypotheses.
+    fn road_update(&mut self, rate_dps: f64) {
+        let r = self.p.block_sigma_dps * self.p.block_sigma_dps;
         for m in &mut self.models {
-            let nu = rate_dps - m.b;
-            let k = m.p / (m.p + r);
-            m.b += k * nu;
-            m.p *= 1.0 - k;
+            m.logw += m.update([1.0, 1.0], rate_dps, r);
         }
     }
 }

@@ -9,7 +9,7 @@ pub mod filter;
 pub mod params;
 
 pub use filter::{half_sample_mode, BlockRecord, Pipeline, PipelineOutput};
-pub use params::{PipelineParams, N_MODELS};
+pub use params::{PipelineParams, N_MODELS, N_ROADS, N_WALKS};
 
 use crate::error::Result;
 use crate::eval::{Method, Prepared};
@@ -58,24 +58,36 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     Ok(tr)
 }
 
-/// Rauch-Tung-Striebel smoothing of each hypothesis' random-walk bias, mixed with the
-/// block's hypothesis weights.
+/// Rauch-Tung-Striebel smoothing of each hypothesis' state [bias, road rate], mixed with
+/// the block's hypothesis weights: C_k = P+_k F' (P-_{k+1})^-1, F = diag(1, a_{k+1}).
 pub fn smooth(records: &[BlockRecord]) -> Vec<f64> {
     let n = records.len();
     let mut out = vec![0.0; n];
     for i in 0..N_MODELS {
-        let mut next = f64::NAN;
+        let mut next = [f64::NAN; 2];
         for k in (0..n).rev() {
-            let (b, p) = records[k].post[i];
-            let bs = if k + 1 == n {
-                b
+            let (x, p) = records[k].post[i];
+            let xs = if k + 1 == n {
+                x
             } else {
-                let (b_prior, p_prior) = records[k + 1].prior[i];
-                let g = if p_prior > 0.0 { p / p_prior } else { 0.0 };
-                b + g * (next - b_prior)
+                let (xp, q) = records[k + 1].prior[i];
+                let a = records[k + 1].a;
+                let pf = [[p[0][0], p[0][1] * a], [p[1][0], p[1][1] * a]];
+                let det = q[0][0] * q[1][1] - q[0][1] * q[1][0];
+                if !(det > 0.0) {
+                    x
+                } else {
+                    let inv = [[q[1][1] / det, -q[0][1] / det], [-q[1][0] / det, q[0][0] / det]];
+                    let c = [
+                        [pf[0][0] * inv[0][0] + pf[0][1] * inv[1][0], pf[0][0] * inv[0][1] + pf[0][1] * inv[1][1]],
+                        [pf[1][0] * inv[0][0] + pf[1][1] * inv[1][0], pf[1][0] * inv[0][1] + pf[1][1] * inv[1][1]],
+                    ];
+                    let d = [next[0] - xp[0], next[1] - xp[1]];
+                    [x[0] + c[0][0] * d[0] + c[0][1] * d[1], x[1] + c[1][0] * d[0] + c[1][1] * d[1]]
+                }
             };
-            next = bs;
-            out[k] += records[k].weight[i] * bs;
+            next = xs;
+            out[k] += records[k].weight[i] * xs[0];
         }
     }
     out
@@ -138,7 +150,7 @@ pub fn run(log: &DriveLog, params: &PipelineParams) -> Result<PipelineRun> {
         let raw = prep.score(&Method::Raw)?;
         let hdr = prep.score(&Method::Hdr(Default::default()))?;
         let fusion = prep.score(&Method::FusionOffset)?;
-        let zaru = prep.score(&Method::Zaru { min_still_s: params.min_still_s })?;
+        let zaru = prep.score(&Method::Zaru { min_still_s: crate::peers::ZARU_MIN_STILL_S })?;
         let d = prep.duration_min;
         let ne = |e: f64| crate::metrics::ne_psi(e, d);
         Ok(PipelineResult {

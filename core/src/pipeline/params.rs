@@ -5,8 +5,12 @@ use crate::error::{Error, Result};
 use crate::still::StillOptions;
 use serde::{Deserialize, Serialize};
 
-/// How many bias-dynamics hypotheses the filter bank runs (log-spaced bias walks).
-pub const N_MODELS: usize = 3;
+/// Bias-dynamics hypotheses (log-spaced bias walks) ...
+pub const N_WALKS: usize = 5;
+/// ... times road hypotheses (road rate sigma / spread, x 1, x spread) ...
+pub const N_ROADS: usize = 3;
+/// ... = the filter bank.
+pub const N_MODELS: usize = N_WALKS * N_ROADS;
 
 /// Settings of the pipeline.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -24,11 +28,15 @@ pub struct PipelineParams {
     /// A steady stop this long that disagrees with the bias estimate means the bias has
     /// moved (a step, a re-calibration): the filter re-opens its uncertainty, s.
     pub jump_min_s: f64,
-    /// Yaw rate of "straight" road (curvature, sway) as seen by one block, deg/s.
+    /// Yaw rate of "straight" road (curvature, sway): standard deviation of the road-rate
+    /// state, deg/s.
     pub road_sigma_dps: f64,
-    /// Correlation time of that road yaw rate: straight-road evidence counts once per this
-    /// long, not once per block, s.
+    /// The bank also tries road_sigma_dps divided and multiplied by this (>= 1; 1 = one road).
+    pub road_sigma_spread: f64,
+    /// Its correlation time (Gauss-Markov), s.
     pub road_corr_s: f64,
+    /// White noise of one straight block on top of it, deg/s.
+    pub block_sigma_dps: f64,
     /// Window of moving blocks whose dominant rate (half-sample mode) marks straight
     /// driving, s.
     pub road_window_s: f64,
@@ -49,12 +57,14 @@ impl Default for PipelineParams {
     fn default() -> Self {
         PipelineParams {
             still: StillOptions::default(),
-            min_still_s: 2.0,
+            min_still_s: 1.0,
             stop_sigma_dps: 0.05,
             max_bias_dps: 5.0,
             jump_min_s: 3.0,
-            road_sigma_dps: 0.15,
+            road_sigma_dps: 0.3,
+            road_sigma_spread: 5.0,
             road_corr_s: 10.0,
+            block_sigma_dps: 0.05,
             road_window_s: 60.0,
             road_gate_dps: 0.15,
             bias_walk_min_dps_per_sqrt_s: 1e-4,
@@ -68,15 +78,15 @@ impl Default for PipelineParams {
 
 impl PipelineParams {
     /// The bias walks of the bank, log-spaced from the slowest to the fastest.
-    pub fn bias_walks_dps_per_sqrt_s(&self) -> [f64; N_MODELS] {
+    pub fn bias_walks_dps_per_sqrt_s(&self) -> [f64; N_WALKS] {
         let (lo, hi) = (self.bias_walk_min_dps_per_sqrt_s, self.bias_walk_max_dps_per_sqrt_s);
-        std::array::from_fn(|i| {
-            if N_MODELS == 1 || lo == hi {
-                lo
-            } else {
-                lo * libm::pow(hi / lo, i as f64 / (N_MODELS - 1) as f64)
-            }
-        })
+        std::array::from_fn(|i| if lo == hi { lo } else { lo * libm::pow(hi / lo, i as f64 / (N_WALKS - 1) as f64) })
+    }
+
+    /// The road-rate sigmas of the bank: road_sigma_dps divided and multiplied by the spread.
+    pub fn road_sigmas_dps(&self) -> [f64; N_ROADS] {
+        let (r, k) = (self.road_sigma_dps, self.road_sigma_spread);
+        [r / k, r, r * k]
     }
 
     /// Every setting finite and in range.
@@ -89,6 +99,7 @@ impl PipelineParams {
             ("max_bias_dps", self.max_bias_dps),
             ("road_sigma_dps", self.road_sigma_dps),
             ("road_corr_s", self.road_corr_s),
+            ("block_sigma_dps", self.block_sigma_dps),
             ("road_window_s", self.road_window_s),
             ("road_gate_dps", self.road_gate_dps),
             ("bias_walk_min_dps_per_sqrt_s", self.bias_walk_min_dps_per_sqrt_s),
@@ -105,6 +116,9 @@ impl PipelineParams {
             if !(v.is_finite() && (0.0..1e6).contains(&v)) {
                 return Err(Error::param(name, format!("{v} is not a time in [0, 1e6) s")));
             }
+        }
+        if !(self.road_sigma_spread >= 1.0 && self.road_sigma_spread <= 100.0) {
+            return Err(Error::param("road_sigma_spread", format!("{} is not in [1, 100]", self.road_sigma_spread)));
         }
         if self.bias_walk_min_dps_per_sqrt_s > self.bias_walk_max_dps_per_sqrt_s {
             return Err(Error::param("bias_walk_min_dps_per_sqrt_s", "is above bias_walk_max_dps_per_sqrt_s"));
@@ -129,6 +143,8 @@ impl PipelineParams {
             "jump_min_s" => self.jump_min_s = value,
             "road_sigma_dps" => self.road_sigma_dps = value,
             "road_corr_s" => self.road_corr_s = value,
+            "road_sigma_spread" => self.road_sigma_spread = value,
+            "block_sigma_dps" => self.block_sigma_dps = value,
             "road_window_s" => self.road_window_s = value,
             "road_gate_dps" => self.road_gate_dps = value,
             "bias_walk_min_dps_per_sqrt_s" => self.bias_walk_min_dps_per_sqrt_s = value,
@@ -139,7 +155,7 @@ impl PipelineParams {
             _ => {
                 return Err(Error::param(
                     key,
-                    "unknown key (still_speed_mps, still_travel_m, still_gyro_factor, min_still_s, stop_sigma_dps, max_bias_dps, jump_min_s, road_sigma_dps, road_corr_s, road_window_s, road_gate_dps, bias_walk_min_dps_per_sqrt_s, bias_walk_max_dps_per_sqrt_s, prior_bias_sigma_dps, forget_s, bias_s)",
+                    "unknown key (still_speed_mps, still_travel_m, still_gyro_factor, min_still_s, stop_sigma_dps, max_bias_dps, jump_min_s, road_sigma_dps, road_sigma_spread, road_corr_s, block_sigma_dps, road_window_s, road_gate_dps, bias_walk_min_dps_per_sqrt_s, bias_walk_max_dps_per_sqrt_s, prior_bias_sigma_dps, forget_s, bias_s)",
                 ))
             }
         }

@@ -2,9 +2,20 @@
 
 use super::*;
 
-/// One hypothesis (walk min = max), so the numbers are a plain Kalman filter.
+/// One hypothesis (walk min = max, one road), so the numbers are a plain Kalman filter;
+/// fixed constants, so the hand-worked numbers do not follow the defaults.
 fn one_model() -> PipelineParams {
-    PipelineParams { bias_walk_min_dps_per_sqrt_s: 0.001, bias_walk_max_dps_per_sqrt_s: 0.001, ..PipelineParams::default() }
+    PipelineParams {
+        bias_walk_min_dps_per_sqrt_s: 0.001,
+        bias_walk_max_dps_per_sqrt_s: 0.001,
+        road_sigma_dps: 0.3,
+        road_sigma_spread: 1.0,
+        road_corr_s: 10.0,
+        block_sigma_dps: 0.05,
+        min_still_s: 2.0,
+        stop_sigma_dps: 0.05,
+        ..PipelineParams::default()
+    }
 }
 
 fn pdf(x: f64, s: f64) -> f64 {
@@ -14,28 +25,35 @@ fn pdf(x: f64, s: f64) -> f64 {
 #[test]
 fn walks_are_log_spaced() {
     let w = PipelineParams::default().bias_walks_dps_per_sqrt_s();
-    assert!((w[0] - 1e-4).abs() < 1e-18 && (w[1] - 1e-3).abs() < 1e-15 && (w[2] - 1e-2).abs() < 1e-15);
+    let want = [1e-4, 10f64.powf(-3.5), 1e-3, 10f64.powf(-2.5), 1e-2];
+    for i in 0..5 {
+        assert!((w[i] / want[i] - 1.0).abs() < 1e-12, "{w:?}");
+    }
+    let r = PipelineParams { road_sigma_dps: 0.3, road_sigma_spread: 5.0, ..PipelineParams::default() }.road_sigmas_dps();
+    assert!((r[0] - 0.06).abs() < 1e-15 && r[1] == 0.3 && (r[2] - 1.5).abs() < 1e-15);
 }
 
 #[test]
 fn road_step_hand_worked() {
     // Straight evidence needs 5 moving blocks in the window; at t = 4 all five read 0.3, so
-    // the dominant rate is 0.3 and the block is straight: P = 0.25 + 4 * 0.001^2,
-    // R = 0.15^2 * 10 s / 1 s = 0.225, K = P / (P + R), b = 0.3 K.
+    // the dominant rate is 0.3 and the block is straight. State [b, c]: the road variance
+    // stays stationary (0.3^2) under prediction, the cross terms stay 0, so P = diag(0.25 +
+    // 4 * 0.001^2, 0.09). H = [1, 1], R = 0.05^2: S = P00 + P11 + R, K = [P00, P11] / S.
     let mut f = Pipeline::new(one_model(), 0.0, 0.5, f64::NEG_INFINITY).unwrap();
     for t in 0..4 {
         f.update(t as f64, 0.3, false).unwrap();
         assert_eq!(f.bias().0, 0.0, "no straight evidence before 5 moving blocks");
     }
     let o = f.update(4.0, 0.3, false).unwrap();
+    assert!(o.straight);
     assert!((o.heading_deg - 1.2).abs() < 1e-12, "integrates rate - bias(before) = 0.3 deg/s over 4 s");
-    let p = 0.25 + 4.0 * 1e-6;
-    let k = p / (p + 0.225);
+    let p00 = 0.25 + 4.0 * 1e-6;
+    let s = p00 + 0.09 + 0.0025;
     let (b, var) = f.bias();
-    assert!((b - 0.3 * k).abs() < 1e-14, "{b} vs {}", 0.3 * k);
-    assert!((var - (1.0 - k) * p).abs() < 1e-14);
+    assert!((b - 0.3 * p00 / s).abs() < 1e-14, "{b} vs {}", 0.3 * p00 / s);
+    assert!((var - (p00 - p00 * p00 / s)).abs() < 1e-14);
     // A turn block (far from the dominant rate) is not evidence.
-    f.update(5.0, 12.0, false).unwrap();
+    assert!(!f.update(5.0, 12.0, false).unwrap().straight);
     assert_eq!(f.bias().0, b);
 }
 
@@ -135,8 +153,10 @@ fn the_bank_moves_to_the_fast_hypothesis_on_a_step() {
         f.update(t, 1.0, true).unwrap();
         t += 1.0;
     }
+    // Weight of each bias walk (summed over the road hypotheses): the two fastest win.
     let w = f.weights();
-    assert!(w[2] > w[0] && w[2] > 0.5, "weights {w:?}");
+    let by_walk: Vec<f64> = w.chunks(N_ROADS).map(|c| c.iter().sum()).collect();
+    assert!(by_walk[3] + by_walk[4] > 0.5, "weights by walk {by_walk:?}");
     assert!((f.bias().0 - 1.0).abs() < 0.02, "bias {}", f.bias().0);
 }
 
@@ -188,4 +208,24 @@ fn bad_updates_and_params_are_errors() {
     assert!(PipelineParams { road_sigma_dps: 1e300, ..one_model() }.validate().is_err());
     assert!(PipelineParams::default().set("nope", 1.0).is_err());
     assert!(Pipeline::new(one_model(), 0.0, 0.0, 0.0).is_err());
+}
+
+#[test]
+fn smoother_keeps_a_lead_in_it_agrees_with() {
+    // 20 s lead-in at 0.1, then 300 s of straight driving at 0.1 with sway: the smoothed
+    // bias stays at 0.1 over the lead-in (every hypothesis agrees).
+    let n = 320;
+    let blocks = Blocks {
+        time_s: (0..n).map(|i| i as f64).collect(),
+        rate_dps: (0..n).map(|i| 0.1 + if i >= 20 { 0.1 * ((i as f64) * 0.9).sin() } else { 0.0 }).collect(),
+        temp_c: vec![f64::NAN; n],
+        still: (0..n).map(|i| i < 20).collect(),
+    };
+    let tr = run_blocks(&blocks, PipelineParams::default(), 20.0).unwrap();
+    for k in [0, 1, 10, 19] {
+        assert!((tr.bias_smoothed_dps[k] - 0.1).abs() < 0.005, "block {k}: smoothed {}", tr.bias_smoothed_dps[k]);
+    }
+    for k in [100, 319] {
+        assert!((tr.bias_smoothed_dps[k] - 0.1).abs() < 0.02, "block {k}: smoothed {}", tr.bias_smoothed_dps[k]);
+    }
 }
