@@ -556,12 +556,17 @@ async function runTune() {
   }
   const rep = res.data;
   const p = rep.result.params;
-  $("tune-status").textContent = `done in ${((performance.now() - t0) / 1000).toFixed(1)} s: mean NE_ψ over the ${drives.length} drives ${fmt(rep.result.objective_start_deg_per_min, 4)} → ${fmt(rep.result.objective_tuned_deg_per_min, 4)} deg/min`;
+  const cv = rep.result.cv;
+  const cvText = cv
+    ? ` · leave-one-drive-out: held-out NE_ψ ${fmt(cv.cv_table_iii_deg_per_min, 4)} with Table III, ${fmt(cv.cv_tuned_deg_per_min, 4)} tuned`
+    : " · no cross-validation (fewer than 3 drives)";
+  const verdict = rep.result.recommended_is_tuned ? "recommended: the tuned parameters" : "recommended: Table III (the tuned parameters do worse on drives they were not tuned on)";
+  $("tune-status").textContent = `done in ${((performance.now() - t0) / 1000).toFixed(1)} s: mean NE_ψ over the ${drives.length} drives ${fmt(rep.result.objective_start_deg_per_min, 4)} → ${fmt(rep.result.objective_tuned_deg_per_min, 4)} deg/min${cvText}; ${verdict}`;
   const div = $("tune-result");
   div.replaceChildren(reportTable(rep.train.tuned));
   const b = document.createElement("button");
   b.id = "apply-tuned";
-  b.textContent = `Apply tuned parameters (i_c ${fmt(p.i_c_dps, 4)}, tau ${fmt(p.tau_s, 3)}, theta_w ${fmt(p.theta_w_dps, 3)}, c1 ${fmt(p.c1, 3)}, c2 ${fmt(p.c2, 3)})`;
+  b.textContent = `${rep.result.recommended_is_tuned ? "Apply" : "Apply anyway (not recommended)"} tuned parameters (i_c ${fmt(p.i_c_dps, 4)}, tau ${fmt(p.tau_s, 3)}, theta_w ${fmt(p.theta_w_dps, 3)}, c1 ${fmt(p.c1, 3)}, c2 ${fmt(p.c2, 3)})`;
   b.addEventListener("click", () => {
     Object.assign(state.params, p);
     syncParams();

@@ -326,7 +326,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 let train = read_logs(&tune_on)?;
                 let refs: Vec<(String, &DriveLog)> = train.iter().map(|(n, l)| (n.clone(), l)).collect();
                 let prepared = tune::prepare_all(&refs, &hdr::HdrOptions::default()).map_err(|e| Failure(e.to_string()))?;
-                Some(tune::tune(&prepared, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?.params)
+                Some(tune::tune(&prepared, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?.recommended)
             };
             let logs = read_logs(&files)?;
             let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), l)).collect();
@@ -424,7 +424,15 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 bases.push(battery::recorded_base(&stem, log));
             }
             bases.extend(battery::simulated_bases(minutes));
-            let b = battery::run(&bases, &battery::profiles(), split, &params, None).map_err(|e| Failure(e.to_string()))?;
+            let tuned = battery::tune_hdr(&bases).map_err(|e| Failure(e.to_string()))?;
+            eprintln!(
+                "HDR tuned on the {} training bases: cross-validated NE_psi {:.4} (Table III {:.4}) -> {}",
+                bases.iter().filter(|b| b.training).count(),
+                tuned.cv.as_ref().map_or(f64::NAN, |c| c.cv_tuned_deg_per_min),
+                tuned.cv.as_ref().map_or(f64::NAN, |c| c.cv_table_iii_deg_per_min),
+                if tuned.recommended_is_tuned { "tuned parameters used" } else { "Table III used (tuning does not generalise)" }
+            );
+            let b = battery::run(&bases, &battery::profiles(), split, &params, Some(tuned.recommended)).map_err(|e| Failure(e.to_string()))?;
             if json {
                 print_json(&b)
             } else {

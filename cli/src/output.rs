@@ -96,6 +96,18 @@ pub fn tune_text(rep: &gyrodrift::tune::TuneReport, markdown: bool) -> String {
     ] {
         let _ = writeln!(s, "  {name:<8} {a:>12.4} {b:>12.4} {unit}");
     }
+    if let Some(cv) = &rep.result.cv {
+        let _ = writeln!(
+            s,
+            "Leave-one-drive-out cross-validation over {} drives: mean held-out NE_psi {:.4} deg/min with Table III, {:.4} with parameters tuned on the other drives.",
+            cv.folds.len(), cv.cv_table_iii_deg_per_min, cv.cv_tuned_deg_per_min
+        );
+    }
+    if rep.result.recommended_is_tuned {
+        let _ = writeln!(s, "Recommended: the tuned parameters.");
+    } else {
+        let _ = writeln!(s, "Recommended: Table III. The tuned parameters do worse on drives they were not tuned on; they are shown, not recommended.");
+    }
     let table = |r: &gyrodrift::report::Report| if markdown { r.to_markdown() } else { r.to_text() };
     let sets = [("Training drives", Some(&rep.train)), ("Test drives", rep.test.as_ref())];
     for (title, cmp) in sets {

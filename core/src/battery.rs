@@ -106,11 +106,20 @@ pub fn profiles() -> Vec<Profile> {
     ]
 }
 
+/// HDR tuned the way a user should tune it: on the training bases as recorded, with
+/// leave-one-drive-out cross-validation; `recommended` is Table III when tuning does not
+/// generalise.
+pub fn tune_hdr(bases: &[Base]) -> Result<crate::tune::TuneResult> {
+    let named: Vec<(String, &DriveLog)> = bases.iter().filter(|b| b.training).map(|b| (b.name.clone(), &b.log)).collect();
+    let prepared = crate::tune::prepare_all(&named, &Default::default())?;
+    crate::tune::tune(&prepared, &Default::default())
+}
+
 /// The methods of the battery, in column order.
 pub fn method_names(with_tuned: bool) -> Vec<&'static str> {
     let mut v = vec!["raw", "HDR Table III", "Fusion offset", "ZARU", "pipeline", "smoothed"];
     if with_tuned {
-        v.push("HDR tuned");
+        v.push("HDR tuned (CV)");
     }
     v
 }

@@ -1,5 +1,7 @@
 //! Automatic HDR parameter tuning: the five parameters that minimise the mean NE_psi over
-//! a set of training drives (the paper's "painstakingly hand-tuned" Table III, automated).
+//! a set of training drives (the paper's "painstakingly hand-tuned" Table III, automated),
+//! regularised toward Table III and judged by leave-one-drive-out cross-validation: tuned
+//! parameters are recommended only when their cross-validated score beats Table III's.
 //! Bounded Nelder-Mead (argmin) on coordinates scaled to the bounds; deterministic.
 //! Drives are prepared once (static bias, 1 Hz blocks, reference) and evaluated in parallel
 //! natively (feature `parallel`, rayon); the per-sample loop allocates nothing.
@@ -101,6 +103,11 @@ pub struct TuneOptions {
     pub max_iters: u64,
     /// Restarts from the best point found (each with a fresh simplex).
     pub restarts: u32,
+    /// Penalty toward Table III, deg/min per unit squared distance in the bounds-scaled
+    /// coordinates (0 = none): five parameters on a few drives over-fit without it.
+    pub regularization_deg_per_min: f64,
+    /// Leave-one-drive-out cross-validation (needs 3 drives or more).
+    pub cross_validate: bool,
 }
 
 impl Default for TuneOptions {
@@ -111,6 +118,8 @@ impl Default for TuneOptions {
             start: HdrParams::default(),
             max_iters: 250,
             restarts: 2,
+            regularization_deg_per_min: 0.05,
+            cross_validate: true,
         }
     }
 }
@@ -131,12 +140,39 @@ pub struct TuneResult {
     pub objective_start_deg_per_min: f64,
     pub objective_tuned_deg_per_min: f64,
     pub n_evaluations: u64,
+    /// Leave-one-drive-out cross-validation, when run.
+    pub cv: Option<CrossValidation>,
+    /// The parameters to use: the tuned ones only when cross-validation says they beat
+    /// Table III on drives they were not tuned on (or when it was not run); else Table III.
+    pub recommended: HdrParams,
+    pub recommended_is_tuned: bool,
+}
+
+/// One held-out drive: its NE_psi with Table III and with parameters tuned on the others.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CvFold {
+    pub held_out: String,
+    pub ne_psi_table_iii_deg_per_min: f64,
+    pub ne_psi_tuned_deg_per_min: f64,
+    pub params: HdrParams,
+}
+
+/// Leave-one-drive-out cross-validation of the tuning.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CrossValidation {
+    pub folds: Vec<CvFold>,
+    /// Mean held-out NE_psi with Table III and with the fold's tuned parameters.
+    pub cv_table_iii_deg_per_min: f64,
+    pub cv_tuned_deg_per_min: f64,
 }
 
 struct Problem<'a> {
     drives: &'a [PreparedDrive],
     lo: [f64; 5],
     hi: [f64; 5],
+    /// Table III in unit-cube coordinates, and the penalty weight toward it.
+    anchor: [f64; 5],
+    lambda: f64,
     evals: &'a std::cell::Cell<u64>,
     progress: &'a dyn Fn(u64),
 }
@@ -151,6 +187,13 @@ impl Problem<'_> {
     }
 }
 
+impl Problem<'_> {
+    /// Regularisation: lambda * squared distance to Table III in unit-cube coordinates.
+    fn penalty(&self, u: &[f64]) -> f64 {
+        self.lambda * (0..5).map(|k| (u[k].clamp(0.0, 1.0) - self.anchor[k]).powi(2)).sum::<f64>()
+    }
+}
+
 impl CostFunction for Problem<'_> {
     type Param = Vec<f64>;
     type Output = f64;
@@ -162,7 +205,7 @@ impl CostFunction for Problem<'_> {
         // Outside the unit cube: the clamped cost plus a penalty, so the simplex walks back.
         let outside: f64 = u.iter().map(|&x| (x - x.clamp(0.0, 1.0)).abs()).sum();
         let c = objective(self.drives, self.params(u)).map_err(|e| argmin::core::Error::msg(e.to_string()))?;
-        Ok(c + outside)
+        Ok(c + outside + self.penalty(u))
     }
 }
 
@@ -171,13 +214,66 @@ pub fn tune(drives: &[PreparedDrive], opts: &TuneOptions) -> Result<TuneResult> 
     tune_with_progress(drives, opts, &|_| {})
 }
 
-/// An upper estimate of the objective evaluations a tuning run makes (for progress bars).
+/// An upper estimate of the objective evaluations one tuning run makes (for progress bars;
+/// cross-validation adds one run per drive).
 pub fn expected_evaluations(opts: &TuneOptions) -> u64 {
     (opts.restarts as u64 + 1) * (opts.max_iters * 2 + 6)
 }
 
-/// As `tune`, calling `progress(evaluations so far)` every 16 evaluations.
+/// Evaluations of `tune_with_progress` on `n_drives` drives, cross-validation included.
+pub fn expected_evaluations_for(opts: &TuneOptions, n_drives: usize) -> u64 {
+    let folds = if opts.cross_validate && n_drives >= 3 { n_drives as u64 } else { 0 };
+    expected_evaluations(opts) * (1 + folds)
+}
+
+/// Leave-one-drive-out: tune on all drives but one, score the one left out; Table III on
+/// the same drive for comparison.
+pub fn cross_validate(drives: &[PreparedDrive], opts: &TuneOptions, progress: &dyn Fn(u64)) -> Result<CrossValidation> {
+    if drives.len() < 3 {
+        return Err(Error::data("cross-validation needs 3 drives or more"));
+    }
+    let per_run = expected_evaluations(opts);
+    let mut folds = Vec::with_capacity(drives.len());
+    for (i, held) in drives.iter().enumerate() {
+        let rest: Vec<PreparedDrive> = drives.iter().enumerate().filter(|(j, _)| *j != i).map(|(_, d)| d.clone()).collect();
+        let done = (i as u64 + 1) * per_run;
+        let r = tune_once(&rest, opts, &|e| progress(done + e))?;
+        let ne = |p: HdrParams| -> Result<f64> { Ok(metrics::ne_psi(held.e_psi_hdr_deg(p, &mut Vec::new())?, held.duration_min)) };
+        folds.push(CvFold {
+            held_out: held.name.clone(),
+            ne_psi_table_iii_deg_per_min: ne(HdrParams::table_iii())?,
+            ne_psi_tuned_deg_per_min: ne(r.params)?,
+            params: r.params,
+        });
+    }
+    let n = folds.len() as f64;
+    Ok(CrossValidation {
+        cv_table_iii_deg_per_min: folds.iter().map(|f| f.ne_psi_table_iii_deg_per_min).sum::<f64>() / n,
+        cv_tuned_deg_per_min: folds.iter().map(|f| f.ne_psi_tuned_deg_per_min).sum::<f64>() / n,
+        folds,
+    })
+}
+
+/// As `tune`, calling `progress(evaluations so far)` every 16 evaluations. With
+/// `cross_validate` (and 3 drives or more) the tuning is repeated once per held-out drive.
 pub fn tune_with_progress(drives: &[PreparedDrive], opts: &TuneOptions, progress: &dyn Fn(u64)) -> Result<TuneResult> {
+    let mut r = tune_once(drives, opts, progress)?;
+    if opts.cross_validate && drives.len() >= 3 {
+        let cv = cross_validate(drives, opts, progress)?;
+        r.recommended_is_tuned = cv.cv_tuned_deg_per_min < cv.cv_table_iii_deg_per_min;
+        r.cv = Some(cv);
+    } else {
+        r.recommended_is_tuned = true;
+    }
+    r.recommended = if r.recommended_is_tuned { r.params } else { HdrParams::table_iii() };
+    Ok(r)
+}
+
+/// One regularised tuning run (no cross-validation).
+fn tune_once(drives: &[PreparedDrive], opts: &TuneOptions, progress: &dyn Fn(u64)) -> Result<TuneResult> {
+    if !(opts.regularization_deg_per_min.is_finite() && opts.regularization_deg_per_min >= 0.0) {
+        return Err(Error::param("regularization_deg_per_min", "must be a number >= 0"));
+    }
     if drives.is_empty() {
         return Err(Error::data("no training drives"));
     }
@@ -190,10 +286,14 @@ pub fn tune_with_progress(drives: &[PreparedDrive], opts: &TuneOptions, progress
         }
     }
     let evals = std::cell::Cell::new(0);
-    let problem = Problem { drives, lo, hi, evals: &evals, progress };
-    let start_cost = objective(drives, opts.start)?;
+    let t3 = to_vec(&HdrParams::table_iii());
+    let anchor: [f64; 5] = std::array::from_fn(|k| ((t3[k] - lo[k]) / (hi[k] - lo[k])).clamp(0.0, 1.0));
+    let lambda = opts.regularization_deg_per_min;
+    let problem = Problem { drives, lo, hi, anchor, lambda, evals: &evals, progress };
     let s = to_vec(&opts.start);
-    let mut best_u: Vec<f64> = (0..5).map(|k| ((s[k] - lo[k]) / (hi[k] - lo[k])).clamp(0.0, 1.0)).collect();
+    let start_u: Vec<f64> = (0..5).map(|k| ((s[k] - lo[k]) / (hi[k] - lo[k])).clamp(0.0, 1.0)).collect();
+    let start_cost = objective(drives, opts.start)? + problem.penalty(&start_u);
+    let mut best_u: Vec<f64> = start_u;
     let mut best_cost = start_cost;
     let mut best_params = opts.start;
     for round in 0..=opts.restarts {
@@ -207,14 +307,14 @@ pub fn tune_with_progress(drives: &[PreparedDrive], opts: &TuneOptions, progress
         let solver = NelderMead::new(simplex)
             .with_sd_tolerance(1e-7)
             .map_err(|e| Error::data(format!("tuning: {e}")))?;
-        let round_problem = Problem { drives, lo, hi, evals: &evals, progress };
+        let round_problem = Problem { drives, lo, hi, anchor, lambda, evals: &evals, progress };
         let res = Executor::new(round_problem, solver)
             .configure(|st| st.max_iters(opts.max_iters))
             .run()
             .map_err(|e| Error::data(format!("tuning: {e}")))?;
         if let Some(u) = res.state.best_param {
             let p = problem.params(&u);
-            let c = objective(drives, p)?;
+            let c = objective(drives, p)? + problem.penalty(&u);
             if c < best_cost {
                 best_cost = c;
                 best_params = p;
@@ -224,9 +324,12 @@ pub fn tune_with_progress(drives: &[PreparedDrive], opts: &TuneOptions, progress
     }
     Ok(TuneResult {
         params: best_params,
-        objective_start_deg_per_min: start_cost,
-        objective_tuned_deg_per_min: best_cost,
+        objective_start_deg_per_min: objective(drives, opts.start)?,
+        objective_tuned_deg_per_min: objective(drives, best_params)?,
         n_evaluations: evals.get(),
+        cv: None,
+        recommended: best_params,
+        recommended_is_tuned: true,
     })
 }
 
@@ -270,4 +373,51 @@ pub fn tune_and_report_with_progress(
     let train_cmp = compare(train)?;
     let test_cmp = if test.is_empty() { None } else { Some(compare(test)?) };
     Ok(TuneReport { result, train: train_cmp, test: test_cmp })
+}
+
+#[cfg(test)]
+mod cv_tests {
+    use super::*;
+    use crate::sim::{simulate, SimKind, SimRequest};
+
+    fn drives(n: u64) -> Vec<PreparedDrive> {
+        (0..n)
+            .map(|i| {
+                let log = simulate(&SimRequest { kind: SimKind::Drive, scenario: Some("city".into()), minutes: Some(4.0), seed: 40 + i, name: None }).unwrap();
+                PreparedDrive::new(&format!("d{i}"), &log, None, true).unwrap()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn cross_validation_holds_each_drive_out_once_and_gates_the_recommendation() {
+        let d = drives(3);
+        let opts = TuneOptions { max_iters: 20, restarts: 0, ..Default::default() };
+        let r = tune(&d, &opts).unwrap();
+        let cv = r.cv.as_ref().unwrap();
+        assert_eq!(cv.folds.iter().map(|f| f.held_out.as_str()).collect::<Vec<_>>(), ["d0", "d1", "d2"]);
+        // Table III's held-out score is its plain mean NE_psi over the drives.
+        let t3 = objective(&d, HdrParams::table_iii()).unwrap();
+        assert!((cv.cv_table_iii_deg_per_min - t3).abs() < 1e-12);
+        let fold0 = tune_once(&d[1..], &opts, &|_| {}).unwrap();
+        assert_eq!(cv.folds[0].params, fold0.params, "fold 0 tuned on d1, d2 only");
+        assert_eq!(r.recommended_is_tuned, cv.cv_tuned_deg_per_min < cv.cv_table_iii_deg_per_min);
+        assert_eq!(r.recommended, if r.recommended_is_tuned { r.params } else { HdrParams::table_iii() });
+        // Two drives: no cross-validation; the tuned parameters are returned as they are.
+        let r2 = tune(&d[..2], &opts).unwrap();
+        assert!(r2.cv.is_none() && r2.recommended_is_tuned);
+    }
+
+    #[test]
+    fn regularization_pulls_toward_table_iii() {
+        let d = drives(2);
+        let free = TuneOptions { max_iters: 60, restarts: 0, regularization_deg_per_min: 0.0, cross_validate: false, ..Default::default() };
+        let strong = TuneOptions { regularization_deg_per_min: 100.0, ..free };
+        let t3 = HdrParams::table_iii();
+        let dist = |p: HdrParams| (p.i_c_dps - t3.i_c_dps).abs() / 0.3 + (p.theta_w_dps - t3.theta_w_dps).abs() / 3.0;
+        let a = tune(&d, &free).unwrap().params;
+        let b = tune(&d, &strong).unwrap().params;
+        assert!(dist(b) <= dist(a) && dist(b) < 0.01, "free {a:?}, regularised {b:?}");
+        assert!(tune(&d, &TuneOptions { regularization_deg_per_min: -1.0, ..free }).is_err());
+    }
 }

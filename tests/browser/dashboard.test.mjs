@@ -170,6 +170,7 @@ for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyro
       await page.locator("#tune").click();
       await page.waitForSelector("#apply-tuned", { timeout: 120000 });
       assert.match(await page.locator("#tune-status").innerText(), /done in .* deg\/min/);
+      assert.match(await page.locator("#tune-status").innerText(), /leave-one-drive-out: held-out NE_ψ .*; recommended: /);
       const before = await page.locator("#p-i_c_dps").inputValue();
       await page.locator("#apply-tuned").click();
       await page.waitForFunction(() => !document.getElementById("view-hdr").hidden);

@@ -464,7 +464,7 @@ pub fn tune(
     };
     let train = prep(Log::from_array(&train, "train")?)?;
     let test = prep(Log::from_array(&test, "test")?)?;
-    let expected = tune::expected_evaluations(&opts).max(1) as f64;
+    let expected = tune::expected_evaluations_for(&opts, train.len()).max(1) as f64;
     let report = |n: u64| {
         if let Some(f) = &progress {
             let _ = f.call1(&JsValue::NULL, &JsValue::from_f64((n as f64 / expected).min(1.0)));

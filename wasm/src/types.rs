@@ -237,6 +237,23 @@ export interface TuneOptions {
   start?: HdrParams;
   max_iters?: number;
   restarts?: number;
+  /** Penalty toward Table III, deg/min per unit squared distance in bounds-scaled coordinates. */
+  regularization_deg_per_min?: number;
+  /** Leave-one-drive-out cross-validation (3 drives or more). */
+  cross_validate?: boolean;
+}
+
+export interface CvFold {
+  held_out: string;
+  ne_psi_table_iii_deg_per_min: number;
+  ne_psi_tuned_deg_per_min: number;
+  params: Required<HdrParams>;
+}
+
+export interface CrossValidation {
+  folds: CvFold[];
+  cv_table_iii_deg_per_min: number;
+  cv_tuned_deg_per_min: number;
 }
 
 export interface TuneResult {
@@ -244,6 +261,10 @@ export interface TuneResult {
   objective_start_deg_per_min: number;
   objective_tuned_deg_per_min: number;
   n_evaluations: number;
+  cv: CrossValidation | null;
+  /** Tuned only if cross-validation says they beat Table III on held-out drives. */
+  recommended: Required<HdrParams>;
+  recommended_is_tuned: boolean;
 }
 
 export interface Comparison {
