@@ -4,6 +4,9 @@
 use gyrodrift::{battery, eval::Prepared, hdr, preprocess::block_average_1hz, sim, Column};
 fn main() {
     let a: Vec<String> = std::env::args().collect();
+    if a[1].ends_with(".csv") {
+        return trace_csv(&a);
+    }
     let base = battery::simulated_bases(20.0).into_iter().find(|b| b.name == a[1]).expect("base");
     let prof = battery::profiles().into_iter().find(|p| p.name == a[2]).expect("profile");
     // Same seed, same road: an ideal gyro gives the true rate.
@@ -39,5 +42,27 @@ fn main() {
             "{:6.0} w {:.2} {:.2} {:.2} stop {} rate {:8.3} true {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
             tr.time_s[i], w[i][0]+w[i][1]+w[i][2], w[i][3]+w[i][4]+w[i][5], w[i][12]+w[i][13]+w[i][14], tr.stop[i] as u8, prep.blocks.rate_dps[i], true_bias.rate_dps[i], tr.bias_dps[i], tr.bias_sigma_dps[i], tr.bias_smoothed_dps[i], drift[i] + h.eps0_dps
         );
+    }
+}
+
+/// A recorded log (CSV v1) with a profile: no truth, HDR's estimate beside the pipeline's.
+fn trace_csv(a: &[String]) {
+    let base = gyrodrift::parse_log(std::fs::File::open(&a[1]).unwrap()).unwrap();
+    let prof = battery::profiles().into_iter().find(|p| p.name == a[2]).expect("profile");
+    let log = sim::inject(&base, &prof.errors).unwrap();
+    let prep = Prepared::new(&log, None, &Default::default()).unwrap();
+    let tr = prep.pipeline_trace(&Default::default()).unwrap();
+    let h = hdr::run(&log, &Default::default()).unwrap();
+    let drift = h.trace.drift_estimate_dps();
+    let mut f = gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, 0.5, prep.lead_in_end_s()).unwrap();
+    let step: usize = a.get(3).map_or(60, |s| s.parse().unwrap());
+    for i in 0..prep.blocks.len() {
+        let o = f.update(prep.blocks.time_s[i], prep.blocks.rate_dps[i], prep.blocks.still[i]).unwrap();
+        if i % step == 0 {
+            println!(
+                "{:7.0} still {} stop {} straight {} rate {:8.3} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
+                tr.time_s[i] - tr.time_s[0], prep.blocks.still[i] as u8, o.stop as u8, o.straight as u8, prep.blocks.rate_dps[i], tr.bias_dps[i], tr.bias_sigma_dps[i], tr.bias_smoothed_dps[i], drift[i] + h.eps0_dps
+            );
+        }
     }
 }

@@ -251,7 +251,10 @@ impl Pipeline {
                 // The dominant rate is a bias only if a bias could be that large (a drive
                 // in circles is not straight).
                 let mode = self.window_mode();
-                straight = mode.abs() <= self.p.max_bias_dps && (rate_dps - mode).abs() <= self.p.road_gate_dps;
+                // A quantised gyro (one row per block) puts the mode on its lattice: keep the
+                // gate two steps wide so the selection stays centred.
+                let gate = self.p.road_gate_dps.max(2.0 * self.window_step());
+                straight = mode.abs() <= self.p.max_bias_dps && (rate_dps - mode).abs() <= gate;
             }
         }
         let prior = std::array::from_fn(|i| (self.models[i].x, self.models[i].p));
@@ -281,6 +284,14 @@ impl Pipeline {
             return true;
         }
         false
+    }
+
+    /// The smallest non-zero step between the window's rates: the gyro's quantisation when
+    /// a block holds one row (0 when it is finer than 1e-6 deg/s).
+    fn window_step(&self) -> f64 {
+        let mut r: Vec<f64> = self.window.iter().map(|w| w.1).collect();
+        r.sort_by(f64::total_cmp);
+        r.windows(2).map(|w| w[1] - w[0]).filter(|&d| d > 1e-6).fold(f64::INFINITY, f64::min).min(1.0).max(0.0)
     }
 
     /// The dominant rate of the recent moving blocks: where a road vehicle drives straight.
