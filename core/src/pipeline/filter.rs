@@ -14,7 +14,8 @@
 //! A guard re-opens the bias uncertainty when a steady stop disagrees with the estimate
 //! beyond its uncertainty (a bias step, an OS re-calibration).
 
-use super::params::{PipelineParams, N_MODELS, N_ROADS};
+use super::params::{PipelineParams, N_MODELS, N_ROADS, N_WARMS};
+use nalgebra::{Matrix3, RowVector3, Vector3};
 use crate::error::{Error, Result};
 use std::collections::VecDeque;
 
@@ -35,58 +36,66 @@ pub struct PipelineOutput {
     pub reopened: bool,
 }
 
-/// State [bias, road rate] and its covariance.
-pub type State = ([f64; 2], [[f64; 2]; 2]);
+/// State [settled bias b_inf, warm-up term d, road rate c] and its covariance; the bias
+/// is b_inf + d.
+pub type State = (Vector3<f64>, Matrix3<f64>);
 
-/// One hypothesis: its bias random walk, state, and log weight.
+/// One hypothesis: its bias random walk, road-rate variance, warm-up decay time (infinite
+/// = no warm-up term), state, and log weight.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Model {
     walk2: f64,
     road_var: f64,
-    x: [f64; 2],
-    p: [[f64; 2]; 2],
+    warm_tau_s: f64,
+    x: Vector3<f64>,
+    p: Matrix3<f64>,
     logw: f64,
 }
 
+const H_STOP: RowVector3<f64> = RowVector3::new(1.0, 1.0, 0.0);
+const H_ROAD: RowVector3<f64> = RowVector3::new(1.0, 1.0, 1.0);
+
 impl Model {
-    /// Predict over dt: bias random walk, road rate Gauss-Markov with factor `a`.
-    fn predict(&mut self, dt: f64, a: f64) {
-        let road_var = self.road_var;
-        self.x[1] *= a;
-        self.p[0][0] += self.walk2 * dt;
-        self.p[0][1] *= a;
-        self.p[1][0] *= a;
-        self.p[1][1] = a * a * self.p[1][1] + road_var * (1.0 - a * a);
+    /// Diagonal of the transition over dt (road factor `a`).
+    fn transition(&self, dt: f64, a: f64) -> Vector3<f64> {
+        let w = if self.warm_tau_s.is_finite() { libm::exp(-dt / self.warm_tau_s) } else { 1.0 };
+        Vector3::new(1.0, w, a)
+    }
+
+    /// Predict over dt: bias random walk, warm-up decay, road rate Gauss-Markov.
+    fn predict(&mut self, dt: f64, a: f64) -> Vector3<f64> {
+        let f = self.transition(dt, a);
+        self.x.component_mul_assign(&f);
+        self.p = Matrix3::from_fn(|i, j| self.p[(i, j)] * f[i] * f[j]);
+        self.p[(0, 0)] += self.walk2 * dt;
+        self.p[(2, 2)] += self.road_var * (1.0 - a * a);
+        f
+    }
+
+    fn bias(&self) -> (f64, f64) {
+        (self.x[0] + self.x[1], self.p[(0, 0)] + self.p[(0, 1)] + self.p[(1, 0)] + self.p[(1, 1)])
     }
 
     /// Scalar measurement z = h x + noise(r); returns the innovation's log likelihood.
-    fn update(&mut self, h: [f64; 2], z: f64, r: f64) -> f64 {
-        let ph = [self.p[0][0] * h[0] + self.p[0][1] * h[1], self.p[1][0] * h[0] + self.p[1][1] * h[1]];
-        let s = h[0] * ph[0] + h[1] * ph[1] + r;
-        let nu = z - (h[0] * self.x[0] + h[1] * self.x[1]);
-        let k = [ph[0] / s, ph[1] / s];
-        self.x[0] += k[0] * nu;
-        self.x[1] += k[1] * nu;
-        for i in 0..2 {
-            for j in 0..2 {
-                self.p[i][j] -= k[i] * ph[j];
-            }
-        }
-        let off = 0.5 * (self.p[0][1] + self.p[1][0]);
-        self.p[0][1] = off;
-        self.p[1][0] = off;
+    fn update(&mut self, h: RowVector3<f64>, z: f64, r: f64) -> f64 {
+        let ph = self.p * h.transpose();
+        let s = (h * ph)[0] + r;
+        let nu = z - (h * self.x)[0];
+        let k = ph / s;
+        self.x += k * nu;
+        self.p -= k * ph.transpose();
+        self.p = 0.5 * (self.p + self.p.transpose());
         -0.5 * nu * nu / s - 0.5 * libm::log(2.0 * std::f64::consts::PI * s)
     }
 }
 
-/// Per-block prior and posterior of each hypothesis, for the offline smoother.
+/// One block of one recorded hypothesis, for the offline smoother: the transition into
+/// the block, the prior and the posterior.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BlockRecord {
-    /// Road-rate factor of the prediction into this block.
-    pub a: f64,
-    pub prior: [State; N_MODELS],
-    pub post: [State; N_MODELS],
-    pub weight: [f64; N_MODELS],
+    pub f: Vector3<f64>,
+    pub prior: State,
+    pub post: State,
 }
 
 /// Running mean and spread of the current stop's evidence (Welford).
@@ -133,6 +142,13 @@ pub struct Pipeline {
     pending: VecDeque<(f64, f64)>,
     stop: StopStats,
     window: VecDeque<(f64, f64)>,
+    /// Hypotheses whose blocks are recorded for the smoother, and their records
+    /// (block-major: one per recorded hypothesis per block) with the block's weights.
+    recorded: Vec<usize>,
+    records: Vec<BlockRecord>,
+    record_weights: Vec<f64>,
+    /// Sum of each hypothesis' weight over the blocks (to pick the ones to smooth).
+    weight_sum: Vec<f64>,
 }
 
 impl Pipeline {
@@ -145,9 +161,18 @@ impl Pipeline {
         }
         let walks = params.bias_walks_dps_per_sqrt_s();
         let roads = params.road_sigmas_dps();
+        let warms = params.warm_taus_s();
         let models = std::array::from_fn(|i| {
-            let (w, r) = (walks[i / N_ROADS], roads[i % N_ROADS]);
-            Model { walk2: w * w, road_var: r * r, x: [bias_dps, 0.0], p: [[bias_sigma_dps * bias_sigma_dps, 0.0], [0.0, r * r]], logw: 0.0 }
+            let (w, r, tau) = (walks[i / (N_ROADS * N_WARMS)], roads[(i / N_WARMS) % N_ROADS], warms[i % N_WARMS]);
+            let warm_var = if tau.is_finite() { params.warm_sigma_dps * params.warm_sigma_dps } else { 0.0 };
+            Model {
+                walk2: w * w,
+                road_var: r * r,
+                warm_tau_s: tau,
+                x: Vector3::new(bias_dps, 0.0, 0.0),
+                p: Matrix3::from_diagonal(&Vector3::new(bias_sigma_dps * bias_sigma_dps, warm_var, r * r)),
+                logw: 0.0,
+            }
         });
         Ok(Pipeline {
             p: params,
@@ -159,7 +184,56 @@ impl Pipeline {
             pending: VecDeque::new(),
             stop: StopStats::default(),
             window: VecDeque::new(),
+            recorded: Vec::new(),
+            records: Vec::new(),
+            record_weights: Vec::new(),
+            weight_sum: vec![0.0; N_MODELS],
         })
+    }
+
+    /// Records these hypotheses' blocks from now on (for `smoothed_bias`).
+    pub fn record(&mut self, hypotheses: Vec<usize>) {
+        self.recorded = hypotheses.into_iter().filter(|&i| i < N_MODELS).collect();
+    }
+
+    /// Each hypothesis' weight summed over the blocks so far.
+    pub fn weight_sums(&self) -> &[f64] {
+        &self.weight_sum
+    }
+
+    /// Rauch-Tung-Striebel smoothing of the recorded hypotheses, mixed with their weights
+    /// (renormalised among them) at each block: the smoothed bias per recorded block.
+    pub fn smoothed_bias(&self) -> Vec<f64> {
+        let k = self.recorded.len();
+        if k == 0 {
+            return Vec::new();
+        }
+        let n = self.records.len() / k;
+        let mut out = vec![0.0; n];
+        let mut norm = vec![0.0; n];
+        for j in 0..k {
+            let mut next = Vector3::zeros();
+            for t in (0..n).rev() {
+                let (x, p) = self.records[t * k + j].post;
+                let xs = if t + 1 == n {
+                    x
+                } else {
+                    let rec = &self.records[(t + 1) * k + j];
+                    let (xp, q) = rec.prior;
+                    let pf = Matrix3::from_fn(|r, c| p[(r, c)] * rec.f[c]);
+                    // A hypothesis without a warm-up term has a zero row: regularise.
+                    match (q + Matrix3::identity() * 1e-12).try_inverse() {
+                        Some(inv) => x + pf * inv * (next - xp),
+                        None => x,
+                    }
+                };
+                next = xs;
+                let w = self.record_weights[t * k + j];
+                out[t] += w * (xs[0] + xs[1]);
+                norm[t] += w;
+            }
+        }
+        out.iter().zip(&norm).map(|(o, w)| if *w > 0.0 { o / w } else { *o / k as f64 }).collect()
     }
 
     /// Normalised hypothesis weights.
@@ -173,18 +247,13 @@ impl Pipeline {
     /// The bank's bias estimate and variance (moment-matched mixture).
     pub fn bias(&self) -> (f64, f64) {
         let w = self.weights();
-        let b: f64 = (0..N_MODELS).map(|i| w[i] * self.models[i].x[0]).sum();
-        let p: f64 = (0..N_MODELS).map(|i| w[i] * (self.models[i].p[0][0] + (self.models[i].x[0] - b).powi(2))).sum();
+        let b: f64 = (0..N_MODELS).map(|i| w[i] * self.models[i].bias().0).sum();
+        let p: f64 = (0..N_MODELS).map(|i| w[i] * (self.models[i].bias().1 + (self.models[i].bias().0 - b).powi(2))).sum();
         (b, p)
     }
 
     /// One block: its end time, mean raw rate, and whether the vehicle stood.
     pub fn update(&mut self, time_s: f64, rate_dps: f64, still: bool) -> Result<PipelineOutput> {
-        self.update_recorded(time_s, rate_dps, still).map(|(o, _)| o)
-    }
-
-    /// As `update`, also returning what the smoother needs.
-    pub fn update_recorded(&mut self, time_s: f64, rate_dps: f64, still: bool) -> Result<(PipelineOutput, BlockRecord)> {
         if !(time_s.is_finite() && rate_dps.is_finite()) || self.last_time_s.is_some_and(|t| !(time_s > t)) {
             return Err(Error::data(format!("pipeline update at {time_s} s: rate {rate_dps} deg/s, time must be finite and increase")));
         }
@@ -195,8 +264,9 @@ impl Pipeline {
         // Predict: each hypothesis' random walk and the road rate; weights forget toward equal.
         let lam = libm::exp(-dt / self.p.forget_s);
         let a = libm::exp(-dt / self.p.road_corr_s);
-        for m in &mut self.models {
-            m.predict(dt, a);
+        let mut fs = [Vector3::zeros(); N_MODELS];
+        for (m, f) in self.models.iter_mut().zip(fs.iter_mut()) {
+            *f = m.predict(dt, a);
             m.logw *= lam;
         }
         // Gather this block's evidence, then the guards, then the updates.
@@ -257,16 +327,23 @@ impl Pipeline {
                 straight = mode.abs() <= self.p.max_bias_dps && (rate_dps - mode).abs() <= gate;
             }
         }
-        let prior = std::array::from_fn(|i| (self.models[i].x, self.models[i].p));
+        let priors: Vec<State> = self.recorded.iter().map(|&i| (self.models[i].x, self.models[i].p)).collect();
         for &z in &stops {
             self.stop_update(z, !lead_in);
         }
         if straight {
             self.road_update(rate_dps);
         }
-        let post = std::array::from_fn(|i| (self.models[i].x, self.models[i].p));
+        let w = self.weights();
+        for (s, wi) in self.weight_sum.iter_mut().zip(w) {
+            *s += wi;
+        }
+        for (j, &i) in self.recorded.iter().enumerate() {
+            self.records.push(BlockRecord { f: fs[i], prior: priors[j], post: (self.models[i].x, self.models[i].p) });
+            self.record_weights.push(w[i]);
+        }
         let out = PipelineOutput { heading_deg: self.heading_deg, bias_dps: b_before, bias_sigma_dps: p_before.sqrt(), stop: !stops.is_empty(), straight, reopened };
-        Ok((out, BlockRecord { a, prior, post, weight: self.weights() }))
+        Ok(out)
     }
 
     /// A steady stop that the estimate cannot explain: the bias moved, re-open it.
@@ -278,7 +355,7 @@ impl Pipeline {
         let long = s.last_s - s.first_s >= self.p.jump_min_s;
         if steady && long && (s.mean - b).abs() > 4.0 * (p + r / s.n as f64).sqrt() {
             for m in &mut self.models {
-                m.p[0][0] += (s.mean - m.x[0]).powi(2);
+                m.p[(0, 0)] += (s.mean - m.bias().0).powi(2);
             }
             self.stop.reopened = true;
             return true;
@@ -305,7 +382,7 @@ impl Pipeline {
     fn stop_update(&mut self, z: f64, weigh: bool) {
         let r = self.p.stop_sigma_dps * self.p.stop_sigma_dps;
         for m in &mut self.models {
-            let ll = m.update([1.0, 0.0], z, r);
+            let ll = m.update(H_STOP, z, r);
             if weigh {
                 m.logw += ll;
             }
@@ -316,7 +393,7 @@ impl Pipeline {
     fn road_update(&mut self, rate_dps: f64) {
         let r = self.p.block_sigma_dps * self.p.block_sigma_dps;
         for m in &mut self.models {
-            m.logw += m.update([1.0, 1.0], rate_dps, r);
+            m.logw += m.update(H_ROAD, rate_dps, r);
         }
     }
 }

@@ -9,7 +9,7 @@ pub mod filter;
 pub mod params;
 
 pub use filter::{half_sample_mode, BlockRecord, Pipeline, PipelineOutput};
-pub use params::{PipelineParams, N_MODELS, N_ROADS, N_WALKS};
+pub use params::{PipelineParams, N_MODELS, N_ROADS, N_WALKS, N_WARMS};
 
 use crate::error::Result;
 use crate::eval::{Method, Prepared};
@@ -32,22 +32,34 @@ pub struct PipelineTrace {
     pub stop: Vec<bool>,
 }
 
-/// Runs the filter over the blocks from bias 0 +- the prior, then the smoother; the
-/// heading traces are unaligned. Blocks stamped before `lead_in_end_s` are the lead-in.
+/// How many hypotheses the offline smoother follows (those with the most weight over the
+/// log): recording all of them would cost memory on long logs for no gain.
+pub const N_SMOOTHED: usize = 3;
+
+/// Runs the filter over the blocks from bias 0 +- the prior, then the smoother (a second
+/// pass recording the hypotheses with the most weight over the first); the heading traces
+/// are unaligned. Blocks stamped before `lead_in_end_s` are the lead-in.
 pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -> Result<PipelineTrace> {
-    let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
     let n = blocks.len();
+    let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
     let mut tr = PipelineTrace { time_s: blocks.time_s.clone(), ..Default::default() };
-    let mut records = Vec::with_capacity(n);
     for i in 0..n {
-        let (o, rec) = f.update_recorded(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
+        let o = f.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
         tr.heading_deg.push(o.heading_deg);
         tr.bias_dps.push(o.bias_dps);
         tr.bias_sigma_dps.push(o.bias_sigma_dps);
         tr.stop.push(o.stop);
-        records.push(rec);
     }
-    tr.bias_smoothed_dps = smooth(&records);
+    let mut order: Vec<usize> = (0..N_MODELS).collect();
+    let sums = f.weight_sums().to_vec();
+    order.sort_by(|&a, &b| sums[b].total_cmp(&sums[a]));
+    order.truncate(N_SMOOTHED);
+    let mut g = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
+    g.record(order);
+    for i in 0..n {
+        g.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
+    }
+    tr.bias_smoothed_dps = g.smoothed_bias();
     let mut h = 0.0;
     for i in 0..n {
         if i > 0 {
@@ -56,41 +68,6 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
         tr.heading_smoothed_deg.push(h);
     }
     Ok(tr)
-}
-
-/// Rauch-Tung-Striebel smoothing of each hypothesis' state [bias, road rate], mixed with
-/// the block's hypothesis weights: C_k = P+_k F' (P-_{k+1})^-1, F = diag(1, a_{k+1}).
-pub fn smooth(records: &[BlockRecord]) -> Vec<f64> {
-    let n = records.len();
-    let mut out = vec![0.0; n];
-    for i in 0..N_MODELS {
-        let mut next = [f64::NAN; 2];
-        for k in (0..n).rev() {
-            let (x, p) = records[k].post[i];
-            let xs = if k + 1 == n {
-                x
-            } else {
-                let (xp, q) = records[k + 1].prior[i];
-                let a = records[k + 1].a;
-                let pf = [[p[0][0], p[0][1] * a], [p[1][0], p[1][1] * a]];
-                let det = q[0][0] * q[1][1] - q[0][1] * q[1][0];
-                if !(det > 0.0) {
-                    x
-                } else {
-                    let inv = [[q[1][1] / det, -q[0][1] / det], [-q[1][0] / det, q[0][0] / det]];
-                    let c = [
-                        [pf[0][0] * inv[0][0] + pf[0][1] * inv[1][0], pf[0][0] * inv[0][1] + pf[0][1] * inv[1][1]],
-                        [pf[1][0] * inv[0][0] + pf[1][1] * inv[1][0], pf[1][0] * inv[0][1] + pf[1][1] * inv[1][1]],
-                    ];
-                    let d = [next[0] - xp[0], next[1] - xp[1]];
-                    [x[0] + c[0][0] * d[0] + c[0][1] * d[1], x[1] + c[1][0] * d[0] + c[1][1] * d[1]]
-                }
-            };
-            next = xs;
-            out[k] += records[k].weight[i] * xs[0];
-        }
-    }
-    out
 }
 
 /// The pipeline's result keys (E_psi_*, NE_psi_*, improvement_pipeline, duration_min),

@@ -9,8 +9,10 @@ use serde::{Deserialize, Serialize};
 pub const N_WALKS: usize = 5;
 /// ... times road hypotheses (road rate sigma / spread, x 1, x spread) ...
 pub const N_ROADS: usize = 3;
+/// ... times warm-up hypotheses (none, and a decaying term with each of two time constants)
+pub const N_WARMS: usize = 3;
 /// ... = the filter bank.
-pub const N_MODELS: usize = N_WALKS * N_ROADS;
+pub const N_MODELS: usize = N_WALKS * N_ROADS * N_WARMS;
 
 /// Settings of the pipeline.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -45,6 +47,11 @@ pub struct PipelineParams {
     /// Slowest and fastest bias random walk of the filter bank, deg/s per sqrt(s).
     pub bias_walk_min_dps_per_sqrt_s: f64,
     pub bias_walk_max_dps_per_sqrt_s: f64,
+    /// Warm-up term: prior size of a bias part that decays after power-on, deg/s, and the two
+    /// decay times the bank tries, s.
+    pub warm_sigma_dps: f64,
+    pub warm_tau_short_s: f64,
+    pub warm_tau_long_s: f64,
     /// Bias uncertainty at the start when the log has no stationary lead-in, deg/s.
     pub prior_bias_sigma_dps: f64,
     /// Hypothesis weights forget with this time constant, so the bank can switch, s.
@@ -69,6 +76,9 @@ impl Default for PipelineParams {
             road_gate_dps: 0.15,
             bias_walk_min_dps_per_sqrt_s: 1e-4,
             bias_walk_max_dps_per_sqrt_s: 1e-2,
+            warm_sigma_dps: 0.3,
+            warm_tau_short_s: 200.0,
+            warm_tau_long_s: 800.0,
             prior_bias_sigma_dps: 0.5,
             forget_s: 600.0,
             bias_s: None,
@@ -81,6 +91,11 @@ impl PipelineParams {
     pub fn bias_walks_dps_per_sqrt_s(&self) -> [f64; N_WALKS] {
         let (lo, hi) = (self.bias_walk_min_dps_per_sqrt_s, self.bias_walk_max_dps_per_sqrt_s);
         std::array::from_fn(|i| if lo == hi { lo } else { lo * libm::pow(hi / lo, i as f64 / (N_WALKS - 1) as f64) })
+    }
+
+    /// The warm-up decay times of the bank: none (infinite), then the two settings.
+    pub fn warm_taus_s(&self) -> [f64; N_WARMS] {
+        [f64::INFINITY, self.warm_tau_short_s, self.warm_tau_long_s]
     }
 
     /// The road-rate sigmas of the bank: road_sigma_dps divided and multiplied by the spread.
@@ -105,6 +120,9 @@ impl PipelineParams {
             ("bias_walk_min_dps_per_sqrt_s", self.bias_walk_min_dps_per_sqrt_s),
             ("bias_walk_max_dps_per_sqrt_s", self.bias_walk_max_dps_per_sqrt_s),
             ("prior_bias_sigma_dps", self.prior_bias_sigma_dps),
+            ("warm_sigma_dps", self.warm_sigma_dps),
+            ("warm_tau_short_s", self.warm_tau_short_s),
+            ("warm_tau_long_s", self.warm_tau_long_s),
             ("forget_s", self.forget_s),
         ];
         for (name, v) in pos {
@@ -150,12 +168,15 @@ impl PipelineParams {
             "bias_walk_min_dps_per_sqrt_s" => self.bias_walk_min_dps_per_sqrt_s = value,
             "bias_walk_max_dps_per_sqrt_s" => self.bias_walk_max_dps_per_sqrt_s = value,
             "prior_bias_sigma_dps" => self.prior_bias_sigma_dps = value,
+            "warm_sigma_dps" => self.warm_sigma_dps = value,
+            "warm_tau_short_s" => self.warm_tau_short_s = value,
+            "warm_tau_long_s" => self.warm_tau_long_s = value,
             "forget_s" => self.forget_s = value,
             "bias_s" => self.bias_s = Some(value),
             _ => {
                 return Err(Error::param(
                     key,
-                    "unknown key (still_speed_mps, still_travel_m, still_gyro_factor, min_still_s, stop_sigma_dps, max_bias_dps, jump_min_s, road_sigma_dps, road_sigma_spread, road_corr_s, block_sigma_dps, road_window_s, road_gate_dps, bias_walk_min_dps_per_sqrt_s, bias_walk_max_dps_per_sqrt_s, prior_bias_sigma_dps, forget_s, bias_s)",
+                    "unknown key (still_speed_mps, still_travel_m, still_gyro_factor, min_still_s, stop_sigma_dps, max_bias_dps, jump_min_s, road_sigma_dps, road_sigma_spread, road_corr_s, block_sigma_dps, road_window_s, road_gate_dps, bias_walk_min_dps_per_sqrt_s, bias_walk_max_dps_per_sqrt_s, prior_bias_sigma_dps, warm_sigma_dps, warm_tau_short_s, warm_tau_long_s, forget_s, bias_s)",
                 ))
             }
         }
