@@ -40,7 +40,7 @@ fn main() {
     for i in (0..tr.time_s.len()).step_by(step) {
         println!(
             "{:6.0} w {:.2} {:.2} {:.2} stop {} rate {:8.3} true {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
-            tr.time_s[i], w[i][0]+w[i][1]+w[i][2], w[i][3]+w[i][4]+w[i][5], w[i][12]+w[i][13]+w[i][14], tr.stop[i] as u8, prep.blocks.rate_dps[i], true_bias.rate_dps[i], tr.bias_dps[i], tr.bias_sigma_dps[i], tr.bias_smoothed_dps[i], drift[i] + h.eps0_dps
+            tr.time_s[i], w[i][..9].iter().sum::<f64>(), w[i][18..27].iter().sum::<f64>(), w[i][36..].iter().sum::<f64>(), tr.stop[i] as u8, prep.blocks.rate_dps[i], true_bias.rate_dps[i], tr.bias_dps[i], tr.bias_sigma_dps[i], tr.bias_smoothed_dps[i], drift[i] + h.eps0_dps
         );
     }
 }

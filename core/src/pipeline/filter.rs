@@ -134,7 +134,7 @@ impl StopStats {
 #[derive(Debug, Clone)]
 pub struct Pipeline {
     p: PipelineParams,
-    models: [Model; N_MODELS],
+    models: Vec<Model>,
     last_time_s: Option<f64>,
     lead_in_end_s: f64,
     heading_deg: f64,
@@ -162,7 +162,7 @@ impl Pipeline {
         let walks = params.bias_walks_dps_per_sqrt_s();
         let roads = params.road_sigmas_dps();
         let warms = params.warm_taus_s();
-        let models = std::array::from_fn(|i| {
+        let models = (0..N_MODELS).map(|i| {
             let (w, r, tau) = (walks[i / (N_ROADS * N_WARMS)], roads[(i / N_WARMS) % N_ROADS], warms[i % N_WARMS]);
             let warm_var = if tau.is_finite() { params.warm_sigma_dps * params.warm_sigma_dps } else { 0.0 };
             Model {
@@ -173,7 +173,7 @@ impl Pipeline {
                 p: Matrix3::from_diagonal(&Vector3::new(bias_sigma_dps * bias_sigma_dps, warm_var, r * r)),
                 logw: 0.0,
             }
-        });
+        }).collect();
         Ok(Pipeline {
             p: params,
             models,
@@ -191,9 +191,17 @@ impl Pipeline {
         })
     }
 
+    /// Keeps only these hypotheses (indices into the full bank), for the smoother's second
+    /// pass: the bank then weighs and mixes only them.
+    pub fn restrict(&mut self, hypotheses: &[usize]) {
+        self.models = hypotheses.iter().filter(|&&i| i < self.models.len()).map(|&i| self.models[i]).collect();
+        self.weight_sum = vec![0.0; self.models.len()];
+        self.recorded.clear();
+    }
+
     /// Records these hypotheses' blocks from now on (for `smoothed_bias`).
     pub fn record(&mut self, hypotheses: Vec<usize>) {
-        self.recorded = hypotheses.into_iter().filter(|&i| i < N_MODELS).collect();
+        self.recorded = hypotheses.into_iter().filter(|&i| i < self.models.len()).collect();
     }
 
     /// Each hypothesis' weight summed over the blocks so far.
@@ -237,18 +245,18 @@ impl Pipeline {
     }
 
     /// Normalised hypothesis weights.
-    pub fn weights(&self) -> [f64; N_MODELS] {
+    pub fn weights(&self) -> Vec<f64> {
         let m = self.models.iter().map(|m| m.logw).fold(f64::NEG_INFINITY, f64::max);
-        let e: [f64; N_MODELS] = std::array::from_fn(|i| libm::exp(self.models[i].logw - m));
+        let e: Vec<f64> = self.models.iter().map(|x| libm::exp(x.logw - m)).collect();
         let s: f64 = e.iter().sum();
-        std::array::from_fn(|i| e[i] / s)
+        e.into_iter().map(|v| v / s).collect()
     }
 
     /// The bank's bias estimate and variance (moment-matched mixture).
     pub fn bias(&self) -> (f64, f64) {
         let w = self.weights();
-        let b: f64 = (0..N_MODELS).map(|i| w[i] * self.models[i].bias().0).sum();
-        let p: f64 = (0..N_MODELS).map(|i| w[i] * (self.models[i].bias().1 + (self.models[i].bias().0 - b).powi(2))).sum();
+        let b: f64 = self.models.iter().zip(&w).map(|(m, wi)| wi * m.bias().0).sum();
+        let p: f64 = self.models.iter().zip(&w).map(|(m, wi)| wi * (m.bias().1 + (m.bias().0 - b).powi(2))).sum();
         (b, p)
     }
 
@@ -264,7 +272,7 @@ impl Pipeline {
         // Predict: each hypothesis' random walk and the road rate; weights forget toward equal.
         let lam = libm::exp(-dt / self.p.forget_s);
         let a = libm::exp(-dt / self.p.road_corr_s);
-        let mut fs = [Vector3::zeros(); N_MODELS];
+        let mut fs = vec![Vector3::zeros(); self.models.len()];
         for (m, f) in self.models.iter_mut().zip(fs.iter_mut()) {
             *f = m.predict(dt, a);
             m.logw *= lam;
@@ -320,10 +328,10 @@ impl Pipeline {
             if self.window.len() >= 5 {
                 // The dominant rate is a bias only if a bias could be that large (a drive
                 // in circles is not straight).
-                let mode = self.window_mode();
+                let (mode, step) = self.window_mode_and_step();
                 // A quantised gyro (one row per block) puts the mode on its lattice: keep the
                 // gate two steps wide so the selection stays centred.
-                let gate = self.p.road_gate_dps.max(2.0 * self.window_step());
+                let gate = self.p.road_gate_dps.max(2.0 * step);
                 straight = mode.abs() <= self.p.max_bias_dps && (rate_dps - mode).abs() <= gate;
             }
         }
@@ -335,7 +343,7 @@ impl Pipeline {
             self.road_update(rate_dps);
         }
         let w = self.weights();
-        for (s, wi) in self.weight_sum.iter_mut().zip(w) {
+        for (s, wi) in self.weight_sum.iter_mut().zip(&w) {
             *s += wi;
         }
         for (j, &i) in self.recorded.iter().enumerate() {
@@ -363,18 +371,14 @@ impl Pipeline {
         false
     }
 
-    /// The smallest non-zero step between the window's rates: the gyro's quantisation when
-    /// a block holds one row (0 when it is finer than 1e-6 deg/s).
-    fn window_step(&self) -> f64 {
+    /// The dominant rate of the recent moving blocks (where a road vehicle drives
+    /// straight), and the smallest non-zero step between them: the gyro's quantisation
+    /// when a block holds one row (infinite steps count as 1 deg/s).
+    fn window_mode_and_step(&self) -> (f64, f64) {
         let mut r: Vec<f64> = self.window.iter().map(|w| w.1).collect();
         r.sort_by(f64::total_cmp);
-        r.windows(2).map(|w| w[1] - w[0]).filter(|&d| d > 1e-6).fold(f64::INFINITY, f64::min).min(1.0).max(0.0)
-    }
-
-    /// The dominant rate of the recent moving blocks: where a road vehicle drives straight.
-    fn window_mode(&self) -> f64 {
-        let mut rates: Vec<f64> = self.window.iter().map(|w| w.1).collect();
-        half_sample_mode(&mut rates)
+        let step = r.windows(2).map(|w| w[1] - w[0]).filter(|&d| d > 1e-6).fold(1.0, f64::min);
+        (half_sample_mode(&mut r), step)
     }
 
     /// Stop evidence (rate = b). Its likelihood weighs the hypotheses; `weigh` = false for

@@ -37,7 +37,7 @@ pub struct PipelineTrace {
 pub const N_SMOOTHED: usize = 3;
 
 /// Runs the filter over the blocks from bias 0 +- the prior, then the smoother (a second
-/// pass recording the hypotheses with the most weight over the first); the heading traces
+/// pass with only the hypotheses with the most weight over the first, recorded); the heading traces
 /// are unaligned. Blocks stamped before `lead_in_end_s` are the lead-in.
 pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -> Result<PipelineTrace> {
     let n = blocks.len();
@@ -55,7 +55,8 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     order.sort_by(|&a, &b| sums[b].total_cmp(&sums[a]));
     order.truncate(N_SMOOTHED);
     let mut g = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
-    g.record(order);
+    g.restrict(&order);
+    g.record((0..order.len()).collect());
     for i in 0..n {
         g.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
     }
