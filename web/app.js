@@ -316,12 +316,18 @@ function timeRange(t) {
 }
 
 let lastHdr = null;
+let pipeCache = null;
 function renderHdr() {
   const e = logFor("hdr");
   if (!e) return showError("Load a drive log (with gyro_dps and ref_heading_deg) for the HDR view.");
   const run = gd.runHdr(e.log, hdrOptions());
   // The recommended pipeline beside the paper's method, with the same static-bias window.
-  const pipe = gd.runPipeline(e.log, { bias_s: hdrOptions().bias_s ?? null });
+  // It depends on the log and bias_s only, so HDR's sliders reuse it.
+  const pipeKey = `${e.name}|${hdrOptions().bias_s ?? ""}`;
+  if (!pipeCache || pipeCache.key !== pipeKey || pipeCache.log !== e.log) {
+    pipeCache = { key: pipeKey, log: e.log, run: gd.runPipeline(e.log, { bias_s: hdrOptions().bias_s ?? null }) };
+  }
+  const pipe = pipeCache.run;
   lastHdr = { entry: e, run, pipe };
   const r = run.result;
   const pr = pipe.result;
