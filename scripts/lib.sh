@@ -15,6 +15,16 @@ ensure_wasm_target() {
   fi
 }
 
+# rustfmt and clippy for the format and lint suite (in rustup's default profile; added if not).
+ensure_lint_tools() {
+  for c in rustfmt clippy; do
+    if ! rustup component list --installed | grep -q "^$c"; then
+      say "adding the $c component"
+      rustup component add "$c"
+    fi
+  done
+}
+
 # The wasm-bindgen CLI must match the wasm-bindgen crate in Cargo.lock exactly.
 ensure_wasm_bindgen() {
   local want have

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Command 2 of the README: installs whatever the tests need (wasm target, wasm-bindgen CLI,
-# node tools, Debian's chromium), builds, and runs every test: native (unit, property,
+# node tools, Debian's chromium), builds, checks format and lints, and runs every test: native (unit, property,
 # integration, CLI), wasm under Node (wasm-bindgen-test), the npm package under Node, the
 # TypeScript types, and the dashboard in headless Chromium. Exits non-zero if any failed.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 ensure_wasm_target
+ensure_lint_tools
 ensure_node_tools
 ensure_wasm_bindgen
 ensure_chromium
@@ -27,6 +28,8 @@ suite() {
   fi
 }
 
+suite "format (cargo fmt --check)" cargo fmt --all -- --check
+suite "lint (cargo clippy -D warnings)" cargo clippy --workspace --all-targets -- -D warnings
 suite "native tests (cargo test --workspace)" cargo test --workspace --no-fail-fast
 suite "wasm tests under Node (wasm-bindgen-test)" \
   cargo test -p gyrodrift-wasm --target wasm32-unknown-unknown --tests --no-fail-fast

@@ -179,8 +179,7 @@ fn fail(path: &Path, e: Error) -> Failure {
 }
 
 fn read_log(path: &Path) -> Result<DriveLog, Failure> {
-    let file = std::fs::File::open(path)
-        .map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
+    let file = std::fs::File::open(path).map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
     gyrodrift::parse_log(file).map_err(|e| fail(path, e))
 }
 
@@ -198,13 +197,8 @@ fn read_logs(paths: &[PathBuf]) -> Result<Vec<(String, DriveLog)>, Failure> {
 
 /// Splits `key=value` and parses the value as a number.
 fn parse_set(s: &str) -> Result<(String, f64), Failure> {
-    let (k, v) = s
-        .split_once('=')
-        .ok_or_else(|| Failure(format!("--set {s}: expected KEY=VALUE")))?;
-    let value: f64 = v
-        .trim()
-        .parse()
-        .map_err(|_| Failure(format!("--set {s}: \"{v}\" is not a number")))?;
+    let (k, v) = s.split_once('=').ok_or_else(|| Failure(format!("--set {s}: expected KEY=VALUE")))?;
+    let value: f64 = v.trim().parse().map_err(|_| Failure(format!("--set {s}: \"{v}\" is not a number")))?;
     Ok((k.trim().to_string(), value))
 }
 
@@ -241,7 +235,8 @@ fn expand_recipes(paths: &[PathBuf]) -> Result<Vec<PathBuf>, Failure> {
     for p in paths {
         if p.is_dir() {
             let rd = std::fs::read_dir(p).map_err(|e| Failure(format!("{}: cannot list: {e}", p.display())))?;
-            let mut v: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|f| f.extension().is_some_and(|x| x == "toml")).collect();
+            let mut v: Vec<PathBuf> =
+                rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|f| f.extension().is_some_and(|x| x == "toml")).collect();
             v.sort();
             out.extend(v);
         } else {
@@ -266,8 +261,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let drive = read_log(&log)?;
             let run = hdr::run(&drive, &opts).map_err(|e| fail(&log, e))?;
             if let Some(path) = trace {
-                let f = std::fs::File::create(&path)
-                    .map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
+                let f = std::fs::File::create(&path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
                 run.trace.write_csv(f).map_err(|e| fail(&path, e))?;
             }
             let result = run.result.map_err(|e| fail(&log, e))?;
@@ -363,8 +357,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             };
             let train_p = prep(&train_logs)?;
             let test_p = prep(&test_logs)?;
-            let rep = tune::tune_and_report(&train_p, &test_p, &tune::TuneOptions::default())
-                .map_err(|e| Failure(e.to_string()))?;
+            let rep = tune::tune_and_report(&train_p, &test_p, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?;
             if json {
                 return print_json(&rep);
             }
@@ -383,8 +376,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let log = gyrodrift::sim::simulate(&req).map_err(|e| Failure(e.to_string()))?;
             match out {
                 Some(path) => {
-                    let f = std::fs::File::create(&path)
-                        .map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
+                    let f = std::fs::File::create(&path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
                     log.write_csv(f).map_err(|e| fail(&path, e))
                 }
                 None => log.write_csv(std::io::stdout().lock()).map_err(|e| Failure(e.to_string())),
@@ -397,8 +389,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     std::fs::create_dir_all(dir).map_err(|e| Failure(format!("{}: {e}", dir.display())))?;
                 }
                 let log = gyrodrift::sim::simulate(&s.request()).map_err(|e| Failure(e.to_string()))?;
-                let f = std::fs::File::create(&path)
-                    .map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
+                let f = std::fs::File::create(&path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
                 log.write_csv(f).map_err(|e| fail(&path, e))?;
                 eprintln!("wrote {}", path.display());
             }
@@ -432,7 +423,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 tuned.cv.as_ref().map_or(f64::NAN, |c| c.cv_table_iii_deg_per_min),
                 if tuned.recommended_is_tuned { "tuned parameters used" } else { "Table III used (tuning does not generalise)" }
             );
-            let b = battery::run(&bases, &battery::profiles(), split, &params, Some(tuned.recommended)).map_err(|e| Failure(e.to_string()))?;
+            let b =
+                battery::run(&bases, &battery::profiles(), split, &params, Some(tuned.recommended)).map_err(|e| Failure(e.to_string()))?;
             if json {
                 print_json(&b)
             } else {
@@ -444,8 +436,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let (log, summary) = import_recipe(&recipe, data.as_deref())?;
             match &out {
                 Some(path) => {
-                    let f = std::fs::File::create(path)
-                        .map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
+                    let f = std::fs::File::create(path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
                     log.write_csv(f).map_err(|e| fail(path, e))?;
                 }
                 None if !json => log.write_csv(std::io::stdout().lock()).map_err(|e| Failure(e.to_string()))?,

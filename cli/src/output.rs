@@ -10,23 +10,31 @@ use std::path::Path;
 pub fn hdr_table(path: &Path, o: &HdrOptions, r: &HdrResult) -> String {
     let p = &o.params;
     let mut s = String::new();
-    let _ = writeln!(s, "{}: HDR, {:.1} min, {}", path.display(), r.duration_min,
-        if r.resampled { "1 Hz blocks" } else { "raw rows" });
-    let _ = writeln!(s, "  parameters   i_c {} deg/s, tau {} s, theta_w {} deg/s, c1 {}, c2 {}",
-        p.i_c_dps, p.tau_s, p.theta_w_dps, p.c1, p.c2);
+    let _ = writeln!(s, "{}: HDR, {:.1} min, {}", path.display(), r.duration_min, if r.resampled { "1 Hz blocks" } else { "raw rows" });
+    let _ =
+        writeln!(s, "  parameters   i_c {} deg/s, tau {} s, theta_w {} deg/s, c1 {}, c2 {}", p.i_c_dps, p.tau_s, p.theta_w_dps, p.c1, p.c2);
     let _ = writeln!(s, "               {:>12} {:>18}", "E_psi (deg)", "NE_psi (deg/min)");
     let _ = writeln!(s, "  without HDR  {:>12.2} {:>18.3}", r.E_psi_raw_deg, r.NE_psi_raw_deg_per_min);
     let _ = writeln!(s, "  with HDR     {:>12.2} {:>18.3}", r.E_psi_hdr_deg, r.NE_psi_hdr_deg_per_min);
     let _ = writeln!(s, "  improvement  {:.2}x", r.improvement);
-    let _ = writeln!(s, "  static bias eps0 {:.4} deg/s; {} estimator samples; {} scored reference samples",
-        r.eps0_dps, r.n_processed, r.n_samples);
+    let _ = writeln!(
+        s,
+        "  static bias eps0 {:.4} deg/s; {} estimator samples; {} scored reference samples",
+        r.eps0_dps, r.n_processed, r.n_samples
+    );
     s
 }
 
 pub fn gyrodometry_table(path: &Path, r: &GyrodometryResult) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "{}: Gyrodometry, {:.2} min, wheelbase {} m, threshold {} deg/s",
-        path.display(), r.duration_min, r.wheelbase_m, r.thres_rate_dps);
+    let _ = writeln!(
+        s,
+        "{}: Gyrodometry, {:.2} min, wheelbase {} m, threshold {} deg/s",
+        path.display(),
+        r.duration_min,
+        r.wheelbase_m,
+        r.thres_rate_dps
+    );
     let _ = writeln!(s, "                {:>12} {:>18} {:>16}", "E_psi (deg)", "NE_psi (deg/min)", "final err (deg)");
     for (name, e, ne, f) in [
         ("odometry", r.E_psi_odo_deg, r.NE_psi_odo_deg_per_min, r.final_err_odo_deg),
@@ -35,8 +43,11 @@ pub fn gyrodometry_table(path: &Path, r: &GyrodometryResult) -> String {
     ] {
         let _ = writeln!(s, "  {name:<13} {e:>12.3} {ne:>18.3} {f:>16.3}");
     }
-    let _ = writeln!(s, "  gyro used in {} intervals; eps0 {:.4} deg/s; {} scored reference samples",
-        r.n_gyro_intervals, r.eps0_dps, r.n_samples);
+    let _ = writeln!(
+        s,
+        "  gyro used in {} intervals; eps0 {:.4} deg/s; {} scored reference samples",
+        r.n_gyro_intervals, r.eps0_dps, r.n_samples
+    );
     s
 }
 
@@ -48,10 +59,16 @@ pub fn calibration_table(path: &Path, run: &CalibrationRun) -> String {
     let _ = writeln!(s, "  set-level fit residual RMS {:.5} deg/s", r.fit_residual_rms_dps);
     let _ = writeln!(s, "                     {:>16} {:>18} {:>18}", "residual RMS", "360-deg err max", "360-deg err RMS");
     let _ = writeln!(s, "                     {:>16} {:>18} {:>18}", "(deg/s)", "(deg)", "(deg)");
-    let _ = writeln!(s, "  static bias only   {:>16.5} {:>18.3} {:>18.3}", r.residual_rms_static_only_dps,
-        r.turn360_err_static_only_max_deg, r.turn360_err_static_only_rms_deg);
-    let _ = writeln!(s, "  compensated        {:>16.5} {:>18.3} {:>18.3}", r.residual_rms_compensated_dps,
-        r.turn360_err_compensated_max_deg, r.turn360_err_compensated_rms_deg);
+    let _ = writeln!(
+        s,
+        "  static bias only   {:>16.5} {:>18.3} {:>18.3}",
+        r.residual_rms_static_only_dps, r.turn360_err_static_only_max_deg, r.turn360_err_static_only_rms_deg
+    );
+    let _ = writeln!(
+        s,
+        "  compensated        {:>16.5} {:>18.3} {:>18.3}",
+        r.residual_rms_compensated_dps, r.turn360_err_compensated_max_deg, r.turn360_err_compensated_rms_deg
+    );
     let _ = writeln!(s, "  coefficients C[j][k] of T^j w_g^k:");
     for (j, row) in r.c.iter().enumerate() {
         let cells: Vec<String> = row.iter().map(|c| format!("{c:>13.5e}")).collect();
@@ -64,8 +81,13 @@ pub fn allan_table(path: &Path, r: &AllanResult) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{}: Allan deviation, T0 = {} s", path.display(), trim(r.T0_s));
     let _ = writeln!(s, "  angle random walk   {:.5} deg/sqrt(s) = {:.4} deg/sqrt(h)", r.arw_deg_per_sqrt_s, r.arw_deg_per_sqrt_h);
-    let _ = writeln!(s, "  bias instability    {:.6} deg/s = {:.3} deg/h (minimum at tau = {} s)",
-        r.bias_instability_dps, r.bias_instability_dph, trim(r.tau_at_min_s));
+    let _ = writeln!(
+        s,
+        "  bias instability    {:.6} deg/s = {:.3} deg/h (minimum at tau = {} s)",
+        r.bias_instability_dps,
+        r.bias_instability_dph,
+        trim(r.tau_at_min_s)
+    );
     let _ = writeln!(s, "  {:>10} {:>14}", "tau (s)", "adev (deg/s)");
     for (t, a) in r.tau_s.iter().zip(&r.adev_dps) {
         let _ = writeln!(s, "  {:>10} {a:>14.6}", trim(*t));
@@ -83,8 +105,11 @@ fn trim(x: f64) -> String {
 pub fn tune_text(rep: &gyrodrift::tune::TuneReport, markdown: bool) -> String {
     let p = &rep.result.params;
     let mut s = String::new();
-    let _ = writeln!(s, "Tuned HDR parameters ({} evaluations): mean NE_psi over the training drives {:.4} -> {:.4} deg/min",
-        rep.result.n_evaluations, rep.result.objective_start_deg_per_min, rep.result.objective_tuned_deg_per_min);
+    let _ = writeln!(
+        s,
+        "Tuned HDR parameters ({} evaluations): mean NE_psi over the training drives {:.4} -> {:.4} deg/min",
+        rep.result.n_evaluations, rep.result.objective_start_deg_per_min, rep.result.objective_tuned_deg_per_min
+    );
     let t = gyrodrift::hdr::HdrParams::table_iii();
     let _ = writeln!(s, "  {:<8} {:>12} {:>12}", "", "Table III", "tuned");
     for (name, a, b, unit) in [
@@ -106,7 +131,10 @@ pub fn tune_text(rep: &gyrodrift::tune::TuneReport, markdown: bool) -> String {
     if rep.result.recommended_is_tuned {
         let _ = writeln!(s, "Recommended: the tuned parameters.");
     } else {
-        let _ = writeln!(s, "Recommended: Table III. The tuned parameters do worse on drives they were not tuned on; they are shown, not recommended.");
+        let _ = writeln!(
+            s,
+            "Recommended: Table III. The tuned parameters do worse on drives they were not tuned on; they are shown, not recommended."
+        );
     }
     let table = |r: &gyrodrift::report::Report| if markdown { r.to_markdown() } else { r.to_text() };
     let sets = [("Training drives", Some(&rep.train)), ("Test drives", rep.test.as_ref())];
@@ -122,7 +150,11 @@ pub fn tune_text(rep: &gyrodrift::tune::TuneReport, markdown: bool) -> String {
 pub fn import_line(recipe: &Path, s: &gyrodrift::import::ImportSummary) -> String {
     let mut out = format!(
         "{}: {} rows ({} gyro, {} reference headings), {:.1} min",
-        recipe.display(), s.n_rows, s.n_gyro, s.n_reference, s.duration_min
+        recipe.display(),
+        s.n_rows,
+        s.n_gyro,
+        s.n_reference,
+        s.duration_min
     );
     if let Some(u) = s.up {
         let _ = write!(out, ", up = ({:.3}, {:.3}, {:.3})", u[0], u[1], u[2]);

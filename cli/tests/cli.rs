@@ -29,7 +29,7 @@ fn drive_csv() -> String {
             psi += w * 0.1;
         }
         let bias = 1.0 + if t > 20.0 { 0.03 } else { 0.0 };
-        let r = if i % 10 == 0 { format!("{}", (-psi).rem_euclid(360.0) * -1.0) } else { String::new() };
+        let r = if i % 10 == 0 { format!("{}", -(-psi).rem_euclid(360.0)) } else { String::new() };
         s.push_str(&format!("{t},{},{r},10\n", w + bias));
     }
     s
@@ -56,7 +56,18 @@ fn hdr_json_has_exactly_the_result_keys() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert_eq!(
         keys(&text),
-        sorted(&["E_psi_raw_deg", "E_psi_hdr_deg", "NE_psi_raw_deg_per_min", "NE_psi_hdr_deg_per_min", "improvement", "duration_min", "n_samples", "n_processed", "eps0_dps", "resampled"])
+        sorted(&[
+            "E_psi_raw_deg",
+            "E_psi_hdr_deg",
+            "NE_psi_raw_deg_per_min",
+            "NE_psi_hdr_deg_per_min",
+            "improvement",
+            "duration_min",
+            "n_samples",
+            "n_processed",
+            "eps0_dps",
+            "resampled"
+        ])
     );
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     assert_eq!(v["resampled"], true);
@@ -68,7 +79,18 @@ fn hdr_json_has_exactly_the_result_keys() {
 fn hdr_set_no_resample_and_trace() {
     let p = write("drive2.csv", &drive_csv());
     let trace = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("trace.csv");
-    let out = run(&["hdr", p.to_str().unwrap(), "--no-resample", "--set", "tau=1.5", "--set", "i_c=0.01", "--json", "--trace", trace.to_str().unwrap()]);
+    let out = run(&[
+        "hdr",
+        p.to_str().unwrap(),
+        "--no-resample",
+        "--set",
+        "tau=1.5",
+        "--set",
+        "i_c=0.01",
+        "--json",
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["resampled"], false);
@@ -143,7 +165,23 @@ fn gyrodometry_calibrate_allan_json_keys() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert_eq!(
         keys(&text),
-        sorted(&["E_psi_odo_deg", "E_psi_gyro_deg", "E_psi_gyrodometry_deg", "NE_psi_odo_deg_per_min", "NE_psi_gyro_deg_per_min", "NE_psi_gyrodometry_deg_per_min", "final_err_odo_deg", "final_err_gyro_deg", "final_err_gyrodometry_deg", "n_gyro_intervals", "n_samples", "eps0_dps", "duration_min", "wheelbase_m", "thres_rate_dps"])
+        sorted(&[
+            "E_psi_odo_deg",
+            "E_psi_gyro_deg",
+            "E_psi_gyrodometry_deg",
+            "NE_psi_odo_deg_per_min",
+            "NE_psi_gyro_deg_per_min",
+            "NE_psi_gyrodometry_deg_per_min",
+            "final_err_odo_deg",
+            "final_err_gyro_deg",
+            "final_err_gyrodometry_deg",
+            "n_gyro_intervals",
+            "n_samples",
+            "eps0_dps",
+            "duration_min",
+            "wheelbase_m",
+            "thres_rate_dps"
+        ])
     );
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     assert_eq!(v["n_gyro_intervals"], 1);
@@ -163,7 +201,21 @@ fn gyrodometry_calibrate_allan_json_keys() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert_eq!(
         keys(&text),
-        sorted(&["C", "p", "q", "n_sets", "fit_residual_rms_dps", "w_s_dps", "w_s_star_dps", "residual_rms_static_only_dps", "residual_rms_compensated_dps", "turn360_err_static_only_max_deg", "turn360_err_static_only_rms_deg", "turn360_err_compensated_max_deg", "turn360_err_compensated_rms_deg"])
+        sorted(&[
+            "C",
+            "p",
+            "q",
+            "n_sets",
+            "fit_residual_rms_dps",
+            "w_s_dps",
+            "w_s_star_dps",
+            "residual_rms_static_only_dps",
+            "residual_rms_compensated_dps",
+            "turn360_err_static_only_max_deg",
+            "turn360_err_static_only_rms_deg",
+            "turn360_err_compensated_max_deg",
+            "turn360_err_compensated_rms_deg"
+        ])
     );
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     // e(w_g) = w_g - (w_g - 0.5) / 1.01 = 0.5 / 1.01 + w_g (1 - 1 / 1.01)
@@ -178,14 +230,29 @@ fn gyrodometry_calibrate_allan_json_keys() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert_eq!(
         keys(&text),
-        sorted(&["T0_s", "m", "tau_s", "adev_dps", "arw_deg_per_sqrt_s", "arw_deg_per_sqrt_h", "bias_instability_dps", "bias_instability_dph", "tau_at_min_s"])
+        sorted(&[
+            "T0_s",
+            "m",
+            "tau_s",
+            "adev_dps",
+            "arw_deg_per_sqrt_s",
+            "arw_deg_per_sqrt_h",
+            "bias_instability_dps",
+            "bias_instability_dph",
+            "tau_at_min_s"
+        ])
     );
 }
 
 #[test]
 fn simulate_report_tune() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
-    for (kind, extra) in [("drive", vec!["--scenario", "rural", "--minutes", "4"]), ("robot", vec![]), ("turntable", vec![]), ("static", vec!["--minutes", "3"])] {
+    for (kind, extra) in [
+        ("drive", vec!["--scenario", "rural", "--minutes", "4"]),
+        ("robot", vec![]),
+        ("turntable", vec![]),
+        ("static", vec!["--minutes", "3"]),
+    ] {
         let out = dir.join(format!("sim-{kind}.csv"));
         let mut args = vec!["simulate", kind, "--seed", "7", "--out", out.to_str().unwrap()];
         args.extend(extra);
@@ -198,7 +265,20 @@ fn simulate_report_tune() {
     let mut drives = vec![];
     for seed in ["1", "2", "3"] {
         let out = dir.join(format!("d{seed}.csv"));
-        let o = run(&["simulate", "drive", "--scenario", "city", "--minutes", "5", "--seed", seed, "--name", &format!("Drive {seed}"), "--out", out.to_str().unwrap()]);
+        let o = run(&[
+            "simulate",
+            "drive",
+            "--scenario",
+            "city",
+            "--minutes",
+            "5",
+            "--seed",
+            seed,
+            "--name",
+            &format!("Drive {seed}"),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
         assert!(o.status.success());
         drives.push(out.to_str().unwrap().to_string());
     }

@@ -233,7 +233,13 @@ fn bad_recipes_and_files_exit_2_naming_what_is_wrong() {
         (base.replace("table = \"imu\"\ncolumn", "table = \"imux\"\ncolumn"), "no [[table]] with id \"imux\""),
         (base.replace("positive = \"cw\"\n[heading]", "[heading]"), "missing field `positive`"),
         (base.replace("format = \"iso8601\" }\n[[table]]", "format = \"iso8601\", colour = 1 }\n[[table]]"), "unknown field `colour`"),
-        (base.replace("source = \"column\"\ntable = \"gps\"\ncolumn = \"bearing\"", "source = \"positions\"\ntable = \"gps\"\ncolumn = \"bearing\""), "heading: `table` is not used with source = \"positions\""),
+        (
+            base.replace(
+                "source = \"column\"\ntable = \"gps\"\ncolumn = \"bearing\"",
+                "source = \"positions\"\ntable = \"gps\"\ncolumn = \"bearing\"",
+            ),
+            "heading: `table` is not used with source = \"positions\"",
+        ),
         (base.replace("column = \"bearing\"\n", ""), "heading: source = \"column\" needs `column`"),
     ];
     for (i, (text, want)) in cases.iter().enumerate() {

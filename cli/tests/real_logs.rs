@@ -103,7 +103,8 @@ fn every_recipe_imports_with_the_verified_signs_units_and_clocks() {
 
     // VN-100 town: gyro_z (clockwise) integrates to -371 deg with the 10 s static bias removed.
     let town = import(&data, "neu-vn100-town");
-    let eps0 = gyrodrift::preprocess::static_bias_dps(town.log.time_s(), town.log.column(gyrodrift::Column::GyroDps).unwrap(), 10.0).unwrap();
+    let eps0 =
+        gyrodrift::preprocess::static_bias_dps(town.log.time_s(), town.log.column(gyrodrift::Column::GyroDps).unwrap(), 10.0).unwrap();
     let total = integral(&town.log, eps0, 0.0, 1e9);
     assert!((total - 371.0).abs() < 6.0, "town: {total} (SOURCE: -371 clockwise)");
     // smartLoc: wz (counter-clockwise) integrates to -92.5, -174.7 and +91.1 deg over

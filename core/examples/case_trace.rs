@@ -1,3 +1,4 @@
+#![allow(clippy::needless_range_loop)]
 //! Prints one simulated battery case's bias over time: the truth (the same drive with an
 //! ideal gyro subtracted), the pipeline (causal, smoothed) and HDR's drift estimate.
 //! `cargo run --release --example case_trace -- BASE PROFILE` (BASE as `gyrodrift battery` names it).
@@ -14,14 +15,22 @@ fn main() {
     let seed: u64 = parts[3].parse().unwrap();
     let cfg = sim::DriveConfig { scenario: parts[1].parse().unwrap(), minutes: 20.0, seed };
     let ideal = sim::GyroSpec {
-        offset_max_dps: 0.0, temp_coeff_dps_per_c: (0.0, 0.0), gm_sigma_dps: (0.0, 0.0), gm_tau_s: (1.0, 1.0),
-        noise_dps: (0.0, 0.0), scale_error_max: 0.0, nonlinearity_max_dps: 0.0, full_scale_dps: 1e9, lsb_dps: 1e-9,
+        offset_max_dps: 0.0,
+        temp_coeff_dps_per_c: (0.0, 0.0),
+        gm_sigma_dps: (0.0, 0.0),
+        gm_tau_s: (1.0, 1.0),
+        noise_dps: (0.0, 0.0),
+        scale_error_max: 0.0,
+        nonlinearity_max_dps: 0.0,
+        full_scale_dps: 1e9,
+        lsb_dps: 1e-9,
     };
     let truth = sim::drive::simulate_drive_with(&cfg, &ideal);
     let log = sim::inject(&base.log, &prof.errors).unwrap();
     let skip = base.log.len() - log.len();
     let t = log.time_s();
-    let err: Vec<f64> = log.column(Column::GyroDps).unwrap().iter().zip(&truth.column(Column::GyroDps).unwrap()[skip..]).map(|(g, w)| g - w).collect();
+    let err: Vec<f64> =
+        log.column(Column::GyroDps).unwrap().iter().zip(&truth.column(Column::GyroDps).unwrap()[skip..]).map(|(g, w)| g - w).collect();
     let true_bias = block_average_1hz(t, &err);
     let prep = Prepared::new(&log, None, &Default::default()).unwrap();
     let tr = prep.pipeline_trace(&Default::default()).unwrap();
@@ -40,7 +49,17 @@ fn main() {
     for i in (0..tr.time_s.len()).step_by(step) {
         println!(
             "{:6.0} w {:.2} {:.2} {:.2} stop {} rate {:8.3} true {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
-            tr.time_s[i], w[i][..9].iter().sum::<f64>(), w[i][18..27].iter().sum::<f64>(), w[i][36..].iter().sum::<f64>(), tr.stop[i] as u8, prep.blocks.rate_dps[i], true_bias.rate_dps[i], tr.bias_dps[i], tr.bias_sigma_dps[i], tr.bias_smoothed_dps[i], drift[i] + h.eps0_dps
+            tr.time_s[i],
+            w[i][..9].iter().sum::<f64>(),
+            w[i][18..27].iter().sum::<f64>(),
+            w[i][36..].iter().sum::<f64>(),
+            tr.stop[i] as u8,
+            prep.blocks.rate_dps[i],
+            true_bias.rate_dps[i],
+            tr.bias_dps[i],
+            tr.bias_sigma_dps[i],
+            tr.bias_smoothed_dps[i],
+            drift[i] + h.eps0_dps
         );
     }
 }
@@ -61,7 +80,15 @@ fn trace_csv(a: &[String]) {
         if i % step == 0 {
             println!(
                 "{:7.0} still {} stop {} straight {} rate {:8.3} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
-                tr.time_s[i] - tr.time_s[0], prep.blocks.still[i] as u8, o.stop as u8, o.straight as u8, prep.blocks.rate_dps[i], tr.bias_dps[i], tr.bias_sigma_dps[i], tr.bias_smoothed_dps[i], drift[i] + h.eps0_dps
+                tr.time_s[i] - tr.time_s[0],
+                prep.blocks.still[i] as u8,
+                o.stop as u8,
+                o.straight as u8,
+                prep.blocks.rate_dps[i],
+                tr.bias_dps[i],
+                tr.bias_sigma_dps[i],
+                tr.bias_smoothed_dps[i],
+                drift[i] + h.eps0_dps
             );
         }
     }

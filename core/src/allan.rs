@@ -78,9 +78,7 @@ pub fn centred_cumsum(y: &[f64]) -> Vec<f64> {
 pub fn allan(rate_dps: &[f64], t0_s: f64) -> Result<AllanResult> {
     let n = rate_dps.len();
     if n < 10 {
-        return Err(Error::data(format!(
-            "too short for Allan deviation: {n} gyro samples (at least 10 are needed)"
-        )));
+        return Err(Error::data(format!("too short for Allan deviation: {n} gyro samples (at least 10 are needed)")));
     }
     if !(t0_s.is_finite() && t0_s > 0.0) {
         return Err(Error::data("the sample interval must be > 0"));
@@ -91,11 +89,7 @@ pub fn allan(rate_dps: &[f64], t0_s: f64) -> Result<AllanResult> {
     let adev_dps: Vec<f64> = m.iter().map(|&m| overlapping_adev(&cum, m)).collect();
     let m1 = ((1.0 / t0_s).round() as usize).max(1);
     let arw = overlapping_adev(&cum, m1) * 1.0f64.sqrt();
-    let (imin, &amin) = adev_dps
-        .iter()
-        .enumerate()
-        .min_by(|a, b| a.1.total_cmp(b.1))
-        .ok_or_else(|| Error::data("empty Allan grid"))?;
+    let (imin, &amin) = adev_dps.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)).ok_or_else(|| Error::data("empty Allan grid"))?;
     Ok(AllanResult {
         T0_s: t0_s,
         tau_at_min_s: tau_s[imin],
@@ -126,10 +120,7 @@ pub fn run(log: &DriveLog) -> Result<AllanResult> {
         }
     }
     if y.len() < 10 {
-        return Err(Error::data(format!(
-            "too short for Allan deviation: {} gyro samples (at least 10 are needed)",
-            y.len()
-        )));
+        return Err(Error::data(format!("too short for Allan deviation: {} gyro samples (at least 10 are needed)", y.len())));
     }
     let t0 = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
     allan(&y, t0)

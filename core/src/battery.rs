@@ -84,7 +84,11 @@ pub fn profiles() -> Vec<Profile> {
         p("rate-dep 1 %", true, GyroErrors { rate_dep: 0.01, ..e }),
         p("g-sens 0.05", true, GyroErrors { g_sens_dps_per_mps2: 0.05, ..e }),
         p("lsb 0.1", true, GyroErrors { lsb_dps: 0.1, ..e }),
-        p("cheap MEMS A cut", true, GyroErrors { bias_dps: 1.0, warmup_dps: 0.5, warmup_tau_s: 400.0, walk_dps_per_sqrt_s: 0.003, scale: 0.01, seed: 13, ..cut }),
+        p(
+            "cheap MEMS A cut",
+            true,
+            GyroErrors { bias_dps: 1.0, warmup_dps: 0.5, warmup_tau_s: 400.0, walk_dps_per_sqrt_s: 0.003, scale: 0.01, seed: 13, ..cut },
+        ),
         // scoring strengths and seeds
         p("bias -0.1", false, GyroErrors { bias_dps: -0.1, ..e }),
         p("bias +0.3 cut", false, GyroErrors { bias_dps: 0.3, ..cut }),
@@ -102,7 +106,21 @@ pub fn profiles() -> Vec<Profile> {
         p("rate-dep -1 %", false, GyroErrors { rate_dep: -0.01, ..e }),
         p("g-sens -0.1", false, GyroErrors { g_sens_dps_per_mps2: -0.1, ..e }),
         p("lsb 0.05", false, GyroErrors { lsb_dps: 0.05, ..e }),
-        p("cheap MEMS B cut", false, GyroErrors { bias_dps: -1.5, warmup_dps: -0.7, warmup_tau_s: 500.0, walk_dps_per_sqrt_s: 0.005, scale: -0.015, noise_dps: 0.2, lsb_dps: 0.07, seed: 25, ..cut }),
+        p(
+            "cheap MEMS B cut",
+            false,
+            GyroErrors {
+                bias_dps: -1.5,
+                warmup_dps: -0.7,
+                warmup_tau_s: 500.0,
+                walk_dps_per_sqrt_s: 0.005,
+                scale: -0.015,
+                noise_dps: 0.2,
+                lsb_dps: 0.07,
+                seed: 25,
+                ..cut
+            },
+        ),
     ]
 }
 
@@ -237,7 +255,15 @@ pub fn run(bases: &[Base], profiles: &[Profile], split: Split, params: &Pipeline
             Ok((duration_min, ne_psi)) => {
                 let best = best_peer(&ne_psi);
                 let pipe = ne_psi[PIPELINE];
-                cases.push(CaseRow { base, profile, training, duration_min, ratio: pipe / best, within: pipe <= 1.25 * best + 0.05, ne_psi });
+                cases.push(CaseRow {
+                    base,
+                    profile,
+                    training,
+                    duration_min,
+                    ratio: pipe / best,
+                    within: pipe <= 1.25 * best + 0.05,
+                    ne_psi,
+                });
             }
             Err(e) => skipped.push((format!("{base} / {profile}"), e.to_string())),
         }

@@ -124,9 +124,7 @@ impl ErrorModel {
                 p + 1
             )));
         }
-        let x = r
-            .solve_upper_triangular(&qte)
-            .ok_or_else(|| Error::data("least squares failed: singular system"))?;
+        let x = r.solve_upper_triangular(&qte).ok_or_else(|| Error::data("least squares failed: singular system"))?;
         let mut c = vec![vec![0.0; p + 1]; q + 1];
         for j in 0..=q {
             for k in 0..=p {
@@ -299,15 +297,11 @@ pub fn run(log: &DriveLog, opts: &CalibrationOptions) -> Result<CalibrationRun> 
     let bias_s = log.bias_s(opts.bias_s);
     let w_s = preprocess::static_bias_dps(log.time_s(), gyro, bias_s)?;
     let t0 = log.time_s()[0];
-    let lead: Vec<usize> = (0..log.len())
-        .take_while(|&r| log.time_s()[r] - t0 < bias_s)
-        .filter(|&r| !gyro[r].is_nan())
-        .collect();
+    let lead: Vec<usize> = (0..log.len()).take_while(|&r| log.time_s()[r] - t0 < bias_s).filter(|&r| !gyro[r].is_nan()).collect();
     let w_s_star = if lead.is_empty() {
         0.0
     } else {
-        let lead_temps: Vec<f64> =
-            lead.iter().filter_map(|&r| temp.map(|t| t[r]).filter(|v| !v.is_nan())).collect();
+        let lead_temps: Vec<f64> = lead.iter().filter_map(|&r| temp.map(|t| t[r]).filter(|v| !v.is_nan())).collect();
         if need_temp && lead_temps.is_empty() {
             return Err(Error::Cell {
                 line: log.line[lead[0]],
@@ -315,8 +309,7 @@ pub fn run(log: &DriveLog, opts: &CalibrationOptions) -> Result<CalibrationRun> 
                 message: "the stationary lead-in has no temperature (needed for w_s*, Eq. 15)".into(),
             });
         }
-        let t_mean =
-            if lead_temps.is_empty() { 0.0 } else { lead_temps.iter().sum::<f64>() / lead_temps.len() as f64 };
+        let t_mean = if lead_temps.is_empty() { 0.0 } else { lead_temps.iter().sum::<f64>() / lead_temps.len() as f64 };
         lead.iter().map(|&r| gyro[r] - model.eval(gyro[r], temp_at(r, t_mean))).sum::<f64>() / lead.len() as f64
     };
     // Residuals per set, on per-sample corrected rates averaged per set.
@@ -368,15 +361,8 @@ mod tests {
 
     #[test]
     fn fit_recovers_an_exact_polynomial() {
-        let truth = ErrorModel {
-            p: 3,
-            q: 2,
-            c: vec![
-                vec![0.5, 0.01, 1e-4, 2e-6],
-                vec![0.02, -1e-4, 0.0, 1e-8],
-                vec![-3e-4, 1e-6, 0.0, 0.0],
-            ],
-        };
+        let truth =
+            ErrorModel { p: 3, q: 2, c: vec![vec![0.5, 0.01, 1e-4, 2e-6], vec![0.02, -1e-4, 0.0, 1e-8], vec![-3e-4, 1e-6, 0.0, 0.0]] };
         let (mut w, mut t, mut e) = (vec![], vec![], vec![]);
         for temp in [25.0, 35.0, 45.0] {
             for k in -10..=10 {

@@ -78,7 +78,8 @@ pub fn compare(drives: &[(String, &DriveLog)], params: &PipelineParams, tuned: O
         return Err(Error::data("no drives to compare"));
     }
     params.validate()?;
-    let rows = drives.iter().map(|(name, log)| compare_row(name, log, params, tuned).map_err(|e| prefix(name, e))).collect::<Result<Vec<_>>>()?;
+    let rows =
+        drives.iter().map(|(name, log)| compare_row(name, log, params, tuned).map_err(|e| prefix(name, e))).collect::<Result<Vec<_>>>()?;
     let n = rows.len() as f64;
     let mean = |f: fn(&CompareRow) -> f64| rows.iter().map(f).sum::<f64>() / n;
     let mean_row = CompareRow {
@@ -152,8 +153,10 @@ mod tests {
 
     #[test]
     fn compare_matches_the_single_runs_and_means() {
-        let a = simulate(&SimRequest { kind: SimKind::Drive, scenario: Some("city".into()), minutes: Some(4.0), seed: 3, name: None }).unwrap();
-        let b = simulate(&SimRequest { kind: SimKind::Drive, scenario: Some("highway".into()), minutes: Some(4.0), seed: 4, name: None }).unwrap();
+        let a =
+            simulate(&SimRequest { kind: SimKind::Drive, scenario: Some("city".into()), minutes: Some(4.0), seed: 3, name: None }).unwrap();
+        let b = simulate(&SimRequest { kind: SimKind::Drive, scenario: Some("highway".into()), minutes: Some(4.0), seed: 4, name: None })
+            .unwrap();
         let p = PipelineParams::default();
         let c = compare(&[("a".into(), &a), ("b".into(), &b)], &p, Some(HdrParams { i_c_dps: 0.01, ..Default::default() })).unwrap();
         let ra = crate::pipeline::run(&a, &p).unwrap().result.unwrap();

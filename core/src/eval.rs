@@ -57,7 +57,16 @@ impl<'a> Prepared<'a> {
         let gyro = log.require(Column::GyroDps, "needed for the yaw rate")?;
         let eps0_dps = preprocess::static_bias_dps(log.time_s(), gyro, bias_s)?;
         let (blocks, source) = still::blocks(log, bias_s, still_opts)?;
-        Ok(Prepared { log, bias_s, eps0_dps, blocks, source, duration_min: log.duration_min(), still_opts: *still_opts, reference: Reference::from_log(log) })
+        Ok(Prepared {
+            log,
+            bias_s,
+            eps0_dps,
+            blocks,
+            source,
+            duration_min: log.duration_min(),
+            still_opts: *still_opts,
+            reference: Reference::from_log(log),
+        })
     }
 
     /// The reference heading, or why there is none.
@@ -151,12 +160,14 @@ mod tests {
 
     #[test]
     fn raw_and_hdr_equal_the_paper_run_bit_for_bit() {
-        let log = simulate(&SimRequest { kind: SimKind::Drive, scenario: Some("city".into()), minutes: Some(5.0), seed: 5, name: None }).unwrap();
+        let log =
+            simulate(&SimRequest { kind: SimKind::Drive, scenario: Some("city".into()), minutes: Some(5.0), seed: 5, name: None }).unwrap();
         let prep = Prepared::new(&log, None, &StillOptions::default()).unwrap();
         let h = hdr::run(&log, &Default::default()).unwrap().result.unwrap();
         assert_eq!(prep.score(&Method::Raw).unwrap().e_psi_deg, h.E_psi_raw_deg);
         assert_eq!(prep.score(&Method::Hdr(HdrParams::default())).unwrap().e_psi_deg, h.E_psi_hdr_deg);
-        let all = prep.score_all(&[Method::Raw, Method::Pipeline(Default::default()), Method::PipelineSmoothed(Default::default())]).unwrap();
+        let all =
+            prep.score_all(&[Method::Raw, Method::Pipeline(Default::default()), Method::PipelineSmoothed(Default::default())]).unwrap();
         assert_eq!(all[1], prep.score(&Method::Pipeline(Default::default())).unwrap());
         assert_eq!(all[2], prep.score(&Method::PipelineSmoothed(Default::default())).unwrap());
     }

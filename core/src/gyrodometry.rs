@@ -95,9 +95,7 @@ impl Gyrodometry {
         if let Some((t, l, r)) = self.last {
             let dt = time_s - t;
             if !(dt > 0.0) {
-                return Err(Error::data(format!(
-                    "Gyrodometry update: time {time_s} s is not after the previous {t} s"
-                )));
+                return Err(Error::data(format!("Gyrodometry update: time {time_s} s is not after the previous {t} s")));
             }
             let d_odo = odo_increment_deg(odo_left_m - l, odo_right_m - r, self.wheelbase_m);
             let d_gyro = (rate_raw_dps - self.eps0_dps) * dt;
@@ -108,13 +106,7 @@ impl Gyrodometry {
             self.fused += if used_gyro { d_gyro } else { d_odo };
         }
         self.last = Some((time_s, odo_left_m, odo_right_m));
-        Ok(GyrodometryOutput {
-            time_s,
-            heading_odo_deg: self.odo,
-            heading_gyro_deg: self.gyro,
-            heading_deg: self.fused,
-            used_gyro,
-        })
+        Ok(GyrodometryOutput { time_s, heading_odo_deg: self.odo, heading_gyro_deg: self.gyro, heading_deg: self.fused, used_gyro })
     }
 }
 
@@ -158,9 +150,10 @@ pub struct GyrodometryRun {
 
 /// Runs Gyrodometry on the rows that have gyro and both wheel values, from row 0.
 pub fn run(log: &DriveLog, opts: &GyrodometryOptions) -> Result<GyrodometryRun> {
-    let wheelbase_m = opts.wheelbase_m.or(log.meta.wheelbase_m).ok_or_else(|| {
-        Error::param("wheelbase_m", "missing: give it as an option or as `# wheelbase_m:` in the log")
-    })?;
+    let wheelbase_m = opts
+        .wheelbase_m
+        .or(log.meta.wheelbase_m)
+        .ok_or_else(|| Error::param("wheelbase_m", "missing: give it as an option or as `# wheelbase_m:` in the log"))?;
     let gyro = log.require(Column::GyroDps, "needed by Gyrodometry")?;
     let left = log.require(Column::OdoLeftM, "needed by Gyrodometry")?;
     let right = log.require(Column::OdoRightM, "needed by Gyrodometry")?;
@@ -251,10 +244,7 @@ mod tests {
 
     #[test]
     fn missing_wheelbase_is_an_error() {
-        let log = crate::log::parse_log_str(
-            "time_s,gyro_dps,odo_left_m,odo_right_m,ref_heading_deg\n0,0,0,0,0\n1,0,0,0,0\n",
-        )
-        .unwrap();
+        let log = crate::log::parse_log_str("time_s,gyro_dps,odo_left_m,odo_right_m,ref_heading_deg\n0,0,0,0,0\n1,0,0,0,0\n").unwrap();
         let e = run(&log, &GyrodometryOptions::default()).unwrap_err();
         assert!(e.to_string().contains("wheelbase_m"), "{e}");
         let ok = run(&log, &GyrodometryOptions { wheelbase_m: Some(0.5), bias_s: Some(0.0), ..Default::default() });

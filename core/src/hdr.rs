@@ -409,7 +409,15 @@ impl From<HdrOptionsFlat> for HdrOptions {
 impl From<HdrOptions> for HdrOptionsFlat {
     fn from(o: HdrOptions) -> Self {
         let p = o.params;
-        HdrOptionsFlat { i_c_dps: p.i_c_dps, tau_s: p.tau_s, theta_w_dps: p.theta_w_dps, c1: p.c1, c2: p.c2, bias_s: o.bias_s, resample: o.resample }
+        HdrOptionsFlat {
+            i_c_dps: p.i_c_dps,
+            tau_s: p.tau_s,
+            theta_w_dps: p.theta_w_dps,
+            c1: p.c1,
+            c2: p.c2,
+            bias_s: o.bias_s,
+            resample: o.resample,
+        }
     }
 }
 
@@ -424,10 +432,7 @@ impl HdrOptions {
                 self.bias_s = Some(value);
                 Ok(())
             }
-            _ => self
-                .params
-                .set(key, value)
-                .map_err(|_| Error::param(key, "unknown key (i_c, tau, theta_w, c1, c2, bias_s)")),
+            _ => self.params.set(key, value).map_err(|_| Error::param(key, "unknown key (i_c, tau, theta_w, c1, c2, bias_s)")),
         }
     }
 }
@@ -524,7 +529,6 @@ pub fn headings_only(samples: &Samples, params: HdrParams, eps0_dps: f64, out_hd
     let mut hdr = Hdr::new(params, eps0_dps)?;
     out_hdr.clear();
     hdr.update_slice(&samples.time_s, &samples.rate_dps, |o| out_hdr.push(o.heading_deg))
-
 }
 
 /// Runs HDR on a log: static bias, optional 1 Hz blocks, estimator, baseline, metrics.

@@ -280,7 +280,10 @@ impl TryFrom<HeadingWire> for HeadingSpec {
                         ("speed_column", w.speed_column.is_some()),
                     ],
                 )?;
-                Ok(HeadingSpec::Positions { min_distance_m: w.min_distance_m.unwrap_or(2.0), min_speed_mps: w.min_speed_mps.unwrap_or(1.0) })
+                Ok(HeadingSpec::Positions {
+                    min_distance_m: w.min_distance_m.unwrap_or(2.0),
+                    min_speed_mps: w.min_speed_mps.unwrap_or(1.0),
+                })
             }
         }
     }
@@ -297,7 +300,9 @@ pub enum SpeedSpec {
         /// m/s, km/h or mph.
         unit: String,
     },
-    Positions { window_s: f64 },
+    Positions {
+        window_s: f64,
+    },
 }
 
 #[derive(Deserialize)]
@@ -421,10 +426,7 @@ struct Table {
 
 impl Table {
     fn col(&self, name: &str, used_by: &str) -> Result<&[f64]> {
-        self.cols
-            .get(name)
-            .map(|v| v.as_slice())
-            .ok_or_else(|| Error::missing(name, &format!("{used_by} (in {})", self.file)))
+        self.cols.get(name).map(|v| v.as_slice()).ok_or_else(|| Error::missing(name, &format!("{used_by} (in {})", self.file)))
     }
 }
 
@@ -619,7 +621,12 @@ fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mut dyn Files
             for name in wanted {
                 match index_of(name) {
                     Some(j) => idx.push((name.clone(), j)),
-                    None => return Err(Error::missing(name, &format!("named by the recipe for table {}; the header has: {}", spec.id, h.join(", ")))),
+                    None => {
+                        return Err(Error::missing(
+                            name,
+                            &format!("named by the recipe for table {}; the header has: {}", spec.id, h.join(", ")),
+                        ))
+                    }
                 }
             }
             if let Some(c) = &spec.time.column {
@@ -650,7 +657,11 @@ fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mut dyn Files
                     TimeFormat::Seconds => cell(j, &time_name)? * scale,
                     TimeFormat::Iso8601 => {
                         let text = fields.get(j).copied().unwrap_or("");
-                        parse_iso8601(text).ok_or_else(|| Error::Cell { line, column: time_name.clone(), message: format!("\"{text}\" is not an ISO 8601 time") })?
+                        parse_iso8601(text).ok_or_else(|| Error::Cell {
+                            line,
+                            column: time_name.clone(),
+                            message: format!("\"{text}\" is not an ISO 8601 time"),
+                        })?
                     }
                 };
                 if v.is_nan() {
@@ -662,7 +673,11 @@ fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mut dyn Files
         };
         if let Some(&prev) = t.time_s.last() {
             if !(time > prev) {
-                return Err(Error::Cell { line, column: time_name.clone(), message: format!("time {time} does not increase (previous row {prev})") });
+                return Err(Error::Cell {
+                    line,
+                    column: time_name.clone(),
+                    message: format!("time {time} does not increase (previous row {prev})"),
+                });
             }
         }
         for (k, (name, j)) in idx.iter().enumerate() {
@@ -693,8 +708,11 @@ fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mut dyn Files
     Ok(t)
 }
 
+/// Times, yaw rates (deg/s, CCW positive) and, when projected, the up vector.
+type YawRate = (Vec<f64>, Vec<f64>, Option<[f64; 3]>);
+
 /// The yaw rate of a table in deg/s, CCW positive (and the up vector when projected).
-fn yaw_rate(spec: &RateSpec, tables: &BTreeMap<String, Table>, field: &str) -> Result<(Vec<f64>, Vec<f64>, Option<[f64; 3]>)> {
+fn yaw_rate(spec: &RateSpec, tables: &BTreeMap<String, Table>, field: &str) -> Result<YawRate> {
     let t = tables.get(&spec.table).ok_or_else(|| recipe_err(&format!("{field}.table"), format!("no table with id \"{}\"", spec.table)))?;
     let unit = rate_unit(&spec.unit, &format!("{field}.unit"))?;
     if !(spec.scale.is_finite() && spec.scale != 0.0 && spec.offset.is_finite()) {
@@ -745,9 +763,7 @@ fn yaw_rate(spec: &RateSpec, tables: &BTreeMap<String, Table>, field: &str) -> R
                 )));
             }
             let up = [m[0] / norm, m[1] / norm, m[2] / norm];
-            let rate = (0..t.time_s.len())
-                .map(|i| (0..3).map(|j| conv(gyro[j][i]) * gs[j] * up[j]).sum::<f64>())
-                .collect();
+            let rate = (0..t.time_s.len()).map(|i| (0..3).map(|j| conv(gyro[j][i]) * gs[j] * up[j]).sum::<f64>()).collect();
             Ok((t.time_s.clone(), rate, Some(up)))
         }
         _ => Err(recipe_err(field, "give either `column` (one axis) or `axes` with `gravity` (projection on up)")),
@@ -802,10 +818,7 @@ fn local_en(spec: &PositionsSpec, t: &Table) -> Result<(Vec<f64>, Vec<f64>, Vec<
             continue;
         }
         let (de, dn) = match spec.kind {
-            PositionKind::Latlon => (
-                (c[1][i].to_radians() - lon0) * r_n * libm::cos(lat0),
-                (c[0][i].to_radians() - lat0) * r_m,
-            ),
+            PositionKind::Latlon => ((c[1][i].to_radians() - lon0) * r_n * libm::cos(lat0), (c[0][i].to_radians() - lat0) * r_m),
             PositionKind::Utm | PositionKind::Enu => (c[0][i] - c[0][i0], c[1][i] - c[1][i0]),
             PositionKind::Ecef => {
                 let d = [c[0][i] - c[0][i0], c[1][i] - c[1][i0], c[2][i] - c[2][i0]];
@@ -823,7 +836,13 @@ fn local_en(spec: &PositionsSpec, t: &Table) -> Result<(Vec<f64>, Vec<f64>, Vec<
 /// Course over ground (deg, clockwise from north) between positions at least
 /// `min_distance_m` apart, stamped at the segment's middle; segments slower than
 /// `min_speed_mps` restart the anchor without a sample.
-pub fn course_from_positions(time_s: &[f64], east_m: &[f64], north_m: &[f64], min_distance_m: f64, min_speed_mps: f64) -> (Vec<f64>, Vec<f64>) {
+pub fn course_from_positions(
+    time_s: &[f64],
+    east_m: &[f64],
+    north_m: &[f64],
+    min_distance_m: f64,
+    min_speed_mps: f64,
+) -> (Vec<f64>, Vec<f64>) {
     let (mut ts, mut course) = (Vec::new(), Vec::new());
     let mut a = 0usize;
     for i in 1..time_s.len() {
@@ -978,9 +997,8 @@ pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, Impor
     // Which columns each table must provide.
     let mut wanted: BTreeMap<String, BTreeSet<String>> = recipe.tables.iter().map(|t| (t.id.clone(), BTreeSet::new())).collect();
     let mut want = |table: &str, cols: &[&String], field: &str| -> Result<()> {
-        let set = wanted
-            .get_mut(table)
-            .ok_or_else(|| recipe_err(&format!("{field}.table"), format!("no [[table]] with id \"{table}\"")))?;
+        let set =
+            wanted.get_mut(table).ok_or_else(|| recipe_err(&format!("{field}.table"), format!("no [[table]] with id \"{table}\"")))?;
         set.extend(cols.iter().map(|c| (*c).clone()));
         Ok(())
     };

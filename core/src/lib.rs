@@ -16,6 +16,11 @@
 //! Pure Rust: no I/O beyond `Read`/`Write`, no wasm or browser types; errors, never panics,
 //! on bad input.
 
+// NaN-rejecting comparisons (`!(x > 0.0)`) are intended throughout: a NaN must fail them.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+// Numeric loops over several parallel arrays read clearer with an index.
+#![allow(clippy::needless_range_loop)]
+
 pub mod allan;
 pub mod battery;
 pub mod calibration;

@@ -201,8 +201,7 @@ impl DriveLog {
         for (k, v) in &m.other {
             writeln!(out, "# {k}: {v}")?;
         }
-        let cols: Vec<(Column, &[f64])> =
-            Column::ALL.iter().filter_map(|&c| self.column(c).map(|v| (c, v))).collect();
+        let cols: Vec<(Column, &[f64])> = Column::ALL.iter().filter_map(|&c| self.column(c).map(|v| (c, v))).collect();
         let header: Vec<&str> = cols.iter().map(|(c, _)| c.name()).collect();
         writeln!(out, "{}", header.join(","))?;
         let mut buf = String::new();
@@ -257,7 +256,11 @@ impl DriveLog {
         let t = log.time_s();
         for i in 0..n {
             if t[i].is_nan() || (i > 0 && !(t[i] > t[i - 1])) {
-                return Err(Error::Cell { line: log.line[i], column: "time_s".into(), message: "time must be present and strictly increase".into() });
+                return Err(Error::Cell {
+                    line: log.line[i],
+                    column: "time_s".into(),
+                    message: "time must be present and strictly increase".into(),
+                });
             }
         }
         Ok(log)
@@ -312,10 +315,7 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
         if line_no == 1 && raw.starts_with(b"\xEF\xBB\xBF") {
             raw.drain(..3);
         }
-        let text = std::str::from_utf8(&raw).map_err(|_| Error::Line {
-            line: line_no,
-            message: "not valid UTF-8 text".into(),
-        })?;
+        let text = std::str::from_utf8(&raw).map_err(|_| Error::Line { line: line_no, message: "not valid UTF-8 text".into() })?;
         let trimmed = text.trim();
         if trimmed.is_empty() {
             continue;
@@ -328,10 +328,7 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
     };
     let header_line_no = line_no;
 
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .flexible(true)
-        .from_reader(std::io::Cursor::new(header_line).chain(reader));
+    let mut rdr = csv::ReaderBuilder::new().has_headers(true).flexible(true).from_reader(std::io::Cursor::new(header_line).chain(reader));
     let header = rdr.byte_headers().map_err(|e| csv_error(e, header_line_no - 1))?.clone();
 
     // Map each header field to a known column (or None = ignored).
@@ -344,12 +341,7 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
             if let Some(first) = seen[c.index()] {
                 return Err(Error::Line {
                     line: header_line_no,
-                    message: format!(
-                        "duplicate column {} (fields {} and {})",
-                        c.name(),
-                        first + 1,
-                        j + 1
-                    ),
+                    message: format!("duplicate column {} (fields {} and {})", c.name(), first + 1, j + 1),
                 });
             }
             seen[c.index()] = Some(j);
@@ -357,14 +349,10 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
         map.push(col);
     }
     if seen[Column::TimeS.index()].is_none() {
-        let names: Vec<String> =
-            header.iter().map(|f| String::from_utf8_lossy(f).into_owned()).collect();
+        let names: Vec<String> = header.iter().map(|f| String::from_utf8_lossy(f).into_owned()).collect();
         return Err(Error::Line {
             line: header_line_no,
-            message: format!(
-                "missing required column time_s (the header has: {})",
-                names.join(", ")
-            ),
+            message: format!("missing required column time_s (the header has: {})", names.join(", ")),
         });
     }
 
@@ -380,34 +368,21 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
     let mut prev_time: Option<(f64, u64)> = None;
     let mut rows = 0usize;
     loop {
-        let more = rdr
-            .read_byte_record(&mut record)
-            .map_err(|e| csv_error(e, header_line_no - 1))?;
+        let more = rdr.read_byte_record(&mut record).map_err(|e| csv_error(e, header_line_no - 1))?;
         if !more {
             break;
         }
         let line = record.position().map(|p| p.line()).unwrap_or(0) + header_line_no - 1;
         if record.len() != n_fields {
             let hint = if record.len() < n_fields { " (truncated row?)" } else { "" };
-            return Err(Error::Line {
-                line,
-                message: format!(
-                    "row has {} fields, the header has {}{}",
-                    record.len(),
-                    n_fields,
-                    hint
-                ),
-            });
+            return Err(Error::Line { line, message: format!("row has {} fields, the header has {}{}", record.len(), n_fields, hint) });
         }
         rows += 1;
-        if rows % 65_536 == 0 {
+        if rows.is_multiple_of(65_536) {
             progress(record.position().map_or(0, |p| p.byte()));
         }
         if rows > opts.max_rows {
-            return Err(Error::File(format!(
-                "too many rows: more than {} (line {line}); split the log or raise max_rows",
-                opts.max_rows
-            )));
+            return Err(Error::File(format!("too many rows: more than {} (line {line}); split the log or raise max_rows", opts.max_rows)));
         }
         for (j, col) in map.iter().enumerate() {
             let Some(c) = col else { continue };
@@ -415,11 +390,7 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
             let v = parse_cell(cell, line, c.name())?;
             if j == time_field {
                 if v.is_nan() {
-                    return Err(Error::Cell {
-                        line,
-                        column: c.name().into(),
-                        message: "empty, but every row needs a time".into(),
-                    });
+                    return Err(Error::Cell { line, column: c.name().into(), message: "empty, but every row needs a time".into() });
                 }
                 if let Some((pt, pl)) = prev_time {
                     if v <= pt {
@@ -427,9 +398,7 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
                         return Err(Error::Cell {
                             line,
                             column: c.name().into(),
-                            message: format!(
-                                "time {v} {what} {pt} on line {pl}: time must strictly increase"
-                            ),
+                            message: format!("time {v} {what} {pt} on line {pl}: time must strictly increase"),
                         });
                     }
                 }
@@ -442,9 +411,7 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
         log.line.push(line);
     }
     if rows == 0 {
-        return Err(Error::File(format!(
-            "no data rows: the file has a header (line {header_line_no}) but no rows"
-        )));
+        return Err(Error::File(format!("no data rows: the file has a header (line {header_line_no}) but no rows")));
     }
     Ok(log)
 }
@@ -455,23 +422,12 @@ fn parse_cell(cell: &[u8], line: u64, column: &str) -> Result<f64> {
     if cell.is_empty() {
         return Ok(f64::NAN);
     }
-    let text = std::str::from_utf8(cell).map_err(|_| Error::Cell {
-        line,
-        column: column.into(),
-        message: "not valid UTF-8 text".into(),
-    })?;
+    let text =
+        std::str::from_utf8(cell).map_err(|_| Error::Cell { line, column: column.into(), message: "not valid UTF-8 text".into() })?;
     match text.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
-        Ok(_) => Err(Error::Cell {
-            line,
-            column: column.into(),
-            message: format!("\"{text}\" is not a finite number"),
-        }),
-        Err(_) => Err(Error::Cell {
-            line,
-            column: column.into(),
-            message: format!("\"{}\" is not a number", shorten(text)),
-        }),
+        Ok(_) => Err(Error::Cell { line, column: column.into(), message: format!("\"{text}\" is not a finite number") }),
+        Err(_) => Err(Error::Cell { line, column: column.into(), message: format!("\"{}\" is not a number", shorten(text)) }),
     }
 }
 
@@ -493,10 +449,7 @@ fn parse_meta_line(rest: &str, line: u64, meta: &mut LogMeta) -> Result<()> {
     let number = |name: &str| -> Result<f64> {
         match value.parse::<f64>() {
             Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
-            _ => Err(Error::Line {
-                line,
-                message: format!("metadata {name}: \"{value}\" is not a number >= 0"),
-            }),
+            _ => Err(Error::Line { line, message: format!("metadata {name}: \"{value}\" is not a number >= 0") }),
         }
     };
     match key {
@@ -672,14 +625,8 @@ mod tests {
     #[test]
     fn kind_from_columns() {
         assert_eq!(DriveLog::with_columns(&[Column::GyroDps]).kind(), LogKind::Static);
-        assert_eq!(
-            DriveLog::with_columns(&[Column::GyroDps, Column::RefHeadingDeg]).kind(),
-            LogKind::Drive
-        );
-        assert_eq!(
-            DriveLog::with_columns(&[Column::OdoLeftM, Column::OdoRightM]).kind(),
-            LogKind::Robot
-        );
+        assert_eq!(DriveLog::with_columns(&[Column::GyroDps, Column::RefHeadingDeg]).kind(), LogKind::Drive);
+        assert_eq!(DriveLog::with_columns(&[Column::OdoLeftM, Column::OdoRightM]).kind(), LogKind::Robot);
         assert_eq!(DriveLog::with_columns(&[Column::TableRateDps]).kind(), LogKind::Turntable);
     }
 }

@@ -25,9 +25,7 @@ impl Reference {
             }
         }
         if time_s.is_empty() {
-            return Err(Error::data(
-                "no valid reference heading: the ref_heading_deg column is empty, so E_psi cannot be computed",
-            ));
+            return Err(Error::data("no valid reference heading: the ref_heading_deg column is empty, so E_psi cannot be computed"));
         }
         Ok(Reference { time_s, heading_deg: unwrap_deg(&raw) })
     }
@@ -112,9 +110,7 @@ pub fn score(time_s: &[f64], psi_deg: &[f64], reference: &Reference) -> Result<S
         n += 1;
     }
     if n == 0 {
-        return Err(Error::data(format!(
-            "no valid reference heading between {t_first} s and {t_last} s, where the heading trace is"
-        )));
+        return Err(Error::data(format!("no valid reference heading between {t_first} s and {t_last} s, where the heading trace is")));
     }
     Ok(Score { shift_deg: shift, e_psi_deg: sum / n as f64, n_samples: n, final_err_deg: last_err })
 }
@@ -184,10 +180,7 @@ mod tests {
     #[test]
     fn score_aligns_at_first_sample_inside_span() {
         // reference at 0.5 (before trace), 1, 2, 3.5 (after trace)
-        let reference = Reference {
-            time_s: vec![0.5, 1.0, 2.0, 3.5],
-            heading_deg: vec![99.0, 100.0, 100.0, 0.0],
-        };
+        let reference = Reference { time_s: vec![0.5, 1.0, 2.0, 3.5], heading_deg: vec![99.0, 100.0, 100.0, 0.0] };
         let t = [1.0, 2.0, 3.0];
         let psi = [0.0, 4.0, 8.0];
         let s = score(&t, &psi, &reference).unwrap();

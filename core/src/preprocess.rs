@@ -43,9 +43,7 @@ pub fn static_bias_dps(time_s: &[f64], gyro_dps: &[f64], bias_s: f64) -> Result<
         }
     }
     if n == 0 {
-        return Err(Error::data(format!(
-            "no gyro_dps value in the first {bias_s} s for the static bias (set bias_s = 0 to skip it)"
-        )));
+        return Err(Error::data(format!("no gyro_dps value in the first {bias_s} s for the static bias (set bias_s = 0 to skip it)")));
     }
     Ok(sum / n as f64)
 }

@@ -111,8 +111,20 @@ impl Report {
         let w = self.rows.iter().map(|r| r.name.len()).max().unwrap_or(5).max(12);
         let mut s = format!(
             "{:<w$} {:>9} {:>11} {:>13} {:>11} {:>13} {:>8}\n{:<w$} {:>9} {:>11} {:>13} {:>11} {:>13} {:>8}\n",
-            "drive", "duration", "E_psi raw", "NE_psi raw", "E_psi HDR", "NE_psi HDR", "improv.",
-            "", "(min)", "(deg)", "(deg/min)", "(deg)", "(deg/min)", "",
+            "drive",
+            "duration",
+            "E_psi raw",
+            "NE_psi raw",
+            "E_psi HDR",
+            "NE_psi HDR",
+            "improv.",
+            "",
+            "(min)",
+            "(deg)",
+            "(deg/min)",
+            "(deg)",
+            "(deg/min)",
+            "",
         );
         for r in &self.rows {
             s.push_str(&format!(

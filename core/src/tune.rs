@@ -199,7 +199,7 @@ impl CostFunction for Problem<'_> {
     type Output = f64;
     fn cost(&self, u: &Vec<f64>) -> std::result::Result<f64, argmin::core::Error> {
         self.evals.set(self.evals.get() + 1);
-        if self.evals.get() % 16 == 0 {
+        if self.evals.get().is_multiple_of(16) {
             (self.progress)(self.evals.get());
         }
         // Outside the unit cube: the clamped cost plus a penalty, so the simplex walks back.
@@ -304,9 +304,7 @@ fn tune_once(drives: &[PreparedDrive], opts: &TuneOptions, progress: &dyn Fn(u64
             v[k] = if v[k] + step <= 1.0 { v[k] + step } else { v[k] - step };
             simplex.push(v);
         }
-        let solver = NelderMead::new(simplex)
-            .with_sd_tolerance(1e-7)
-            .map_err(|e| Error::data(format!("tuning: {e}")))?;
+        let solver = NelderMead::new(simplex).with_sd_tolerance(1e-7).map_err(|e| Error::data(format!("tuning: {e}")))?;
         let round_problem = Problem { drives, lo, hi, anchor, lambda, evals: &evals, progress };
         let res = Executor::new(round_problem, solver)
             .configure(|st| st.max_iters(opts.max_iters))
@@ -383,7 +381,14 @@ mod cv_tests {
     fn drives(n: u64) -> Vec<PreparedDrive> {
         (0..n)
             .map(|i| {
-                let log = simulate(&SimRequest { kind: SimKind::Drive, scenario: Some("city".into()), minutes: Some(4.0), seed: 40 + i, name: None }).unwrap();
+                let log = simulate(&SimRequest {
+                    kind: SimKind::Drive,
+                    scenario: Some("city".into()),
+                    minutes: Some(4.0),
+                    seed: 40 + i,
+                    name: None,
+                })
+                .unwrap();
                 PreparedDrive::new(&format!("d{i}"), &log, None, true).unwrap()
             })
             .collect()

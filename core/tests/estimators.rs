@@ -113,7 +113,13 @@ fn gyrodometry_rejects_bumps_on_a_robot_run() {
             }
         }
         let reference = if i % 10 == 0 { 0.0 } else { f64::NAN };
-        log.push_row(&[(Column::TimeS, t), (Column::GyroDps, 0.01), (Column::OdoLeftM, l), (Column::OdoRightM, r), (Column::RefHeadingDeg, reference)]);
+        log.push_row(&[
+            (Column::TimeS, t),
+            (Column::GyroDps, 0.01),
+            (Column::OdoLeftM, l),
+            (Column::OdoRightM, r),
+            (Column::RefHeadingDeg, reference),
+        ]);
     }
     let run = gyrodometry::run(&log, &GyrodometryOptions { bias_s: Some(0.0), ..Default::default() }).unwrap();
     let res = run.result.unwrap();

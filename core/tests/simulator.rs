@@ -64,7 +64,9 @@ fn prepared(logs: &[DriveLog]) -> Vec<PreparedDrive> {
 #[test]
 fn tuning_never_worsens_the_training_objective() {
     let logs: Vec<DriveLog> = (0..3)
-        .map(|s| sim::simulate(&SimRequest { scenario: Some("mixed".into()), minutes: Some(8.0), seed: 40 + s, ..Default::default() }).unwrap())
+        .map(|s| {
+            sim::simulate(&SimRequest { scenario: Some("mixed".into()), minutes: Some(8.0), seed: 40 + s, ..Default::default() }).unwrap()
+        })
         .collect();
     let drives = prepared(&logs);
     let opts = TuneOptions { max_iters: 60, restarts: 1, ..Default::default() };

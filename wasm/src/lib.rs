@@ -190,7 +190,8 @@ impl Log {
     pub fn from_columns(#[wasm_bindgen(unchecked_param_type = "LogColumns")] data: JsValue) -> JsResult<Log> {
         let get = |o: &JsValue, k: &str| Reflect::get(o, &JsValue::from_str(k)).unwrap_or(JsValue::UNDEFINED);
         let meta: gyrodrift::LogMeta = serde_wasm_bindgen::from_value(get(&data, "meta")).unwrap_or_default();
-        let line: Vec<u64> = get(&data, "line").dyn_into::<Float64Array>().map(|a| a.to_vec().into_iter().map(|v| v as u64).collect()).unwrap_or_default();
+        let line: Vec<u64> =
+            get(&data, "line").dyn_into::<Float64Array>().map(|a| a.to_vec().into_iter().map(|v| v as u64).collect()).unwrap_or_default();
         let cols_obj = get(&data, "columns");
         let mut cols = Vec::new();
         for c in gyrodrift::Column::ALL {
@@ -366,10 +367,7 @@ pub fn hdr_trace_csv(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOption
 
 /// Gyrodometry on a robot log: the Result keys of methods.md.
 #[wasm_bindgen(unchecked_return_type = "GyrodometryResult")]
-pub fn gyrodometry(
-    log: &Log,
-    #[wasm_bindgen(unchecked_param_type = "GyrodometryOptions")] options: JsValue,
-) -> JsResult<JsValue> {
+pub fn gyrodometry(log: &Log, #[wasm_bindgen(unchecked_param_type = "GyrodometryOptions")] options: JsValue) -> JsResult<JsValue> {
     let opts: gyrodometry::GyrodometryOptions = self::options("gyrodometry", options)?;
     let run = gyrodometry::run(&log.log, &opts).map_err(err)?;
     to_js(&run.result.map_err(err)?)
@@ -377,10 +375,7 @@ pub fn gyrodometry(
 
 /// Gyrodometry with its series: `{ result, error, eps0_dps, trace }`.
 #[wasm_bindgen(js_name = runGyrodometry, unchecked_return_type = "GyrodometryRun")]
-pub fn run_gyrodometry(
-    log: &Log,
-    #[wasm_bindgen(unchecked_param_type = "GyrodometryOptions")] options: JsValue,
-) -> JsResult<JsValue> {
+pub fn run_gyrodometry(log: &Log, #[wasm_bindgen(unchecked_param_type = "GyrodometryOptions")] options: JsValue) -> JsResult<JsValue> {
     let opts: gyrodometry::GyrodometryOptions = self::options("gyrodometry", options)?;
     let run = gyrodometry::run(&log.log, &opts).map_err(err)?;
     let out = run_object(&run.result, run.eps0_dps)?;
@@ -397,10 +392,7 @@ pub fn run_gyrodometry(
 
 /// Calibration of a turntable session: the Result keys plus the per-set table `sets`.
 #[wasm_bindgen(unchecked_return_type = "CalibrationRun")]
-pub fn calibrate(
-    log: &Log,
-    #[wasm_bindgen(unchecked_param_type = "CalibrationOptions")] options: JsValue,
-) -> JsResult<JsValue> {
+pub fn calibrate(log: &Log, #[wasm_bindgen(unchecked_param_type = "CalibrationOptions")] options: JsValue) -> JsResult<JsValue> {
     let opts: calibration::CalibrationOptions = self::options("calibrate", options)?;
     let run = calibration::run(&log.log, &opts).map_err(err)?;
     let out: JsValue = to_js(&run.result)?;
@@ -613,7 +605,8 @@ pub fn import_log(
 ) -> JsResult<JsValue> {
     let recipe: gyrodrift::import::Recipe =
         serde_wasm_bindgen::from_value(recipe).map_err(|e| err(format!("recipe: {}", js_message(e))))?;
-    let obj: &Object = files.dyn_ref().filter(|_| files.is_object()).ok_or_else(|| err("files: expected an object of name -> Uint8Array"))?;
+    let obj: &Object =
+        files.dyn_ref().filter(|_| files.is_object()).ok_or_else(|| err("files: expected an object of name -> Uint8Array"))?;
     let mut map = std::collections::BTreeMap::new();
     for key in Object::keys(obj).iter() {
         let name = key.as_string().unwrap_or_default();

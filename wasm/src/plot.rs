@@ -4,10 +4,10 @@
 //! Returns the plot area in canvas pixels and its ranges, so the page maps mouse to data.
 
 use gyrodrift::decimate;
+use js_sys::{Array, Float64Array, Object, Reflect};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters_canvas::CanvasBackend;
-use js_sys::{Array, Float64Array, Object, Reflect};
 use wasm_bindgen::prelude::*;
 use web_sys::HtmlCanvasElement;
 
@@ -152,7 +152,10 @@ fn finite_range(vals: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
 
 /// Draws a chart on the canvas (sized to its CSS box times the device pixel ratio).
 #[wasm_bindgen(js_name = drawChart, unchecked_return_type = "ChartLayout")]
-pub fn draw_chart(canvas: HtmlCanvasElement, #[wasm_bindgen(unchecked_param_type = "ChartSpec")] spec: JsValue) -> Result<JsValue, JsValue> {
+pub fn draw_chart(
+    canvas: HtmlCanvasElement,
+    #[wasm_bindgen(unchecked_param_type = "ChartSpec")] spec: JsValue,
+) -> Result<JsValue, JsValue> {
     let spec = Spec::read(&spec)?;
     let backend = CanvasBackend::with_canvas_object(canvas).ok_or_else(|| js_err("no 2D canvas context"))?;
     let root = backend.into_drawing_area();
@@ -195,9 +198,9 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
     let (y0, y1) = match spec.y_range {
         Some([a, b]) if b > a => (a, b),
         _ => {
-            let r = finite_range(decimated.iter().flat_map(|(_, dx, dy)| {
-                dx.iter().zip(dy.iter()).filter(|(x, _)| **x >= x0 && **x <= x1).map(|(_, y)| *y)
-            }));
+            let r = finite_range(
+                decimated.iter().flat_map(|(_, dx, dy)| dx.iter().zip(dy.iter()).filter(|(x, _)| **x >= x0 && **x <= x1).map(|(_, y)| *y)),
+            );
             match r {
                 Some((a, b)) if b > a => {
                     let pad = if spec.log_y { 0.0 } else { (b - a) * 0.05 };
@@ -216,8 +219,20 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
         .x_label_area_size(px(34.0))
         .y_label_area_size(px(62.0))
         .build_cartesian_2d(cx0..cx1, cy0..cy1)?;
-    let fmt_x = |v: &f64| if spec.log_x { format!("{:.3}", 10f64.powf(*v)).trim_end_matches('0').trim_end_matches('.').to_string() } else { format!("{v}") };
-    let fmt_y = |v: &f64| if spec.log_y { format!("{:.1e}", 10f64.powf(*v)) } else { format!("{v:.3}").trim_end_matches('0').trim_end_matches('.').to_string() };
+    let fmt_x = |v: &f64| {
+        if spec.log_x {
+            format!("{:.3}", 10f64.powf(*v)).trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            format!("{v}")
+        }
+    };
+    let fmt_y = |v: &f64| {
+        if spec.log_y {
+            format!("{:.1e}", 10f64.powf(*v))
+        } else {
+            format!("{v:.3}").trim_end_matches('0').trim_end_matches('.').to_string()
+        }
+    };
     chart
         .configure_mesh()
         .x_desc(&spec.x_label)
@@ -255,9 +270,8 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
         }
         let visible: Vec<(f64, f64)> = intervals.into_iter().filter(|(s0, e)| *e >= x0 && *s0 <= x1).collect();
         if !visible.is_empty() {
-            let drawn = chart.draw_series(
-                visible.iter().map(|&(s0, e)| Rectangle::new([(tx(s0.max(x0)), cy0), (tx(e.min(x1)), cy1)], c.filled())),
-            )?;
+            let drawn = chart
+                .draw_series(visible.iter().map(|&(s0, e)| Rectangle::new([(tx(s0.max(x0)), cy0), (tx(e.min(x1)), cy1)], c.filled())))?;
             if !sh.label.is_empty() {
                 drawn.label(sh.label.as_str()).legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 16, y + 5)], c.filled()));
             }
@@ -284,9 +298,9 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
         } else {
             chart.draw_series(LineSeries::new(pts, style))?
         };
-        drawn
-            .label(s.name.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], ShapeStyle { color: color.to_rgba(), filled: true, stroke_width: 2 }));
+        drawn.label(s.name.as_str()).legend(move |(x, y)| {
+            PathElement::new(vec![(x, y), (x + 16, y)], ShapeStyle { color: color.to_rgba(), filled: true, stroke_width: 2 })
+        });
     }
     if let Some(c) = spec.cursor_x {
         if c >= x0 && c <= x1 {

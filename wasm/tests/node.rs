@@ -131,7 +131,9 @@ fn every_method_returns_result_keys() {
     let rows: Array = get(&rep, "rows").dyn_into().unwrap();
     assert_eq!(rows.length(), 2);
     assert_eq!(get(&rows.get(1), "name").as_string().as_deref(), Some("Sim"));
-    let t = tune(logs.into(), JsValue::UNDEFINED, obj(&[("max_iters", JsValue::from_f64(20.0)), ("restarts", JsValue::from_f64(0.0))]), None).unwrap();
+    let t =
+        tune(logs.into(), JsValue::UNDEFINED, obj(&[("max_iters", JsValue::from_f64(20.0)), ("restarts", JsValue::from_f64(0.0))]), None)
+            .unwrap();
     let res = get(&t, "result");
     assert!(num(&res, "objective_tuned_deg_per_min") <= num(&res, "objective_start_deg_per_min"));
 }
@@ -139,7 +141,13 @@ fn every_method_returns_result_keys() {
 #[wasm_bindgen_test]
 fn simulate_matches_the_shipped_sample_log() {
     let s = gyrodrift::sim::samples::SAMPLE_LOGS.iter().find(|s| s.path == "robot/straight.csv").unwrap();
-    let req = obj(&[("kind", "robot".into()), ("scenario", "straight".into()), ("minutes", JsValue::from_f64(s.minutes.unwrap())), ("seed", JsValue::from_f64(s.seed as f64)), ("name", s.name.into())]);
+    let req = obj(&[
+        ("kind", "robot".into()),
+        ("scenario", "straight".into()),
+        ("minutes", JsValue::from_f64(s.minutes.unwrap())),
+        ("seed", JsValue::from_f64(s.seed as f64)),
+        ("name", s.name.into()),
+    ]);
     let log = simulate(req).unwrap();
     assert_eq!(log.to_csv().unwrap(), ROBOT, "wasm simulation differs from the native sample log");
 }
@@ -157,10 +165,8 @@ fn import_log_by_recipe_and_pipeline_match_core() {
       "heading": {"source": "column", "table": "gps", "column": "b", "unit": "deg", "positive": "cw", "speed_column": "v", "min_speed_mps": 5},
       "speed": {"source": "column", "table": "gps", "column": "v", "unit": "m/s"}}"#;
     let recipe = js_sys::JSON::parse(recipe_json).unwrap();
-    let files = obj(&[
-        ("imu.csv", js_sys::Uint8Array::from(imu.as_bytes()).into()),
-        ("gps.csv", js_sys::Uint8Array::from(gps.as_bytes()).into()),
-    ]);
+    let files =
+        obj(&[("imu.csv", js_sys::Uint8Array::from(imu.as_bytes()).into()), ("gps.csv", js_sys::Uint8Array::from(gps.as_bytes()).into())]);
     let out = import_log(recipe.clone(), files.clone()).unwrap();
     let log: Log = {
         // The Log inside the result object: re-import natively and compare columns.

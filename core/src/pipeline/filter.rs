@@ -15,8 +15,8 @@
 //! beyond its uncertainty (a bias step, an OS re-calibration).
 
 use super::params::{PipelineParams, N_MODELS, N_ROADS, N_WARMS};
-use nalgebra::{Matrix3, RowVector3, Vector3};
 use crate::error::{Error, Result};
+use nalgebra::{Matrix3, RowVector3, Vector3};
 use std::collections::VecDeque;
 
 /// What one block did.
@@ -129,7 +129,6 @@ impl StopStats {
     }
 }
 
-
 /// The streaming drift reducer on 1 Hz blocks.
 #[derive(Debug, Clone)]
 pub struct Pipeline {
@@ -162,18 +161,20 @@ impl Pipeline {
         let walks = params.bias_walks_dps_per_sqrt_s();
         let roads = params.road_sigmas_dps();
         let warms = params.warm_taus_s();
-        let models = (0..N_MODELS).map(|i| {
-            let (w, r, tau) = (walks[i / (N_ROADS * N_WARMS)], roads[(i / N_WARMS) % N_ROADS], warms[i % N_WARMS]);
-            let warm_var = if tau.is_finite() { params.warm_sigma_dps * params.warm_sigma_dps } else { 0.0 };
-            Model {
-                walk2: w * w,
-                road_var: r * r,
-                warm_tau_s: tau,
-                x: Vector3::new(bias_dps, 0.0, 0.0),
-                p: Matrix3::from_diagonal(&Vector3::new(bias_sigma_dps * bias_sigma_dps, warm_var, r * r)),
-                logw: 0.0,
-            }
-        }).collect();
+        let models = (0..N_MODELS)
+            .map(|i| {
+                let (w, r, tau) = (walks[i / (N_ROADS * N_WARMS)], roads[(i / N_WARMS) % N_ROADS], warms[i % N_WARMS]);
+                let warm_var = if tau.is_finite() { params.warm_sigma_dps * params.warm_sigma_dps } else { 0.0 };
+                Model {
+                    walk2: w * w,
+                    road_var: r * r,
+                    warm_tau_s: tau,
+                    x: Vector3::new(bias_dps, 0.0, 0.0),
+                    p: Matrix3::from_diagonal(&Vector3::new(bias_sigma_dps * bias_sigma_dps, warm_var, r * r)),
+                    logw: 0.0,
+                }
+            })
+            .collect();
         Ok(Pipeline {
             p: params,
             models,
@@ -350,7 +351,14 @@ impl Pipeline {
             self.records.push(BlockRecord { f: fs[i], prior: priors[j], post: (self.models[i].x, self.models[i].p) });
             self.record_weights.push(w[i]);
         }
-        let out = PipelineOutput { heading_deg: self.heading_deg, bias_dps: b_before, bias_sigma_dps: p_before.sqrt(), stop: !stops.is_empty(), straight, reopened };
+        let out = PipelineOutput {
+            heading_deg: self.heading_deg,
+            bias_dps: b_before,
+            bias_sigma_dps: p_before.sqrt(),
+            stop: !stops.is_empty(),
+            straight,
+            reopened,
+        };
         Ok(out)
     }
 

@@ -19,10 +19,6 @@ fn one_model() -> PipelineParams {
     }
 }
 
-fn pdf(x: f64, s: f64) -> f64 {
-    (-0.5 * x * x / s).exp() / (2.0 * std::f64::consts::PI * s).sqrt()
-}
-
 #[test]
 fn walks_are_log_spaced() {
     let w = PipelineParams::default().bias_walks_dps_per_sqrt_s();

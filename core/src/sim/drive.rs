@@ -137,12 +137,28 @@ fn style(s: Scenario) -> Style {
 
 #[derive(Debug, Clone, Copy)]
 enum Phase {
-    Still { left_s: f64 },
-    Straight { left_m: f64 },
+    Still {
+        left_s: f64,
+    },
+    Straight {
+        left_m: f64,
+    },
     /// A yaw of `left_deg` (signed) at a peak rate, target speed while turning.
-    Turn { left_deg: f64, peak_dps: f64, speed_mps: f64, ramp_dps2: f64, rate_dps: f64 },
-    Stop { wait_s: f64 },
-    Lane { t_s: f64, dur_s: f64, amp_dps: f64 },
+    Turn {
+        left_deg: f64,
+        peak_dps: f64,
+        speed_mps: f64,
+        ramp_dps2: f64,
+        rate_dps: f64,
+    },
+    Stop {
+        wait_s: f64,
+    },
+    Lane {
+        t_s: f64,
+        dur_s: f64,
+        amp_dps: f64,
+    },
 }
 
 const DT: f64 = 0.1;
@@ -203,10 +219,7 @@ pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
     let mut rng = SimRng::new(cfg.seed ^ 0x0D21_5EED);
     let mut log = DriveLog::with_columns(&[Column::GyroDps, Column::TempC, Column::RefHeadingDeg, Column::SpeedMps]);
     log.meta.bias_s = Some(LEAD_IN_S);
-    log.meta.description = Some(format!(
-        "simulated {:?} drive, {} min, seed {}",
-        cfg.scenario, cfg.minutes, cfg.seed
-    ));
+    log.meta.description = Some(format!("simulated {:?} drive, {} min, seed {}", cfg.scenario, cfg.minutes, cfg.seed));
     // Cabin warm-up: the gyro starts at the garage temperature and warms toward cabin comfort.
     let temp_start = rng.range(0.0, 15.0);
     let temp_end = rng.range(20.0, 26.0);
@@ -272,8 +285,7 @@ pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
         if v > 1.0 {
             let tau_r = 1.5;
             let tau_e = 3.0;
-            sway_rate += DT * (-sway_rate / tau_r - sway_dev / (tau_e * tau_r))
-                + st.sway_dps * libm::sqrt(2.0 * DT / tau_r) * rng.normal();
+            sway_rate += DT * (-sway_rate / tau_r - sway_dev / (tau_e * tau_r)) + st.sway_dps * libm::sqrt(2.0 * DT / tau_r) * rng.normal();
             sway_dev += sway_rate * DT;
         } else {
             sway_rate = 0.0;

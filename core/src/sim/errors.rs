@@ -82,7 +82,13 @@ impl GyroErrors {
                 return Err(Error::param(name, format!("{v} is not a finite number")));
             }
         }
-        for (name, v) in [("warmup_tau_s", self.warmup_tau_s), ("walk_dps_per_sqrt_s", self.walk_dps_per_sqrt_s), ("step_every_s", self.step_every_s), ("noise_dps", self.noise_dps), ("lsb_dps", self.lsb_dps)] {
+        for (name, v) in [
+            ("warmup_tau_s", self.warmup_tau_s),
+            ("walk_dps_per_sqrt_s", self.walk_dps_per_sqrt_s),
+            ("step_every_s", self.step_every_s),
+            ("noise_dps", self.noise_dps),
+            ("lsb_dps", self.lsb_dps),
+        ] {
             if v < 0.0 {
                 return Err(Error::param(name, format!("{v} is negative")));
             }

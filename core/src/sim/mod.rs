@@ -17,8 +17,8 @@ use rand_xoshiro::rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 
-pub use errors::{inject, GyroErrors};
 pub use drive::{simulate_drive, DriveConfig, Scenario};
+pub use errors::{inject, GyroErrors};
 pub use gyro::{GyroModel, GyroSpec};
 pub use robot::{simulate_robot, RobotConfig};
 pub use turntable::{simulate_static, simulate_turntable, StaticConfig, TurntableConfig};
@@ -115,9 +115,7 @@ pub fn simulate(req: &SimRequest) -> crate::Result<crate::DriveLog> {
             let with_turns = match req.scenario.as_deref() {
                 None | Some("straight") => false,
                 Some("turns") => true,
-                Some(other) => {
-                    return Err(crate::Error::param("scenario", format!("\"{other}\" is not a robot run (straight, turns)")))
-                }
+                Some(other) => return Err(crate::Error::param("scenario", format!("\"{other}\" is not a robot run (straight, turns)"))),
             };
             simulate_robot(&RobotConfig { minutes: req.minutes.unwrap_or(140.0 / 60.0), with_turns, seed: req.seed })
         }

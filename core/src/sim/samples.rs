@@ -50,10 +50,31 @@ pub const SAMPLE_LOGS: &[SampleLog] = &[
     drive("test/highway-3.csv", "Highway 3", "highway", 36.9, 204),
     drive("test/highway-4.csv", "Highway 4", "highway", 43.2, 205),
     // Gyrodometry: a straight 2:20 min run with 15 bumps (the paper's Fig. 2) and a square path.
-    SampleLog { path: "robot/straight.csv", name: "Robot straight", kind: SimKind::Robot, scenario: Some("straight"), minutes: Some(140.0 / 60.0), seed: 301 },
-    SampleLog { path: "robot/square.csv", name: "Robot square", kind: SimKind::Robot, scenario: Some("turns"), minutes: Some(5.0), seed: 302 },
+    SampleLog {
+        path: "robot/straight.csv",
+        name: "Robot straight",
+        kind: SimKind::Robot,
+        scenario: Some("straight"),
+        minutes: Some(140.0 / 60.0),
+        seed: 301,
+    },
+    SampleLog {
+        path: "robot/square.csv",
+        name: "Robot square",
+        kind: SimKind::Robot,
+        scenario: Some("turns"),
+        minutes: Some(5.0),
+        seed: 302,
+    },
     // Calibration and Allan deviation.
-    SampleLog { path: "turntable/session.csv", name: "Turntable session", kind: SimKind::Turntable, scenario: None, minutes: None, seed: 401 },
+    SampleLog {
+        path: "turntable/session.csv",
+        name: "Turntable session",
+        kind: SimKind::Turntable,
+        scenario: None,
+        minutes: None,
+        seed: 401,
+    },
     SampleLog { path: "static/static-2h.csv", name: "Static 2 h", kind: SimKind::Static, scenario: None, minutes: Some(120.0), seed: 501 },
 ];
 

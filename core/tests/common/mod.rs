@@ -12,7 +12,11 @@ pub fn truth_rate_dps(t: f64) -> f64 {
     let u = (t - 30.0) % 69.0;
     let leg = ((t - 30.0) / 69.0).floor() as i64;
     if u >= 60.0 {
-        if leg % 2 == 0 { 10.0 } else { -10.0 }
+        if leg % 2 == 0 {
+            10.0
+        } else {
+            -10.0
+        }
     } else {
         0.0
     }
