@@ -1,0 +1,22 @@
+#!/usr/bin/env node
+// The recommended pipeline in Node through the wasm package (what the dashboard's HDR view
+// calls): runPipeline on the shipped 52 min Highway 1 drive, beside runHdr. Run after the
+// package is built:
+//   node tests/bench/pipeline-node.mjs
+import { readFileSync } from "node:fs";
+import { fileURLToPath } from "node:url";
+import { dirname, join } from "node:path";
+import { Log, runPipeline, runHdr } from "gyrodrift";
+
+const root = join(dirname(fileURLToPath(import.meta.url)), "..", "..");
+const log = Log.parse(readFileSync(join(root, "sample-logs", "train", "highway-1.csv"), "utf8"));
+
+function time(name, f, n) {
+  f(); // warm up
+  const t0 = performance.now();
+  for (let i = 0; i < n; i++) f();
+  const ms = (performance.now() - t0) / n;
+  console.log(`${name.padEnd(28)} ${ms.toFixed(2)} ms`);
+}
+time("runPipeline (Highway 1)", () => runPipeline(log, {}), 10);
+time("runHdr (Highway 1)", () => runHdr(log, {}), 20);
