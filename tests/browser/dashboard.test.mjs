@@ -179,3 +179,21 @@ for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyro
     await page.screenshot({ path: join(ARTIFACTS, `${view}.png`), fullPage: true });
   });
 }
+
+test("at phone width the log list stacks above the views and the charts take the width", async () => {
+  await page.setViewportSize({ width: 390, height: 900 });
+  try {
+    await page.goto(URL0);
+    await ready();
+    const box = async (sel) => page.locator(sel).boundingBox();
+    const aside = await box("#logs-panel");
+    const chart = await box("#c-heading");
+    assert.ok(chart.width > 330, `heading chart ${chart.width} px wide at 390 px`);
+    assert.ok(chart.y > aside.y + aside.height - 1, "charts below the log list");
+    // The smoothed mode is shown, labelled non-causal.
+    assert.match(await page.locator("#m-e-smoothed").innerText(), /^\d+\.\d\d$/);
+    await page.screenshot({ path: join(ARTIFACTS, "phone.png"), fullPage: true });
+  } finally {
+    await page.setViewportSize({ width: 1400, height: 1000 });
+  }
+});
