@@ -12,7 +12,9 @@ const est = new HdrEstimator({ c1: 0.16 }, 0.5);
 const psi: number = est.update(0, 1.2);
 const st: HdrState | null = est.state();
 const rep: Report = report([log], {});
-const t: TuneReport = tune([log], undefined, { max_iters: 10 });
+const t: TuneReport = tune([log], undefined, { max_iters: 10, cross_validate: true, regularization_deg_per_min: 0.05 });
+const tcv: number | undefined = t.result.cv?.cv_tuned_deg_per_min;
+const trec: boolean = t.result.recommended_is_tuned;
 const sim: Log = simulate({ kind: "drive", scenario: "city", minutes: 5, seed: 1 });
 declare const cal: CalibrationRun;
 const c0: number = cal.C[0][0] + cal.sets[0].w_g_dps;
@@ -31,10 +33,15 @@ const pr: PipelineResult = pipeline(log, { road_gate_dps: 0.5, still: { still_sp
 const pe: number = pr.E_psi_pipeline_deg + pr.NE_psi_pipeline_deg_per_min + pr.improvement_pipeline;
 const prun: PipelineRun = runPipeline(log, {});
 const stops: Uint8Array = prun.trace.stop;
+const smoothed: Float64Array = prun.trace.heading_smoothed_deg;
+const ps: number = pr.NE_psi_pipeline_smoothed_deg_per_min + cmp0().mean.pipeline_smoothed;
+function cmp0(): Compare {
+  return compare([log], { warm_sigma_dps: 0.3, max_bias_dps: 5 });
+}
 const cmp: Compare = compare([log], {});
 const cm: number = cmp.mean.pipeline;
 // @ts-expect-error: a recipe's rate unit is one of the named units
 const badRecipe: Recipe = { ...recipe, yaw_rate: { ...recipe.yaw_rate, unit: "furlongs" } };
 // @ts-expect-error: pipeline results are typed, no such key
 pr.E_psi_kalman_deg;
-export { e, h, psi, st, rep, t, sim, c0, rows, pe, stops, cm, badRecipe };
+export { e, h, psi, st, rep, t, tcv, trec, sim, c0, rows, pe, stops, smoothed, ps, cm, badRecipe };

@@ -394,6 +394,11 @@ export interface PipelineOptions {
   road_gate_dps?: number;
   bias_walk_min_dps_per_sqrt_s?: number;
   bias_walk_max_dps_per_sqrt_s?: number;
+  road_sigma_spread?: number;
+  block_sigma_dps?: number;
+  warm_sigma_dps?: number;
+  warm_tau_short_s?: number;
+  warm_tau_long_s?: number;
   prior_bias_sigma_dps?: number;
   forget_s?: number;
   bias_s?: number | null;
