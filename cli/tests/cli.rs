@@ -303,3 +303,19 @@ fn simulate_report_tune() {
     assert!(v["result"]["objective_tuned_deg_per_min"].as_f64().unwrap() <= v["result"]["objective_start_deg_per_min"].as_f64().unwrap());
     assert_eq!(v["test"]["tuned"]["rows"].as_array().unwrap().len(), 1);
 }
+
+/// `gyrodrift allan LOG | true`: the reader is gone before the output is written; the
+/// command ends by SIGPIPE (or 0), never with a panic (exit 101).
+#[cfg(unix)]
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::Stdio;
+    let log = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/static/static-2h.csv");
+    let mut child = bin().args(["allan", log.to_str().unwrap()]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    drop(child.stdout.take()); // close the read end at once
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(out.status.success() || out.status.signal() == Some(13), "{:?}", out.status);
+}
