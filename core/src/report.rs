@@ -108,7 +108,9 @@ impl Report {
 
     /// The table as aligned plain text with units.
     pub fn to_text(&self) -> String {
-        let w = self.rows.iter().map(|r| r.name.len()).max().unwrap_or(5).max(12);
+        // Column width from the names, capped: `{:<w$}` panics for widths over 65 535, and a
+        // longer name is only padded less.
+        let w = self.rows.iter().map(|r| r.name.len()).max().unwrap_or(5).clamp(12, 80);
         let mut s = format!(
             "{:<w$} {:>9} {:>11} {:>13} {:>11} {:>13} {:>8}\n{:<w$} {:>9} {:>11} {:>13} {:>11} {:>13} {:>8}\n",
             "drive",
@@ -180,5 +182,25 @@ mod tests {
         let md = r.to_markdown();
         assert!(md.contains("| d0 | 10.0 |") && md.contains("9.2x (sigma = 7.73)"), "{md}");
         assert!(Report::from_rows(vec![]).is_err());
+    }
+}
+
+#[cfg(test)]
+mod width_tests {
+    use super::*;
+
+    #[test]
+    fn a_very_long_drive_name_does_not_panic_the_text_table() {
+        let row = ReportRow {
+            name: "x".repeat(70_000),
+            duration_min: 1.0,
+            E_psi_raw_deg: 1.0,
+            NE_psi_raw_deg_per_min: 1.0,
+            E_psi_hdr_deg: 0.5,
+            NE_psi_hdr_deg_per_min: 0.5,
+            improvement: 2.0,
+        };
+        let r = Report::from_rows(vec![row]).unwrap();
+        assert!(r.to_text().contains(&"x".repeat(70_000)));
     }
 }
