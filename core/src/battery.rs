@@ -7,7 +7,7 @@
 //! its base and its profile are training ones. See docs/battery.md.
 
 use crate::error::{Error, Result};
-use crate::eval::{Method, Prepared};
+use crate::eval::{col, standard_methods, Prepared};
 use crate::hdr::HdrParams;
 use crate::log::DriveLog;
 use crate::pipeline::PipelineParams;
@@ -143,8 +143,8 @@ pub fn method_names(with_tuned: bool) -> Vec<&'static str> {
 }
 
 /// Column of the recommended method and of the offline smoothed mode (never a "peer").
-pub const PIPELINE: usize = 4;
-pub const SMOOTHED: usize = 5;
+pub const PIPELINE: usize = col::PIPELINE;
+pub const SMOOTHED: usize = col::SMOOTHED;
 
 /// One case: NE_psi (deg/min) of every method, or why it could not run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -199,19 +199,8 @@ pub enum Split {
 }
 
 fn score_case(log: &DriveLog, params: &PipelineParams, tuned: Option<HdrParams>) -> Result<(f64, Vec<f64>)> {
-    let prep = Prepared::new(log, None, &params.still)?;
-    let mut methods = vec![
-        Method::Raw,
-        Method::Hdr(HdrParams::table_iii()),
-        Method::FusionOffset,
-        Method::Zaru { min_still_s: crate::peers::ZARU_MIN_STILL_S },
-        Method::Pipeline(*params),
-        Method::PipelineSmoothed(*params),
-    ];
-    if let Some(t) = tuned {
-        methods.push(Method::Hdr(t));
-    }
-    let s = prep.score_all(&methods)?;
+    let prep = Prepared::new(log, params.bias_s, &params.still)?;
+    let s = prep.score_all(&standard_methods(params, tuned))?;
     Ok((prep.duration_min, s.iter().map(|m| m.ne_psi_deg_per_min).collect()))
 }
 
@@ -288,7 +277,7 @@ pub fn summarize(cases: &[&CaseRow]) -> Option<Summary> {
     let n = cases.len() as f64;
     let mean: Vec<f64> = (0..m).map(|j| cases.iter().map(|c| c.ne_psi[j]).sum::<f64>() / n).collect();
     let best_other = best_peer(&mean);
-    let worst = cases.iter().max_by(|a, b| a.ratio.total_cmp(&b.ratio)).expect("not empty");
+    let worst = cases.iter().max_by(|a, b| a.ratio.total_cmp(&b.ratio))?;
     Some(Summary {
         n_cases: cases.len(),
         mean_ratio: mean[PIPELINE] / best_other,

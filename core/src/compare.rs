@@ -3,7 +3,7 @@
 //! pipeline (causal and smoothed), and its two peers (x-io Fusion offset, ZARU at stops).
 
 use crate::error::{Error, Result};
-use crate::eval::{Method, Prepared};
+use crate::eval::{col, standard_methods, Prepared};
 use crate::hdr::HdrParams;
 use crate::log::DriveLog;
 use crate::pipeline::PipelineParams;
@@ -46,29 +46,18 @@ pub struct Compare {
 /// One drive's row: the log prepared once, every method scored on it.
 pub fn compare_row(name: &str, log: &DriveLog, params: &PipelineParams, tuned: Option<HdrParams>) -> Result<CompareRow> {
     let prep = Prepared::new(log, params.bias_s, &params.still)?;
-    let mut methods = vec![
-        Method::Raw,
-        Method::Hdr(HdrParams::table_iii()),
-        Method::FusionOffset,
-        Method::Zaru { min_still_s: crate::peers::ZARU_MIN_STILL_S },
-        Method::Pipeline(*params),
-        Method::PipelineSmoothed(*params),
-    ];
-    if let Some(p) = tuned {
-        methods.push(Method::Hdr(p));
-    }
-    let s = prep.score_all(&methods)?;
+    let s = prep.score_all(&standard_methods(params, tuned))?;
     let ne = |i: usize| s[i].ne_psi_deg_per_min;
     Ok(CompareRow {
         name: name.to_string(),
         duration_min: prep.duration_min,
-        raw: ne(0),
-        hdr_table_iii: ne(1),
-        hdr_tuned: tuned.map(|_| ne(6)),
-        pipeline: ne(4),
-        pipeline_smoothed: ne(5),
-        fusion_offset: ne(2),
-        zaru: ne(3),
+        raw: ne(col::RAW),
+        hdr_table_iii: ne(col::HDR_TABLE_III),
+        hdr_tuned: tuned.map(|_| ne(col::HDR_TUNED)),
+        pipeline: ne(col::PIPELINE),
+        pipeline_smoothed: ne(col::SMOOTHED),
+        fusion_offset: ne(col::FUSION_OFFSET),
+        zaru: ne(col::ZARU),
     })
 }
 

@@ -29,6 +29,33 @@ pub enum Method {
     PipelineSmoothed(PipelineParams),
 }
 
+/// Columns of [`standard_methods`]: the comparison's methods in order.
+pub mod col {
+    pub const RAW: usize = 0;
+    pub const HDR_TABLE_III: usize = 1;
+    pub const FUSION_OFFSET: usize = 2;
+    pub const ZARU: usize = 3;
+    pub const PIPELINE: usize = 4;
+    pub const SMOOTHED: usize = 5;
+    /// Present only with tuned HDR parameters.
+    pub const HDR_TUNED: usize = 6;
+}
+
+/// Every method the comparison and the battery score, in [`col`] order: raw, Table-III HDR,
+/// Fusion offset, ZARU (its own 2 s), the pipeline, its smoothed mode, then tuned HDR.
+pub fn standard_methods(params: &PipelineParams, tuned: Option<HdrParams>) -> Vec<Method> {
+    let mut m = vec![
+        Method::Raw,
+        Method::Hdr(HdrParams::table_iii()),
+        Method::FusionOffset,
+        Method::Zaru { min_still_s: crate::peers::ZARU_MIN_STILL_S },
+        Method::Pipeline(*params),
+        Method::PipelineSmoothed(*params),
+    ];
+    m.extend(tuned.map(Method::Hdr));
+    m
+}
+
 /// One method's score on one log.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MethodScore {
@@ -117,13 +144,7 @@ impl<'a> Prepared<'a> {
 
     /// A method's E_psi and NE_psi against the reference.
     pub fn score(&self, method: &Method) -> Result<MethodScore> {
-        let reference = self.reference()?;
-        let (t, psi) = self.heading(method)?;
-        let s = metrics::score(&t, &psi, reference)?;
-        if !s.e_psi_deg.is_finite() {
-            return Err(Error::data("the heading error is not finite"));
-        }
-        Ok(MethodScore { e_psi_deg: s.e_psi_deg, ne_psi_deg_per_min: metrics::ne_psi(s.e_psi_deg, self.duration_min) })
+        Ok(self.score_all(std::slice::from_ref(method))?[0])
     }
 
     /// Every method of a list, scored; both pipeline modes share one run.
@@ -134,12 +155,14 @@ impl<'a> Prepared<'a> {
         for m in methods {
             let (t, psi) = match m {
                 Method::Pipeline(p) | Method::PipelineSmoothed(p) => {
-                    if cached.as_ref().is_none_or(|c| c.0 != *p) {
-                        cached = Some((*p, self.pipeline_trace(p)?));
-                    }
-                    let tr = &cached.as_ref().expect("just set").1;
+                    let tr = match cached.take() {
+                        Some((q, tr)) if q == *p => tr,
+                        _ => self.pipeline_trace(p)?,
+                    };
                     let psi = if matches!(m, Method::Pipeline(_)) { tr.heading_deg.clone() } else { tr.heading_smoothed_deg.clone() };
-                    (tr.time_s.clone(), psi)
+                    let t = tr.time_s.clone();
+                    cached = Some((*p, tr));
+                    (t, psi)
                 }
                 _ => self.heading(m)?,
             };

@@ -292,7 +292,8 @@ fn tune_once(drives: &[PreparedDrive], opts: &TuneOptions, progress: &dyn Fn(u64
     let problem = Problem { drives, lo, hi, anchor, lambda, evals: &evals, progress };
     let s = to_vec(&opts.start);
     let start_u: Vec<f64> = (0..5).map(|k| ((s[k] - lo[k]) / (hi[k] - lo[k])).clamp(0.0, 1.0)).collect();
-    let start_cost = objective(drives, opts.start)? + problem.penalty(&start_u);
+    let start_objective = objective(drives, opts.start)?;
+    let start_cost = start_objective + problem.penalty(&start_u);
     let mut best_u: Vec<f64> = start_u;
     let mut best_cost = start_cost;
     let mut best_params = opts.start;
@@ -322,7 +323,7 @@ fn tune_once(drives: &[PreparedDrive], opts: &TuneOptions, progress: &dyn Fn(u64
     }
     Ok(TuneResult {
         params: best_params,
-        objective_start_deg_per_min: objective(drives, opts.start)?,
+        objective_start_deg_per_min: start_objective,
         objective_tuned_deg_per_min: objective(drives, best_params)?,
         n_evaluations: evals.get(),
         cv: None,
