@@ -80,31 +80,54 @@ pub fn fusion_offset_heading(log: &DriveLog, bias_s: f64) -> Result<(Vec<f64>, V
     Ok((rows.time_s, psi))
 }
 
-/// Heading on the blocks with a plain zero-rate update (unaligned): a block counts as a
-/// stop once the vehicle has stood `min_still_s`; the bias is then the mean rate of the
-/// stop's counted blocks, kept until the next stop; the heading is held while standing.
-pub fn zaru_heading(blocks: &Blocks, min_still_s: f64, eps0_dps: f64) -> Vec<f64> {
-    let mut psi = Vec::with_capacity(blocks.len());
-    let (mut bias, mut h, mut run_s) = (eps0_dps, 0.0, 0.0);
-    let (mut sum, mut n) = (0.0, 0usize);
-    for i in 0..blocks.len() {
-        let dt = if i > 0 { blocks.time_s[i] - blocks.time_s[i - 1] } else { 0.0 };
-        if blocks.still[i] {
-            run_s += dt;
-            if run_s >= min_still_s {
-                sum += blocks.rate_dps[i];
-                n += 1;
-                bias = sum / n as f64;
+/// A plain zero-rate update, streaming on 1 Hz blocks: a block counts as a stop once the
+/// vehicle has stood `min_still_s`; the bias is then the mean rate of the stop's counted
+/// blocks, kept until the next stop; the heading is held while standing.
+#[derive(Debug, Clone)]
+pub struct Zaru {
+    min_still_s: f64,
+    bias_dps: f64,
+    heading_deg: f64,
+    run_s: f64,
+    sum: f64,
+    n: usize,
+    last_time_s: Option<f64>,
+}
+
+impl Zaru {
+    /// Starts from the static bias.
+    pub fn new(min_still_s: f64, eps0_dps: f64) -> Self {
+        Zaru { min_still_s, bias_dps: eps0_dps, heading_deg: 0.0, run_s: 0.0, sum: 0.0, n: 0, last_time_s: None }
+    }
+
+    /// The bias in use (before the next block's evidence), deg/s.
+    pub fn bias_dps(&self) -> f64 {
+        self.bias_dps
+    }
+
+    /// One block; returns the heading.
+    pub fn update(&mut self, time_s: f64, rate_dps: f64, still: bool) -> f64 {
+        let dt = self.last_time_s.map_or(0.0, |t| time_s - t);
+        self.last_time_s = Some(time_s);
+        if still {
+            self.run_s += dt;
+            if self.run_s >= self.min_still_s {
+                self.sum += rate_dps;
+                self.n += 1;
+                self.bias_dps = self.sum / self.n as f64;
             }
         } else {
-            run_s = 0.0;
-            sum = 0.0;
-            n = 0;
-            h += (blocks.rate_dps[i] - bias) * dt;
+            (self.run_s, self.sum, self.n) = (0.0, 0.0, 0);
+            self.heading_deg += (rate_dps - self.bias_dps) * dt;
         }
-        psi.push(h);
+        self.heading_deg
     }
-    psi
+}
+
+/// Heading on the blocks with [`Zaru`] (unaligned).
+pub fn zaru_heading(blocks: &Blocks, min_still_s: f64, eps0_dps: f64) -> Vec<f64> {
+    let mut z = Zaru::new(min_still_s, eps0_dps);
+    (0..blocks.len()).map(|i| z.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])).collect()
 }
 
 #[cfg(test)]
