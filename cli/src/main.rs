@@ -202,12 +202,10 @@ fn parse_set(s: &str) -> Result<(String, f64), Failure> {
     Ok((k.trim().to_string(), value))
 }
 
-fn apply_sets<F: FnMut(&str, f64) -> gyrodrift::Result<()>>(sets: &[String], mut f: F) -> Result<(), Failure> {
-    for s in sets {
-        let (k, v) = parse_set(s)?;
-        f(&k, v).map_err(|e| Failure(format!("--set {s}: {e}")))?;
-    }
-    Ok(())
+/// Settings from the `--set` pairs on top of the defaults, through core's one schema.
+fn settings<T: gyrodrift::options::Settings>(sets: &[String]) -> Result<T, Failure> {
+    let pairs = sets.iter().map(|s| parse_set(s)).collect::<Result<Vec<_>, _>>()?;
+    gyrodrift::options::from_pairs(&pairs).map_err(|e| Failure(format!("--set: {e}")))
 }
 
 /// Reads a recipe (TOML, or JSON by extension) and imports its files from `data` (default:
@@ -255,9 +253,7 @@ fn print_json<T: serde::Serialize>(value: &T) -> Result<(), Failure> {
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.cmd {
         Cmd::Hdr { log, no_resample, set, json, trace } => {
-            let mut opts = hdr::HdrOptions { resample: !no_resample, ..Default::default() };
-            apply_sets(&set, |k, v| opts.set(k, v))?;
-            opts.params.validate().map_err(|e| Failure(e.to_string()))?;
+            let opts = hdr::HdrOptions { resample: !no_resample, ..settings(&set)? };
             let drive = read_log(&log)?;
             let run = hdr::run(&drive, &opts).map_err(|e| fail(&log, e))?;
             if let Some(path) = trace {
@@ -273,8 +269,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
         }
         Cmd::Pipeline { log, set, json } => {
-            let mut params = gyrodrift::pipeline::PipelineParams::default();
-            apply_sets(&set, |k, v| params.set(k, v))?;
+            let params: gyrodrift::pipeline::PipelineParams = settings(&set)?;
             let drive = read_log(&log)?;
             let run = gyrodrift::pipeline::run(&drive, &params).map_err(|e| fail(&log, e))?;
             let result = run.result.map_err(|e| fail(&log, e))?;
@@ -286,8 +281,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
         }
         Cmd::Gyrodometry { log, set, json } => {
-            let mut opts = gyrodometry::GyrodometryOptions::default();
-            apply_sets(&set, |k, v| opts.set(k, v))?;
+            let opts: gyrodometry::GyrodometryOptions = settings(&set)?;
             let drive = read_log(&log)?;
             let run = gyrodometry::run(&drive, &opts).map_err(|e| fail(&log, e))?;
             let result = run.result.map_err(|e| fail(&log, e))?;
@@ -299,8 +293,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
         }
         Cmd::Calibrate { log, set, json } => {
-            let mut opts = calibration::CalibrationOptions::default();
-            apply_sets(&set, |k, v| opts.set(k, v))?;
+            let opts: calibration::CalibrationOptions = settings(&set)?;
             let drive = read_log(&log)?;
             let run = calibration::run(&drive, &opts).map_err(|e| fail(&log, e))?;
             if json {
@@ -311,8 +304,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
         }
         Cmd::Report { files, set, no_resample: _, json, markdown: _, compare: true, tune_on } => {
-            let mut params = gyrodrift::pipeline::PipelineParams::default();
-            apply_sets(&set, |k, v| params.set(k, v))?;
+            let params: gyrodrift::pipeline::PipelineParams = settings(&set)?;
             let tuned = if tune_on.is_empty() {
                 None
             } else {
@@ -333,9 +325,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
         }
         Cmd::Report { files, set, no_resample, json, markdown, .. } => {
-            let mut opts = hdr::HdrOptions { resample: !no_resample, ..Default::default() };
-            apply_sets(&set, |k, v| opts.set(k, v))?;
-            opts.params.validate().map_err(|e| Failure(e.to_string()))?;
+            let opts = hdr::HdrOptions { resample: !no_resample, ..settings(&set)? };
             let logs = read_logs(&files)?;
             let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), l)).collect();
             let report = gyrodrift::report::Report::build(&named, &opts).map_err(|e| Failure(e.to_string()))?;
@@ -397,8 +387,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Cmd::Battery { recipes, data, split, minutes, cases, set, json } => {
             use gyrodrift::battery;
-            let mut params = gyrodrift::pipeline::PipelineParams::default();
-            apply_sets(&set, |k, v| params.set(k, v))?;
+            let params: gyrodrift::pipeline::PipelineParams = settings(&set)?;
             let split = match split.as_str() {
                 "training" => battery::Split::Training,
                 "scoring" => battery::Split::Scoring,

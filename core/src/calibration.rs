@@ -27,28 +27,15 @@ impl Default for CalibrationOptions {
     }
 }
 
-impl CalibrationOptions {
-    /// Sets a parameter by CLI key: p, q, bias_s.
-    pub fn set(&mut self, key: &str, value: f64) -> Result<()> {
-        let degree = |v: f64| -> Result<usize> {
-            if v.is_finite() && v >= 0.0 && v.fract() == 0.0 && v <= 8.0 {
-                Ok(v as usize)
-            } else {
-                Err(Error::param(key, format!("{v} is not a degree 0..8")))
+impl crate::options::Settings for CalibrationOptions {
+    /// Degrees 0..8 and the static-bias window.
+    fn validate(&self) -> Result<()> {
+        for (name, d) in [("p", self.p), ("q", self.q)] {
+            if d > 8 {
+                return Err(Error::param(name, format!("{d} is not a degree 0..8")));
             }
-        };
-        match key {
-            "p" => self.p = degree(value)?,
-            "q" => self.q = degree(value)?,
-            "bias_s" => {
-                if !(value.is_finite() && value >= 0.0) {
-                    return Err(Error::param("bias_s", format!("{value} is not a time >= 0 s")));
-                }
-                self.bias_s = Some(value)
-            }
-            _ => return Err(Error::param(key, "unknown key (p, q, bias_s)")),
         }
-        Ok(())
+        crate::options::check_bias_s(self.bias_s)
     }
 }
 
@@ -260,6 +247,7 @@ fn max_abs(v: impl Iterator<Item = f64>) -> f64 {
 
 /// Fits and evaluates the calibration on a turntable log.
 pub fn run(log: &DriveLog, opts: &CalibrationOptions) -> Result<CalibrationRun> {
+    crate::options::Settings::validate(opts)?;
     if log.is_empty() {
         return Err(Error::data("the log has no rows"));
     }
@@ -399,12 +387,12 @@ mod tests {
     }
 
     #[test]
-    fn options_set() {
-        let mut o = CalibrationOptions::default();
-        o.set("p", 2.0).unwrap();
-        o.set("q", 0.0).unwrap();
+    fn options_by_name() {
+        use crate::options::from_pairs;
+        let o: CalibrationOptions = from_pairs(&[("p".into(), 2.0), ("q".into(), 0.0)]).unwrap();
         assert_eq!((o.p, o.q), (2, 0));
-        assert!(o.set("p", 1.5).is_err());
-        assert!(o.set("r", 1.0).is_err());
+        assert!(from_pairs::<CalibrationOptions>(&[("p".into(), 1.5)]).is_err());
+        assert!(from_pairs::<CalibrationOptions>(&[("p".into(), 9.0)]).is_err());
+        assert!(from_pairs::<CalibrationOptions>(&[("r".into(), 1.0)]).is_err());
     }
 }

@@ -16,6 +16,7 @@ pub struct GyrodometryOptions {
     #[serde(alias = "thres_rate")]
     pub thres_rate_dps: f64,
     /// Wheelbase b, m; None = the log's `# wheelbase_m:`.
+    #[serde(alias = "wheelbase")]
     pub wheelbase_m: Option<f64>,
     /// Static-bias window, s; None = the log's `# bias_s:` or 20 s.
     pub bias_s: Option<f64>,
@@ -27,16 +28,19 @@ impl Default for GyrodometryOptions {
     }
 }
 
-impl GyrodometryOptions {
-    /// Sets a parameter by CLI key: thres_rate, wheelbase_m, bias_s.
-    pub fn set(&mut self, key: &str, value: f64) -> Result<()> {
-        match key {
-            "thres_rate" | "thres_rate_dps" => self.thres_rate_dps = value,
-            "wheelbase_m" | "wheelbase" => self.wheelbase_m = Some(value),
-            "bias_s" => self.bias_s = Some(value),
-            _ => return Err(Error::param(key, "unknown key (thres_rate, wheelbase_m, bias_s)")),
+impl crate::options::Settings for GyrodometryOptions {
+    /// Threshold rate, wheelbase (a vehicle's, 5 cm to 50 m) and static-bias window.
+    fn validate(&self) -> Result<()> {
+        let t = self.thres_rate_dps;
+        if !(t.is_finite() && (0.0..=1000.0).contains(&t)) {
+            return Err(Error::param("thres_rate", format!("{t} is not a rate in [0, 1000] deg/s")));
         }
-        Ok(())
+        if let Some(b) = self.wheelbase_m {
+            if !(b.is_finite() && (0.05..=50.0).contains(&b)) {
+                return Err(Error::param("wheelbase_m", format!("{b} is not a wheelbase in [0.05, 50] m")));
+            }
+        }
+        crate::options::check_bias_s(self.bias_s)
     }
 }
 
@@ -150,10 +154,12 @@ pub struct GyrodometryRun {
 
 /// Runs Gyrodometry on the rows that have gyro and both wheel values, from row 0.
 pub fn run(log: &DriveLog, opts: &GyrodometryOptions) -> Result<GyrodometryRun> {
+    crate::options::Settings::validate(opts)?;
     let wheelbase_m = opts
         .wheelbase_m
         .or(log.meta.wheelbase_m)
         .ok_or_else(|| Error::param("wheelbase_m", "missing: give it as an option or as `# wheelbase_m:` in the log"))?;
+    crate::options::Settings::validate(&GyrodometryOptions { wheelbase_m: Some(wheelbase_m), ..*opts })?;
     let gyro = log.require(Column::GyroDps, "needed by Gyrodometry")?;
     let left = log.require(Column::OdoLeftM, "needed by Gyrodometry")?;
     let right = log.require(Column::OdoRightM, "needed by Gyrodometry")?;

@@ -44,30 +44,24 @@ impl HdrParams {
     pub fn validate(&self) -> Result<()> {
         let check = |name: &str, v: f64, ok: bool, what: &str| -> Result<()> {
             if !v.is_finite() || !ok {
-                Err(Error::param(name, format!("{v} is not {what}")))
+                Err(Error::param(name, format!("{v:?} is not {what}")))
             } else {
                 Ok(())
             }
         };
-        check("i_c", self.i_c_dps, self.i_c_dps >= 0.0, "a rate >= 0 deg/s")?;
-        check("tau", self.tau_s, self.tau_s >= 0.0, "a time >= 0 s")?;
-        check("theta_w", self.theta_w_dps, self.theta_w_dps >= 0.0, "a rate >= 0 deg/s")?;
-        check("c1", self.c1, self.c1 > 0.0, "a number > 0")?;
-        check("c2", self.c2, self.c2 >= 0.0, "a number >= 0")?;
+        // Upper ends: far beyond any gyro or vehicle, so only mistakes are refused.
+        check("i_c", self.i_c_dps, (0.0..=10.0).contains(&self.i_c_dps), "a rate in [0, 10] deg/s")?;
+        check("tau", self.tau_s, (0.0..=3600.0).contains(&self.tau_s), "a time in [0, 3600] s")?;
+        check("theta_w", self.theta_w_dps, (0.0..=100.0).contains(&self.theta_w_dps), "a rate in [0, 100] deg/s")?;
+        check("c1", self.c1, self.c1 > 0.0 && self.c1 <= 1e6, "a number in (0, 1e6]")?;
+        check("c2", self.c2, (0.0..=100.0).contains(&self.c2), "a number in [0, 100]")?;
         Ok(())
     }
+}
 
-    /// Sets one parameter by its short name (i_c, tau, theta_w, c1, c2) or field name.
-    pub fn set(&mut self, key: &str, value: f64) -> Result<()> {
-        match key {
-            "i_c" | "i_c_dps" => self.i_c_dps = value,
-            "tau" | "tau_s" => self.tau_s = value,
-            "theta_w" | "theta_w_dps" => self.theta_w_dps = value,
-            "c1" => self.c1 = value,
-            "c2" => self.c2 = value,
-            _ => return Err(Error::param(key, "unknown HDR parameter (i_c, tau, theta_w, c1, c2)")),
-        }
-        Ok(())
+impl crate::options::Settings for HdrParams {
+    fn validate(&self) -> Result<()> {
+        HdrParams::validate(self)
     }
 }
 
@@ -421,19 +415,11 @@ impl From<HdrOptions> for HdrOptionsFlat {
     }
 }
 
-impl HdrOptions {
-    /// Sets a parameter by CLI key: i_c, tau, theta_w, c1, c2, bias_s.
-    pub fn set(&mut self, key: &str, value: f64) -> Result<()> {
-        match key {
-            "bias_s" => {
-                if !(value.is_finite() && value >= 0.0) {
-                    return Err(Error::param("bias_s", format!("{value} is not a time >= 0 s")));
-                }
-                self.bias_s = Some(value);
-                Ok(())
-            }
-            _ => self.params.set(key, value).map_err(|_| Error::param(key, "unknown key (i_c, tau, theta_w, c1, c2, bias_s)")),
-        }
+impl crate::options::Settings for HdrOptions {
+    /// The five parameters and the static-bias window.
+    fn validate(&self) -> Result<()> {
+        self.params.validate()?;
+        crate::options::check_bias_s(self.bias_s)
     }
 }
 
@@ -534,7 +520,7 @@ pub fn headings_only(samples: &Samples, params: HdrParams, eps0_dps: f64, out_hd
 /// Runs HDR on a log: static bias, optional 1 Hz blocks, estimator, baseline, metrics.
 /// Parameter and data errors are returned; a missing reference only fails `result`.
 pub fn run(log: &DriveLog, opts: &HdrOptions) -> Result<HdrRun> {
-    opts.params.validate()?;
+    crate::options::Settings::validate(opts)?;
     let (eps0, samples) = preprocess::prepare(log, opts.bias_s, opts.resample)?;
     let mut trace = run_samples(&samples, opts.params, eps0)?;
     let result = Reference::from_log(log).and_then(|reference| {
@@ -612,7 +598,9 @@ mod tests {
             assert!(matches!(p.validate(), Err(Error::Param { .. })), "{p:?}");
         }
         let e = HdrParams { tau_s: -0.1, ..Default::default() }.validate().unwrap_err();
-        assert_eq!(e.to_string(), "parameter tau: -0.1 is not a time >= 0 s");
+        assert_eq!(e.to_string(), "parameter tau: -0.1 is not a time in [0, 3600] s");
+        let e = HdrParams { i_c_dps: 1e300, ..Default::default() }.validate().unwrap_err();
+        assert_eq!(e.to_string(), "parameter i_c: 1e300 is not a rate in [0, 10] deg/s");
     }
 
     #[test]
@@ -700,18 +688,17 @@ mod tests {
     }
 
     #[test]
-    fn options_set_keys() {
-        let mut o = HdrOptions::default();
-        o.set("i_c", 0.01).unwrap();
-        o.set("tau", 2.0).unwrap();
-        o.set("theta_w", 0.3).unwrap();
-        o.set("c1", 0.5).unwrap();
-        o.set("c2", 1.0).unwrap();
-        o.set("bias_s", 10.0).unwrap();
+    fn options_by_name() {
+        let set: Vec<(String, f64)> = [("i_c", 0.01), ("tau", 2.0), ("theta_w", 0.3), ("c1", 0.5), ("c2", 1.0), ("bias_s", 10.0)]
+            .map(|(k, v)| (k.to_string(), v))
+            .to_vec();
+        let o: HdrOptions = crate::options::from_pairs(&set).unwrap();
         assert_eq!(o.params, HdrParams { i_c_dps: 0.01, tau_s: 2.0, theta_w_dps: 0.3, c1: 0.5, c2: 1.0 });
         assert_eq!(o.bias_s, Some(10.0));
-        assert!(o.set("gain", 1.0).is_err());
-        assert!(o.set("bias_s", -1.0).is_err());
+        assert!(o.resample);
+        assert!(crate::options::from_pairs::<HdrOptions>(&[("gain".into(), 1.0)]).is_err());
+        assert!(crate::options::from_pairs::<HdrOptions>(&[("bias_s".into(), -1.0)]).is_err());
+        assert!(crate::options::from_pairs::<HdrOptions>(&[("c1".into(), 0.0)]).is_err());
     }
 
     #[test]

@@ -33,6 +33,7 @@ pub mod hdr;
 pub mod import;
 pub mod log;
 pub mod metrics;
+pub mod options;
 pub mod peers;
 pub mod pipeline;
 pub mod preprocess;

@@ -110,6 +110,21 @@ pub struct TuneOptions {
     pub cross_validate: bool,
 }
 
+impl crate::options::Settings for TuneOptions {
+    /// A valid start, bounds with upper above lower, a penalty >= 0.
+    fn validate(&self) -> Result<()> {
+        if !(self.regularization_deg_per_min.is_finite() && self.regularization_deg_per_min >= 0.0) {
+            return Err(Error::param("regularization_deg_per_min", "must be a number >= 0"));
+        }
+        self.start.validate()?;
+        let (lo, hi) = (to_vec(&self.lower), to_vec(&self.upper));
+        if (0..5).any(|k| !(lo[k].is_finite() && hi[k].is_finite() && hi[k] > lo[k])) {
+            return Err(Error::param("bounds", "each upper bound must exceed its lower bound"));
+        }
+        Ok(())
+    }
+}
+
 impl Default for TuneOptions {
     fn default() -> Self {
         TuneOptions {
@@ -271,20 +286,12 @@ pub fn tune_with_progress(drives: &[PreparedDrive], opts: &TuneOptions, progress
 
 /// One regularised tuning run (no cross-validation).
 fn tune_once(drives: &[PreparedDrive], opts: &TuneOptions, progress: &dyn Fn(u64)) -> Result<TuneResult> {
-    if !(opts.regularization_deg_per_min.is_finite() && opts.regularization_deg_per_min >= 0.0) {
-        return Err(Error::param("regularization_deg_per_min", "must be a number >= 0"));
-    }
+    crate::options::Settings::validate(opts)?;
     if drives.is_empty() {
         return Err(Error::data("no training drives"));
     }
-    opts.start.validate()?;
     let lo = to_vec(&opts.lower);
     let hi = to_vec(&opts.upper);
-    for k in 0..5 {
-        if !(lo[k].is_finite() && hi[k].is_finite() && hi[k] > lo[k]) {
-            return Err(Error::param("bounds", "each upper bound must exceed its lower bound"));
-        }
-    }
     let evals = std::cell::Cell::new(0);
     let t3 = to_vec(&HdrParams::table_iii());
     let anchor: [f64; 5] = std::array::from_fn(|k| ((t3[k] - lo[k]) / (hi[k] - lo[k])).clamp(0.0, 1.0));

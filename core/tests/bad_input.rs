@@ -94,9 +94,8 @@ proptest! {
     #[test]
     fn out_of_range_parameters_are_errors(v in -10f64..-1e-9) {
         for key in ["i_c", "tau", "theta_w", "c1", "c2"] {
-            let mut o = HdrOptions::default();
-            o.set(key, v).unwrap();
-            prop_assert!(o.params.validate().is_err());
+            let e = gyrodrift::options::from_pairs::<HdrOptions>(&[(key.to_string(), v)]).unwrap_err();
+            prop_assert!(matches!(&e, gyrodrift::Error::Param { name, .. } if name == key), "{}", e);
         }
     }
 }

@@ -48,7 +48,7 @@ test("bad input throws an Error with line and column, and the module keeps worki
   });
   assert.throws(() => gd.Log.parse("gyro_dps\n1\n"), /missing required column time_s/);
   assert.throws(() => gd.hdr(gd.Log.parse("time_s,gyro_dps\n0,1\n1,2\n"), {}), /missing column ref_heading_deg/);
-  assert.throws(() => gd.hdr(gd.Log.parse(readFileSync(drives[0], "utf8")), { tau_s: "x" }), /hdr options: tau_s: invalid type/);
+  assert.throws(() => gd.hdr(gd.Log.parse(readFileSync(drives[0], "utf8")), { tau_s: "x" }), /hdr options: parameter tau_s: invalid type/);
   const est = new gd.HdrEstimator({}, 0);
   est.update(0, 0.1);
   assert.throws(() => est.update(0, 0.1), /not after/);

@@ -6,7 +6,6 @@
 use gyrodrift::hdr::{self, Hdr, HdrOptions, HdrParams};
 use gyrodrift::{allan, calibration, gyrodometry, report, sim, tune, DriveLog};
 use js_sys::{Array, Float64Array, Object, Reflect, Uint8Array};
-use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
@@ -22,39 +21,35 @@ fn err(msg: impl std::fmt::Display) -> JsValue {
     js_sys::Error::new(&msg.to_string()).into()
 }
 
-/// Short names accepted besides the fields' own (`#[serde(alias)]` in core).
-const ALIASES: &[&str] = &["i_c", "tau", "theta_w", "thres_rate"];
-
-/// Options from JS: undefined/null = all defaults; missing fields take defaults; an unknown
-/// field or a wrong type is an error naming the field.
-fn options<T: DeserializeOwned + Default + Serialize>(what: &str, value: JsValue) -> JsResult<T> {
+/// Options from JS: undefined/null = all defaults; otherwise read by core's one schema
+/// (`options::from_json`: the structs' serde with their aliases, then their `validate`),
+/// which names an unknown or mistyped field. JSON has no NaN, so a non-finite number is
+/// refused here, by name, before the conversion could turn it into "absent".
+fn options<T: gyrodrift::options::Settings>(what: &str, value: JsValue) -> JsResult<T> {
     if value.is_undefined() || value.is_null() {
         return Ok(T::default());
     }
     let obj: &Object = value.dyn_ref().filter(|_| value.is_object()).ok_or_else(|| err(format!("{what} options: expected an object")))?;
-    let defaults: JsValue = to_js(&T::default())?;
-    let known = Object::keys(defaults.unchecked_ref::<Object>());
-    let keys = Object::keys(obj);
-    for key in keys.iter() {
-        let k = key.as_string().unwrap_or_default();
-        if !known.includes(&key, 0) && !ALIASES.contains(&k.as_str()) {
-            let expected: Vec<String> = known.iter().filter_map(|v| v.as_string()).collect();
-            return Err(err(format!("{what} options: unknown field `{k}`, expected one of {}", expected.join(", "))));
+    reject_non_finite(what, obj, "")?;
+    let json: serde_json::Value =
+        serde_wasm_bindgen::from_value(value.clone()).map_err(|e| err(format!("{what} options: {}", js_message(e))))?;
+    gyrodrift::options::from_json(json).map_err(|e| err(format!("{what} options: {e}")))
+}
+
+/// An error naming the first non-finite number of an options object (one level of nesting).
+fn reject_non_finite(what: &str, obj: &Object, prefix: &str) -> JsResult<()> {
+    for key in Object::keys(obj).iter() {
+        let name = format!("{prefix}{}", key.as_string().unwrap_or_default());
+        let v = Reflect::get(obj, &key).unwrap_or(JsValue::UNDEFINED);
+        if let Some(x) = v.as_f64() {
+            if !x.is_finite() {
+                return Err(err(format!("{what} options: {name}: {x} is not a finite number")));
+            }
+        } else if let (Some(inner), true) = (v.dyn_ref::<Object>(), prefix.is_empty() && v.is_object()) {
+            reject_non_finite(what, inner, &format!("{name}."))?;
         }
     }
-    serde_wasm_bindgen::from_value(value.clone()).map_err(|e| {
-        // Name the field: the first key that fails on its own.
-        for key in keys.iter() {
-            let single = Object::new();
-            let v = Reflect::get(obj, &key).unwrap_or(JsValue::UNDEFINED);
-            if Reflect::set(&single, &key, &v).is_ok() {
-                if let Err(e1) = serde_wasm_bindgen::from_value::<T>(single.into()) {
-                    return err(format!("{what} options: {}: {}", key.as_string().unwrap_or_default(), js_message(e1)));
-                }
-            }
-        }
-        err(format!("{what} options: {}", js_message(e)))
-    })
+    Ok(())
 }
 
 /// The message of a serde-wasm-bindgen error (a JS Error underneath).

@@ -104,11 +104,16 @@ fn options_default_and_name_bad_fields() {
     assert_ne!(num(&a, "E_psi_hdr_deg"), num(&c, "E_psi_hdr_deg"));
     let e = hdr(&log, obj(&[("tau_s", JsValue::from_str("fast"))])).err().unwrap();
     let m = message(e);
-    assert!(m.starts_with("hdr options: tau_s: invalid type"), "{m}");
+    assert!(m.starts_with("hdr options: parameter tau_s: invalid type"), "{m}");
     let e = hdr(&log, obj(&[("taus", JsValue::from_f64(1.0))])).err().unwrap();
     assert!(message(e).contains("unknown field `taus`"));
     let e = hdr(&log, obj(&[("tau_s", JsValue::from_f64(-1.0))])).err().unwrap();
-    assert_eq!(message(e), "parameter tau: -1 is not a time >= 0 s");
+    assert_eq!(message(e), "hdr options: parameter tau: -1.0 is not a time in [0, 3600] s");
+    // NaN would become "absent" in the conversion: refused by name instead.
+    let e = hdr(&log, obj(&[("bias_s", JsValue::from_f64(f64::NAN))])).err().unwrap();
+    assert_eq!(message(e), "hdr options: bias_s: NaN is not a finite number");
+    let e = pipeline(&log, obj(&[("still", obj(&[("still_speed_mps", JsValue::from_f64(f64::INFINITY))]))])).err().unwrap();
+    assert_eq!(message(e), "pipeline options: still.still_speed_mps: inf is not a finite number");
 }
 
 #[wasm_bindgen_test]

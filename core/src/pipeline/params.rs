@@ -86,6 +86,12 @@ impl Default for PipelineParams {
     }
 }
 
+impl crate::options::Settings for PipelineParams {
+    fn validate(&self) -> Result<()> {
+        PipelineParams::validate(self)
+    }
+}
+
 impl PipelineParams {
     /// The bias walks of the bank, log-spaced from the slowest to the fastest.
     pub fn bias_walks_dps_per_sqrt_s(&self) -> [f64; N_WALKS] {
@@ -141,45 +147,6 @@ impl PipelineParams {
         if self.bias_walk_min_dps_per_sqrt_s > self.bias_walk_max_dps_per_sqrt_s {
             return Err(Error::param("bias_walk_min_dps_per_sqrt_s", "is above bias_walk_max_dps_per_sqrt_s"));
         }
-        if let Some(b) = self.bias_s {
-            if !(b.is_finite() && b >= 0.0) {
-                return Err(Error::param("bias_s", format!("{b} is not a time >= 0 s")));
-            }
-        }
-        Ok(())
-    }
-
-    /// Sets a setting by name (the field names; CLI `--set`).
-    pub fn set(&mut self, key: &str, value: f64) -> Result<()> {
-        match key {
-            "still_speed_mps" => self.still.still_speed_mps = value,
-            "still_travel_m" => self.still.still_travel_m = value,
-            "still_gyro_factor" => self.still.still_gyro_factor = value,
-            "min_still_s" => self.min_still_s = value,
-            "stop_sigma_dps" => self.stop_sigma_dps = value,
-            "max_bias_dps" => self.max_bias_dps = value,
-            "jump_min_s" => self.jump_min_s = value,
-            "road_sigma_dps" => self.road_sigma_dps = value,
-            "road_corr_s" => self.road_corr_s = value,
-            "road_sigma_spread" => self.road_sigma_spread = value,
-            "block_sigma_dps" => self.block_sigma_dps = value,
-            "road_window_s" => self.road_window_s = value,
-            "road_gate_dps" => self.road_gate_dps = value,
-            "bias_walk_min_dps_per_sqrt_s" => self.bias_walk_min_dps_per_sqrt_s = value,
-            "bias_walk_max_dps_per_sqrt_s" => self.bias_walk_max_dps_per_sqrt_s = value,
-            "prior_bias_sigma_dps" => self.prior_bias_sigma_dps = value,
-            "warm_sigma_dps" => self.warm_sigma_dps = value,
-            "warm_tau_short_s" => self.warm_tau_short_s = value,
-            "warm_tau_long_s" => self.warm_tau_long_s = value,
-            "forget_s" => self.forget_s = value,
-            "bias_s" => self.bias_s = Some(value),
-            _ => {
-                return Err(Error::param(
-                    key,
-                    "unknown key (still_speed_mps, still_travel_m, still_gyro_factor, min_still_s, stop_sigma_dps, max_bias_dps, jump_min_s, road_sigma_dps, road_sigma_spread, road_corr_s, block_sigma_dps, road_window_s, road_gate_dps, bias_walk_min_dps_per_sqrt_s, bias_walk_max_dps_per_sqrt_s, prior_bias_sigma_dps, warm_sigma_dps, warm_tau_short_s, warm_tau_long_s, forget_s, bias_s)",
-                ))
-            }
-        }
-        self.validate()
+        crate::options::check_bias_s(self.bias_s)
     }
 }

@@ -204,7 +204,7 @@ fn bad_updates_and_params_are_errors() {
     assert!(f.update(2.0, f64::NAN, false).is_err());
     assert!(PipelineParams { road_gate_dps: 0.0, ..one_model() }.validate().is_err());
     assert!(PipelineParams { road_sigma_dps: 1e300, ..one_model() }.validate().is_err());
-    assert!(PipelineParams::default().set("nope", 1.0).is_err());
+    assert!(crate::options::from_pairs::<PipelineParams>(&[("nope".into(), 1.0)]).is_err());
     assert!(Pipeline::new(one_model(), 0.0, 0.0, 0.0).is_err());
 }
 

@@ -89,6 +89,18 @@ pub struct SimRequest {
     pub name: Option<String>,
 }
 
+impl crate::options::Settings for SimRequest {
+    /// A length in (0, 1440] min.
+    fn validate(&self) -> crate::Result<()> {
+        match self.minutes {
+            Some(m) if !(m.is_finite() && m > 0.0 && m <= 24.0 * 60.0) => {
+                Err(crate::Error::param("minutes", format!("{m} is not a duration in (0, 1440] min")))
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
 impl Default for SimRequest {
     fn default() -> Self {
         SimRequest { kind: SimKind::Drive, scenario: None, minutes: None, seed: 1, name: None }
@@ -97,12 +109,7 @@ impl Default for SimRequest {
 
 /// Simulates the log a request describes.
 pub fn simulate(req: &SimRequest) -> crate::Result<crate::DriveLog> {
-    let bad_minutes = |m: f64| !(m.is_finite() && m > 0.0 && m <= 24.0 * 60.0);
-    if let Some(m) = req.minutes {
-        if bad_minutes(m) {
-            return Err(crate::Error::param("minutes", format!("{m} is not a duration in (0, 1440] min")));
-        }
-    }
+    crate::options::Settings::validate(req)?;
     let mut log = match req.kind {
         SimKind::Drive => {
             let scenario = match &req.scenario {

@@ -1,0 +1,110 @@
+//! Settings by name, one schema: serde reads every settings struct (short names declared
+//! once, as `alias` on its fields) and each struct checks itself once ([`Settings::validate`]).
+//! The CLI's `--set key=value` pairs and the wasm package's option objects both come here.
+
+use crate::error::{Error, Result};
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use serde_json::{Map, Value};
+
+/// A settings struct: serde with defaults and unknown fields denied, and one validation.
+pub trait Settings: Serialize + DeserializeOwned + Default {
+    /// Every setting finite and in its range.
+    fn validate(&self) -> Result<()>;
+}
+
+/// A static-bias window (the `bias_s` of every method): None, or a time >= 0 s.
+pub fn check_bias_s(bias_s: Option<f64>) -> Result<()> {
+    match bias_s {
+        Some(b) if !(b.is_finite() && b >= 0.0) => Err(Error::param("bias_s", format!("{b} is not a time >= 0 s"))),
+        _ => Ok(()),
+    }
+}
+
+/// Settings from a JSON object (missing fields take their defaults), validated. An unknown
+/// field or a value of the wrong type is an error naming the field.
+pub fn from_json<T: Settings>(value: Value) -> Result<T> {
+    let obj = match value {
+        Value::Null => return Ok(T::default()),
+        Value::Object(o) => o,
+        other => return Err(Error::param("options", format!("expected an object, not {other}"))),
+    };
+    let t: T = serde_json::from_value(Value::Object(obj.clone())).map_err(|e| {
+        // Name the field: the first one that fails on its own.
+        for (k, v) in &obj {
+            let single = Map::from_iter([(k.clone(), v.clone())]);
+            if let Err(e1) = serde_json::from_value::<T>(Value::Object(single)) {
+                return Error::param(k, e1.to_string());
+            }
+        }
+        Error::param("options", e.to_string())
+    })?;
+    t.validate()?;
+    Ok(t)
+}
+
+/// Settings from `key=value` pairs on top of the defaults (the CLI's `--set`): a key is a
+/// field name or its alias; a key that names a field of a nested settings struct (the
+/// pipeline's still thresholds) goes to that struct. Validated.
+pub fn from_pairs<T: Settings>(pairs: &[(String, f64)]) -> Result<T> {
+    let defaults = serde_json::to_value(T::default()).map_err(|e| Error::param("options", e.to_string()))?;
+    let mut obj = Map::new();
+    for (k, v) in pairs {
+        let num = if v.fract() == 0.0 && v.abs() < 9e15 {
+            Value::from(*v as i64)
+        } else {
+            serde_json::Number::from_f64(*v).map(Value::Number).ok_or_else(|| Error::param(k, format!("{v} is not a finite number")))?
+        };
+        let nested = defaults.as_object().and_then(|d| {
+            d.iter().find(|(_, inner)| !d.contains_key(k.as_str()) && inner.as_object().is_some_and(|i| i.contains_key(k.as_str())))
+        });
+        match nested {
+            Some((name, _)) => {
+                let inner = obj.entry(name.clone()).or_insert_with(|| Value::Object(Map::new()));
+                if let Value::Object(m) = inner {
+                    m.insert(k.clone(), num);
+                }
+            }
+            None => {
+                obj.insert(k.clone(), num);
+            }
+        }
+    }
+    from_json(Value::Object(obj))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::hdr::{HdrOptions, HdrParams};
+    use crate::pipeline::PipelineParams;
+
+    fn pairs(p: &[(&str, f64)]) -> Vec<(String, f64)> {
+        p.iter().map(|(k, v)| (k.to_string(), *v)).collect()
+    }
+
+    #[test]
+    fn pairs_by_alias_and_field_name_and_nested() {
+        let o: HdrOptions = from_pairs(&pairs(&[("i_c", 0.01), ("tau_s", 2.0), ("bias_s", 10.0)])).unwrap();
+        assert_eq!(o.params, HdrParams { i_c_dps: 0.01, tau_s: 2.0, ..HdrParams::table_iii() });
+        assert_eq!(o.bias_s, Some(10.0));
+        let p: PipelineParams = from_pairs(&pairs(&[("still_speed_mps", 0.5), ("forget_s", 100.0)])).unwrap();
+        assert_eq!(p.still.still_speed_mps, 0.5);
+        assert_eq!(p.forget_s, 100.0);
+        assert_eq!(p.still.still_travel_m, PipelineParams::default().still.still_travel_m);
+    }
+
+    #[test]
+    fn errors_name_the_field() {
+        let e = from_pairs::<HdrOptions>(&pairs(&[("gain", 1.0)])).unwrap_err();
+        assert!(matches!(&e, Error::Param { name, message } if name == "gain" && message.contains("unknown field")), "{e}");
+        let e = from_pairs::<HdrOptions>(&pairs(&[("bias_s", -1.0)])).unwrap_err();
+        assert!(matches!(&e, Error::Param { name, .. } if name == "bias_s"), "{e}");
+        let e = from_pairs::<HdrOptions>(&pairs(&[("i_c", f64::NAN)])).unwrap_err();
+        assert!(matches!(&e, Error::Param { name, .. } if name == "i_c"), "{e}");
+        let e = from_json::<HdrOptions>(serde_json::json!({"tau": 1.0, "c1": "x"})).unwrap_err();
+        assert!(matches!(&e, Error::Param { name, .. } if name == "c1"), "{e}");
+        assert!(from_json::<HdrOptions>(serde_json::json!(3)).is_err());
+        assert_eq!(from_json::<HdrOptions>(Value::Null).unwrap(), HdrOptions::default());
+    }
+}
