@@ -7,7 +7,6 @@ use crate::eval::{col, standard_methods, Prepared};
 use crate::hdr::HdrParams;
 use crate::log::DriveLog;
 use crate::pipeline::PipelineParams;
-use crate::report::prefix;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 
@@ -68,7 +67,7 @@ pub fn compare(drives: &[(String, &DriveLog)], params: &PipelineParams, tuned: O
     }
     params.validate()?;
     let rows =
-        drives.iter().map(|(name, log)| compare_row(name, log, params, tuned).map_err(|e| prefix(name, e))).collect::<Result<Vec<_>>>()?;
+        drives.iter().map(|(name, log)| compare_row(name, log, params, tuned).map_err(|e| e.within(name))).collect::<Result<Vec<_>>>()?;
     let n = rows.len() as f64;
     let mean = |f: fn(&CompareRow) -> f64| rows.iter().map(f).sum::<f64>() / n;
     let mean_row = CompareRow {

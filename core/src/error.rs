@@ -28,6 +28,10 @@ pub enum Error {
     /// An I/O failure of the underlying reader or writer.
     #[error("read error: {0}")]
     Io(String),
+    /// An error inside a named drive, file or recipe: the name, then the error in its own
+    /// form (a line and column stay a line and column through every layer).
+    #[error("{name}: {source}")]
+    In { name: String, source: Box<Error> },
 }
 
 impl Error {
@@ -36,6 +40,17 @@ impl Error {
     }
     pub(crate) fn data(message: impl Into<String>) -> Self {
         Error::Data(message.into())
+    }
+    /// This error, inside the named drive, file or recipe.
+    pub fn within(self, name: &str) -> Self {
+        Error::In { name: name.to_string(), source: Box::new(self) }
+    }
+    /// The error under every name it was wrapped in.
+    pub fn innermost(&self) -> &Error {
+        match self {
+            Error::In { source, .. } => source.innermost(),
+            e => e,
+        }
     }
     pub(crate) fn missing(column: &str, needed_by: &str) -> Self {
         Error::MissingColumn { column: column.to_string(), needed_by: needed_by.to_string() }

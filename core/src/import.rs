@@ -592,7 +592,7 @@ fn for_each_row(spec: &TableSpec, reader: Box<dyn Read + '_>, row: &mut dyn FnMu
 /// Reads the columns `wanted` (and the time) of one table, streaming.
 fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mut dyn Files) -> Result<Table> {
     let file = spec.file.clone();
-    let at = |e: Error| -> Error { crate::report::prefix(&file, e) };
+    let at = |e: Error| -> Error { e.within(&file) };
     let scale = time_unit(&spec.time.unit)?;
     if let Some(p) = spec.time.period_s {
         if !(p.is_finite() && p > 0.0) {
@@ -1311,6 +1311,22 @@ mod tests {
             "heading": {"source": "positions"}, "speed": {"source": "positions"},
             "align": {"rate": {"table": "a", "column": "w", "unit": "deg/s", "positive": "ccw"}}}"#;
         serde_json::from_str(text).unwrap()
+    }
+
+    #[test]
+    fn a_bad_cell_keeps_its_line_and_column_under_the_file_name() {
+        let mut files = BTreeMap::new();
+        files.insert("a.csv".to_string(), b"t,w\n0,1\n1,x\n".to_vec());
+        files.insert("b.txt".to_string(), b"0 0 0\n1 0 0\n".to_vec());
+        let e = import(&recipe(), &mut files).unwrap_err();
+        match &e {
+            Error::In { name, source } => {
+                assert_eq!(name, "a.csv");
+                assert!(matches!(**source, Error::Cell { line: 3, ref column, .. } if column == "w"), "{source:?}");
+            }
+            other => panic!("not wrapped in the file name: {other:?}"),
+        }
+        assert!(e.to_string().starts_with("a.csv: line 3, column w: "), "{e}");
     }
 
     proptest::proptest! {

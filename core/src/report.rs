@@ -74,7 +74,7 @@ impl Report {
     pub fn build(drives: &[(String, &DriveLog)], opts: &HdrOptions) -> Result<Report> {
         let mut rows = Vec::with_capacity(drives.len());
         for (name, log) in drives {
-            let r = hdr::run(log, opts).and_then(|run| run.result).map_err(|e| prefix(name, e))?;
+            let r = hdr::run(log, opts).and_then(|run| run.result).map_err(|e| e.within(name))?;
             rows.push(ReportRow::from_result(name, &r));
         }
         Report::from_rows(rows)
@@ -147,11 +147,6 @@ impl Report {
         ));
         s
     }
-}
-
-/// Prefixes an error with the drive's name.
-pub fn prefix(name: &str, e: Error) -> Error {
-    Error::Data(format!("{name}: {e}"))
 }
 
 #[cfg(test)]

@@ -11,7 +11,7 @@ use crate::hdr::{self, HdrOptions, HdrParams};
 use crate::log::DriveLog;
 use crate::metrics::{self, Reference};
 use crate::preprocess::{self, Samples};
-use crate::report::{prefix, Report, ReportRow};
+use crate::report::{Report, ReportRow};
 use argmin::core::{CostFunction, Executor};
 use argmin::solver::neldermead::NelderMead;
 use serde::{Deserialize, Serialize};
@@ -29,7 +29,7 @@ pub struct PreparedDrive {
 
 impl PreparedDrive {
     pub fn new(name: &str, log: &DriveLog, bias_s: Option<f64>, resample: bool) -> Result<Self> {
-        let wrap = |e| prefix(name, e);
+        let wrap = |e: Error| e.within(name);
         let (eps0, samples) = preprocess::prepare(log, bias_s, resample).map_err(wrap)?;
         let reference = Reference::from_log(log).map_err(wrap)?;
         let mut raw = hdr::RawIntegrator::new(eps0);
