@@ -64,34 +64,32 @@ pub fn gyro_rows(log: &DriveLog) -> Result<Samples> {
     Ok(s)
 }
 
-/// 1 Hz block averaging (detail 2): block k holds rows with `k <= t_i - t_0 < k+1`,
-/// `k = floor(t_i - t_0)`; rate = mean of its non-empty gyro cells; stamp = time of its
-/// last row; blocks with no gyro value are dropped.
+/// The paper's 1 Hz blocks (detail 2) as row ranges: block k holds the rows with
+/// `k <= t_i - t_0 < k+1`, `k = floor(t_i - t_0)`. The one block iterator of the crate: the
+/// averaging below and the still detection both walk it.
+pub fn blocks_1hz(time_s: &[f64]) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
+    let t0 = time_s.first().copied().unwrap_or(0.0);
+    let mut start = 0;
+    std::iter::from_fn(move || {
+        let &first = time_s.get(start)?;
+        let k = (first - t0).floor();
+        let len = time_s[start + 1..].iter().take_while(|&&t| (t - t0).floor() == k).count();
+        let block = start..start + 1 + len;
+        start = block.end;
+        Some(block)
+    })
+}
+
+/// 1 Hz block averaging (detail 2): rate = mean of a block's non-empty gyro cells; stamp =
+/// time of its last row; blocks with no gyro value are dropped.
 pub fn block_average_1hz(time_s: &[f64], gyro_dps: &[f64]) -> Samples {
     let mut out = Samples::default();
-    let Some(&t0) = time_s.first() else { return out };
-    let mut k_cur = f64::NAN;
-    let (mut sum, mut n, mut stamp) = (0.0, 0usize, 0.0);
-    for (&t, &g) in time_s.iter().zip(gyro_dps) {
-        let k = (t - t0).floor();
-        if k != k_cur {
-            if n > 0 {
-                out.time_s.push(stamp);
-                out.rate_dps.push(sum / n as f64);
-            }
-            k_cur = k;
-            sum = 0.0;
-            n = 0;
+    for b in blocks_1hz(time_s) {
+        let (sum, n) = gyro_dps[b.clone()].iter().filter(|g| !g.is_nan()).fold((0.0, 0usize), |(s, n), &g| (s + g, n + 1));
+        if n > 0 {
+            out.time_s.push(time_s[b.end - 1]);
+            out.rate_dps.push(sum / n as f64);
         }
-        stamp = t;
-        if !g.is_nan() {
-            sum += g;
-            n += 1;
-        }
-    }
-    if n > 0 {
-        out.time_s.push(stamp);
-        out.rate_dps.push(sum / n as f64);
     }
     out
 }

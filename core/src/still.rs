@@ -72,7 +72,30 @@ struct Acc {
     odo_last: Option<(f64, f64)>,
 }
 
-/// Block-averages a log to 1 Hz (the same blocks and stamps as
+impl Acc {
+    /// One row's gyro, temperature, speed and wheel odometry (NaN cells skipped).
+    fn add(&mut self, g: f64, temp: Option<f64>, speed: Option<f64>, odo: Option<(f64, f64)>) {
+        if g.is_finite() {
+            self.n += 1;
+            self.sum += g;
+            self.sum2 += g * g;
+        }
+        if let Some(v) = temp.filter(|v| v.is_finite()) {
+            self.temp_sum += v;
+            self.temp_n += 1;
+        }
+        if let Some(v) = speed.filter(|v| v.is_finite()) {
+            self.speed_max = if self.speed_n == 0 { v.abs() } else { self.speed_max.max(v.abs()) };
+            self.speed_n += 1;
+        }
+        if let Some((l, r)) = odo.filter(|(l, r)| l.is_finite() && r.is_finite()) {
+            self.odo_first.get_or_insert((l, r));
+            self.odo_last = Some((l, r));
+        }
+    }
+}
+
+/// Block-averages a log to 1 Hz (`preprocess::blocks_1hz`, the stamps of
 /// `preprocess::block_average_1hz`) and flags the blocks where the vehicle stood.
 pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Blocks, StillSource)> {
     let t = log.time_s();
@@ -96,9 +119,9 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
         StillSource::None
     };
     let mut out = Blocks::default();
-    let Some(&t0) = t.first() else {
+    if t.is_empty() {
         return Err(Error::data("the log has no rows"));
-    };
+    }
     let flush = |a: &Acc, stamp: f64, out: &mut Blocks| {
         if a.n == 0 {
             return;
@@ -121,41 +144,13 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
         out.temp_c.push(if a.temp_n > 0 { a.temp_sum / a.temp_n as f64 } else { f64::NAN });
         out.still.push(still);
     };
-    let mut acc = Acc::default();
-    let mut k_cur = f64::NAN;
-    let mut stamp = t0;
-    for i in 0..t.len() {
-        let k = (t[i] - t0).floor();
-        if k != k_cur {
-            flush(&acc, stamp, &mut out);
-            acc = Acc::default();
-            k_cur = k;
+    for b in crate::preprocess::blocks_1hz(t) {
+        let mut acc = Acc::default();
+        for i in b.clone() {
+            acc.add(gyro[i], temp.map(|c| c[i]), speed.map(|c| c[i]), odo.map(|(l, r)| (l[i], r[i])));
         }
-        stamp = t[i];
-        let g = gyro[i];
-        if g.is_finite() {
-            acc.n += 1;
-            acc.sum += g;
-            acc.sum2 += g * g;
-        }
-        if let Some(v) = temp.map(|c| c[i]).filter(|v| v.is_finite()) {
-            acc.temp_sum += v;
-            acc.temp_n += 1;
-        }
-        if let Some(v) = speed.map(|c| c[i]).filter(|v| v.is_finite()) {
-            acc.speed_max = if acc.speed_n == 0 { v.abs() } else { acc.speed_max.max(v.abs()) };
-            acc.speed_n += 1;
-        }
-        if let Some((l, r)) = odo {
-            if l[i].is_finite() && r[i].is_finite() {
-                if acc.odo_first.is_none() {
-                    acc.odo_first = Some((l[i], r[i]));
-                }
-                acc.odo_last = Some((l[i], r[i]));
-            }
-        }
+        flush(&acc, t[b.end - 1], &mut out);
     }
-    flush(&acc, stamp, &mut out);
     if out.is_empty() {
         return Err(Error::data("the gyro_dps column has no values"));
     }
