@@ -1,10 +1,12 @@
 //! `gyrodrift`: the command-line front of the gyrodrift core. It reads files, parses
 //! options, calls core and prints; every number comes from core.
 
+mod commands;
 mod output;
 
 use clap::{Parser, Subcommand};
-use gyrodrift::{calibration, gyrodometry, hdr, DriveLog, Error};
+use gyrodrift::sim::{SimKind, SimRequest};
+use gyrodrift::{battery, DriveLog, Error};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -37,7 +39,8 @@ enum Cmd {
     /// and two peers (x-io Fusion offset, zero-rate update at stops).
     Pipeline {
         log: PathBuf,
-        /// Setting: min_still_s, gate_dps, road_sigma_dps, bias_walk_dps_per_sqrt_s, bias_s, ...
+        /// Setting: a field of the pipeline's settings (min_still_s, road_gate_dps,
+        /// road_sigma_dps, bias_walk_max_dps_per_sqrt_s, still_speed_mps, bias_s, ...).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
         #[arg(long)]
@@ -92,8 +95,8 @@ enum Cmd {
         #[arg(long)]
         data: Option<PathBuf>,
         /// training (where choices are made), scoring (only looked at), or all.
-        #[arg(long, default_value = "all")]
-        split: String,
+        #[arg(long, value_enum, default_value = "all")]
+        split: SplitArg,
         /// Length of each simulated drive, min.
         #[arg(long, default_value_t = 20.0)]
         minutes: f64,
@@ -161,6 +164,13 @@ enum Cmd {
         #[arg(long)]
         json: bool,
     },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum SplitArg {
+    Training,
+    Scoring,
+    All,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -251,203 +261,35 @@ fn print_json<T: serde::Serialize>(value: &T) -> Result<(), Failure> {
 }
 
 fn run(cli: Cli) -> Result<(), Failure> {
+    use commands as c;
     match cli.cmd {
-        Cmd::Hdr { log, no_resample, set, json, trace } => {
-            let opts = hdr::HdrOptions { resample: !no_resample, ..settings(&set)? };
-            let drive = read_log(&log)?;
-            let run = hdr::run(&drive, &opts).map_err(|e| fail(&log, e))?;
-            if let Some(path) = trace {
-                let f = std::fs::File::create(&path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
-                run.trace.write_csv(f).map_err(|e| fail(&path, e))?;
-            }
-            let result = run.result.map_err(|e| fail(&log, e))?;
-            if json {
-                print_json(&result)
-            } else {
-                print!("{}", output::hdr_table(&log, &opts, &result));
-                Ok(())
-            }
-        }
-        Cmd::Pipeline { log, set, json } => {
-            let params: gyrodrift::pipeline::PipelineParams = settings(&set)?;
-            let drive = read_log(&log)?;
-            let run = gyrodrift::pipeline::run(&drive, &params).map_err(|e| fail(&log, e))?;
-            let result = run.result.map_err(|e| fail(&log, e))?;
-            if json {
-                print_json(&result)
-            } else {
-                print!("{}", output::pipeline_table(&log, &result));
-                Ok(())
-            }
-        }
-        Cmd::Gyrodometry { log, set, json } => {
-            let opts: gyrodometry::GyrodometryOptions = settings(&set)?;
-            let drive = read_log(&log)?;
-            let run = gyrodometry::run(&drive, &opts).map_err(|e| fail(&log, e))?;
-            let result = run.result.map_err(|e| fail(&log, e))?;
-            if json {
-                print_json(&result)
-            } else {
-                print!("{}", output::gyrodometry_table(&log, &result));
-                Ok(())
-            }
-        }
-        Cmd::Calibrate { log, set, json } => {
-            let opts: calibration::CalibrationOptions = settings(&set)?;
-            let drive = read_log(&log)?;
-            let run = calibration::run(&drive, &opts).map_err(|e| fail(&log, e))?;
-            if json {
-                print_json(&run.result)
-            } else {
-                print!("{}", output::calibration_table(&log, &run));
-                Ok(())
-            }
-        }
-        Cmd::Report { files, set, no_resample: _, json, markdown: _, compare: true, tune_on } => {
-            let params: gyrodrift::pipeline::PipelineParams = settings(&set)?;
-            let tuned = if tune_on.is_empty() {
-                None
-            } else {
-                use gyrodrift::tune;
-                let train = read_logs(&tune_on)?;
-                let refs: Vec<(String, &DriveLog)> = train.iter().map(|(n, l)| (n.clone(), l)).collect();
-                let prepared = tune::prepare_all(&refs, &hdr::HdrOptions::default()).map_err(|e| Failure(e.to_string()))?;
-                Some(tune::tune(&prepared, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?.recommended)
-            };
-            let logs = read_logs(&files)?;
-            let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), l)).collect();
-            let c = gyrodrift::compare::compare(&named, &params, tuned).map_err(|e| Failure(e.to_string()))?;
-            if json {
-                print_json(&c)
-            } else {
-                print!("{}", c.to_markdown());
-                Ok(())
-            }
-        }
-        Cmd::Report { files, set, no_resample, json, markdown, .. } => {
-            let opts = hdr::HdrOptions { resample: !no_resample, ..settings(&set)? };
-            let logs = read_logs(&files)?;
-            let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), l)).collect();
-            let report = gyrodrift::report::Report::build(&named, &opts).map_err(|e| Failure(e.to_string()))?;
-            if json {
-                print_json(&report)
-            } else {
-                print!("{}", if markdown { report.to_markdown() } else { report.to_text() });
-                Ok(())
-            }
-        }
-        Cmd::Tune { train, test, json, markdown } => {
-            use gyrodrift::tune;
-            let opts = hdr::HdrOptions::default();
-            let train_logs = read_logs(&train)?;
-            let test_logs = read_logs(&test)?;
-            let prep = |v: &[(String, DriveLog)]| -> Result<Vec<tune::PreparedDrive>, Failure> {
-                let refs: Vec<(String, &DriveLog)> = v.iter().map(|(n, l)| (n.clone(), l)).collect();
-                tune::prepare_all(&refs, &opts).map_err(|e| Failure(e.to_string()))
-            };
-            let train_p = prep(&train_logs)?;
-            let test_p = prep(&test_logs)?;
-            let rep = tune::tune_and_report(&train_p, &test_p, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?;
-            if json {
-                return print_json(&rep);
-            }
-            print!("{}", output::tune_text(&rep, markdown));
-            Ok(())
-        }
+        Cmd::Hdr { log, no_resample, set, json, trace } => c::hdr(&log, !no_resample, &set, json, trace.as_deref()),
+        Cmd::Pipeline { log, set, json } => c::pipeline(&log, &set, json),
+        Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json),
+        Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json),
+        Cmd::Report { files, set, json, compare: true, tune_on, .. } => c::compare(&files, &set, json, &tune_on),
+        Cmd::Report { files, set, no_resample, json, markdown, .. } => c::report(&files, &set, !no_resample, json, markdown),
+        Cmd::Tune { train, test, json, markdown } => c::tune(&train, &test, json, markdown),
         Cmd::Simulate { kind, scenario, minutes, seed, name, out } => {
-            use gyrodrift::sim::{SimKind, SimRequest};
             let kind = match kind {
                 SimKindArg::Drive => SimKind::Drive,
                 SimKindArg::Robot => SimKind::Robot,
                 SimKindArg::Turntable => SimKind::Turntable,
                 SimKindArg::Static => SimKind::Static,
             };
-            let req = SimRequest { kind, scenario, minutes, seed, name };
-            let log = gyrodrift::sim::simulate(&req).map_err(|e| Failure(e.to_string()))?;
-            match out {
-                Some(path) => {
-                    let f = std::fs::File::create(&path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
-                    log.write_csv(f).map_err(|e| fail(&path, e))
-                }
-                None => log.write_csv(std::io::stdout().lock()).map_err(|e| Failure(e.to_string())),
-            }
+            c::simulate(&SimRequest { kind, scenario, minutes, seed, name }, out.as_deref())
         }
-        Cmd::Samples { out } => {
-            for s in gyrodrift::sim::samples::SAMPLE_LOGS {
-                let path = out.join(s.path);
-                if let Some(dir) = path.parent() {
-                    std::fs::create_dir_all(dir).map_err(|e| Failure(format!("{}: {e}", dir.display())))?;
-                }
-                let log = gyrodrift::sim::simulate(&s.request()).map_err(|e| Failure(e.to_string()))?;
-                let f = std::fs::File::create(&path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
-                log.write_csv(f).map_err(|e| fail(&path, e))?;
-                eprintln!("wrote {}", path.display());
-            }
-            Ok(())
-        }
+        Cmd::Samples { out } => c::samples(&out),
         Cmd::Battery { recipes, data, split, minutes, cases, set, json } => {
-            use gyrodrift::battery;
-            let params: gyrodrift::pipeline::PipelineParams = settings(&set)?;
-            let split = match split.as_str() {
-                "training" => battery::Split::Training,
-                "scoring" => battery::Split::Scoring,
-                "all" => battery::Split::All,
-                other => return Err(Failure(format!("--split {other}: expected training, scoring or all"))),
+            let split = match split {
+                SplitArg::Training => battery::Split::Training,
+                SplitArg::Scoring => battery::Split::Scoring,
+                SplitArg::All => battery::Split::All,
             };
-            if !(minutes.is_finite() && minutes > 1.0 && minutes <= 600.0) {
-                return Err(Failure(format!("--minutes {minutes}: expected a length in (1, 600] min")));
-            }
-            let mut bases = Vec::new();
-            for r in expand_recipes(&recipes)? {
-                let (log, _) = import_recipe(&r, data.as_deref())?;
-                let stem = r.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-                bases.push(battery::recorded_base(&stem, log));
-            }
-            bases.extend(battery::simulated_bases(minutes));
-            let tuned = battery::tune_hdr(&bases).map_err(|e| Failure(e.to_string()))?;
-            eprintln!(
-                "HDR tuned on the {} training bases: cross-validated NE_psi {:.4} (Table III {:.4}) -> {}",
-                bases.iter().filter(|b| b.training).count(),
-                tuned.cv.as_ref().map_or(f64::NAN, |c| c.cv_tuned_deg_per_min),
-                tuned.cv.as_ref().map_or(f64::NAN, |c| c.cv_table_iii_deg_per_min),
-                if tuned.recommended_is_tuned { "tuned parameters used" } else { "Table III used (tuning does not generalise)" }
-            );
-            let b =
-                battery::run(&bases, &battery::profiles(), split, &params, Some(tuned.recommended)).map_err(|e| Failure(e.to_string()))?;
-            if json {
-                print_json(&b)
-            } else {
-                print!("{}", b.to_markdown(cases));
-                Ok(())
-            }
+            c::battery(&recipes, data.as_deref(), split, minutes, cases, &set, json)
         }
-        Cmd::Import { recipe, data, out, json } => {
-            let (log, summary) = import_recipe(&recipe, data.as_deref())?;
-            match &out {
-                Some(path) => {
-                    let f = std::fs::File::create(path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
-                    log.write_csv(f).map_err(|e| fail(path, e))?;
-                }
-                None if !json => log.write_csv(std::io::stdout().lock()).map_err(|e| Failure(e.to_string()))?,
-                None => {}
-            }
-            if json {
-                print_json(&summary)?;
-            } else {
-                eprintln!("{}", output::import_line(&recipe, &summary));
-            }
-            Ok(())
-        }
-        Cmd::Allan { log, json } => {
-            let drive = read_log(&log)?;
-            let result = gyrodrift::allan::run(&drive).map_err(|e| fail(&log, e))?;
-            if json {
-                print_json(&result)
-            } else {
-                print!("{}", output::allan_table(&log, &result));
-                Ok(())
-            }
-        }
+        Cmd::Import { recipe, data, out, json } => c::import(&recipe, data.as_deref(), out.as_deref(), json),
+        Cmd::Allan { log, json } => c::allan(&log, json),
     }
 }
 

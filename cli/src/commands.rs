@@ -1,0 +1,169 @@
+//! One function per command: read the files, call core, print (text or `--json`).
+
+use crate::{expand_recipes, fail, import_recipe, output, print_json, read_log, read_logs, settings, Failure};
+use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
+use std::path::{Path, PathBuf};
+
+/// Prints `value` as JSON, or the text table `text` makes.
+fn emit<T: serde::Serialize>(json: bool, value: &T, text: impl FnOnce() -> String) -> Result<(), Failure> {
+    if json {
+        return print_json(value);
+    }
+    print!("{}", text());
+    Ok(())
+}
+
+/// Writes a log to a file, or to stdout when no file is given.
+fn write_log(log: &DriveLog, out: Option<&Path>) -> Result<(), Failure> {
+    match out {
+        Some(path) => {
+            let f = std::fs::File::create(path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
+            log.write_csv(f).map_err(|e| fail(path, e))
+        }
+        None => log.write_csv(std::io::stdout().lock()).map_err(|e| Failure(e.to_string())),
+    }
+}
+
+/// Logs named by their `# name:` or file stem, as core's batch functions take them.
+fn named(logs: &[(String, DriveLog)]) -> Vec<(String, &DriveLog)> {
+    logs.iter().map(|(n, l)| (n.clone(), l)).collect()
+}
+
+pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option<&Path>) -> Result<(), Failure> {
+    let opts = hdr::HdrOptions { resample, ..settings(set)? };
+    let drive = read_log(log)?;
+    let run = hdr::run(&drive, &opts).map_err(|e| fail(log, e))?;
+    if let Some(path) = trace {
+        let f = std::fs::File::create(path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
+        run.trace.write_csv(f).map_err(|e| fail(path, e))?;
+    }
+    let result = run.result.map_err(|e| fail(log, e))?;
+    emit(json, &result, || output::hdr_table(log, &opts, &result))
+}
+
+pub fn pipeline(log: &Path, set: &[String], json: bool) -> Result<(), Failure> {
+    let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
+    let drive = read_log(log)?;
+    let result = gyrodrift::pipeline::run(&drive, &params).and_then(|r| r.result).map_err(|e| fail(log, e))?;
+    emit(json, &result, || output::pipeline_table(log, &result))
+}
+
+pub fn gyrodometry(log: &Path, set: &[String], json: bool) -> Result<(), Failure> {
+    let opts: gyrodometry::GyrodometryOptions = settings(set)?;
+    let drive = read_log(log)?;
+    let result = gyrodometry::run(&drive, &opts).and_then(|r| r.result).map_err(|e| fail(log, e))?;
+    emit(json, &result, || output::gyrodometry_table(log, &result))
+}
+
+pub fn calibrate(log: &Path, set: &[String], json: bool) -> Result<(), Failure> {
+    let opts: calibration::CalibrationOptions = settings(set)?;
+    let drive = read_log(log)?;
+    let run = calibration::run(&drive, &opts).map_err(|e| fail(log, e))?;
+    emit(json, &run.result, || output::calibration_table(log, &run))
+}
+
+/// `report --compare`: every method side by side, HDR tuned on `tune_on` when given.
+pub fn compare(files: &[PathBuf], set: &[String], json: bool, tune_on: &[PathBuf]) -> Result<(), Failure> {
+    let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
+    let tuned = if tune_on.is_empty() {
+        None
+    } else {
+        let train = read_logs(tune_on)?;
+        let prepared = tune::prepare_all(&named(&train), &hdr::HdrOptions::default()).map_err(|e| Failure(e.to_string()))?;
+        Some(tune::tune(&prepared, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?.recommended)
+    };
+    let logs = read_logs(files)?;
+    let c = gyrodrift::compare::compare(&named(&logs), &params, tuned).map_err(|e| Failure(e.to_string()))?;
+    emit(json, &c, || c.to_markdown())
+}
+
+/// The paper's Table II over the drives.
+pub fn report(files: &[PathBuf], set: &[String], resample: bool, json: bool, markdown: bool) -> Result<(), Failure> {
+    let opts = hdr::HdrOptions { resample, ..settings(set)? };
+    let logs = read_logs(files)?;
+    let report = gyrodrift::report::Report::build(&named(&logs), &opts).map_err(|e| Failure(e.to_string()))?;
+    emit(json, &report, || if markdown { report.to_markdown() } else { report.to_text() })
+}
+
+pub fn tune(train: &[PathBuf], test: &[PathBuf], json: bool, markdown: bool) -> Result<(), Failure> {
+    let opts = hdr::HdrOptions::default();
+    let prep = |paths: &[PathBuf]| -> Result<Vec<tune::PreparedDrive>, Failure> {
+        tune::prepare_all(&named(&read_logs(paths)?), &opts).map_err(|e| Failure(e.to_string()))
+    };
+    let (train_p, test_p) = (prep(train)?, prep(test)?);
+    let rep = tune::tune_and_report(&train_p, &test_p, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?;
+    emit(json, &rep, || output::tune_text(&rep, markdown))
+}
+
+pub fn simulate(req: &gyrodrift::sim::SimRequest, out: Option<&Path>) -> Result<(), Failure> {
+    let log = gyrodrift::sim::simulate(req).map_err(|e| Failure(e.to_string()))?;
+    write_log(&log, out)
+}
+
+/// Every shipped sample log under `out`.
+pub fn samples(out: &Path) -> Result<(), Failure> {
+    for s in gyrodrift::sim::samples::SAMPLE_LOGS {
+        let path = out.join(s.path);
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).map_err(|e| Failure(format!("{}: {e}", dir.display())))?;
+        }
+        let log = gyrodrift::sim::simulate(&s.request()).map_err(|e| Failure(e.to_string()))?;
+        write_log(&log, Some(&path))?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// The robustness battery on the recipes' drives and the simulated ones.
+pub fn battery(
+    recipes: &[PathBuf],
+    data: Option<&Path>,
+    split: battery::Split,
+    minutes: f64,
+    cases: bool,
+    set: &[String],
+    json: bool,
+) -> Result<(), Failure> {
+    let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
+    if !(minutes.is_finite() && minutes > 1.0 && minutes <= 600.0) {
+        return Err(Failure(format!("--minutes {minutes}: expected a length in (1, 600] min")));
+    }
+    let mut bases = Vec::new();
+    for r in expand_recipes(recipes)? {
+        let (log, _) = import_recipe(&r, data)?;
+        let stem = r.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        bases.push(battery::recorded_base(&stem, log));
+    }
+    bases.extend(battery::simulated_bases(minutes));
+    let tuned = battery::tune_hdr(&bases).map_err(|e| Failure(e.to_string()))?;
+    eprintln!(
+        "HDR tuned on the {} training bases: cross-validated NE_psi {:.4} (Table III {:.4}) -> {}",
+        bases.iter().filter(|b| b.training).count(),
+        tuned.cv.as_ref().map_or(f64::NAN, |c| c.cv_tuned_deg_per_min),
+        tuned.cv.as_ref().map_or(f64::NAN, |c| c.cv_table_iii_deg_per_min),
+        if tuned.recommended_is_tuned { "tuned parameters used" } else { "Table III used (tuning does not generalise)" }
+    );
+    let b = battery::run(&bases, &battery::profiles(), split, &params, Some(tuned.recommended)).map_err(|e| Failure(e.to_string()))?;
+    emit(json, &b, || b.to_markdown(cases))
+}
+
+/// A recorded log by its recipe: the v1 log to a file or stdout, the summary to stderr (or
+/// as JSON on stdout).
+pub fn import(recipe: &Path, data: Option<&Path>, out: Option<&Path>, json: bool) -> Result<(), Failure> {
+    let (log, summary) = import_recipe(recipe, data)?;
+    if out.is_some() || !json {
+        write_log(&log, out)?;
+    }
+    if json {
+        print_json(&summary)
+    } else {
+        eprintln!("{}", output::import_line(recipe, &summary));
+        Ok(())
+    }
+}
+
+pub fn allan(log: &Path, json: bool) -> Result<(), Failure> {
+    let drive = read_log(log)?;
+    let result = gyrodrift::allan::run(&drive).map_err(|e| fail(log, e))?;
+    emit(json, &result, || output::allan_table(log, &result))
+}
