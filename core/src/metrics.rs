@@ -121,6 +121,28 @@ pub fn error_series(time_s: &[f64], psi_deg: &[f64], reference: &Reference) -> (
     scored_samples(time_s, psi_deg, reference).map(|(t, psi, r)| (t, psi - r)).unzip()
 }
 
+/// The errors of several (aligned) headings on one time base at the scored reference
+/// samples, for plots: the sample times and one error series per heading.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ErrorSeries {
+    pub time_s: Vec<f64>,
+    pub errors_deg: Vec<Vec<f64>>,
+}
+
+impl ErrorSeries {
+    /// `error_series` of each heading; None when the log has no usable reference.
+    pub fn of(log: &crate::DriveLog, time_s: &[f64], headings: &[&[f64]]) -> Option<(Reference, ErrorSeries)> {
+        let reference = Reference::from_log(log).ok()?;
+        let mut out = ErrorSeries::default();
+        for psi in headings {
+            let (t, e) = error_series(time_s, psi, &reference);
+            out.time_s = t;
+            out.errors_deg.push(e);
+        }
+        Some((reference, out))
+    }
+}
+
 /// NE_psi (Eq. 16): E_psi per minute of drive.
 pub fn ne_psi(e_psi_deg: f64, duration_min: f64) -> f64 {
     e_psi_deg / duration_min

@@ -161,6 +161,15 @@ pub struct HdrRun {
     pub result: Result<HdrResult>,
 }
 
+impl HdrRun {
+    /// For plots: the unwrapped reference and the errors of the raw and HDR headings at the
+    /// scored samples; None when there is no result.
+    pub fn errors(&self, log: &DriveLog) -> Option<(Reference, metrics::ErrorSeries)> {
+        let t = &self.trace;
+        self.result.as_ref().ok().and_then(|_| metrics::ErrorSeries::of(log, &t.time_s, &[&t.heading_raw_deg, &t.heading_hdr_deg]))
+    }
+}
+
 /// Runs HDR and the raw baseline over prepared samples (no allocation per sample beyond
 /// the trace vectors).
 pub fn run_samples(samples: &Samples, params: HdrParams, eps0_dps: f64) -> Result<HdrTrace> {

@@ -112,6 +112,16 @@ pub struct PipelineRun {
     pub result: Result<PipelineResult>,
 }
 
+impl PipelineRun {
+    /// For plots: the errors of the causal and smoothed headings at the scored reference
+    /// samples; None when there is no result.
+    pub fn errors(&self, log: &DriveLog) -> Option<crate::metrics::ErrorSeries> {
+        let t = &self.trace;
+        self.result.as_ref().ok()?;
+        crate::metrics::ErrorSeries::of(log, &t.time_s, &[&t.heading_deg, &t.heading_smoothed_deg]).map(|(_, e)| e)
+    }
+}
+
 /// Runs the pipeline (causal and smoothed), raw integration, Table-III HDR and the two
 /// peers on a log, through the one evaluation path (`eval`).
 pub fn run(log: &DriveLog, params: &PipelineParams) -> Result<PipelineRun> {

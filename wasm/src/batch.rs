@@ -1,0 +1,271 @@
+//! Batch methods over a parsed log: HDR, Gyrodometry, calibration, Allan, report, tune,
+//! simulate, the pipeline and the comparison.
+
+use crate::convert::*;
+use crate::log::Log;
+use crate::JsResult;
+use gyrodrift::hdr::{self, HdrOptions, HdrParams};
+use gyrodrift::{allan, calibration, gyrodometry, report, sim, tune, DriveLog};
+use js_sys::Object;
+use serde::Serialize;
+use std::rc::Rc;
+use wasm_bindgen::prelude::*;
+
+/// `{ result, error }` of a batch run: the Result keys, or why there are none.
+fn result_object<T: Serialize>(result: &gyrodrift::Result<T>) -> JsResult<Object> {
+    let out = Object::new();
+    let (r, e) = match result {
+        Ok(r) => (to_js(r)?, JsValue::NULL),
+        Err(e) => (JsValue::NULL, JsValue::from_str(&e.to_string())),
+    };
+    set(&out, "result", &r)?;
+    set(&out, "error", &e)?;
+    Ok(out)
+}
+
+/// `{ result, error, eps0_dps }` of a batch run with a static bias.
+fn run_object<T: Serialize>(result: &gyrodrift::Result<T>, eps0_dps: f64) -> JsResult<Object> {
+    let out = result_object(result)?;
+    set(&out, "eps0_dps", &JsValue::from_f64(eps0_dps))?;
+    Ok(out)
+}
+
+/// HDR on a log: the Result keys of methods.md. Throws when the log has no usable reference.
+#[wasm_bindgen(unchecked_return_type = "HdrResult")]
+pub fn hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
+    let opts: HdrOptions = self::options("hdr", options)?;
+    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    to_js(&run.result.map_err(err)?)
+}
+
+/// HDR with its per-sample series (Float64Array) for plotting: `{ result, error, eps0_dps, trace }`;
+/// `result` is null and `error` says why when the log has no usable reference.
+#[wasm_bindgen(js_name = runHdr, unchecked_return_type = "HdrRun")]
+pub fn run_hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
+    let opts: HdrOptions = self::options("hdr", options)?;
+    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    let out = run_object(&run.result, run.eps0_dps)?;
+    let t = &run.trace;
+    let trace = Object::new();
+    set(&trace, "time_s", &f64s(&t.time_s))?;
+    set(&trace, "heading_raw_deg", &f64s(&t.heading_raw_deg))?;
+    set(&trace, "heading_hdr_deg", &f64s(&t.heading_hdr_deg))?;
+    set(&trace, "rate_raw_dps", &f64s(&t.rate_raw_dps))?;
+    set(&trace, "rate_corrected_dps", &f64s(&t.rate_corrected_dps))?;
+    set(&trace, "i_dps", &f64s(&t.i_dps))?;
+    set(&trace, "drift_estimate_dps", &f64s(&t.drift_estimate_dps()))?;
+    set(&trace, "turn_switch", &bools(&t.turn_switch))?;
+    set(&trace, "attenuation", &f64s(&t.attenuation))?;
+    set(&out, "trace", &trace)?;
+    let (reference, errors) = match run.errors(&log.log) {
+        Some((r, e)) => (
+            series(&[("time_s", &r.time_s), ("heading_deg", &r.heading_deg)])?.into(),
+            series(&[("time_s", &e.time_s), ("raw_deg", &e.errors_deg[0]), ("hdr_deg", &e.errors_deg[1])])?.into(),
+        ),
+        None => (JsValue::NULL, JsValue::NULL),
+    };
+    set(&out, "reference", &reference)?;
+    set(&out, "errors", &errors)?;
+    Ok(out.into())
+}
+
+/// Dead-reckoned paths (m) of a drive with speed: along the raw, HDR and reference headings.
+/// `{ raw: {x_m, y_m}, hdr: {...}, reference: {...} | null }` as Float64Array.
+#[wasm_bindgen(unchecked_return_type = "Tracks")]
+pub fn track(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
+    let opts: HdrOptions = self::options("track", options)?;
+    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    let t = &run.trace;
+    let path = |p: gyrodrift::track::Path| -> JsResult<JsValue> {
+        let o = Object::new();
+        set(&o, "x_m", &f64s(&p.x_m))?;
+        set(&o, "y_m", &f64s(&p.y_m))?;
+        Ok(o.into())
+    };
+    let out = Object::new();
+    set(&out, "raw", &path(gyrodrift::track::dead_reckon(&log.log, &t.time_s, &t.heading_raw_deg).map_err(err)?)?)?;
+    set(&out, "hdr", &path(gyrodrift::track::dead_reckon(&log.log, &t.time_s, &t.heading_hdr_deg).map_err(err)?)?)?;
+    let reference = match gyrodrift::track::reference_path(&log.log) {
+        Ok(p) => path(p)?,
+        Err(_) => JsValue::NULL,
+    };
+    set(&out, "reference", &reference)?;
+    Ok(out.into())
+}
+
+/// The per-sample heading trace CSV of methods.md (time_s, heading_raw_deg, heading_hdr_deg).
+#[wasm_bindgen(js_name = hdrTraceCsv)]
+pub fn hdr_trace_csv(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<String> {
+    let opts: HdrOptions = self::options("hdr", options)?;
+    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    let mut buf = Vec::new();
+    run.trace.write_csv(&mut buf).map_err(err)?;
+    String::from_utf8(buf).map_err(err)
+}
+
+/// Gyrodometry on a robot log: the Result keys of methods.md.
+#[wasm_bindgen(unchecked_return_type = "GyrodometryResult")]
+pub fn gyrodometry(log: &Log, #[wasm_bindgen(unchecked_param_type = "GyrodometryOptions")] options: JsValue) -> JsResult<JsValue> {
+    let opts: gyrodometry::GyrodometryOptions = self::options("gyrodometry", options)?;
+    let run = gyrodometry::run(&log.log, &opts).map_err(err)?;
+    to_js(&run.result.map_err(err)?)
+}
+
+/// Gyrodometry with its series: `{ result, error, eps0_dps, trace }`.
+#[wasm_bindgen(js_name = runGyrodometry, unchecked_return_type = "GyrodometryRun")]
+pub fn run_gyrodometry(log: &Log, #[wasm_bindgen(unchecked_param_type = "GyrodometryOptions")] options: JsValue) -> JsResult<JsValue> {
+    let opts: gyrodometry::GyrodometryOptions = self::options("gyrodometry", options)?;
+    let run = gyrodometry::run(&log.log, &opts).map_err(err)?;
+    let out = run_object(&run.result, run.eps0_dps)?;
+    let t = &run.trace;
+    let trace = Object::new();
+    set(&trace, "time_s", &f64s(&t.time_s))?;
+    set(&trace, "heading_odo_deg", &f64s(&t.heading_odo_deg))?;
+    set(&trace, "heading_gyro_deg", &f64s(&t.heading_gyro_deg))?;
+    set(&trace, "heading_gyrodometry_deg", &f64s(&t.heading_gyrodometry_deg))?;
+    set(&trace, "used_gyro", &bools(&t.used_gyro))?;
+    set(&out, "trace", &trace)?;
+    Ok(out.into())
+}
+
+/// Calibration of a turntable session: the Result keys plus the per-set table `sets`.
+#[wasm_bindgen(unchecked_return_type = "CalibrationRun")]
+pub fn calibrate(log: &Log, #[wasm_bindgen(unchecked_param_type = "CalibrationOptions")] options: JsValue) -> JsResult<JsValue> {
+    let opts: calibration::CalibrationOptions = self::options("calibrate", options)?;
+    let run = calibration::run(&log.log, &opts).map_err(err)?;
+    let out: JsValue = to_js(&run.result)?;
+    let obj: &Object = out.unchecked_ref();
+    set(obj, "sets", &to_js(&run.sets)?)?;
+    Ok(out)
+}
+
+/// Overlapping Allan deviation of the log's gyro column (the Result keys; arrays as Float64Array).
+#[wasm_bindgen(unchecked_return_type = "AllanResult")]
+pub fn allan(log: &Log) -> JsResult<JsValue> {
+    let r = allan::run(&log.log).map_err(err)?;
+    let out: JsValue = to_js(&r)?;
+    let obj: &Object = out.unchecked_ref();
+    set(obj, "tau_s", &f64s(&r.tau_s))?;
+    set(obj, "adev_dps", &f64s(&r.adev_dps))?;
+    set(obj, "arw_line_dps", &f64s(&allan::arw_line_dps(r.arw_deg_per_sqrt_s, &r.tau_s)))?;
+    Ok(out)
+}
+
+/// The HDR paper's Table II over many logs (named by their `name`).
+#[wasm_bindgen(unchecked_return_type = "Report")]
+pub fn report(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+) -> JsResult<JsValue> {
+    to_js(&build_report(&logs, options)?)
+}
+
+/// Table II over a JS array of logs with HDR options (shared by `report` and `reportMarkdown`).
+fn build_report(logs: &JsValue, options: JsValue) -> JsResult<report::Report> {
+    let opts: HdrOptions = self::options("report", options)?;
+    let logs = Log::from_array(logs, "logs")?;
+    let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), &**l)).collect();
+    report::Report::build(&named, &opts).map_err(err)
+}
+
+/// The report as Markdown (the CLI's `report --markdown`).
+#[wasm_bindgen(js_name = reportMarkdown)]
+pub fn report_markdown(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+) -> JsResult<String> {
+    Ok(build_report(&logs, options)?.to_markdown())
+}
+
+/// Tunes the five HDR parameters on `train` and reports Table III vs tuned on both sets.
+/// `progress(fraction)`, if given, is called as the search goes (e.g. from a Web Worker).
+#[wasm_bindgen(unchecked_return_type = "TuneReport")]
+pub fn tune(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] train: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Log[] | undefined")] test: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "TuneOptions")] options: JsValue,
+    progress: Option<js_sys::Function>,
+) -> JsResult<JsValue> {
+    let opts: tune::TuneOptions = self::options("tune", options)?;
+    let hdr_opts = HdrOptions::default();
+    let prep = |v: Vec<(String, Rc<DriveLog>)>| -> JsResult<Vec<tune::PreparedDrive>> {
+        let named: Vec<(String, &DriveLog)> = v.iter().map(|(n, l)| (n.clone(), &**l)).collect();
+        tune::prepare_all(&named, &hdr_opts).map_err(err)
+    };
+    let train = prep(Log::from_array(&train, "train")?)?;
+    let test = prep(Log::from_array(&test, "test")?)?;
+    let expected = tune::expected_evaluations_for(&opts, train.len()).max(1) as f64;
+    let report = |n: u64| {
+        if let Some(f) = &progress {
+            let _ = f.call1(&JsValue::NULL, &JsValue::from_f64((n as f64 / expected).min(1.0)));
+        }
+    };
+    to_js(&tune::tune_and_report_with_progress(&train, &test, &opts, &report).map_err(err)?)
+}
+
+/// Simulates a log with known truth (the CLI's `simulate`); the same seed gives the same
+/// log as the native CLI.
+#[wasm_bindgen]
+pub fn simulate(#[wasm_bindgen(unchecked_param_type = "SimRequest")] request: JsValue) -> JsResult<Log> {
+    let req: sim::SimRequest = self::options("simulate", request)?;
+    sim::simulate(&req).map(Log::new).map_err(err)
+}
+
+/// Table III of the HDR paper (the defaults).
+#[wasm_bindgen(js_name = tableIII, unchecked_return_type = "HdrParams")]
+pub fn table_iii() -> JsResult<JsValue> {
+    to_js(&HdrParams::table_iii())
+}
+
+/// Static bias eps0 of a log over its first `bias_s` seconds (the log's own, or 20 s).
+#[wasm_bindgen(js_name = staticBias)]
+pub fn static_bias(log: &Log, bias_s: Option<f64>) -> JsResult<f64> {
+    let gyro = log.log.require(gyrodrift::Column::GyroDps, "needed for the static bias").map_err(err)?;
+    gyrodrift::preprocess::static_bias_dps(log.log.time_s(), gyro, log.log.bias_s(bias_s)).map_err(err)
+}
+
+/// The recommended drift-reduction pipeline with raw, Table-III HDR and the two peers:
+/// the pipeline Result keys. Throws when the log has no usable reference.
+#[wasm_bindgen(unchecked_return_type = "PipelineResult")]
+pub fn pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue) -> JsResult<JsValue> {
+    let p: gyrodrift::pipeline::PipelineParams = self::options("pipeline", options)?;
+    let run = gyrodrift::pipeline::run(&log.log, &p).map_err(err)?;
+    to_js(&run.result.map_err(err)?)
+}
+
+/// The pipeline with its per-block series: `{ result, error, still_source, trace }`.
+#[wasm_bindgen(js_name = runPipeline, unchecked_return_type = "PipelineRun")]
+pub fn run_pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue) -> JsResult<JsValue> {
+    let p: gyrodrift::pipeline::PipelineParams = self::options("pipeline", options)?;
+    let run = gyrodrift::pipeline::run(&log.log, &p).map_err(err)?;
+    let out = result_object(&run.result)?;
+    set(&out, "still_source", &to_js(&run.still_source)?)?;
+    let t = &run.trace;
+    let trace = Object::new();
+    set(&trace, "time_s", &f64s(&t.time_s))?;
+    set(&trace, "heading_deg", &f64s(&t.heading_deg))?;
+    set(&trace, "heading_smoothed_deg", &f64s(&t.heading_smoothed_deg))?;
+    set(&trace, "bias_dps", &f64s(&t.bias_dps))?;
+    set(&trace, "bias_sigma_dps", &f64s(&t.bias_sigma_dps))?;
+    set(&trace, "bias_smoothed_dps", &f64s(&t.bias_smoothed_dps))?;
+    set(&trace, "stop", &bools(&t.stop))?;
+    set(&out, "trace", &trace)?;
+    let errors = match run.errors(&log.log) {
+        Some(e) => series(&[("time_s", &e.time_s), ("pipeline_deg", &e.errors_deg[0]), ("smoothed_deg", &e.errors_deg[1])])?.into(),
+        None => JsValue::NULL,
+    };
+    set(&out, "errors", &errors)?;
+    Ok(out.into())
+}
+
+/// Every method side by side (NE_psi per drive): raw, Table-III HDR, the pipeline, peers.
+#[wasm_bindgen(unchecked_return_type = "Compare")]
+pub fn compare(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue,
+) -> JsResult<JsValue> {
+    let p: gyrodrift::pipeline::PipelineParams = self::options("pipeline", options)?;
+    let logs = Log::from_array(&logs, "logs")?;
+    let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), l.as_ref())).collect();
+    to_js(&gyrodrift::compare::compare(&named, &p, None).map_err(err)?)
+}

@@ -1,0 +1,33 @@
+//! Import of recorded files by a recipe.
+
+use crate::convert::*;
+use crate::log::Log;
+use crate::JsResult;
+use js_sys::{Object, Reflect, Uint8Array};
+use wasm_bindgen::prelude::*;
+
+/// Imports recorded files by a recipe (the same object as the CLI's TOML/JSON recipe):
+/// `files` maps each recipe `file` name to its bytes. Returns `{ log, summary }`; a bad
+/// recipe or file throws an Error naming the file, line and column.
+#[wasm_bindgen(js_name = importLog, unchecked_return_type = "ImportResult")]
+pub fn import_log(
+    #[wasm_bindgen(unchecked_param_type = "Recipe")] recipe: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Record<string, Uint8Array>")] files: JsValue,
+) -> JsResult<JsValue> {
+    let recipe: gyrodrift::import::Recipe =
+        serde_wasm_bindgen::from_value(recipe).map_err(|e| err(format!("recipe: {}", js_message(e))))?;
+    let obj: &Object =
+        files.dyn_ref().filter(|_| files.is_object()).ok_or_else(|| err("files: expected an object of name -> Uint8Array"))?;
+    let mut map = std::collections::BTreeMap::new();
+    for key in Object::keys(obj).iter() {
+        let name = key.as_string().unwrap_or_default();
+        let v = Reflect::get(obj, &key)?;
+        let bytes: &Uint8Array = v.dyn_ref().ok_or_else(|| err(format!("files[\"{name}\"]: expected a Uint8Array")))?;
+        map.insert(name, bytes.to_vec());
+    }
+    let (log, summary) = gyrodrift::import::import(&recipe, &mut map).map_err(err)?;
+    let out = Object::new();
+    set(&out, "log", &JsValue::from(Log::new(log)))?;
+    set(&out, "summary", &to_js(&summary)?)?;
+    Ok(out.into())
+}

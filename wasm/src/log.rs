@@ -1,0 +1,186 @@
+//! The log registry: parsed logs held in wasm memory, named, passed to every method.
+
+use crate::convert::*;
+use crate::JsResult;
+use gyrodrift::DriveLog;
+use js_sys::{Array, Float64Array, Object, Reflect};
+use std::cell::{Cell, RefCell};
+use std::rc::Rc;
+
+thread_local! {
+    /// Live logs by id (a short list: a Vec beats a HashMap here in code size and speed).
+    static LOGS: RefCell<Vec<(u32, Rc<DriveLog>)>> = const { RefCell::new(Vec::new()) };
+    static NEXT_ID: Cell<u32> = const { Cell::new(1) };
+}
+use wasm_bindgen::prelude::*;
+
+/// A parsed drive log. Pass it to the functions below as often as needed; `free()` it (or
+/// let the garbage collector do so) when done.
+#[wasm_bindgen]
+pub struct Log {
+    id: u32,
+    pub(crate) log: Rc<DriveLog>,
+    pub(crate) name: String,
+}
+
+impl Drop for Log {
+    fn drop(&mut self) {
+        let id = self.id;
+        LOGS.with(|m| m.borrow_mut().retain(|(k, _)| *k != id));
+    }
+}
+
+impl Log {
+    pub(crate) fn new(log: DriveLog) -> Log {
+        let id = NEXT_ID.with(|n| {
+            let id = n.get();
+            n.set(id.wrapping_add(1).max(1));
+            id
+        });
+        let log = Rc::new(log);
+        LOGS.with(|m| m.borrow_mut().push((id, log.clone())));
+        let name = log.meta.name.clone().unwrap_or_default();
+        Log { id, log, name }
+    }
+
+    /// The logs of a JS array of `Log` objects, with their names, without taking them.
+    pub(crate) fn from_array(value: &JsValue, what: &str) -> JsResult<Vec<(String, Rc<DriveLog>)>> {
+        if value.is_undefined() || value.is_null() {
+            return Ok(Vec::new());
+        }
+        let arr: &Array = value.dyn_ref().ok_or_else(|| err(format!("{what}: expected an array of Log")))?;
+        let mut out = Vec::with_capacity(arr.length() as usize);
+        for (i, item) in arr.iter().enumerate() {
+            let id = Reflect::get(&item, &JsValue::from_str("id"))
+                .ok()
+                .and_then(|v| v.as_f64())
+                .ok_or_else(|| err(format!("{what}[{i}]: not a Log")))?;
+            let name = Reflect::get(&item, &JsValue::from_str("name")).ok().and_then(|v| v.as_string());
+            let log = LOGS
+                .with(|m| m.borrow().iter().find(|(k, _)| *k == id as u32).map(|(_, l)| l.clone()))
+                .ok_or_else(|| err(format!("{what}[{i}]: this Log was freed")))?;
+            let name = name.filter(|n| !n.is_empty()).unwrap_or_else(|| format!("log {}", i + 1));
+            out.push((name, log));
+        }
+        Ok(out)
+    }
+}
+
+#[wasm_bindgen]
+impl Log {
+    /// Parses CSV v1 text; a bad file throws an Error naming line and column.
+    pub fn parse(text: &str) -> JsResult<Log> {
+        gyrodrift::parse_log_str(text).map(Log::new).map_err(err)
+    }
+
+    /// Parses CSV v1 bytes (e.g. from a File's arrayBuffer()).
+    #[wasm_bindgen(js_name = fromBytes)]
+    pub fn from_bytes(bytes: &[u8]) -> JsResult<Log> {
+        gyrodrift::parse_log(bytes).map(Log::new).map_err(err)
+    }
+
+    /// Parses CSV v1 bytes, calling `progress(fraction)` now and then (for a Web Worker
+    /// parsing a large file).
+    #[wasm_bindgen(js_name = fromBytesWithProgress)]
+    pub fn from_bytes_with_progress(bytes: &[u8], progress: &js_sys::Function) -> JsResult<Log> {
+        let total = bytes.len().max(1) as f64;
+        let mut cb = |b: u64| {
+            let _ = progress.call1(&JsValue::NULL, &JsValue::from_f64(b as f64 / total));
+        };
+        gyrodrift::log::parse_log_progress(bytes, Default::default(), &mut cb).map(Log::new).map_err(err)
+    }
+
+    /// The parsed log as plain data `{ meta, line, columns: { name: Float64Array } }`,
+    /// whose buffers can be transferred from a worker; `Log.fromColumns` takes it back.
+    #[wasm_bindgen(js_name = toColumns, unchecked_return_type = "LogColumns")]
+    pub fn to_columns(&self) -> JsResult<JsValue> {
+        let out = Object::new();
+        set(&out, "meta", &to_js(&self.log.meta)?)?;
+        let lines: Vec<f64> = self.log.line.iter().map(|&l| l as f64).collect();
+        set(&out, "line", &f64s(&lines))?;
+        let cols = Object::new();
+        for (c, v) in self.log.columns() {
+            set(&cols, c.name(), &f64s(v))?;
+        }
+        set(&out, "columns", &cols)?;
+        Ok(out.into())
+    }
+
+    /// A log from `toColumns()` data, checked as the parser checks.
+    #[wasm_bindgen(js_name = fromColumns)]
+    pub fn from_columns(#[wasm_bindgen(unchecked_param_type = "LogColumns")] data: JsValue) -> JsResult<Log> {
+        let get = |o: &JsValue, k: &str| Reflect::get(o, &JsValue::from_str(k)).unwrap_or(JsValue::UNDEFINED);
+        let meta: gyrodrift::LogMeta = serde_wasm_bindgen::from_value(get(&data, "meta")).unwrap_or_default();
+        let line: Vec<u64> =
+            get(&data, "line").dyn_into::<Float64Array>().map(|a| a.to_vec().into_iter().map(|v| v as u64).collect()).unwrap_or_default();
+        let cols_obj = get(&data, "columns");
+        let mut cols = Vec::new();
+        for c in gyrodrift::Column::ALL {
+            let v = get(&cols_obj, c.name());
+            if let Some(a) = v.dyn_ref::<Float64Array>() {
+                cols.push((c, a.to_vec()));
+            }
+        }
+        DriveLog::from_columns(meta, line, cols).map(Log::new).map_err(err)
+    }
+
+    /// An identifier, used when a Log is passed inside an array.
+    #[wasm_bindgen(getter)]
+    pub fn id(&self) -> u32 {
+        self.id
+    }
+
+    /// The log's `# name:` (settable; used in reports).
+    #[wasm_bindgen(getter)]
+    pub fn name(&self) -> String {
+        self.name.clone()
+    }
+    #[wasm_bindgen(setter)]
+    pub fn set_name(&mut self, name: String) {
+        self.name = name;
+    }
+
+    /// "drive", "robot", "turntable" or "static", from the columns.
+    #[wasm_bindgen(getter, unchecked_return_type = "LogKind")]
+    pub fn kind(&self) -> JsResult<JsValue> {
+        to_js(&self.log.kind())
+    }
+
+    /// Last minus first time, minutes.
+    #[wasm_bindgen(getter, js_name = durationMin)]
+    pub fn duration_min(&self) -> f64 {
+        self.log.duration_min()
+    }
+
+    /// Number of data rows.
+    #[wasm_bindgen(getter, js_name = rowCount)]
+    pub fn row_count(&self) -> usize {
+        self.log.len()
+    }
+
+    /// The `# key: value` metadata.
+    #[wasm_bindgen(unchecked_return_type = "LogMeta")]
+    pub fn meta(&self) -> JsResult<JsValue> {
+        to_js(&self.log.meta)
+    }
+
+    /// The known columns present in the file, in CSV v1 order.
+    pub fn columns(&self) -> Vec<String> {
+        self.log.present_columns().iter().map(|c| c.name().to_string()).collect()
+    }
+
+    /// One column's cells as a Float64Array (NaN = empty cell).
+    pub fn column(&self, name: &str) -> JsResult<Float64Array> {
+        let c = gyrodrift::Column::from_name(name).ok_or_else(|| err(format!("unknown column {name}")))?;
+        let v = self.log.require(c, "not in this log").map_err(err)?;
+        Ok(Float64Array::from(v))
+    }
+
+    /// The log as CSV v1 text.
+    #[wasm_bindgen(js_name = toCsv)]
+    pub fn to_csv(&self) -> JsResult<String> {
+        let mut buf = Vec::new();
+        self.log.write_csv(&mut buf).map_err(err)?;
+        String::from_utf8(buf).map_err(err)
+    }
+}
