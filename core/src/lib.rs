@@ -40,6 +40,7 @@ pub mod preprocess;
 pub mod report;
 pub mod sim;
 pub mod still;
+pub mod table;
 pub mod track;
 pub mod tune;
 

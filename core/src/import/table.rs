@@ -1,0 +1,221 @@
+//! One table of a recipe read from its file (through the crate's one reader), and the yaw
+//! rate taken from it.
+
+use super::*;
+use crate::table::{read_rows, Row, Split};
+
+/// A table read from a file: the time of each row and the columns the recipe uses.
+pub(super) struct Table {
+    pub(super) file: String,
+    pub(super) time_s: Vec<f64>,
+    pub(super) line: Vec<u64>,
+    pub(super) cols: BTreeMap<String, Vec<f64>>,
+}
+
+impl Table {
+    pub(super) fn col(&self, name: &str, used_by: &str) -> Result<&[f64]> {
+        self.cols.get(name).map(|v| v.as_slice()).ok_or_else(|| Error::missing(name, &format!("{used_by} (in {})", self.file)))
+    }
+}
+
+/// Reads the columns `wanted` (and the time) of one table, streaming.
+pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mut dyn Files) -> Result<Table> {
+    let file = spec.file.clone();
+    let at = |e: Error| -> Error { e.within(&file) };
+    let scale = time_unit(&spec.time.unit)?;
+    if let Some(p) = spec.time.period_s {
+        if !(p.is_finite() && p > 0.0) {
+            return Err(recipe_err(&format!("table {} time.period_s", spec.id), format!("{p} is not a period > 0")));
+        }
+    } else if spec.time.column.is_none() {
+        return Err(recipe_err(&format!("table {}", spec.id), "time needs a column or a period_s"));
+    }
+    let reader = files.open(&spec.file)?;
+    let mut header: Option<Vec<String>> = spec.columns.clone();
+    // Indices of the wanted columns and of the time, once the header is known.
+    let mut idx: Vec<(String, usize)> = Vec::new();
+    let mut time_idx: Option<usize> = None;
+    let mut resolved = false;
+    let time_name = spec.time.column.clone().unwrap_or_else(|| "time".into());
+    let mut t = Table { file: file.clone(), time_s: Vec::new(), line: Vec::new(), cols: BTreeMap::new() };
+    let mut cols: Vec<Vec<f64>> = Vec::new();
+    let mut row_n: u64 = 0;
+    let mut on_row = |line: u64, fields: &[&str]| -> Result<()> {
+        let Some(h) = &header else {
+            header = Some(fields.iter().map(|f| f.to_string()).collect());
+            return Ok(());
+        };
+        if !resolved {
+            let index_of = |name: &str| h.iter().position(|x| x == name);
+            for name in wanted {
+                match index_of(name) {
+                    Some(j) => idx.push((name.clone(), j)),
+                    None => {
+                        return Err(Error::missing(
+                            name,
+                            &format!("named by the recipe for table {}; the header has: {}", spec.id, h.join(", ")),
+                        ))
+                    }
+                }
+            }
+            if let Some(c) = &spec.time.column {
+                time_idx = Some(index_of(c).ok_or_else(|| Error::missing(c, &format!("the time of table {}", spec.id)))?);
+            }
+            cols = vec![Vec::new(); idx.len()];
+            resolved = true;
+        }
+        if let Some(rec) = &spec.record {
+            if fields.first() != Some(&rec.as_str()) {
+                return Ok(());
+            }
+        }
+        let cell = |j: usize, name: &str| -> Result<f64> {
+            let text = fields.get(j).copied().unwrap_or("");
+            if text.is_empty() || text.eq_ignore_ascii_case("nan") {
+                return Ok(f64::NAN);
+            }
+            match text.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(Error::Cell { line, column: name.to_string(), message: format!("\"{text}\" is not a number") }),
+            }
+        };
+        let time = match (spec.time.period_s, time_idx) {
+            (Some(p), _) => row_n as f64 * p,
+            (None, Some(j)) => {
+                let v = match spec.time.format {
+                    TimeFormat::Seconds => cell(j, &time_name)? * scale,
+                    TimeFormat::Iso8601 => {
+                        let text = fields.get(j).copied().unwrap_or("");
+                        parse_iso8601(text).ok_or_else(|| Error::Cell {
+                            line,
+                            column: time_name.clone(),
+                            message: format!("\"{text}\" is not an ISO 8601 time"),
+                        })?
+                    }
+                };
+                if v.is_nan() {
+                    return Err(Error::Cell { line, column: time_name.clone(), message: "empty time".into() });
+                }
+                v
+            }
+            (None, None) => return Err(recipe_err(&format!("table {}", spec.id), "time needs a column or a period_s")),
+        };
+        if let Some(&prev) = t.time_s.last() {
+            if !(time > prev) {
+                return Err(Error::Cell {
+                    line,
+                    column: time_name.clone(),
+                    message: format!("time {time} does not increase (previous row {prev})"),
+                });
+            }
+        }
+        for (k, (name, j)) in idx.iter().enumerate() {
+            cols[k].push(cell(*j, name)?);
+        }
+        t.time_s.push(time);
+        t.line.push(line);
+        row_n += 1;
+        Ok(())
+    };
+    let split = if spec.format == TableFormat::Whitespace { Split::Whitespace } else { Split::Csv };
+    let nmea = spec.format == TableFormat::Nmea;
+    let mut each = |r: Row| -> Result<()> {
+        if !nmea {
+            return on_row(r.line, r.fields);
+        }
+        // NMEA-like sentences: a trailing `*hh` checksum is not part of the last field.
+        let mut fields = r.fields.to_vec();
+        if let Some(last) = fields.last_mut() {
+            if let Some(star) = last.find('*') {
+                *last = &last[..star];
+            }
+        }
+        on_row(r.line, &fields)
+    };
+    read_rows(reader, split, spec.skip_lines, &mut |_, _| Ok(false), &mut each).map_err(at)?;
+    if header.is_none() {
+        return Err(at(Error::File("empty file: no header row".into())));
+    }
+    if t.time_s.is_empty() {
+        return Err(at(Error::File(format!("table {} has no data rows", spec.id))));
+    }
+    let first = t.time_s[0];
+    for x in t.time_s.iter_mut() {
+        if spec.time.relative {
+            *x -= first;
+        }
+        *x += spec.offset_s;
+    }
+    for ((name, _), v) in idx.into_iter().zip(cols) {
+        t.cols.insert(name, v);
+    }
+    Ok(t)
+}
+
+/// Times, yaw rates (deg/s, CCW positive) and, when projected, the up vector.
+pub(super) type YawRate = (Vec<f64>, Vec<f64>, Option<[f64; 3]>);
+
+/// The yaw rate of a table in deg/s, CCW positive (and the up vector when projected).
+pub(super) fn yaw_rate(spec: &RateSpec, tables: &BTreeMap<String, Table>, field: &str) -> Result<YawRate> {
+    let t = tables.get(&spec.table).ok_or_else(|| recipe_err(&format!("{field}.table"), format!("no table with id \"{}\"", spec.table)))?;
+    let unit = rate_unit(&spec.unit, &format!("{field}.unit"))?;
+    if !(spec.scale.is_finite() && spec.scale != 0.0 && spec.offset.is_finite()) {
+        return Err(recipe_err(&format!("{field}.scale"), "scale must be finite and non-zero, offset finite"));
+    }
+    let k = unit * spec.scale * spec.sense_factor();
+    let conv = |x: f64| (x - spec.offset) * k;
+    match (&spec.column, &spec.axes, &spec.gravity) {
+        (Some(c), None, None) => {
+            let v = t.col(c, field)?;
+            Ok((t.time_s.clone(), v.iter().map(|&x| conv(x)).collect(), None))
+        }
+        (None, Some(axes), Some(g)) => {
+            if axes.len() != 3 || g.axes.len() != 3 {
+                return Err(recipe_err(field, "axes and gravity.axes need three columns each"));
+            }
+            let gyro: Vec<&[f64]> = axes.iter().map(|a| t.col(a, field)).collect::<Result<_>>()?;
+            let signs = |v: &Option<Vec<f64>>, f: &str| -> Result<[f64; 3]> {
+                match v {
+                    None => Ok([1.0; 3]),
+                    Some(v) if v.len() == 3 && v.iter().all(|x| *x == 1.0 || *x == -1.0) => Ok([v[0], v[1], v[2]]),
+                    Some(_) => Err(recipe_err(f, "needs three factors, each 1 or -1")),
+                }
+            };
+            let gs = signs(&spec.signs, &format!("{field}.signs"))?;
+            let acs = signs(&g.signs, &format!("{field}.gravity.signs"))?;
+            let acc: Vec<&[f64]> = g.axes.iter().map(|a| t.col(a, &format!("{field}.gravity"))).collect::<Result<_>>()?;
+            let t0 = t.time_s[0];
+            let mut m = [0.0; 3];
+            let mut n = 0usize;
+            for i in 0..t.time_s.len() {
+                if t.time_s[i] - t0 >= g.first_s {
+                    break;
+                }
+                let a = [acc[0][i] * acs[0], acc[1][i] * acs[1], acc[2][i] * acs[2]];
+                if a.iter().all(|x| x.is_finite()) {
+                    for j in 0..3 {
+                        m[j] += a[j];
+                    }
+                    n += 1;
+                }
+            }
+            let norm = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+            if n == 0 || norm == 0.0 {
+                return Err(Error::data(format!(
+                    "{}: no accelerometer values in the first {} s to find the up direction",
+                    t.file, g.first_s
+                )));
+            }
+            let up = [m[0] / norm, m[1] / norm, m[2] / norm];
+            let rate = (0..t.time_s.len()).map(|i| (0..3).map(|j| conv(gyro[j][i]) * gs[j] * up[j]).sum::<f64>()).collect();
+            Ok((t.time_s.clone(), rate, Some(up)))
+        }
+        _ => Err(recipe_err(field, "give either `column` (one axis) or `axes` with `gravity` (projection on up)")),
+    }
+}
+
+impl RateSpec {
+    fn sense_factor(&self) -> f64 {
+        self.positive.factor()
+    }
+}

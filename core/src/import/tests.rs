@@ -1,0 +1,109 @@
+use super::*;
+
+#[test]
+fn iso8601_hand_worked() {
+    assert_eq!(parse_iso8601("1970-01-01T00:00:00Z"), Some(0.0));
+    assert_eq!(parse_iso8601("1970-01-02 00:00:01"), Some(86_401.0));
+    // 2000-03-01 = day 11017 since the epoch (leap year 2000: Feb has 29 days).
+    assert_eq!(parse_iso8601("2000-03-01T00:00:00Z"), Some(11_017.0 * 86_400.0));
+    // 10:48:05 at -04:00 is 14:48:05 UTC; 2023-08-06 is day 19575.
+    assert_eq!(parse_iso8601("2023-08-06 10:48:05-04:00"), Some(19_575.0 * 86_400.0 + 14.0 * 3600.0 + 48.0 * 60.0 + 5.0));
+    assert_eq!(parse_iso8601("2023-08-06T10:48:05.25+0130"), Some(19_575.0 * 86_400.0 + 9.0 * 3600.0 + 18.0 * 60.0 + 5.25));
+    for bad in ["", "2023-08-06", "2023-13-06 10:48:05", "2023-08-06 10:48:05+4", "2023-08-06X10:48:05", "abcd-08-06 10:48:05"] {
+        assert_eq!(parse_iso8601(bad), None, "{bad}");
+    }
+}
+
+#[test]
+fn course_from_positions_hand_worked() {
+    // East 3 m per second: course 90 deg, stamped at segment middles.
+    let t = [0.0, 1.0, 2.0, 3.0];
+    let e = [0.0, 3.0, 6.0, 6.0 + 3.0 * 0.5f64.sqrt()];
+    let n = [0.0, 0.0, 0.0, -3.0 * 0.5f64.sqrt()];
+    let (ts, c) = course_from_positions(&t, &e, &n, 2.0, 1.0);
+    assert_eq!(ts, vec![0.5, 1.5, 2.5]);
+    assert!((c[0] - 90.0).abs() < 1e-12 && (c[1] - 90.0).abs() < 1e-12);
+    assert!((c[2] - 135.0).abs() < 1e-9, "south-east: {}", c[2]);
+    // Standing still (below 2 m): no course at all.
+    let (ts, _) = course_from_positions(&t, &[0.0, 0.5, 0.2, 0.9], &[0.0; 4], 2.0, 1.0);
+    assert!(ts.is_empty());
+}
+
+#[test]
+fn speed_and_odometry_hand_worked() {
+    let t = [0.0, 0.5, 1.0, 2.0];
+    let (ts, v) = speed_from_positions(&t, &[0.0, 1.0, 2.0, 6.0], &[0.0; 4], 1.0);
+    assert_eq!(ts, vec![1.0, 2.0]);
+    assert_eq!(v, vec![2.0, 4.0]);
+    // Trapezoid: 0.5*(2+4)*1 = 3, + 0.5*(4+4)*2 = 8 -> 11.
+    assert_eq!(integrate_speed(&[0.0, 1.0, 3.0], &[2.0, 4.0, 4.0]), vec![0.0, 3.0, 11.0]);
+    assert_eq!(interpolate(&[0.0, 2.0], &[0.0, 4.0], &[-1.0, 0.5, 2.0, 3.0])[1..3], [1.0, 4.0]);
+    assert!(interpolate(&[0.0, 2.0], &[0.0, 4.0], &[-1.0])[0].is_nan());
+}
+
+fn recipe() -> Recipe {
+    let text = r#"{"table": [{"id": "a", "file": "a.csv", "time": {"column": "t"}},
+                            {"id": "b", "file": "b.txt", "format": "whitespace", "columns": ["t", "x", "y"], "time": {"column": "t"}}],
+        "yaw_rate": {"table": "a", "column": "w", "unit": "rad/s", "positive": "cw"},
+        "positions": {"table": "b", "kind": "utm", "columns": ["x", "y"]},
+        "heading": {"source": "positions"}, "speed": {"source": "positions"},
+        "align": {"rate": {"table": "a", "column": "w", "unit": "deg/s", "positive": "ccw"}}}"#;
+    serde_json::from_str(text).unwrap()
+}
+
+#[test]
+fn a_bad_cell_keeps_its_line_and_column_under_the_file_name() {
+    let mut files = BTreeMap::new();
+    files.insert("a.csv".to_string(), b"t,w\n0,1\n1,x\n".to_vec());
+    files.insert("b.txt".to_string(), b"0 0 0\n1 0 0\n".to_vec());
+    let e = import(&recipe(), &mut files).unwrap_err();
+    match &e {
+        Error::In { name, source } => {
+            assert_eq!(name, "a.csv");
+            assert!(matches!(**source, Error::Cell { line: 3, ref column, .. } if column == "w"), "{source:?}");
+        }
+        other => panic!("not wrapped in the file name: {other:?}"),
+    }
+    assert!(e.to_string().starts_with("a.csv: line 3, column w: "), "{e}");
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+    /// Arbitrary bytes in either file: an error or a log, never a panic.
+    #[test]
+    fn import_never_panics(a in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..400),
+                           b in "[0-9 .\\-e\n]{0,300}") {
+        let mut files = BTreeMap::new();
+        let mut a_csv = b"t,w\n".to_vec();
+        a_csv.extend(&a);
+        files.insert("a.csv".to_string(), a_csv);
+        files.insert("b.txt".to_string(), b.into_bytes());
+        let _ = import(&recipe(), &mut files);
+    }
+
+    /// CSV-shaped rows with odd numbers (huge, tiny, negative times).
+    #[test]
+    fn import_numbers_never_panic(rows in proptest::collection::vec((-1e12f64..1e12, -1e6f64..1e6), 0..60)) {
+        let mut a = String::from("t,w\n");
+        let mut b = String::new();
+        for (i, (t, w)) in rows.iter().enumerate() {
+            a.push_str(&format!("{t},{w}\n"));
+            b.push_str(&format!("{} {} {}\n", t + i as f64, w, -w));
+        }
+        let mut files = BTreeMap::new();
+        files.insert("a.csv".to_string(), a.into_bytes());
+        files.insert("b.txt".to_string(), b.into_bytes());
+        let _ = import(&recipe(), &mut files);
+    }
+}
+
+#[test]
+fn best_lag_finds_a_known_shift() {
+    // b(t) = a(t - 1.3): a must be shifted by +1.3 s.
+    let f = |t: f64| (t * 0.7).sin() + (t * 2.3).sin() * 0.5 + if (t as i64) % 7 == 0 { 1.0 } else { 0.0 };
+    let ta: Vec<f64> = (0..4000).map(|i| i as f64 * 0.01).collect();
+    let a: Vec<f64> = ta.iter().map(|&t| f(t)).collect();
+    let b: Vec<f64> = ta.iter().map(|&t| f(t - 1.3)).collect();
+    let lag = best_lag_s(&ta, &a, &ta, &b, 5.0).unwrap();
+    assert!((lag - 1.3).abs() < 0.03, "{lag}");
+}

@@ -1,0 +1,289 @@
+//! The canonical drive-log CSV v1 (methods.md, "Canonical drive-log CSV"): `# key: value`
+//! metadata lines, one header row, then rows; free column order, unknown columns ignored,
+//! an empty cell is a missing value. Parsed streaming from any `Read` with the `csv` crate.
+//!
+//! Missing cells are stored as NaN: finite input is enforced, so NaN can mean nothing else.
+
+use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::io::Write;
+
+/// The columns of the v1 format, in the order they are written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Column {
+    TimeS,
+    GyroDps,
+    TempC,
+    RefHeadingDeg,
+    SpeedMps,
+    OdoLeftM,
+    OdoRightM,
+    TableRateDps,
+}
+
+impl Column {
+    pub const ALL: [Column; 8] = [
+        Column::TimeS,
+        Column::GyroDps,
+        Column::TempC,
+        Column::RefHeadingDeg,
+        Column::SpeedMps,
+        Column::OdoLeftM,
+        Column::OdoRightM,
+        Column::TableRateDps,
+    ];
+
+    /// The header name of the column in the CSV.
+    pub fn name(self) -> &'static str {
+        match self {
+            Column::TimeS => "time_s",
+            Column::GyroDps => "gyro_dps",
+            Column::TempC => "temp_c",
+            Column::RefHeadingDeg => "ref_heading_deg",
+            Column::SpeedMps => "speed_mps",
+            Column::OdoLeftM => "odo_left_m",
+            Column::OdoRightM => "odo_right_m",
+            Column::TableRateDps => "table_rate_dps",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Column> {
+        Column::ALL.iter().copied().find(|c| c.name() == name)
+    }
+
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// `# key: value` lines before the header. Known keys are typed; others are kept as text.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct LogMeta {
+    pub name: Option<String>,
+    pub wheelbase_m: Option<f64>,
+    pub bias_s: Option<f64>,
+    pub description: Option<String>,
+    /// Any other `# key: value` pairs, kept verbatim.
+    pub other: BTreeMap<String, String>,
+}
+
+/// A parsed log: one vector per present column, all of the same length as `time_s`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct DriveLog {
+    pub meta: LogMeta,
+    /// 1-based line number in the file of each row (for error messages after parsing).
+    pub line: Vec<u64>,
+    columns: [Option<Vec<f64>>; 8],
+}
+
+/// Limits for untrusted input.
+#[derive(Debug, Clone, Copy)]
+pub struct ParseOptions {
+    /// More data rows than this is an error rather than an out-of-memory abort.
+    pub max_rows: usize,
+}
+
+impl Default for ParseOptions {
+    fn default() -> Self {
+        // 30 M rows ~ 830 h at 10 Hz, ~2 GB of columns: beyond that a log is a mistake.
+        ParseOptions { max_rows: 30_000_000 }
+    }
+}
+
+impl DriveLog {
+    /// An empty log with the given columns present (time_s always is).
+    pub fn with_columns(columns: &[Column]) -> Self {
+        let mut log = DriveLog::default();
+        log.columns[Column::TimeS.index()] = Some(Vec::new());
+        for c in columns {
+            log.columns[c.index()] = Some(Vec::new());
+        }
+        log
+    }
+
+    /// Appends one row; `values` gives the cells of present columns (NaN = missing).
+    /// Used by the simulator and importers; time must increase (checked by `validate`).
+    pub fn push_row(&mut self, values: &[(Column, f64)]) {
+        let n = self.len();
+        for col in self.columns.iter_mut().flatten() {
+            col.push(f64::NAN);
+        }
+        for &(c, v) in values {
+            if let Some(col) = self.columns[c.index()].as_mut() {
+                col[n] = v;
+            }
+        }
+        self.line.push(n as u64 + 2);
+    }
+
+    pub fn len(&self) -> usize {
+        self.time_s().len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    pub fn time_s(&self) -> &[f64] {
+        self.columns[0].as_deref().unwrap_or(&[])
+    }
+    /// The column's cells (NaN = empty cell), or None if the header lacks it.
+    pub fn column(&self, c: Column) -> Option<&[f64]> {
+        self.columns[c.index()].as_deref()
+    }
+    /// The column's cells to change in place (the robustness battery's error injection).
+    pub fn column_mut(&mut self, c: Column) -> Option<&mut [f64]> {
+        self.columns[c.index()].as_deref_mut()
+    }
+    /// Keeps only the rows from index `first` on (e.g. to cut a stationary lead-in).
+    pub fn drop_first_rows(&mut self, first: usize) {
+        let first = first.min(self.len());
+        for col in self.columns.iter_mut().flatten() {
+            col.drain(..first);
+        }
+        self.line.drain(..first.min(self.line.len()));
+    }
+    /// The column, or an error naming it and the method that needs it.
+    pub fn require(&self, c: Column, needed_by: &str) -> Result<&[f64]> {
+        self.column(c).ok_or_else(|| Error::missing(c.name(), needed_by))
+    }
+    pub fn has(&self, c: Column) -> bool {
+        self.columns[c.index()].is_some()
+    }
+    pub fn present_columns(&self) -> Vec<Column> {
+        Column::ALL.iter().copied().filter(|&c| self.has(c)).collect()
+    }
+
+    /// Duration T_d in minutes: last minus first time_s of the whole log (methods.md detail 5).
+    pub fn duration_min(&self) -> f64 {
+        let t = self.time_s();
+        match (t.first(), t.last()) {
+            (Some(a), Some(b)) => (b - a) / 60.0,
+            _ => 0.0,
+        }
+    }
+
+    /// What kind of log this is, from its columns: turntable, robot, drive or static.
+    pub fn kind(&self) -> LogKind {
+        if self.has(Column::TableRateDps) {
+            LogKind::Turntable
+        } else if self.has(Column::OdoLeftM) && self.has(Column::OdoRightM) {
+            LogKind::Robot
+        } else if self.has(Column::RefHeadingDeg) {
+            LogKind::Drive
+        } else {
+            LogKind::Static
+        }
+    }
+
+    /// The static-bias window length: the option, else `# bias_s:`, else 20 s (detail 1).
+    pub fn bias_s(&self, option: Option<f64>) -> f64 {
+        option.or(self.meta.bias_s).unwrap_or(20.0)
+    }
+
+    /// Writes the log as CSV v1 (metadata, header of present columns, rows).
+    /// Numbers are written with Rust's shortest round-trip formatting, so parse(write(x)) == x.
+    pub fn write_csv<W: Write>(&self, out: W) -> Result<()> {
+        let mut out = std::io::BufWriter::new(out);
+        let m = &self.meta;
+        if let Some(v) = &m.name {
+            writeln!(out, "# name: {v}")?;
+        }
+        if let Some(v) = &m.description {
+            writeln!(out, "# description: {v}")?;
+        }
+        if let Some(v) = m.wheelbase_m {
+            writeln!(out, "# wheelbase_m: {v}")?;
+        }
+        if let Some(v) = m.bias_s {
+            writeln!(out, "# bias_s: {v}")?;
+        }
+        for (k, v) in &m.other {
+            writeln!(out, "# {k}: {v}")?;
+        }
+        let cols: Vec<(Column, &[f64])> = Column::ALL.iter().filter_map(|&c| self.column(c).map(|v| (c, v))).collect();
+        let header: Vec<&str> = cols.iter().map(|(c, _)| c.name()).collect();
+        writeln!(out, "{}", header.join(","))?;
+        let mut buf = String::new();
+        for i in 0..self.len() {
+            buf.clear();
+            for (j, (_, v)) in cols.iter().enumerate() {
+                if j > 0 {
+                    buf.push(',');
+                }
+                let x = v[i];
+                if x.is_finite() {
+                    use std::fmt::Write as _;
+                    let _ = write!(buf, "{x}");
+                }
+            }
+            buf.push('\n');
+            out.write_all(buf.as_bytes())?;
+        }
+        out.flush()?;
+        Ok(())
+    }
+}
+
+impl DriveLog {
+    /// A log from columns (e.g. handed over from a parsing worker), checked as the parser
+    /// checks: equal lengths, a finite strictly increasing time, finite or missing values.
+    pub fn from_columns(meta: LogMeta, line: Vec<u64>, columns: Vec<(Column, Vec<f64>)>) -> Result<DriveLog> {
+        let mut log = DriveLog { meta, line, ..DriveLog::default() };
+        for (c, v) in columns {
+            if log.columns[c.index()].is_some() {
+                return Err(Error::File(format!("duplicate column {}", c.name())));
+            }
+            log.columns[c.index()] = Some(v);
+        }
+        let n = log.columns[Column::TimeS.index()].as_ref().map(Vec::len).ok_or_else(|| Error::missing("time_s", "every log needs it"))?;
+        if n == 0 {
+            return Err(Error::File("no data rows".into()));
+        }
+        if log.line.len() != n {
+            log.line = (0..n as u64).map(|i| i + 2).collect();
+        }
+        for c in Column::ALL {
+            if let Some(v) = log.column(c) {
+                if v.len() != n {
+                    return Err(Error::File(format!("column {} has {} values, time_s has {n}", c.name(), v.len())));
+                }
+                if let Some(i) = v.iter().position(|x| x.is_infinite()) {
+                    return Err(Error::Cell { line: log.line[i], column: c.name().into(), message: "not a finite number".into() });
+                }
+            }
+        }
+        let t = log.time_s();
+        for i in 0..n {
+            if t[i].is_nan() || (i > 0 && !(t[i] > t[i - 1])) {
+                return Err(Error::Cell {
+                    line: log.line[i],
+                    column: "time_s".into(),
+                    message: "time must be present and strictly increase".into(),
+                });
+            }
+        }
+        Ok(log)
+    }
+
+    /// The present columns with their values (for handing a parsed log to another thread).
+    pub fn columns(&self) -> Vec<(Column, &[f64])> {
+        Column::ALL.iter().filter_map(|&c| self.column(c).map(|v| (c, v))).collect()
+    }
+}
+
+/// The kind of a log, decided by its columns.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LogKind {
+    Drive,
+    Robot,
+    Turntable,
+    Static,
+}
+
+mod parse;
+pub use parse::{parse_log, parse_log_progress, parse_log_str, parse_log_with};
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,183 @@
+//! The CSV v1 log parser: metadata lines, a header naming the known columns, then rows,
+//! read through the crate's one table reader (`crate::table`). Every error names the line
+//! and, for a cell, the column.
+
+use super::{Column, DriveLog, LogMeta, ParseOptions};
+use crate::error::{Error, Result};
+use crate::table::{read_rows, Row, Split};
+use std::io::Read;
+
+/// Parses a CSV v1 log with the default limits.
+pub fn parse_log<R: Read>(reader: R) -> Result<DriveLog> {
+    parse_log_with(reader, ParseOptions::default())
+}
+
+/// Parses from a string (the wasm package and tests).
+pub fn parse_log_str(text: &str) -> Result<DriveLog> {
+    parse_log(text.as_bytes())
+}
+
+/// Parses a CSV v1 log, streaming: memory grows with the known columns only.
+pub fn parse_log_with<R: Read>(reader: R, opts: ParseOptions) -> Result<DriveLog> {
+    parse_log_progress(reader, opts, &mut |_| {})
+}
+
+/// The header: which field holds which known column.
+struct Header {
+    line: u64,
+    map: Vec<Option<Column>>,
+    time_field: usize,
+}
+
+impl Header {
+    /// Maps each header field to a known column (or None = ignored); time_s is required.
+    fn new(fields: &[&str], line: u64) -> Result<Header> {
+        let mut seen: [Option<usize>; Column::ALL.len()] = [None; Column::ALL.len()];
+        let mut map = Vec::with_capacity(fields.len());
+        for (j, name) in fields.iter().enumerate() {
+            let col = Column::from_name(name);
+            if let Some(c) = col {
+                if let Some(first) = seen[c.index()] {
+                    let message = format!("duplicate column {} (fields {} and {})", c.name(), first + 1, j + 1);
+                    return Err(Error::Line { line, message });
+                }
+                seen[c.index()] = Some(j);
+            }
+            map.push(col);
+        }
+        let Some(time_field) = seen[Column::TimeS.index()] else {
+            let message = format!("missing required column time_s (the header has: {})", fields.join(", "));
+            return Err(Error::Line { line, message });
+        };
+        Ok(Header { line, map, time_field })
+    }
+}
+
+/// As `parse_log_with`, calling `progress(bytes read so far)` every 65 536 rows (for a
+/// progress bar while a large file is parsed off the main thread).
+pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut dyn FnMut(u64)) -> Result<DriveLog> {
+    let mut meta = LogMeta::default();
+    let mut preamble = |line: u64, text: &str| -> Result<bool> {
+        let t = text.trim();
+        match t.strip_prefix('#') {
+            _ if t.is_empty() => Ok(true),
+            Some(rest) => parse_meta_line(rest, line, &mut meta).map(|_| true),
+            None => Ok(false),
+        }
+    };
+    let mut header: Option<Header> = None;
+    let mut log = DriveLog::default();
+    let mut prev_time: Option<(f64, u64)> = None;
+    let mut rows = 0usize;
+    read_rows(reader, Split::Csv, 0, &mut preamble, &mut |r: Row| {
+        let Some(h) = &header else {
+            let h = Header::new(r.fields, r.line)?;
+            for c in h.map.iter().flatten() {
+                log.columns[c.index()] = Some(Vec::new());
+            }
+            header = Some(h);
+            return Ok(());
+        };
+        rows += 1;
+        if rows.is_multiple_of(65_536) {
+            progress(r.byte);
+        }
+        if rows > opts.max_rows {
+            return Err(Error::File(format!(
+                "too many rows: more than {} (line {}); split the log or raise max_rows",
+                opts.max_rows, r.line
+            )));
+        }
+        data_row(h, &r, &mut prev_time, &mut log)
+    })?;
+    let Some(h) = header else {
+        return Err(Error::File("empty file: no header row".into()));
+    };
+    if rows == 0 {
+        return Err(Error::File(format!("no data rows: the file has a header (line {}) but no rows", h.line)));
+    }
+    log.meta = meta;
+    Ok(log)
+}
+
+/// One data row into the columns; time must be present and strictly increase.
+fn data_row(h: &Header, r: &Row, prev_time: &mut Option<(f64, u64)>, log: &mut DriveLog) -> Result<()> {
+    let line = r.line;
+    if r.fields.len() != h.map.len() {
+        let hint = if r.fields.len() < h.map.len() { " (truncated row?)" } else { "" };
+        return Err(Error::Line { line, message: format!("row has {} fields, the header has {}{}", r.fields.len(), h.map.len(), hint) });
+    }
+    for (j, col) in h.map.iter().enumerate() {
+        let Some(c) = col else { continue };
+        let v = parse_cell(r.fields[j], line, c.name())?;
+        if j == h.time_field {
+            if v.is_nan() {
+                return Err(Error::Cell { line, column: c.name().into(), message: "empty, but every row needs a time".into() });
+            }
+            if let Some((pt, pl)) = *prev_time {
+                if v <= pt {
+                    let what = if v == pt { "repeats" } else { "goes back from" };
+                    let message = format!("time {v} {what} {pt} on line {pl}: time must strictly increase");
+                    return Err(Error::Cell { line, column: c.name().into(), message });
+                }
+            }
+            *prev_time = Some((v, line));
+        }
+        if let Some(vec) = log.columns[c.index()].as_mut() {
+            vec.push(v);
+        }
+    }
+    log.line.push(line);
+    Ok(())
+}
+
+/// Empty cell = NaN (missing); anything else must be a finite number.
+fn parse_cell(text: &str, line: u64, column: &str) -> Result<f64> {
+    if text.is_empty() {
+        return Ok(f64::NAN);
+    }
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err(Error::Cell { line, column: column.into(), message: format!("\"{text}\" is not a finite number") }),
+        Err(_) => Err(Error::Cell { line, column: column.into(), message: format!("\"{}\" is not a number", shorten(text)) }),
+    }
+}
+
+fn shorten(s: &str) -> String {
+    if s.chars().count() > 40 {
+        let cut: String = s.chars().take(40).collect();
+        format!("{cut}...")
+    } else {
+        s.to_string()
+    }
+}
+
+fn parse_meta_line(rest: &str, line: u64, meta: &mut LogMeta) -> Result<()> {
+    let Some((key, value)) = rest.split_once(':') else {
+        return Ok(()); // a plain comment
+    };
+    let key = key.trim();
+    let value = value.trim();
+    let number = |name: &str| -> Result<f64> {
+        match value.parse::<f64>() {
+            Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+            _ => Err(Error::Line { line, message: format!("metadata {name}: \"{value}\" is not a number >= 0") }),
+        }
+    };
+    match key {
+        "name" => meta.name = Some(value.to_string()),
+        "description" => meta.description = Some(value.to_string()),
+        "wheelbase_m" => {
+            let v = number("wheelbase_m")?;
+            if v == 0.0 {
+                return Err(Error::Line { line, message: "metadata wheelbase_m: must be > 0".into() });
+            }
+            meta.wheelbase_m = Some(v)
+        }
+        "bias_s" => meta.bias_s = Some(number("bias_s")?),
+        _ => {
+            meta.other.insert(key.to_string(), value.to_string());
+        }
+    }
+    Ok(())
+}
