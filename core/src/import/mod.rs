@@ -26,58 +26,17 @@ use std::io::Read;
 use table::*;
 use units::*;
 
+/// Positions in local metres: (time, east, north).
+type Positions = (Vec<f64>, Vec<f64>, Vec<f64>);
+/// Wheel travel in metres: (time, left, right).
+type WheelTravel = (Vec<f64>, Vec<f64>, Vec<f64>);
+
 /// Runs a recipe: reads the tables, derives the channels, merges on time.
 pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, ImportSummary)> {
     if recipe.tables.is_empty() {
         return Err(recipe_err("table", "at least one [[table]] is needed"));
     }
-    // Which columns each table must provide.
-    let mut wanted: BTreeMap<String, BTreeSet<String>> = recipe.tables.iter().map(|t| (t.id.clone(), BTreeSet::new())).collect();
-    let mut want = |table: &str, cols: &[&String], field: &str| -> Result<()> {
-        let set =
-            wanted.get_mut(table).ok_or_else(|| recipe_err(&format!("{field}.table"), format!("no [[table]] with id \"{table}\"")))?;
-        set.extend(cols.iter().map(|c| (*c).clone()));
-        Ok(())
-    };
-    let rate_cols = |r: &RateSpec| -> Vec<String> {
-        let mut v: Vec<String> = r.column.iter().cloned().collect();
-        v.extend(r.axes.iter().flatten().cloned());
-        v.extend(r.gravity.iter().flat_map(|g| g.axes.iter().cloned()));
-        v
-    };
-    let rc = rate_cols(&recipe.yaw_rate);
-    want(&recipe.yaw_rate.table, &rc.iter().collect::<Vec<_>>(), "yaw_rate")?;
-    if let Some(a) = &recipe.align {
-        let c = rate_cols(&a.rate);
-        want(&a.rate.table, &c.iter().collect::<Vec<_>>(), "align.rate")?;
-    }
-    if let Some(p) = &recipe.positions {
-        want(&p.table, &p.columns.iter().collect::<Vec<_>>(), "positions")?;
-    }
-    match &recipe.heading {
-        Some(HeadingSpec::Column { table, column, speed_column, .. }) => {
-            let mut c = vec![column];
-            c.extend(speed_column.iter());
-            want(table, &c, "heading")?;
-        }
-        Some(HeadingSpec::Positions { .. }) if recipe.positions.is_none() => {
-            return Err(recipe_err("heading", "source = \"positions\" needs a [positions] section"));
-        }
-        _ => {}
-    }
-    match &recipe.speed {
-        Some(SpeedSpec::Column { table, column, .. }) => want(table, &[column], "speed")?,
-        Some(SpeedSpec::Positions { .. }) if recipe.positions.is_none() => {
-            return Err(recipe_err("speed", "source = \"positions\" needs a [positions] section"));
-        }
-        _ => {}
-    }
-    if let Some(o) = &recipe.odometry {
-        want(&o.table, &o.left.iter().chain(&o.right).collect::<Vec<_>>(), "odometry")?;
-    }
-    if let Some(v) = &recipe.temperature {
-        want(&v.table, &[&v.column], "temperature")?;
-    }
+    let wanted = wanted_columns(recipe)?;
 
     let mut tables = BTreeMap::new();
     for spec in &recipe.tables {
@@ -103,113 +62,13 @@ pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, Impor
         let t = tables.get(&p.table).ok_or_else(|| recipe_err("positions.table", format!("no table \"{}\"", p.table)))?;
         positions = Some(local_en(p, t)?);
     }
-    let (ref_t, ref_v) = match &recipe.heading {
-        None => (Vec::new(), Vec::new()),
-        Some(HeadingSpec::Column { table, column, unit, positive, speed_column, min_speed_mps }) => {
-            let t = &tables[table];
-            let k = angle_unit(unit, "heading.unit")? * positive.factor();
-            let v = t.col(column, "heading")?;
-            let s = match speed_column {
-                Some(c) => Some(t.col(c, "heading.speed_column")?),
-                None => None,
-            };
-            let (mut ts, mut vs) = (Vec::new(), Vec::new());
-            for i in 0..t.time_s.len() {
-                let moving = s.is_none_or(|s| s[i] >= *min_speed_mps);
-                if v[i].is_finite() && moving {
-                    ts.push(t.time_s[i]);
-                    vs.push(crate::metrics::wrap_diff_deg(v[i] * k));
-                }
-            }
-            (ts, vs)
-        }
-        Some(HeadingSpec::Positions { min_distance_m, min_speed_mps }) => {
-            if !(min_distance_m.is_finite() && *min_distance_m > 0.0 && min_speed_mps.is_finite() && *min_speed_mps >= 0.0) {
-                return Err(recipe_err("heading", "min_distance_m must be > 0 and min_speed_mps >= 0"));
-            }
-            let (pt, e, n) = positions.as_ref().ok_or_else(|| recipe_err("heading", "needs [positions]"))?;
-            let (ts, course) = course_from_positions(pt, e, n, *min_distance_m, *min_speed_mps);
-            (ts, course.iter().map(|c| crate::metrics::wrap_diff_deg(-c)).collect())
-        }
-    };
-    let speed: Option<(Vec<f64>, Vec<f64>)> = match &recipe.speed {
-        None => None,
-        Some(SpeedSpec::Column { table, column, unit }) => {
-            let t = &tables[table];
-            let k = speed_unit(unit, "speed.unit")?;
-            Some((t.time_s.clone(), t.col(column, "speed")?.iter().map(|v| v * k).collect()))
-        }
-        Some(SpeedSpec::Positions { window_s }) => {
-            if !(window_s.is_finite() && *window_s > 0.0) {
-                return Err(recipe_err("speed.window_s", format!("{window_s} is not a time > 0")));
-            }
-            let (pt, e, n) = positions.as_ref().ok_or_else(|| recipe_err("speed", "needs [positions]"))?;
-            Some(speed_from_positions(pt, e, n, *window_s))
-        }
-    };
-    let odo: Option<(Vec<f64>, Vec<f64>, Vec<f64>)> = match &recipe.odometry {
-        None => None,
-        Some(o) => {
-            if !(o.track_m.is_finite() && o.track_m > 0.0) {
-                return Err(recipe_err("odometry.track_m", format!("{} is not a distance > 0", o.track_m)));
-            }
-            if o.left.is_empty() || o.right.is_empty() {
-                return Err(recipe_err("odometry", "left and right need one column or more each"));
-            }
-            let t = &tables[&o.table];
-            let k = match o.kind {
-                OdometryKind::Speed => speed_unit(&o.unit, "odometry.unit")?,
-                OdometryKind::Travel => match o.unit.as_str() {
-                    "m" => 1.0,
-                    "km" => 1000.0,
-                    u => return Err(recipe_err("odometry.unit", format!("\"{u}\" is not a distance unit (m, km)"))),
-                },
-            };
-            let side = |cols: &[String]| -> Result<Vec<f64>> {
-                let c: Vec<&[f64]> = cols.iter().map(|n| t.col(n, "odometry")).collect::<Result<_>>()?;
-                let mean: Vec<f64> = (0..t.time_s.len()).map(|i| c.iter().map(|c| c[i]).sum::<f64>() / c.len() as f64 * k).collect();
-                Ok(match o.kind {
-                    OdometryKind::Speed => integrate_speed(&t.time_s, &mean),
-                    OdometryKind::Travel => mean,
-                })
-            };
-            Some((t.time_s.clone(), side(&o.left)?, side(&o.right)?))
-        }
-    };
-    let temp: Option<(Vec<f64>, Vec<f64>)> = match &recipe.temperature {
-        None => None,
-        Some(v) => {
-            let t = &tables[&v.table];
-            let c = t.col(&v.column, "temperature")?;
-            let conv: fn(f64) -> f64 = match v.unit.as_str() {
-                "C" | "degC" => |x| x,
-                "K" => |x| x - 273.15,
-                "F" => |x| (x - 32.0) / 1.8,
-                u => return Err(recipe_err("temperature.unit", format!("\"{u}\" is not a temperature unit (C, K, F)"))),
-            };
-            Some((t.time_s.clone(), c.iter().map(|&x| conv(x)).collect()))
-        }
-    };
+    let (ref_t, ref_v) = reference_heading(recipe, &tables, positions.as_ref())?;
+    let speed = speed_series(recipe, &tables, positions.as_ref())?;
+    let odo = odometry_series(recipe, &tables)?;
+    let temp = temperature_series(recipe, &tables)?;
 
-    // Rows: the gyro samples and the reference samples inside the gyro's span, on one time line.
     let (g0, g1) = (gyro_t[0], gyro_t[gyro_t.len() - 1]);
-    let mut rows: Vec<(f64, f64, f64)> = gyro_t.iter().zip(&gyro_v).map(|(&t, &v)| (t, v, f64::NAN)).collect();
-    rows.extend(ref_t.iter().zip(&ref_v).filter(|(&t, _)| t >= g0 && t <= g1).map(|(&t, &v)| (t, f64::NAN, v)));
-    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut merged: Vec<(f64, f64, f64)> = Vec::with_capacity(rows.len());
-    for r in rows {
-        match merged.last_mut() {
-            Some(last) if last.0 == r.0 => {
-                if r.1.is_finite() {
-                    last.1 = r.1;
-                }
-                if r.2.is_finite() {
-                    last.2 = r.2;
-                }
-            }
-            _ => merged.push(r),
-        }
-    }
+    let merged = merge_rows(&gyro_t, &gyro_v, &ref_t, &ref_v);
     let times: Vec<f64> = merged.iter().map(|r| r.0).collect();
     let mut data: Vec<(Column, Vec<f64>)> = vec![(Column::GyroDps, merged.iter().map(|r| r.1).collect())];
     if recipe.heading.is_some() {
@@ -268,6 +127,184 @@ pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, Impor
         start_time_s: start,
     };
     Ok((log, summary))
+}
+
+/// Which columns each table must provide, from every section that names a table.
+fn wanted_columns(recipe: &Recipe) -> Result<BTreeMap<String, BTreeSet<String>>> {
+    let mut wanted: BTreeMap<String, BTreeSet<String>> = recipe.tables.iter().map(|t| (t.id.clone(), BTreeSet::new())).collect();
+    let mut want = |table: &str, cols: &[&String], field: &str| -> Result<()> {
+        let set =
+            wanted.get_mut(table).ok_or_else(|| recipe_err(&format!("{field}.table"), format!("no [[table]] with id \"{table}\"")))?;
+        set.extend(cols.iter().map(|c| (*c).clone()));
+        Ok(())
+    };
+    let rate_cols = |r: &RateSpec| -> Vec<String> {
+        let mut v: Vec<String> = r.column.iter().cloned().collect();
+        v.extend(r.axes.iter().flatten().cloned());
+        v.extend(r.gravity.iter().flat_map(|g| g.axes.iter().cloned()));
+        v
+    };
+    let rc = rate_cols(&recipe.yaw_rate);
+    want(&recipe.yaw_rate.table, &rc.iter().collect::<Vec<_>>(), "yaw_rate")?;
+    if let Some(a) = &recipe.align {
+        let c = rate_cols(&a.rate);
+        want(&a.rate.table, &c.iter().collect::<Vec<_>>(), "align.rate")?;
+    }
+    if let Some(p) = &recipe.positions {
+        want(&p.table, &p.columns.iter().collect::<Vec<_>>(), "positions")?;
+    }
+    match &recipe.heading {
+        Some(HeadingSpec::Column { table, column, speed_column, .. }) => {
+            let mut c = vec![column];
+            c.extend(speed_column.iter());
+            want(table, &c, "heading")?;
+        }
+        Some(HeadingSpec::Positions { .. }) if recipe.positions.is_none() => {
+            return Err(recipe_err("heading", "source = \"positions\" needs a [positions] section"));
+        }
+        _ => {}
+    }
+    match &recipe.speed {
+        Some(SpeedSpec::Column { table, column, .. }) => want(table, &[column], "speed")?,
+        Some(SpeedSpec::Positions { .. }) if recipe.positions.is_none() => {
+            return Err(recipe_err("speed", "source = \"positions\" needs a [positions] section"));
+        }
+        _ => {}
+    }
+    if let Some(o) = &recipe.odometry {
+        want(&o.table, &o.left.iter().chain(&o.right).collect::<Vec<_>>(), "odometry")?;
+    }
+    if let Some(v) = &recipe.temperature {
+        want(&v.table, &[&v.column], "temperature")?;
+    }
+    Ok(wanted)
+}
+
+/// The reference heading, deg CCW: (time, value), never resampled.
+fn reference_heading(recipe: &Recipe, tables: &BTreeMap<String, Table>, positions: Option<&Positions>) -> Result<(Vec<f64>, Vec<f64>)> {
+    Ok(match &recipe.heading {
+        None => (Vec::new(), Vec::new()),
+        Some(HeadingSpec::Column { table, column, unit, positive, speed_column, min_speed_mps }) => {
+            let t = &tables[table];
+            let k = angle_unit(unit, "heading.unit")? * positive.factor();
+            let v = t.col(column, "heading")?;
+            let s = match speed_column {
+                Some(c) => Some(t.col(c, "heading.speed_column")?),
+                None => None,
+            };
+            let (mut ts, mut vs) = (Vec::new(), Vec::new());
+            for i in 0..t.time_s.len() {
+                let moving = s.is_none_or(|s| s[i] >= *min_speed_mps);
+                if v[i].is_finite() && moving {
+                    ts.push(t.time_s[i]);
+                    vs.push(crate::metrics::wrap_diff_deg(v[i] * k));
+                }
+            }
+            (ts, vs)
+        }
+        Some(HeadingSpec::Positions { min_distance_m, min_speed_mps }) => {
+            if !(min_distance_m.is_finite() && *min_distance_m > 0.0 && min_speed_mps.is_finite() && *min_speed_mps >= 0.0) {
+                return Err(recipe_err("heading", "min_distance_m must be > 0 and min_speed_mps >= 0"));
+            }
+            let (pt, e, n) = positions.ok_or_else(|| recipe_err("heading", "needs [positions]"))?;
+            let (ts, course) = course_from_positions(pt, e, n, *min_distance_m, *min_speed_mps);
+            (ts, course.iter().map(|c| crate::metrics::wrap_diff_deg(-c)).collect())
+        }
+    })
+}
+
+/// Speed in m/s on its own times, from a column or from positions.
+fn speed_series(recipe: &Recipe, tables: &BTreeMap<String, Table>, positions: Option<&Positions>) -> Result<Option<(Vec<f64>, Vec<f64>)>> {
+    Ok(match &recipe.speed {
+        None => None,
+        Some(SpeedSpec::Column { table, column, unit }) => {
+            let t = &tables[table];
+            let k = speed_unit(unit, "speed.unit")?;
+            Some((t.time_s.clone(), t.col(column, "speed")?.iter().map(|v| v * k).collect()))
+        }
+        Some(SpeedSpec::Positions { window_s }) => {
+            if !(window_s.is_finite() && *window_s > 0.0) {
+                return Err(recipe_err("speed.window_s", format!("{window_s} is not a time > 0")));
+            }
+            let (pt, e, n) = positions.ok_or_else(|| recipe_err("speed", "needs [positions]"))?;
+            Some(speed_from_positions(pt, e, n, *window_s))
+        }
+    })
+}
+
+/// Wheel travel (left, right), m, on the table's times, from travel or from wheel speeds.
+fn odometry_series(recipe: &Recipe, tables: &BTreeMap<String, Table>) -> Result<Option<WheelTravel>> {
+    Ok(match &recipe.odometry {
+        None => None,
+        Some(o) => {
+            if !(o.track_m.is_finite() && o.track_m > 0.0) {
+                return Err(recipe_err("odometry.track_m", format!("{} is not a distance > 0", o.track_m)));
+            }
+            if o.left.is_empty() || o.right.is_empty() {
+                return Err(recipe_err("odometry", "left and right need one column or more each"));
+            }
+            let t = &tables[&o.table];
+            let k = match o.kind {
+                OdometryKind::Speed => speed_unit(&o.unit, "odometry.unit")?,
+                OdometryKind::Travel => match o.unit.as_str() {
+                    "m" => 1.0,
+                    "km" => 1000.0,
+                    u => return Err(recipe_err("odometry.unit", format!("\"{u}\" is not a distance unit (m, km)"))),
+                },
+            };
+            let side = |cols: &[String]| -> Result<Vec<f64>> {
+                let c: Vec<&[f64]> = cols.iter().map(|n| t.col(n, "odometry")).collect::<Result<_>>()?;
+                let mean: Vec<f64> = (0..t.time_s.len()).map(|i| c.iter().map(|c| c[i]).sum::<f64>() / c.len() as f64 * k).collect();
+                Ok(match o.kind {
+                    OdometryKind::Speed => integrate_speed(&t.time_s, &mean),
+                    OdometryKind::Travel => mean,
+                })
+            };
+            Some((t.time_s.clone(), side(&o.left)?, side(&o.right)?))
+        }
+    })
+}
+
+/// Temperature in deg C on the table's times.
+fn temperature_series(recipe: &Recipe, tables: &BTreeMap<String, Table>) -> Result<Option<(Vec<f64>, Vec<f64>)>> {
+    Ok(match &recipe.temperature {
+        None => None,
+        Some(v) => {
+            let t = &tables[&v.table];
+            let c = t.col(&v.column, "temperature")?;
+            let conv: fn(f64) -> f64 = match v.unit.as_str() {
+                "C" | "degC" => |x| x,
+                "K" => |x| x - 273.15,
+                "F" => |x| (x - 32.0) / 1.8,
+                u => return Err(recipe_err("temperature.unit", format!("\"{u}\" is not a temperature unit (C, K, F)"))),
+            };
+            Some((t.time_s.clone(), c.iter().map(|&x| conv(x)).collect()))
+        }
+    })
+}
+
+/// Rows: the gyro samples and the reference samples inside the gyro's span, on one time
+/// line; a gyro and a reference sample at the same time share a row. (time, gyro, heading).
+fn merge_rows(gyro_t: &[f64], gyro_v: &[f64], ref_t: &[f64], ref_v: &[f64]) -> Vec<(f64, f64, f64)> {
+    let (g0, g1) = (gyro_t[0], gyro_t[gyro_t.len() - 1]);
+    let mut rows: Vec<(f64, f64, f64)> = gyro_t.iter().zip(gyro_v).map(|(&t, &v)| (t, v, f64::NAN)).collect();
+    rows.extend(ref_t.iter().zip(ref_v).filter(|(&t, _)| t >= g0 && t <= g1).map(|(&t, &v)| (t, f64::NAN, v)));
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut merged: Vec<(f64, f64, f64)> = Vec::with_capacity(rows.len());
+    for r in rows {
+        match merged.last_mut() {
+            Some(last) if last.0 == r.0 => {
+                if r.1.is_finite() {
+                    last.1 = r.1;
+                }
+                if r.2.is_finite() {
+                    last.2 = r.2;
+                }
+            }
+            _ => merged.push(r),
+        }
+    }
+    merged
 }
 
 /// Merges consecutive rows whose time became equal (keeping the finite cells).

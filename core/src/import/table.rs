@@ -18,6 +18,63 @@ impl Table {
     }
 }
 
+/// A number cell: empty or "nan" = missing (NaN); anything else must be a finite number.
+fn cell(fields: &[&str], j: usize, name: &str, line: u64) -> Result<f64> {
+    let text = fields.get(j).copied().unwrap_or("");
+    if text.is_empty() || text.eq_ignore_ascii_case("nan") {
+        return Ok(f64::NAN);
+    }
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(Error::Cell { line, column: name.to_string(), message: format!("\"{text}\" is not a number") }),
+    }
+}
+
+/// A row's time, s: from the period and the row's index, or from its time cell (seconds
+/// times `scale`, or ISO 8601).
+fn row_time(spec: &TableSpec, scale: f64, time_idx: Option<usize>, time_name: &str, row_n: u64, line: u64, fields: &[&str]) -> Result<f64> {
+    match (spec.time.period_s, time_idx) {
+        (Some(p), _) => Ok(row_n as f64 * p),
+        (None, Some(j)) => {
+            let v = match spec.time.format {
+                TimeFormat::Seconds => cell(fields, j, time_name, line)? * scale,
+                TimeFormat::Iso8601 => {
+                    let text = fields.get(j).copied().unwrap_or("");
+                    parse_iso8601(text).ok_or_else(|| Error::Cell {
+                        line,
+                        column: time_name.to_string(),
+                        message: format!("\"{text}\" is not an ISO 8601 time"),
+                    })?
+                }
+            };
+            if v.is_nan() {
+                return Err(Error::Cell { line, column: time_name.to_string(), message: "empty time".into() });
+            }
+            Ok(v)
+        }
+        (None, None) => Err(recipe_err(&format!("table {}", spec.id), "time needs a column or a period_s")),
+    }
+}
+
+/// Named columns and their field index.
+type Fields = Vec<(String, usize)>;
+
+/// The field index of each wanted column and of the time, from the header.
+fn resolve_columns(spec: &TableSpec, wanted: &BTreeSet<String>, h: &[String]) -> Result<(Fields, Option<usize>)> {
+    let index_of = |name: &str| h.iter().position(|x| x == name);
+    let mut idx = Vec::with_capacity(wanted.len());
+    for name in wanted {
+        let j = index_of(name)
+            .ok_or_else(|| Error::missing(name, &format!("named by the recipe for table {}; the header has: {}", spec.id, h.join(", "))))?;
+        idx.push((name.clone(), j));
+    }
+    let time_idx = match &spec.time.column {
+        Some(c) => Some(index_of(c).ok_or_else(|| Error::missing(c, &format!("the time of table {}", spec.id)))?),
+        None => None,
+    };
+    Ok((idx, time_idx))
+}
+
 /// Reads the columns `wanted` (and the time) of one table, streaming.
 pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mut dyn Files) -> Result<Table> {
     let file = spec.file.clone();
@@ -46,21 +103,7 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
             return Ok(());
         };
         if !resolved {
-            let index_of = |name: &str| h.iter().position(|x| x == name);
-            for name in wanted {
-                match index_of(name) {
-                    Some(j) => idx.push((name.clone(), j)),
-                    None => {
-                        return Err(Error::missing(
-                            name,
-                            &format!("named by the recipe for table {}; the header has: {}", spec.id, h.join(", ")),
-                        ))
-                    }
-                }
-            }
-            if let Some(c) = &spec.time.column {
-                time_idx = Some(index_of(c).ok_or_else(|| Error::missing(c, &format!("the time of table {}", spec.id)))?);
-            }
+            (idx, time_idx) = resolve_columns(spec, wanted, h)?;
             cols = vec![Vec::new(); idx.len()];
             resolved = true;
         }
@@ -69,37 +112,7 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
                 return Ok(());
             }
         }
-        let cell = |j: usize, name: &str| -> Result<f64> {
-            let text = fields.get(j).copied().unwrap_or("");
-            if text.is_empty() || text.eq_ignore_ascii_case("nan") {
-                return Ok(f64::NAN);
-            }
-            match text.parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(v),
-                _ => Err(Error::Cell { line, column: name.to_string(), message: format!("\"{text}\" is not a number") }),
-            }
-        };
-        let time = match (spec.time.period_s, time_idx) {
-            (Some(p), _) => row_n as f64 * p,
-            (None, Some(j)) => {
-                let v = match spec.time.format {
-                    TimeFormat::Seconds => cell(j, &time_name)? * scale,
-                    TimeFormat::Iso8601 => {
-                        let text = fields.get(j).copied().unwrap_or("");
-                        parse_iso8601(text).ok_or_else(|| Error::Cell {
-                            line,
-                            column: time_name.clone(),
-                            message: format!("\"{text}\" is not an ISO 8601 time"),
-                        })?
-                    }
-                };
-                if v.is_nan() {
-                    return Err(Error::Cell { line, column: time_name.clone(), message: "empty time".into() });
-                }
-                v
-            }
-            (None, None) => return Err(recipe_err(&format!("table {}", spec.id), "time needs a column or a period_s")),
-        };
+        let time = row_time(spec, scale, time_idx, &time_name, row_n, line, fields)?;
         if let Some(&prev) = t.time_s.last() {
             if !(time > prev) {
                 return Err(Error::Cell {
@@ -110,7 +123,7 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
             }
         }
         for (k, (name, j)) in idx.iter().enumerate() {
-            cols[k].push(cell(*j, name)?);
+            cols[k].push(cell(fields, *j, name, line)?);
         }
         t.time_s.push(time);
         t.line.push(line);
