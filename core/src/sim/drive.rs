@@ -209,34 +209,10 @@ fn mixed_style(block: usize) -> Scenario {
     [Scenario::City, Scenario::Rural, Scenario::Highway, Scenario::Rural, Scenario::Suburbs][block % 5]
 }
 
-/// Simulates a drive at 10 Hz: time_s, gyro_dps, temp_c, ref_heading_deg (1 Hz), speed_mps.
-pub fn simulate_drive(cfg: &DriveConfig) -> DriveLog {
-    simulate_drive_with(cfg, &GyroSpec::crs03_like())
-}
-
-/// As `simulate_drive`, with the gyro drawn from another spec (same road for the same seed).
-pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
-    let mut rng = SimRng::new(cfg.seed ^ 0x0D21_5EED);
-    let mut log = DriveLog::with_columns(&[Column::GyroDps, Column::TempC, Column::RefHeadingDeg, Column::SpeedMps]);
-    log.meta.bias_s = Some(LEAD_IN_S);
-    log.meta.description = Some(format!("simulated {:?} drive, {} min, seed {}", cfg.scenario, cfg.minutes, cfg.seed));
-    // Cabin warm-up: the gyro starts at the garage temperature and warms toward cabin comfort.
-    let temp_start = rng.range(0.0, 15.0);
-    let temp_end = rng.range(20.0, 26.0);
-    let warm_tau_s = rng.range(4.0, 12.0) * 60.0;
-    let mut gyro = GyroModel::draw(spec, temp_start, &mut rng);
-    let mut heading_deg = rng.range(0.0, 360.0);
-    let (mut v, mut sway_rate, mut sway_dev) = (0.0f64, 0.0f64, 0.0f64);
-    let mut phase = Phase::Still { left_s: LEAD_IN_S };
-    let gps_bias_deg = rng.range(-0.3, 0.3);
-    let mut gps_dropout_s = 0.0;
-    let n = (cfg.minutes * 600.0).round() as usize;
-    for i in 0..=n {
-        let t = i as f64 / 10.0;
-        let scenario = if cfg.scenario == Scenario::Mixed { mixed_style((t / 300.0) as usize) } else { cfg.scenario };
-        let st = style(scenario);
-        // Speed target and road yaw rate of the phase.
-        let (target_v, road_rate) = match &mut phase {
+impl Phase {
+    /// One 0.1 s step of the phase: the target speed and the road's yaw rate.
+    fn advance(&mut self, st: &Style, v: f64) -> (f64, f64) {
+        match self {
             Phase::Still { left_s } => {
                 *left_s -= DT;
                 (0.0, 0.0)
@@ -274,7 +250,75 @@ pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
                 let u = *t_s / *dur_s;
                 (st.cruise_mps, *amp_dps * libm::sin(2.0 * std::f64::consts::PI * u))
             }
-        };
+        }
+    }
+
+    /// The phase has run its course.
+    fn done(&self) -> bool {
+        match *self {
+            Phase::Still { left_s } => left_s <= 0.0,
+            Phase::Straight { left_m } => left_m <= 0.0,
+            Phase::Turn { left_deg, .. } => left_deg.abs() < 1e-9,
+            Phase::Stop { wait_s } => wait_s <= 0.0,
+            Phase::Lane { t_s, dur_s, .. } => t_s >= dur_s,
+        }
+    }
+}
+
+/// The simulated GPS course receiver.
+struct Gps {
+    bias_deg: f64,
+    dropout_s: f64,
+}
+
+impl Gps {
+    /// The reference heading at a whole second (NaN when none): noisier when slow, none
+    /// below 2 m/s, rare dropouts.
+    fn course(&mut self, heading_deg: f64, v: f64, rng: &mut SimRng) -> f64 {
+        if self.dropout_s > 0.0 {
+            self.dropout_s -= 1.0;
+        } else if rng.chance(0.003) {
+            self.dropout_s = rng.range(3.0, 20.0);
+        } else if v >= 2.0 {
+            let sigma = 0.15 + 3.0 / v;
+            let course = -(heading_deg + self.bias_deg + sigma * rng.normal());
+            let mut reference = -(course.rem_euclid(360.0));
+            if reference <= -180.0 {
+                reference += 360.0;
+            }
+            return reference;
+        }
+        f64::NAN
+    }
+}
+
+/// Simulates a drive at 10 Hz: time_s, gyro_dps, temp_c, ref_heading_deg (1 Hz), speed_mps.
+pub fn simulate_drive(cfg: &DriveConfig) -> DriveLog {
+    simulate_drive_with(cfg, &GyroSpec::crs03_like())
+}
+
+/// As `simulate_drive`, with the gyro drawn from another spec (same road for the same seed).
+pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
+    let mut rng = SimRng::new(cfg.seed ^ 0x0D21_5EED);
+    let mut log = DriveLog::with_columns(&[Column::GyroDps, Column::TempC, Column::RefHeadingDeg, Column::SpeedMps]);
+    log.meta.bias_s = Some(LEAD_IN_S);
+    log.meta.description = Some(format!("simulated {:?} drive, {} min, seed {}", cfg.scenario, cfg.minutes, cfg.seed));
+    // Cabin warm-up: the gyro starts at the garage temperature and warms toward cabin comfort.
+    let temp_start = rng.range(0.0, 15.0);
+    let temp_end = rng.range(20.0, 26.0);
+    let warm_tau_s = rng.range(4.0, 12.0) * 60.0;
+    let mut gyro = GyroModel::draw(spec, temp_start, &mut rng);
+    let mut heading_deg = rng.range(0.0, 360.0);
+    let (mut v, mut sway_rate, mut sway_dev) = (0.0f64, 0.0f64, 0.0f64);
+    let mut phase = Phase::Still { left_s: LEAD_IN_S };
+    let mut gps = Gps { bias_deg: rng.range(-0.3, 0.3), dropout_s: 0.0 };
+    let n = (cfg.minutes * 600.0).round() as usize;
+    for i in 0..=n {
+        let t = i as f64 / 10.0;
+        let scenario = if cfg.scenario == Scenario::Mixed { mixed_style((t / 300.0) as usize) } else { cfg.scenario };
+        let st = style(scenario);
+        // Speed target and road yaw rate of the phase.
+        let (target_v, road_rate) = phase.advance(&st, v);
         // Longitudinal dynamics with comfortable limits.
         if v < target_v {
             v = (v + ACCEL * DT).min(target_v);
@@ -295,22 +339,7 @@ pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
         heading_deg += true_rate * DT;
         let temp = temp_end + (temp_start - temp_end) * libm::exp(-t / warm_tau_s);
         let g = gyro.measure(true_rate, temp, DT, &mut rng);
-        // GPS course at whole seconds: noisier when slow, none below 2 m/s, rare dropouts.
-        let mut reference = f64::NAN;
-        if i % 10 == 0 {
-            if gps_dropout_s > 0.0 {
-                gps_dropout_s -= 1.0;
-            } else if rng.chance(0.003) {
-                gps_dropout_s = rng.range(3.0, 20.0);
-            } else if v >= 2.0 {
-                let sigma = 0.15 + 3.0 / v;
-                let course = -(heading_deg + gps_bias_deg + sigma * rng.normal());
-                reference = -(course.rem_euclid(360.0));
-                if reference <= -180.0 {
-                    reference += 360.0;
-                }
-            }
-        }
+        let reference = if i % 10 == 0 { gps.course(heading_deg, v, &mut rng) } else { f64::NAN };
         let speed_meas = (v + 0.03 * rng.normal()).max(0.0);
         log.push_row(&[
             (Column::TimeS, t),
@@ -320,13 +349,7 @@ pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
             (Column::SpeedMps, round_to(speed_meas, 2)),
         ]);
         // Phase transitions.
-        let done = match phase {
-            Phase::Still { left_s } => left_s <= 0.0,
-            Phase::Straight { left_m } => left_m <= 0.0,
-            Phase::Turn { left_deg, .. } => left_deg.abs() < 1e-9,
-            Phase::Stop { wait_s } => wait_s <= 0.0,
-            Phase::Lane { t_s, dur_s, .. } => t_s >= dur_s,
-        };
+        let done = phase.done();
         if done {
             phase = match phase {
                 Phase::Still { .. } | Phase::Turn { .. } | Phase::Stop { .. } | Phase::Lane { .. } => {
