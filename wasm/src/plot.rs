@@ -177,15 +177,11 @@ pub fn draw_chart(
     Ok(o.into())
 }
 
-fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout, Box<dyn std::error::Error>> {
-    root.fill(&WHITE)?;
-    let dpr = spec.dpr.clamp(0.5, 4.0);
-    let px = |v: f64| (v * dpr).round() as i32;
-    let (w, _h) = root.dim_in_pixel();
-    let columns = (w as usize).max(1);
-    let tx = |v: f64| if spec.log_x { v.log10() } else { v };
-    let ty = |v: f64| if spec.log_y { v.log10() } else { v };
-    // Ranges: given, or from the data (in the given x window).
+/// A series decimated to the pixel columns (or whole, for points and paths).
+type Decimated<'a> = Vec<(&'a Series, Vec<f64>, Vec<f64>)>;
+
+/// The x and y ranges (given, or from the data in the x window) and the decimated series.
+fn ranges(spec: &Spec, columns: usize) -> (f64, f64, f64, f64, Decimated<'_>) {
     let (x0, x1) = match spec.x_range {
         Some([a, b]) if b > a => (a, b),
         _ => finite_range(spec.series.iter().flat_map(|s| s.x.iter().copied())).unwrap_or((0.0, 1.0)),
@@ -211,6 +207,41 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
             }
         }
     };
+    (x0, x1, y0, y1, decimated)
+}
+
+/// The intervals where a mask is on; gaps narrower than `min_gap` are merged.
+fn shade_intervals(x: &[f64], mask: &[f64], min_gap: f64) -> Vec<(f64, f64)> {
+    let n = x.len().min(mask.len());
+    let mut intervals: Vec<(f64, f64)> = Vec::new();
+    let mut start: Option<f64> = None;
+    for i in 0..=n {
+        let on = i < n && mask[i] > 0.5;
+        match (on, start) {
+            (true, None) => start = Some(x[i]),
+            (false, Some(s0)) => {
+                let e = if i < n { x[i] } else { x[n - 1] };
+                match intervals.last_mut() {
+                    Some(last) if s0 - last.1 < min_gap => last.1 = e,
+                    _ => intervals.push((s0, e)),
+                }
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    intervals
+}
+
+fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout, Box<dyn std::error::Error>> {
+    root.fill(&WHITE)?;
+    let dpr = spec.dpr.clamp(0.5, 4.0);
+    let px = |v: f64| (v * dpr).round() as i32;
+    let (w, _h) = root.dim_in_pixel();
+    let columns = (w as usize).max(1);
+    let tx = |v: f64| if spec.log_x { v.log10() } else { v };
+    let ty = |v: f64| if spec.log_y { v.log10() } else { v };
+    let (x0, x1, y0, y1, decimated) = ranges(spec, columns);
     let (cx0, cx1, cy0, cy1) = (tx(x0), tx(x1), ty(y0), ty(y1));
     let font = ("sans-serif", px(13.0)).into_font();
     let mut chart = ChartBuilder::on(root)
@@ -249,25 +280,7 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
     // a pixel column are merged, so a flickering mask costs a few rectangles, not thousands.
     if let Some(sh) = &spec.shade {
         let c = parse_color(&sh.color).mix(0.18);
-        let n = sh.x.len().min(sh.mask.len());
-        let min_gap = (x1 - x0) / columns as f64;
-        let mut intervals: Vec<(f64, f64)> = Vec::new();
-        let mut start: Option<f64> = None;
-        for i in 0..=n {
-            let on = i < n && sh.mask[i] > 0.5;
-            match (on, start) {
-                (true, None) => start = Some(sh.x[i]),
-                (false, Some(s0)) => {
-                    let e = if i < n { sh.x[i] } else { sh.x[n - 1] };
-                    match intervals.last_mut() {
-                        Some(last) if s0 - last.1 < min_gap => last.1 = e,
-                        _ => intervals.push((s0, e)),
-                    }
-                    start = None;
-                }
-                _ => {}
-            }
-        }
+        let intervals = shade_intervals(&sh.x, &sh.mask, (x1 - x0) / columns as f64);
         let visible: Vec<(f64, f64)> = intervals.into_iter().filter(|(s0, e)| *e >= x0 && *s0 <= x1).collect();
         if !visible.is_empty() {
             let drawn = chart
