@@ -211,6 +211,26 @@ pub fn simulate(#[wasm_bindgen(unchecked_param_type = "SimRequest")] request: Js
     sim::simulate(&req).map(Log::new).map_err(err)
 }
 
+/// The default settings of a method, as core has them: "hdr", "pipeline", "gyrodometry",
+/// "calibration" or "tune"; `bias_s` (null) falls back to the log's or `defaultBiasS`.
+#[wasm_bindgen(unchecked_return_type = "any")]
+pub fn defaults(method: &str) -> JsResult<JsValue> {
+    match method {
+        "hdr" => to_js(&HdrOptions::default()),
+        "pipeline" => to_js(&gyrodrift::pipeline::PipelineParams::default()),
+        "gyrodometry" => to_js(&gyrodometry::GyrodometryOptions::default()),
+        "calibration" => to_js(&calibration::CalibrationOptions::default()),
+        "tune" => to_js(&tune::TuneOptions::default()),
+        other => Err(err(format!("defaults: unknown method \"{other}\" (hdr, pipeline, gyrodometry, calibration, tune)"))),
+    }
+}
+
+/// The static-bias window used when neither the options nor the log give one, s.
+#[wasm_bindgen(js_name = defaultBiasS)]
+pub fn default_bias_s() -> f64 {
+    gyrodrift::log::DEFAULT_BIAS_S
+}
+
 /// Table III of the HDR paper (the defaults).
 #[wasm_bindgen(js_name = tableIII, unchecked_return_type = "HdrParams")]
 pub fn table_iii() -> JsResult<JsValue> {

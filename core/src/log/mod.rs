@@ -9,6 +9,9 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::io::Write;
 
+/// The static-bias window when neither the options nor the log's `# bias_s:` give one, s.
+pub const DEFAULT_BIAS_S: f64 = 20.0;
+
 /// The columns of the v1 format, in the order they are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -178,7 +181,7 @@ impl DriveLog {
 
     /// The static-bias window length: the option, else `# bias_s:`, else 20 s (detail 1).
     pub fn bias_s(&self, option: Option<f64>) -> f64 {
-        option.or(self.meta.bias_s).unwrap_or(20.0)
+        option.or(self.meta.bias_s).unwrap_or(DEFAULT_BIAS_S)
     }
 
     /// Writes the log as CSV v1 (metadata, header of present columns, rows).

@@ -1,0 +1,91 @@
+// Charts: canvases drawn by the wasm package, and zoom, pan and cursor on the time charts.
+import * as gd from "./pkg/gyrodrift.js";
+import { $, state } from "./state.js";
+import { scheduleRender } from "./render.js";
+
+export function sizeCanvas(c) {
+  const dpr = window.devicePixelRatio || 1;
+  const w = Math.max(100, Math.round(c.clientWidth * dpr));
+  const h = Math.max(80, Math.round(c.clientHeight * dpr));
+  if (c.width !== w || c.height !== h) Object.assign(c, { width: w, height: h });
+  return dpr;
+}
+
+export function chart(id, spec) {
+  const c = $(id);
+  const dpr = sizeCanvas(c);
+  state.layouts[id] = gd.drawChart(c, { ...spec, dpr });
+  c.dataset.drawn = String(Number(c.dataset.drawn || 0) + 1);
+}
+
+export function timeRange(t) {
+  return state.zoom || [t[0], t[t.length - 1]];
+}
+
+// ---------- interaction on time charts ----------
+export function attachTimeInteraction(id) {
+  const c = $(id);
+  let drag = null;
+  const toX = (ev) => {
+    const L = state.layouts[id];
+    if (!L) return null;
+    const px = ev.offsetX * (c.width / c.clientWidth);
+    return L.x_min + ((px - L.left) / (L.right - L.left)) * (L.x_max - L.x_min);
+  };
+  c.addEventListener("mousedown", (ev) => { drag = { x: toX(ev), shift: ev.shiftKey, range: state.layouts[id] && [state.layouts[id].x_min, state.layouts[id].x_max] }; });
+  c.addEventListener("mousemove", (ev) => {
+    const x = toX(ev);
+    if (x == null) return;
+    if (drag && drag.shift && drag.range) {
+      const d = drag.x - x;
+      state.zoom = [drag.range[0] + d, drag.range[1] + d];
+    }
+    state.cursor = x;
+    scheduleRender();
+  });
+  window.addEventListener("mouseup", (ev) => {
+    if (!drag) return;
+    const d = drag;
+    drag = null;
+    if (d.shift || ev.target !== c) return;
+    const x = toX(ev);
+    if (x != null && Math.abs(x - d.x) > 1e-9 && d.range && Math.abs(x - d.x) > (d.range[1] - d.range[0]) / 200) {
+      state.zoom = [Math.min(x, d.x), Math.max(x, d.x)];
+      scheduleRender();
+    }
+  });
+  c.addEventListener("wheel", (ev) => {
+    const L = state.layouts[id];
+    if (!L) return;
+    ev.preventDefault();
+    const x = toX(ev);
+    const k = ev.deltaY > 0 ? 1.25 : 0.8;
+    state.zoom = [x - (x - L.x_min) * k, x + (L.x_max - x) * k];
+    scheduleRender();
+  }, { passive: false });
+  c.addEventListener("dblclick", () => { state.zoom = null; scheduleRender(); });
+  // Keyboard: + / - zoom, arrow keys pan, 0 resets (the canvas is focusable).
+  c.tabIndex = 0;
+  c.addEventListener("keydown", (ev) => {
+    const L = state.layouts[id];
+    if (!L) return;
+    const [a, b] = [L.x_min, L.x_max];
+    const w = b - a, mid = (a + b) / 2;
+    const zoom = { "+": 0.8, "=": 0.8, "-": 1.25 }[ev.key];
+    if (zoom) state.zoom = [mid - (w * zoom) / 2, mid + (w * zoom) / 2];
+    else if (ev.key === "ArrowLeft") state.zoom = [a - w * 0.1, b - w * 0.1];
+    else if (ev.key === "ArrowRight") state.zoom = [a + w * 0.1, b + w * 0.1];
+    else if (ev.key === "0") state.zoom = null;
+    else return;
+    ev.preventDefault();
+    scheduleRender();
+  });
+  c.addEventListener("mouseleave", () => { state.cursor = null; scheduleRender(); });
+}
+
+export function download(name, data, type) {
+  const a = document.createElement("a");
+  a.href = typeof data === "string" && data.startsWith("data:") ? data : URL.createObjectURL(new Blob([data], { type }));
+  a.download = name;
+  a.click();
+}

@@ -1,0 +1,105 @@
+// Loading: files and samples into the log list, large files parsed in a Web Worker.
+import * as gd from "./pkg/gyrodrift.js";
+import { $, fmt, state, hdrOptions, SAMPLES } from "./state.js";
+import { renderList, selectEntry } from "./controls.js";
+
+export function addLog(name, bytes) {
+  // a bad file shows its error and changes nothing else
+  return addParsed(name, () => gd.Log.fromBytes(bytes));
+}
+
+export function headline(entry) {
+  try {
+    if (entry.kind === "drive") return `HDR ${fmt(gd.hdr(entry.log, hdrOptions()).improvement, 1)}x`;
+    if (entry.kind === "robot") return `Gyrodometry ${fmt(gd.gyrodometry(entry.log, state.gyro).E_psi_gyrodometry_deg, 2)} deg`;
+    if (entry.kind === "turntable") return `360° err ${fmt(gd.calibrate(entry.log, {}).turn360_err_compensated_max_deg, 2)} deg`;
+    if (entry.kind === "static") return `ARW ${fmt(gd.allan(entry.log).arw_deg_per_sqrt_h, 2)} deg/√h`;
+  } catch (e) {
+    return e.message.slice(0, 60);
+  }
+  return "";
+}
+
+// Files above this size are parsed in a Web Worker with a progress bar; the page stays live.
+const WORKER_BYTES = 4 << 20;
+let worker = null;
+let jobs = 0;
+
+/** Runs a job in the worker; `onProgress(fraction)` as it goes; resolves with {data | error}. */
+export function inWorker(message, transfer, onProgress) {
+  worker ||= new Worker(new URL("./worker.js", import.meta.url), { type: "module" });
+  const id = ++jobs;
+  return new Promise((resolve) => {
+    const onMessage = (ev) => {
+      if (ev.data.id !== id) return;
+      if (ev.data.progress != null) return onProgress(ev.data.progress);
+      worker.removeEventListener("message", onMessage);
+      resolve(ev.data);
+    };
+    worker.addEventListener("message", onMessage);
+    worker.postMessage({ ...message, id }, transfer);
+  });
+}
+
+export async function parseInWorker(file, buffer) {
+  const bar = $("progress");
+  bar.hidden = false;
+  bar.value = 0;
+  const res = await inWorker({ type: "parse", buffer }, [buffer], (f) => {
+    bar.value = f;
+    $("status").textContent = `parsing ${file.name}: ${Math.round(f * 100)} %`;
+  });
+  bar.hidden = true;
+  return res;
+}
+
+export function addParsed(name, make) {
+  try {
+    const log = make();
+    if (!log.name) log.name = name.replace(/\.csv$/, "");
+    const entry = { name: log.name, file: name, log, error: null, kind: log.kind, headline: "" };
+    entry.headline = headline(entry);
+    state.entries.push(entry);
+    return entry;
+  } catch (e) {
+    const entry = { name, file: name, log: null, error: `${name}: ${e.message}`, kind: null, headline: "" };
+    state.entries.push(entry);
+    return entry;
+  }
+}
+
+export async function loadFiles(files) {
+  let last = null;
+  for (const f of files) {
+    $("status").textContent = `reading ${f.name}…`;
+    const buffer = await f.arrayBuffer();
+    let e;
+    if (buffer.byteLength > WORKER_BYTES && window.Worker) {
+      const res = await parseInWorker(f, buffer);
+      e = addParsed(f.name, () => {
+        if (res.error) throw new Error(res.error);
+        return gd.Log.fromColumns(res.data);
+      });
+    } else {
+      e = addLog(f.name, new Uint8Array(buffer));
+    }
+    if (!e.error) last = e;
+  }
+  $("status").textContent = "";
+  if (last) selectEntry(state.entries.indexOf(last));
+  else renderList();
+}
+
+/** The shipped sample logs, fetched next to the page (absent on a bare static host). */
+export async function loadSamples() {
+  $("status").textContent = "loading sample logs…";
+  for (const path of SAMPLES) {
+    try {
+      const res = await fetch(path);
+      if (res.ok) addLog(path.split("/").pop(), new Uint8Array(await res.arrayBuffer()));
+    } catch {
+      /* served without sample-logs: the user opens files */
+    }
+  }
+  $("status").textContent = "";
+}

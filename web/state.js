@@ -1,0 +1,85 @@
+// The dashboard's state: settings, the loaded logs, the view, and the URL that mirrors them.
+// Defaults come from the wasm package (core's own), never typed in here.
+import * as gd from "./pkg/gyrodrift.js";
+
+export const PARAMS = [
+  { key: "i_c_dps", label: "i_c", unit: "deg/s", min: 0, max: 0.2, step: 0.0001 },
+  { key: "tau_s", label: "tau", unit: "s", min: 0, max: 5, step: 0.01 },
+  { key: "theta_w_dps", label: "theta_w", unit: "deg/s", min: 0, max: 3, step: 0.001 },
+  { key: "c1", label: "c1", unit: "", min: 0.005, max: 3, step: 0.005 },
+  { key: "c2", label: "c2", unit: "", min: 0, max: 4, step: 0.01 },
+  { key: "bias_s", label: "bias_s", unit: "s", min: 0, max: 120, step: 1 },
+];
+export const GYRO_PARAMS = [{ key: "thres_rate_dps", label: "threshold", unit: "deg/s", min: 0, max: 10, step: 0.05 }];
+export const SAMPLES = [
+  "sample-logs/train/city-1.csv",
+  "sample-logs/train/highway-1.csv",
+  "sample-logs/robot/straight.csv",
+  "sample-logs/turntable/session.csv",
+  "sample-logs/static/static-2h.csv",
+];
+export const VIEW_KIND = { hdr: "drive", track: "drive", gyrodometry: "robot", calibration: "turntable", allan: null, report: null };
+export const COLORS = { ref: "#111111", raw: "#d1495b", hdr: "#1f5fbf", pipe: "#2e9d5b", smooth: "#7fc99b", odo: "#e08e0b", gyro: "#8e44ad", fused: "#1f5fbf", zero: "#999999" };
+export const PALETTE = ["#1f5fbf", "#2e9d5b", "#e08e0b", "#d1495b", "#8e44ad", "#00838f", "#6d4c41"];
+
+export const state = {
+  entries: [], // { name, log: gd.Log | null, error: string | null, kind, headline }
+  selected: -1,
+  view: "hdr",
+  params: {},
+  resample: true,
+  gyro: {}, // filled from the package at start
+  zoom: null,
+  cursor: null,
+  layouts: {},
+};
+
+export const $ = (id) => document.getElementById(id);
+export const fmt = (v, d = 3) => (Number.isFinite(v) ? v.toFixed(d) : "–");
+
+export function defaults() {
+  const t3 = gd.tableIII();
+  return { ...t3, bias_s: null };
+}
+
+export function hdrOptions() {
+  const o = { resample: state.resample };
+  for (const p of PARAMS) if (state.params[p.key] != null) o[p.key] = state.params[p.key];
+  return o;
+}
+
+// ---------- URL state ----------
+export function readUrl() {
+  const h = new URLSearchParams(location.hash.slice(1));
+  if (h.has("view") && h.get("view") in VIEW_KIND) state.view = h.get("view");
+  for (const p of PARAMS) {
+    if (h.has(p.key)) {
+      const v = Number(h.get(p.key));
+      if (Number.isFinite(v)) state.params[p.key] = v;
+    }
+  }
+  if (h.has("resample")) state.resample = h.get("resample") !== "0";
+  if (h.has("thres_rate_dps")) {
+    const v = Number(h.get("thres_rate_dps"));
+    if (Number.isFinite(v)) state.gyro.thres_rate_dps = v;
+  }
+  return h.get("log");
+}
+
+let urlTimer = 0;
+export function writeUrl() {
+  // Debounced: browsers throttle history updates, and a slider fires many per second.
+  clearTimeout(urlTimer);
+  urlTimer = setTimeout(writeUrlNow, 150);
+}
+
+export function writeUrlNow() {
+  const h = new URLSearchParams();
+  h.set("view", state.view);
+  const e = state.entries[state.selected];
+  if (e) h.set("log", e.name);
+  for (const p of PARAMS) if (state.params[p.key] != null) h.set(p.key, String(state.params[p.key]));
+  h.set("resample", state.resample ? "1" : "0");
+  h.set("thres_rate_dps", String(state.gyro.thres_rate_dps));
+  history.replaceState(null, "", "#" + h.toString());
+}

@@ -1,0 +1,89 @@
+// The HDR view: heading, error and rate charts for the paper's method beside the pipeline.
+import * as gd from "../pkg/gyrodrift.js";
+import { $, fmt, state, hdrOptions, COLORS, PALETTE } from "../state.js";
+import { logFor, syncParams } from "../controls.js";
+import { chart, timeRange } from "../charts.js";
+import { showError, render } from "../render.js";
+
+let lastHdr = null;
+let pipeCache = null;
+export function renderHdr() {
+  const e = logFor("hdr");
+  if (!e) return showError("Load a drive log (with gyro_dps and ref_heading_deg) for the HDR view.");
+  const run = gd.runHdr(e.log, hdrOptions());
+  // The recommended pipeline beside the paper's method, with the same static-bias window.
+  // It depends on the log and bias_s only, so HDR's sliders reuse it.
+  const pipeKey = `${e.name}|${hdrOptions().bias_s ?? ""}`;
+  if (!pipeCache || pipeCache.key !== pipeKey || pipeCache.log !== e.log) {
+    pipeCache = { key: pipeKey, log: e.log, run: gd.runPipeline(e.log, { bias_s: hdrOptions().bias_s ?? null }) };
+  }
+  const pipe = pipeCache.run;
+  lastHdr = { entry: e, run, pipe };
+  const r = run.result;
+  const pr = pipe.result;
+  const m = $("hdr-metrics");
+  if (r) {
+    m.innerHTML = `<span>E<sub>ψ</sub> raw <b id="m-e-raw">${fmt(r.E_psi_raw_deg, 2)}</b> deg</span>
+      <span>E<sub>ψ</sub> HDR <b id="m-e-hdr">${fmt(r.E_psi_hdr_deg, 2)}</b> deg</span>
+      <span>NE<sub>ψ</sub> raw <b>${fmt(r.NE_psi_raw_deg_per_min, 3)}</b> deg/min</span>
+      <span>NE<sub>ψ</sub> HDR <b id="m-ne-hdr">${fmt(r.NE_psi_hdr_deg_per_min, 3)}</b> deg/min</span>
+      <span>improvement <b id="m-improvement">${fmt(r.improvement, 2)}</b>×</span>
+      <span>ε<sub>0</sub> <b>${fmt(r.eps0_dps, 4)}</b> deg/s · ${r.n_processed} samples · ${fmt(r.duration_min, 1)} min</span>` +
+      (pr ? `<span class="recommended" title="bank of bias Kalman filters: zero-rate updates at stops, HDR's straight-road heuristic around the drive's dominant rate (docs/pipeline.md)">pipeline (recommended): E<sub>ψ</sub> <b id="m-e-pipeline">${fmt(pr.E_psi_pipeline_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_deg_per_min, 3)}</b> deg/min · <b id="m-improvement-pipeline">${fmt(pr.improvement_pipeline, 2)}</b>× · stops ${fmt(pr.stop_s, 0)} s (${pr.still_source})</span>
+      <span class="smoothed" title="forward-backward over the whole log: for recorded logs, not available live">smoothed (offline, non-causal): E<sub>ψ</sub> <b id="m-e-smoothed">${fmt(pr.E_psi_pipeline_smoothed_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_smoothed_deg_per_min, 3)}</b> deg/min</span>` : "");
+  } else {
+    m.textContent = run.error;
+  }
+  const t = run.trace.time_s;
+  const xr = timeRange(t);
+  const series = [];
+  if (run.reference) series.push({ name: "reference (GPS)", color: COLORS.ref, x: run.reference.time_s, y: run.reference.heading_deg, width: 3 });
+  series.push({ name: "raw", color: COLORS.raw, x: t, y: run.trace.heading_raw_deg, width: 1 });
+  series.push({ name: "HDR", color: COLORS.hdr, x: t, y: run.trace.heading_hdr_deg, width: 2 });
+  series.push({ name: "pipeline", color: COLORS.pipe, x: pipe.trace.time_s, y: pipe.trace.heading_deg, width: 2 });
+  series.push({ name: "smoothed (offline)", color: COLORS.smooth, x: pipe.trace.time_s, y: pipe.trace.heading_smoothed_deg, width: 1 });
+  const cursor = state.cursor;
+  chart("c-heading", { title: `${e.name}: heading`, x_label: "time (s)", y_label: "heading (deg)", x_range: xr, series, cursor_x: cursor });
+  if (run.errors) {
+    chart("c-error", {
+      title: "heading error (estimate − reference)", x_label: "time (s)", y_label: "error (deg)", x_range: xr, cursor_x: cursor,
+      series: [
+        { name: "zero", color: COLORS.zero, x: [xr[0], xr[1]], y: [0, 0] },
+        { name: "raw", color: COLORS.raw, x: run.errors.time_s, y: run.errors.raw_deg },
+        { name: "HDR", color: COLORS.hdr, x: run.errors.time_s, y: run.errors.hdr_deg, width: 2 },
+        ...(pipe.errors ? [{ name: "pipeline", color: COLORS.pipe, x: pipe.errors.time_s, y: pipe.errors.pipeline_deg, width: 2 },
+          { name: "smoothed (offline)", color: COLORS.smooth, x: pipe.errors.time_s, y: pipe.errors.smoothed_deg, width: 1 }] : []),
+      ],
+    });
+  }
+  chart("c-rate", {
+    title: "corrected rate ω and drift estimate −I (shaded: turn switch on, HDR correcting)", x_label: "time (s)", y_label: "rate (deg/s)",
+    // Around zero, where drift and the turn switch live (turns go off the chart, as in Figs. 3 and 5).
+    x_range: xr, y_range: [-(3 * run_theta() + 0.3), 3 * run_theta() + 0.3], cursor_x: cursor,
+    shade: { x: t, mask: run.trace.turn_switch, color: "#2e9d5b", label: "turn switch on" },
+    series: [
+      { name: "zero", color: COLORS.zero, x: [xr[0], xr[1]], y: [0, 0] },
+      { name: "ω corrected", color: COLORS.hdr, x: t, y: run.trace.rate_corrected_dps },
+      { name: "−I drift estimate", color: COLORS.raw, x: t, y: run.trace.drift_estimate_dps, width: 2 },
+    ],
+  });
+  readout();
+}
+
+export function run_theta() {
+  return state.params.theta_w_dps ?? gd.tableIII().theta_w_dps;
+}
+
+export function readout() {
+  const el = $("hdr-readout");
+  if (!lastHdr || state.cursor == null) {
+    el.textContent = "";
+    return;
+  }
+  const { run } = lastHdr;
+  const t = state.cursor;
+  const v = (x, y) => fmt(gd.valueAt(x, y, t), 3);
+  const tr = run.trace;
+  const ref = run.reference ? v(run.reference.time_s, run.reference.heading_deg) : "–";
+  el.textContent = `t = ${fmt(t, 1)} s · reference ${ref} deg · raw ${v(tr.time_s, tr.heading_raw_deg)} deg · HDR ${v(tr.time_s, tr.heading_hdr_deg)} deg · ω ${v(tr.time_s, tr.rate_corrected_dps)} deg/s · −I ${v(tr.time_s, tr.drift_estimate_dps)} deg/s`;
+}
