@@ -14,17 +14,7 @@ fn main() {
     let parts: Vec<&str> = a[1].split('-').collect();
     let seed: u64 = parts[3].parse().unwrap();
     let cfg = sim::DriveConfig { scenario: parts[1].parse().unwrap(), minutes: 20.0, seed };
-    let ideal = sim::GyroSpec {
-        offset_max_dps: 0.0,
-        temp_coeff_dps_per_c: (0.0, 0.0),
-        gm_sigma_dps: (0.0, 0.0),
-        gm_tau_s: (1.0, 1.0),
-        noise_dps: (0.0, 0.0),
-        scale_error_max: 0.0,
-        nonlinearity_max_dps: 0.0,
-        full_scale_dps: 1e9,
-        lsb_dps: 1e-9,
-    };
+    let ideal = sim::GyroSpec::ideal();
     let truth = sim::drive::simulate_drive_with(&cfg, &ideal);
     let log = sim::inject(&base.log, &prof.errors).unwrap();
     let skip = base.log.len() - log.len();

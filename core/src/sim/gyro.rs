@@ -42,6 +42,21 @@ impl GyroSpec {
         }
     }
 
+    /// An ideal gyro: the true rate, no error of any kind (the truth of a simulated drive).
+    pub fn ideal() -> Self {
+        GyroSpec {
+            offset_max_dps: 0.0,
+            temp_coeff_dps_per_c: (0.0, 0.0),
+            gm_sigma_dps: (0.0, 0.0),
+            gm_tau_s: (1.0, 1.0),
+            noise_dps: (0.0, 0.0),
+            scale_error_max: 0.0,
+            nonlinearity_max_dps: 0.0,
+            full_scale_dps: 1e9,
+            lsb_dps: 1e-9,
+        }
+    }
+
     /// A consumer MEMS gyro (phone or automotive IMU class) after factory calibration:
     /// small offset and temperature drift, finer resolution. The robustness battery adds
     /// its error classes on top.
