@@ -37,6 +37,18 @@ pub struct Report {
 }
 
 impl ReportRow {
+    /// The row's numbers in column order: duration, E_psi and NE_psi raw, with HDR, improvement.
+    fn values(&self) -> [f64; 6] {
+        [
+            self.duration_min,
+            self.E_psi_raw_deg,
+            self.NE_psi_raw_deg_per_min,
+            self.E_psi_hdr_deg,
+            self.NE_psi_hdr_deg_per_min,
+            self.improvement,
+        ]
+    }
+
     pub fn from_result(name: &str, r: &hdr::HdrResult) -> Self {
         ReportRow {
             name: name.to_string(),
@@ -80,6 +92,18 @@ impl Report {
         Report::from_rows(rows)
     }
 
+    /// The average row's numbers in column order (total duration, then the means).
+    fn mean_values(&self) -> [f64; 6] {
+        [
+            self.total_duration_min,
+            self.mean_E_psi_raw_deg,
+            self.mean_NE_psi_raw_deg_per_min,
+            self.mean_E_psi_hdr_deg,
+            self.mean_NE_psi_hdr_deg_per_min,
+            self.mean_improvement,
+        ]
+    }
+
     /// The table as Markdown, laid out like the paper's Table II.
     pub fn to_markdown(&self) -> String {
         let mut s = String::from(
@@ -87,21 +111,13 @@ impl Report {
              |---|---:|---:|---:|---:|---:|---:|\n",
         );
         for r in &self.rows {
-            s.push_str(&format!(
-                "| {} | {:.1} | {:.1} | {:.2} | {:.1} | {:.2} | {:.1}x |\n",
-                r.name, r.duration_min, r.E_psi_raw_deg, r.NE_psi_raw_deg_per_min, r.E_psi_hdr_deg, r.NE_psi_hdr_deg_per_min, r.improvement
-            ));
+            let [d, er, nr, eh, nh, imp] = r.values();
+            s.push_str(&format!("| {} | {d:.1} | {er:.1} | {nr:.2} | {eh:.1} | {nh:.2} | {imp:.1}x |\n", r.name));
         }
+        let ([d, er, nr, eh, nh, imp], sd) = (self.mean_values(), self.std_improvement);
+        let n = self.rows.len();
         s.push_str(&format!(
-            "| **Average of {}** | {:.1} total | {:.1} | {:.2} | {:.1} | {:.2} | {:.1}x (sigma = {:.2}) |\n",
-            self.rows.len(),
-            self.total_duration_min,
-            self.mean_E_psi_raw_deg,
-            self.mean_NE_psi_raw_deg_per_min,
-            self.mean_E_psi_hdr_deg,
-            self.mean_NE_psi_hdr_deg_per_min,
-            self.mean_improvement,
-            self.std_improvement
+            "| **Average of {n}** | {d:.1} total | {er:.1} | {nr:.2} | {eh:.1} | {nh:.2} | {imp:.1}x (sigma = {sd:.2}) |\n"
         ));
         s
     }
@@ -129,22 +145,12 @@ impl Report {
             "",
         );
         for r in &self.rows {
-            s.push_str(&format!(
-                "{:<w$} {:>9.1} {:>11.2} {:>13.3} {:>11.2} {:>13.3} {:>7.2}x\n",
-                r.name, r.duration_min, r.E_psi_raw_deg, r.NE_psi_raw_deg_per_min, r.E_psi_hdr_deg, r.NE_psi_hdr_deg_per_min, r.improvement
-            ));
+            let [d, er, nr, eh, nh, imp] = r.values();
+            s.push_str(&format!("{:<w$} {d:>9.1} {er:>11.2} {nr:>13.3} {eh:>11.2} {nh:>13.3} {imp:>7.2}x\n", r.name));
         }
-        s.push_str(&format!(
-            "{:<w$} {:>9.1} {:>11.2} {:>13.3} {:>11.2} {:>13.3} {:>7.2}x (sigma {:.2})\n",
-            format!("average of {}", self.rows.len()),
-            self.total_duration_min,
-            self.mean_E_psi_raw_deg,
-            self.mean_NE_psi_raw_deg_per_min,
-            self.mean_E_psi_hdr_deg,
-            self.mean_NE_psi_hdr_deg_per_min,
-            self.mean_improvement,
-            self.std_improvement
-        ));
+        let ([d, er, nr, eh, nh, imp], sd) = (self.mean_values(), self.std_improvement);
+        let name = format!("average of {}", self.rows.len());
+        s.push_str(&format!("{name:<w$} {d:>9.1} {er:>11.2} {nr:>13.3} {eh:>11.2} {nh:>13.3} {imp:>7.2}x (sigma {sd:.2})\n"));
         s
     }
 }
