@@ -130,7 +130,7 @@ pub fn battery(
     }
     let mut bases = Vec::new();
     for r in expand_recipes(recipes)? {
-        let (log, _) = import_recipe(&r, data)?;
+        let (log, _) = import_recipe(&r, data, false)?;
         let stem = r.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         bases.push(battery::recorded_base(&stem, log));
     }
@@ -149,8 +149,8 @@ pub fn battery(
 
 /// A recorded log by its recipe: the v1 log to a file or stdout, the summary to stderr (or
 /// as JSON on stdout).
-pub fn import(recipe: &Path, data: Option<&Path>, out: Option<&Path>, json: bool) -> Result<(), Failure> {
-    let (log, summary) = import_recipe(recipe, data)?;
+pub fn import(recipe: &Path, data: Option<&Path>, allow_outside: bool, out: Option<&Path>, json: bool) -> Result<(), Failure> {
+    let (log, summary) = import_recipe(recipe, data, allow_outside)?;
     if out.is_some() || !json {
         write_log(&log, out)?;
     }

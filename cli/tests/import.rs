@@ -268,3 +268,40 @@ fn bad_recipes_and_files_exit_2_naming_what_is_wrong() {
     let o = run(&["import", "--recipe", s(&d.join("r.toml")), "--out", s(&d.join("o.csv"))]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("empty file"), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// A recipe is data: its files resolve inside --data; `..`, absolute paths and links out of
+/// the folder are refused before the file is read (its content never reaches the message).
+#[test]
+fn recipe_files_are_confined_to_the_data_folder() {
+    let d = dir("confined");
+    let data = d.join("data");
+    std::fs::create_dir_all(data.join("sub")).unwrap();
+    std::fs::write(data.join("sub/a.csv"), "t,w\n0,1\n1,2\n").unwrap();
+    let secret = d.join("secret.csv");
+    std::fs::write(&secret, "t,w\nSECRET,1\n").unwrap();
+    let link = data.join("link.csv");
+    let _ = std::fs::remove_file(&link);
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(&secret, &link).unwrap();
+    let recipe = |file: &str| {
+        let r = d.join("r.toml");
+        let text = format!(
+            "bias_s = 0\n[[table]]\nid = \"a\"\nfile = \"{file}\"\ntime = {{ column = \"t\" }}\n[yaw_rate]\ntable = \"a\"\ncolumn = \"w\"\nunit = \"deg/s\"\npositive = \"ccw\"\n"
+        );
+        std::fs::write(&r, text).unwrap();
+        r
+    };
+    let out = d.join("o.csv");
+    for bad in ["../secret.csv", secret.to_str().unwrap(), "link.csv", "sub/../../secret.csv"] {
+        let o = run(&["import", "--recipe", s(&recipe(bad)), "--data", s(&data), "--out", s(&out)]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {err}");
+        assert!(err.contains("refused") && !err.contains("SECRET"), "{bad}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
+    let o = run(&["import", "--recipe", s(&recipe("sub/a.csv")), "--data", s(&data), "--out", s(&out)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run(&["import", "--recipe", s(&recipe("../secret.csv")), "--data", s(&data), "--out", s(&out), "--allow-outside"]);
+    assert_eq!(o.status.code(), Some(2), "read on request, then a cell error");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("line 2, column t"));
+}

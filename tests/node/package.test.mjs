@@ -122,3 +122,25 @@ test("pipeline equals the native CLI; importLog reads a real-log recipe from Nod
   assert.ok(r.E_psi_pipeline_deg < r.E_psi_hdr_deg && r.E_psi_pipeline_deg < r.E_psi_raw_deg);
   assert.throws(() => gd.importLog({ ...recipe, yaw_rate: { ...recipe.yaw_rate, column: "nope" } }, files), /missing column nope/);
 });
+
+test("wrong argument types throw TypeError (never a trap), misspelled recipe fields are refused, and the module keeps working", () => {
+  const log = gd.Log.parse("time_s,gyro_dps\n0,1\n1,2\n");
+  const typeErrors = [
+    () => gd.Log.parse(123),
+    () => gd.Log.parse({}),
+    () => log.column(5),
+    () => gd.Log.fromBytes({ length: 1e9 }),
+    () => gd.Log.fromBytes("abc"),
+    () => { log.name = 123; },
+    () => gd.hdr(log, 5),
+    () => gd.defaults(7),
+    () => gd.importLog(5, {}),
+  ];
+  for (const f of typeErrors) assert.throws(f, TypeError, f.toString());
+  assert.throws(() => gd.importLog({ ofset_s: 1 }, {}), /recipe: unknown field `ofset_s`/);
+  assert.throws(() => gd.importLog({ bias_s: NaN }, {}), /recipe: bias_s: NaN is not a finite number/);
+  assert.throws(() => gd.hdr(log, { i_c: Infinity }), /hdr options: i_c: inf is not a finite number/);
+  assert.equal(gd.Log.parse("time_s,gyro_dps\n0,1\n1,2\n").rowCount, 2);
+  assert.equal(gd.defaults("gyrodometry").thres_rate_dps, 1.25);
+  assert.equal(gd.defaultBiasS(), 20);
+});

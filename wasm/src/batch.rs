@@ -214,8 +214,8 @@ pub fn simulate(#[wasm_bindgen(unchecked_param_type = "SimRequest")] request: Js
 /// The default settings of a method, as core has them: "hdr", "pipeline", "gyrodometry",
 /// "calibration" or "tune"; `bias_s` (null) falls back to the log's or `defaultBiasS`.
 #[wasm_bindgen(unchecked_return_type = "any")]
-pub fn defaults(method: &str) -> JsResult<JsValue> {
-    match method {
+pub fn defaults(#[wasm_bindgen(unchecked_param_type = "string")] method: JsValue) -> JsResult<JsValue> {
+    match js_string(&method, "defaults(method)")?.as_str() {
         "hdr" => to_js(&HdrOptions::default()),
         "pipeline" => to_js(&gyrodrift::pipeline::PipelineParams::default()),
         "gyrodometry" => to_js(&gyrodometry::GyrodometryOptions::default()),

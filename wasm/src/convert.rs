@@ -6,6 +6,40 @@ use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
+/// A JS `TypeError` with the message: an argument of the wrong type.
+pub(crate) fn type_err(msg: impl std::fmt::Display) -> JsValue {
+    js_sys::TypeError::new(&msg.to_string()).into()
+}
+
+/// A string argument, or a `TypeError` naming it (wasm-bindgen's own `&str` glue would trap
+/// on a number or an object and kill the module).
+pub(crate) fn js_string(v: &JsValue, what: &str) -> JsResult<String> {
+    v.as_string().ok_or_else(|| type_err(format!("{what}: expected a string")))
+}
+
+/// The most bytes a log may have in the page: above it, an error before any copy.
+pub(crate) const MAX_LOG_BYTES: f64 = (1u64 << 30) as f64;
+
+/// A byte-array argument (Uint8Array or ArrayBuffer) copied into wasm memory, its size
+/// checked first; a `TypeError` for anything else.
+pub(crate) fn js_bytes(v: &JsValue, what: &str) -> JsResult<Vec<u8>> {
+    let arr = if let Some(a) = v.dyn_ref::<js_sys::Uint8Array>() {
+        a.clone()
+    } else if let Some(b) = v.dyn_ref::<js_sys::ArrayBuffer>() {
+        js_sys::Uint8Array::new(b)
+    } else {
+        return Err(type_err(format!("{what}: expected a Uint8Array or an ArrayBuffer")));
+    };
+    let n = arr.length() as f64;
+    if n > MAX_LOG_BYTES {
+        return Err(err(format!(
+            "{what}: {n} bytes is more than the {} MiB a log may have here; split the log",
+            MAX_LOG_BYTES / 1048576.0
+        )));
+    }
+    Ok(arr.to_vec())
+}
+
 /// A JS `Error` with the message.
 pub(crate) fn err(msg: impl std::fmt::Display) -> JsValue {
     js_sys::Error::new(&msg.to_string()).into()
@@ -19,24 +53,28 @@ pub(crate) fn options<T: gyrodrift::options::Settings>(what: &str, value: JsValu
     if value.is_undefined() || value.is_null() {
         return Ok(T::default());
     }
-    let obj: &Object = value.dyn_ref().filter(|_| value.is_object()).ok_or_else(|| err(format!("{what} options: expected an object")))?;
-    reject_non_finite(what, obj, "")?;
+    let obj: &Object =
+        value.dyn_ref().filter(|_| value.is_object()).ok_or_else(|| type_err(format!("{what} options: expected an object")))?;
+    reject_non_finite(&format!("{what} options"), obj, "")?;
     let json: serde_json::Value =
         serde_wasm_bindgen::from_value(value.clone()).map_err(|e| err(format!("{what} options: {}", js_message(e))))?;
     gyrodrift::options::from_json(json).map_err(|e| err(format!("{what} options: {e}")))
 }
 
-/// An error naming the first non-finite number of an options object (one level of nesting).
+/// An error naming the first non-finite number in an options object or recipe (at any
+/// depth, arrays included), as `what: path: value`.
 pub(crate) fn reject_non_finite(what: &str, obj: &Object, prefix: &str) -> JsResult<()> {
     for key in Object::keys(obj).iter() {
         let name = format!("{prefix}{}", key.as_string().unwrap_or_default());
         let v = Reflect::get(obj, &key).unwrap_or(JsValue::UNDEFINED);
         if let Some(x) = v.as_f64() {
             if !x.is_finite() {
-                return Err(err(format!("{what} options: {name}: {x} is not a finite number")));
+                return Err(err(format!("{what}: {name}: {x} is not a finite number")));
             }
-        } else if let (Some(inner), true) = (v.dyn_ref::<Object>(), prefix.is_empty() && v.is_object()) {
-            reject_non_finite(what, inner, &format!("{name}."))?;
+        } else if v.is_object() {
+            if let Some(inner) = v.dyn_ref::<Object>() {
+                reject_non_finite(what, inner, &format!("{name}."))?;
+            }
         }
     }
     Ok(())

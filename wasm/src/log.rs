@@ -69,25 +69,31 @@ impl Log {
 #[wasm_bindgen]
 impl Log {
     /// Parses CSV v1 text; a bad file throws an Error naming line and column.
-    pub fn parse(text: &str) -> JsResult<Log> {
-        gyrodrift::parse_log_str(text).map(Log::new).map_err(err)
+    pub fn parse(#[wasm_bindgen(unchecked_param_type = "string")] text: JsValue) -> JsResult<Log> {
+        let text = js_string(&text, "Log.parse(text)")?;
+        gyrodrift::parse_log_str(&text).map(Log::new).map_err(err)
     }
 
     /// Parses CSV v1 bytes (e.g. from a File's arrayBuffer()).
     #[wasm_bindgen(js_name = fromBytes)]
-    pub fn from_bytes(bytes: &[u8]) -> JsResult<Log> {
-        gyrodrift::parse_log(bytes).map(Log::new).map_err(err)
+    pub fn from_bytes(#[wasm_bindgen(unchecked_param_type = "Uint8Array | ArrayBuffer")] bytes: JsValue) -> JsResult<Log> {
+        let bytes = js_bytes(&bytes, "Log.fromBytes(bytes)")?;
+        gyrodrift::parse_log(&bytes[..]).map(Log::new).map_err(err)
     }
 
     /// Parses CSV v1 bytes, calling `progress(fraction)` now and then (for a Web Worker
     /// parsing a large file).
     #[wasm_bindgen(js_name = fromBytesWithProgress)]
-    pub fn from_bytes_with_progress(bytes: &[u8], progress: &js_sys::Function) -> JsResult<Log> {
+    pub fn from_bytes_with_progress(
+        #[wasm_bindgen(unchecked_param_type = "Uint8Array | ArrayBuffer")] bytes: JsValue,
+        progress: &js_sys::Function,
+    ) -> JsResult<Log> {
+        let bytes = js_bytes(&bytes, "Log.fromBytesWithProgress(bytes)")?;
         let total = bytes.len().max(1) as f64;
         let mut cb = |b: u64| {
             let _ = progress.call1(&JsValue::NULL, &JsValue::from_f64(b as f64 / total));
         };
-        gyrodrift::log::parse_log_progress(bytes, Default::default(), &mut cb).map(Log::new).map_err(err)
+        gyrodrift::log::parse_log_progress(&bytes[..], Default::default(), &mut cb).map(Log::new).map_err(err)
     }
 
     /// The parsed log as plain data `{ meta, line, columns: { name: Float64Array } }`,
@@ -136,8 +142,9 @@ impl Log {
         self.name.clone()
     }
     #[wasm_bindgen(setter)]
-    pub fn set_name(&mut self, name: String) {
-        self.name = name;
+    pub fn set_name(&mut self, #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue) -> JsResult<()> {
+        self.name = js_string(&name, "Log.name")?;
+        Ok(())
     }
 
     /// "drive", "robot", "turntable" or "static", from the columns.
@@ -170,8 +177,9 @@ impl Log {
     }
 
     /// One column's cells as a Float64Array (NaN = empty cell).
-    pub fn column(&self, name: &str) -> JsResult<Float64Array> {
-        let c = gyrodrift::Column::from_name(name).ok_or_else(|| err(format!("unknown column {name}")))?;
+    pub fn column(&self, #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue) -> JsResult<Float64Array> {
+        let name = js_string(&name, "Log.column(name)")?;
+        let c = gyrodrift::Column::from_name(&name).ok_or_else(|| err(format!("unknown column {name}")))?;
         let v = self.log.require(c, "not in this log").map_err(err)?;
         Ok(Float64Array::from(v))
     }

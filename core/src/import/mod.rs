@@ -33,6 +33,7 @@ type WheelTravel = (Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// Runs a recipe: reads the tables, derives the channels, merges on time.
 pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, ImportSummary)> {
+    recipe.validate()?;
     if recipe.tables.is_empty() {
         return Err(recipe_err("table", "at least one [[table]] is needed"));
     }

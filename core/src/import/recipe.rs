@@ -32,6 +32,41 @@ pub struct Recipe {
     pub span_s: Option<[f64; 2]>,
 }
 
+impl Recipe {
+    /// What can be checked before any file is opened: metadata text, numbers finite and in
+    /// range, time given one way per table.
+    pub fn validate(&self) -> Result<()> {
+        for (k, v) in [("name", &self.name), ("description", &self.description)] {
+            if let Some(v) = v {
+                crate::log::check_meta_text(k, v).map_err(|_| recipe_err(k, "contains a line break or another control character"))?;
+            }
+        }
+        if let Some(b) = self.bias_s.filter(|b| !(b.is_finite() && *b >= 0.0)) {
+            return Err(recipe_err("bias_s", format!("{b} is not a time >= 0 s")));
+        }
+        for t in &self.tables {
+            let at = |f: &str| format!("table {} {f}", t.id);
+            if !t.offset_s.is_finite() {
+                return Err(recipe_err(&at("offset_s"), format!("{} is not a finite time", t.offset_s)));
+            }
+            match (t.time.column.is_some(), t.time.period_s) {
+                (true, Some(_)) => return Err(recipe_err(&at("time"), "give a column or a period_s, not both")),
+                (false, None) => return Err(recipe_err(&at("time"), "needs a column or a period_s")),
+                (_, Some(p)) if !(p.is_finite() && p > 0.0) => {
+                    return Err(recipe_err(&at("time.period_s"), format!("{p} is not a period > 0")))
+                }
+                _ => {}
+            }
+        }
+        if let Some([a, b]) = self.span_s {
+            if !(a.is_finite() && b.is_finite() && a < b) {
+                return Err(recipe_err("span_s", format!("[{a}, {b}] is not a time span (start < end)")));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// One input file.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -107,3 +107,37 @@ fn best_lag_finds_a_known_shift() {
     let lag = best_lag_s(&ta, &a, &ta, &b, 5.0).unwrap();
     assert!((lag - 1.3).abs() < 0.03, "{lag}");
 }
+
+#[test]
+fn recipe_is_checked_before_any_file_is_opened() {
+    let mut opened = 0;
+    let mut files = |_: &str| -> Result<Box<dyn std::io::Read>> {
+        opened += 1;
+        Ok(Box::new(&b"t,w\n0,1\n"[..]))
+    };
+    type Spoil = fn(&mut Recipe);
+    let cases: [(&str, Spoil); 6] = [
+        ("recipe name", |r| r.name = Some("x\n# bias_s: 0".into())),
+        ("recipe description", |r| r.description = Some("a\rb".into())),
+        ("recipe bias_s", |r| r.bias_s = Some(f64::NAN)),
+        ("recipe table a offset_s", |r| r.tables[0].offset_s = f64::INFINITY),
+        ("recipe table a time", |r| r.tables[0].time.period_s = Some(0.1)),
+        ("recipe span_s", |r| r.span_s = Some([5.0, 1.0])),
+    ];
+    for (field, spoil) in cases {
+        let mut r = recipe();
+        spoil(&mut r);
+        let e = import(&r, &mut files).unwrap_err();
+        assert!(matches!(&e, Error::Param { name, .. } if name == field), "{field}: {e}");
+    }
+    assert_eq!(opened, 0);
+}
+
+#[test]
+fn a_line_break_in_metadata_is_never_written() {
+    let mut log = crate::log::parse_log_str("time_s,gyro_dps\n0,1\n1,1\n").unwrap();
+    log.meta.name = Some("x\n# bias_s: 0".into());
+    let mut out = Vec::new();
+    assert!(log.write_csv(&mut out).is_err());
+    assert!(out.is_empty());
+}

@@ -12,6 +12,14 @@ use std::io::Write;
 /// The static-bias window when neither the options nor the log's `# bias_s:` give one, s.
 pub const DEFAULT_BIAS_S: f64 = 20.0;
 
+/// A metadata value (or key) must be one line of printable text.
+pub fn check_meta_text(key: &str, value: &str) -> Result<()> {
+    if key.chars().chain(value.chars()).any(char::is_control) {
+        return Err(Error::Param { name: format!("metadata {key}"), message: "contains a line break or another control character".into() });
+    }
+    Ok(())
+}
+
 /// The columns of the v1 format, in the order they are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -187,8 +195,14 @@ impl DriveLog {
     /// Writes the log as CSV v1 (metadata, header of present columns, rows).
     /// Numbers are written with Rust's shortest round-trip formatting, so parse(write(x)) == x.
     pub fn write_csv<W: Write>(&self, out: W) -> Result<()> {
-        let mut out = std::io::BufWriter::new(out);
         let m = &self.meta;
+        // A line break in a value would write a metadata line of its own (`# bias_s: 0`).
+        let texts = [("name", m.name.as_deref()), ("description", m.description.as_deref())];
+        for (k, v) in texts.into_iter().filter_map(|(k, v)| v.map(|v| (k, v))).chain(m.other.iter().map(|(k, v)| (k.as_str(), v.as_str())))
+        {
+            check_meta_text(k, v)?;
+        }
+        let mut out = std::io::BufWriter::new(out);
         if let Some(v) = &m.name {
             writeln!(out, "# name: {v}")?;
         }
