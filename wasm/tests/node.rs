@@ -35,7 +35,7 @@ fn message(e: JsValue) -> String {
 /// The same numbers as the native core computes on the same text (core is linked in too).
 #[wasm_bindgen_test]
 fn hdr_matches_core_bit_for_bit() {
-    let log = Log::parse(RURAL).unwrap();
+    let log = Log::parse(JsValue::from_str(RURAL)).unwrap();
     let r = hdr(&log, JsValue::UNDEFINED).unwrap();
     let native = gyrodrift::hdr::run(&gyrodrift::parse_log_str(RURAL).unwrap(), &Default::default()).unwrap().result.unwrap();
     assert_eq!(num(&r, "E_psi_hdr_deg").to_bits(), native.E_psi_hdr_deg.to_bits());
@@ -46,7 +46,7 @@ fn hdr_matches_core_bit_for_bit() {
 
 #[wasm_bindgen_test]
 fn streaming_equals_batch() {
-    let log = Log::parse(RURAL).unwrap();
+    let log = Log::parse(JsValue::from_str(RURAL)).unwrap();
     let run = run_hdr(&log, obj(&[("resample", JsValue::FALSE)])).unwrap();
     let trace = get(&run, "trace");
     let t: Float64Array = get(&trace, "time_s").dyn_into().unwrap();
@@ -68,35 +68,35 @@ fn streaming_equals_batch() {
 
 #[wasm_bindgen_test]
 fn bad_input_throws_with_line_and_column_and_module_keeps_working() {
-    let e = Log::parse("time_s,gyro_dps\n0,1\n0.1,1.2.3\n").err().unwrap();
+    let e = Log::parse(JsValue::from_str("time_s,gyro_dps\n0,1\n0.1,1.2.3\n")).err().unwrap();
     assert_eq!(message(e), "line 3, column gyro_dps: \"1.2.3\" is not a number");
-    let e = Log::parse("").err().unwrap();
+    let e = Log::parse(JsValue::from_str("")).err().unwrap();
     assert_eq!(message(e), "empty file: no header row");
-    let e = Log::parse("time_s,gyro_dps\n0,1\n0,1\n").err().unwrap();
+    let e = Log::parse(JsValue::from_str("time_s,gyro_dps\n0,1\n0,1\n")).err().unwrap();
     assert!(message(e).contains("line 3, column time_s"));
-    let e = Log::from_bytes(b"time_s,gyro_dps\n0,\xff\n").err().unwrap();
+    let e = Log::from_bytes(js_sys::Uint8Array::from(&b"time_s,gyro_dps\n0,\xff\n"[..]).into()).err().unwrap();
     assert!(message(e).contains("line 2"));
     let mut est = HdrEstimator::new(JsValue::UNDEFINED, 0.0).unwrap();
     est.update(1.0, 0.0).unwrap();
     assert!(est.update(1.0, 0.0).is_err());
     assert!(est.update(2.0, f64::NAN).is_err());
-    let noref = Log::parse("time_s,gyro_dps,ref_heading_deg\n0,1,\n1,1,\n").unwrap();
+    let noref = Log::parse(JsValue::from_str("time_s,gyro_dps,ref_heading_deg\n0,1,\n1,1,\n")).unwrap();
     let e = hdr(&noref, JsValue::UNDEFINED).err().unwrap();
     assert!(message(e).contains("no valid reference heading"));
     let run = run_hdr(&noref, JsValue::UNDEFINED).unwrap();
     assert!(get(&run, "result").is_null());
     assert!(get(&run, "error").as_string().unwrap().contains("reference"));
-    let e = gyrodometry(&Log::parse(RURAL).unwrap(), JsValue::UNDEFINED).err().unwrap();
+    let e = gyrodometry(&Log::parse(JsValue::from_str(RURAL)).unwrap(), JsValue::UNDEFINED).err().unwrap();
     let m = message(e);
     assert!(m.contains("wheelbase_m"), "{m}");
     // after all of that the module still works
-    let log = Log::parse(RURAL).unwrap();
+    let log = Log::parse(JsValue::from_str(RURAL)).unwrap();
     assert!(num(&hdr(&log, JsValue::UNDEFINED).unwrap(), "E_psi_hdr_deg") > 0.0);
 }
 
 #[wasm_bindgen_test]
 fn options_default_and_name_bad_fields() {
-    let log = Log::parse(RURAL).unwrap();
+    let log = Log::parse(JsValue::from_str(RURAL)).unwrap();
     let a = hdr(&log, JsValue::UNDEFINED).unwrap();
     let b = hdr(&log, obj(&[("tau_s", JsValue::from_f64(0.75))])).unwrap();
     assert_eq!(num(&a, "E_psi_hdr_deg"), num(&b, "E_psi_hdr_deg"));
@@ -118,7 +118,7 @@ fn options_default_and_name_bad_fields() {
 
 #[wasm_bindgen_test]
 fn every_method_returns_result_keys() {
-    let robot = Log::parse(ROBOT).unwrap();
+    let robot = Log::parse(JsValue::from_str(ROBOT)).unwrap();
     let g = gyrodometry(&robot, JsValue::UNDEFINED).unwrap();
     assert!(num(&g, "E_psi_gyrodometry_deg") < num(&g, "E_psi_odo_deg"));
     let sim_tt = simulate(obj(&[("kind", "turntable".into()), ("seed", JsValue::from_f64(3.0))])).unwrap();
@@ -129,7 +129,7 @@ fn every_method_returns_result_keys() {
     let a = allan(&st).unwrap();
     assert!(get(&a, "adev_dps").is_instance_of::<Float64Array>());
     assert!(num(&a, "arw_deg_per_sqrt_s") > 0.0);
-    let d1 = Log::parse(RURAL).unwrap();
+    let d1 = Log::parse(JsValue::from_str(RURAL)).unwrap();
     let d2 = simulate(obj(&[("scenario", "city".into()), ("minutes", JsValue::from_f64(6.0)), ("name", "Sim".into())])).unwrap();
     let logs = Array::of2(&JsValue::from(d1), &JsValue::from(d2));
     let rep = report(logs.clone().into(), JsValue::UNDEFINED).unwrap();
@@ -185,7 +185,7 @@ fn import_log_by_recipe_and_pipeline_match_core() {
             nlog.write_csv(&mut v).unwrap();
             String::from_utf8(v).unwrap()
         };
-        Log::parse(&csv).unwrap()
+        Log::parse(JsValue::from_str(&csv)).unwrap()
     };
     let summary = get(&out, "summary");
     assert_eq!(num(&summary, "n_gyro"), 7.0);
@@ -193,7 +193,7 @@ fn import_log_by_recipe_and_pipeline_match_core() {
     let wasm_log = get(&out, "log");
     let rows = get(&wasm_log, "rowCount").as_f64().unwrap();
     assert_eq!(rows, log.row_count() as f64);
-    let g = log.column("gyro_dps").unwrap();
+    let g = log.column(JsValue::from_str("gyro_dps")).unwrap();
     assert_eq!(g.get_index(0), -0.1, "clockwise input -> counter-clockwise log");
 
     // Errors: a missing file, a bad unit; then the module still works.
@@ -205,7 +205,7 @@ fn import_log_by_recipe_and_pipeline_match_core() {
     assert!(import_log(recipe, files).is_ok());
 
     // pipeline == core, bit for bit; runPipeline has the trace; bad options are named.
-    let rural = Log::parse(RURAL).unwrap();
+    let rural = Log::parse(JsValue::from_str(RURAL)).unwrap();
     let r = pipeline(&rural, JsValue::UNDEFINED).unwrap();
     let native = gyrodrift::pipeline::run(&gyrodrift::parse_log_str(RURAL).unwrap(), &Default::default()).unwrap().result.unwrap();
     assert_eq!(num(&r, "E_psi_pipeline_deg").to_bits(), native.E_psi_pipeline_deg.to_bits());
