@@ -1,6 +1,6 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
-use crate::{expand_recipes, fail, import_recipe, output, print_json, read_log, read_logs, settings, Failure};
+use crate::{expand_recipes, fail, import_recipe, output, print_json, read_log, read_logs, settings, write_stdout, Failure};
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
 use std::path::{Path, PathBuf};
 
@@ -9,8 +9,7 @@ fn emit<T: serde::Serialize>(json: bool, value: &T, text: impl FnOnce() -> Strin
     if json {
         return print_json(value);
     }
-    print!("{}", text());
-    Ok(())
+    write_stdout(&text())
 }
 
 /// Writes a log to a file, or to stdout when no file is given.
@@ -20,7 +19,7 @@ fn write_log(log: &DriveLog, out: Option<&Path>) -> Result<(), Failure> {
             let f = std::fs::File::create(path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
             log.write_csv(f).map_err(|e| fail(path, e))
         }
-        None => log.write_csv(std::io::stdout().lock()).map_err(|e| Failure(e.to_string())),
+        None => log.write_csv(std::io::stdout().lock()).map_err(|e| Failure(format!("standard output: cannot write: {e}"))),
     }
 }
 

@@ -282,8 +282,15 @@ fn expand_recipes(paths: &[PathBuf]) -> Result<Vec<PathBuf>, Failure> {
 
 fn print_json<T: serde::Serialize>(value: &T) -> Result<(), Failure> {
     let text = serde_json::to_string_pretty(value).map_err(|e| Failure(format!("JSON: {e}")))?;
-    println!("{text}");
-    Ok(())
+    write_stdout(&format!("{text}\n"))
+}
+
+/// Writes to standard output; a write error (a full disk, `> /dev/full`) is a failure
+/// naming the output, exit 2, not a panic.
+fn write_stdout(text: &str) -> Result<(), Failure> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes()).and_then(|_| out.flush()).map_err(|e| Failure(format!("standard output: cannot write: {e}")))
 }
 
 fn run(cli: Cli) -> Result<(), Failure> {

@@ -319,3 +319,49 @@ fn a_closed_pipe_ends_quietly() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(out.status.success() || out.status.signal() == Some(13), "{:?}", out.status);
 }
+
+/// Output to a full device: exit 2 naming the output, never a panic.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_write_error_exits_2_naming_the_output() {
+    let log = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/static/static-2h.csv");
+    for args in
+        [vec!["allan", log.to_str().unwrap()], vec!["allan", log.to_str().unwrap(), "--json"], vec!["simulate", "drive", "--minutes", "1"]]
+    {
+        let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+        let out = bin().args(&args).stdout(full).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.starts_with("standard output: cannot write") && err.lines().count() == 1, "{err}");
+    }
+}
+
+/// Input that is not a log, one row, a unit mistake: exit 2 with one line, no NaN, no abort.
+#[test]
+fn endless_short_and_absurd_inputs_exit_2() {
+    #[cfg(target_os = "linux")]
+    {
+        let o = run(&["hdr", "/dev/zero"]);
+        assert_eq!(o.status.code(), Some(2));
+        assert!(String::from_utf8_lossy(&o.stderr).contains("a line is longer than"));
+    }
+    let one = write("one-row.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,0\n");
+    for cmd in ["hdr", "pipeline"] {
+        let o = run(&[cmd, one.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{cmd}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains("the log lasts 0 s"));
+    }
+    let big = write("big-gyro.csv", "time_s,gyro_dps\n0,1\n1,1e308\n");
+    let o = run(&["hdr", big.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(err.contains("line 3, column gyro_dps") && err.contains("outside the physical range"), "{err}");
+    let hot = write("hot.csv", "time_s,gyro_dps,temp_c\n0,1,20\n1,1,1e6\n");
+    let o = run(&["pipeline", hot.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("line 3, column temp_c"));
+    for set in ["wheelbase_m=5e-324", "thres_rate=1e300"] {
+        let robot = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/robot/straight.csv");
+        let o = run(&["gyrodometry", robot.to_str().unwrap(), "--set", set]);
+        assert_eq!(o.status.code(), Some(2), "{set}");
+    }
+}

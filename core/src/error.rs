@@ -26,7 +26,7 @@ pub enum Error {
     #[error("{0}")]
     Data(String),
     /// An I/O failure of the underlying reader or writer.
-    #[error("read error: {0}")]
+    #[error("I/O error: {0}")]
     Io(String),
     /// An error inside a named drive, file or recipe: the name, then the error in its own
     /// form (a line and column stay a line and column through every layer).

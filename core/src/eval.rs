@@ -82,6 +82,7 @@ impl<'a> Prepared<'a> {
     pub fn new(log: &'a DriveLog, bias_s: Option<f64>, still_opts: &StillOptions) -> Result<Self> {
         let bias_s = log.bias_s(bias_s);
         let gyro = log.require(Column::GyroDps, "needed for the yaw rate")?;
+        log.check_span()?;
         let eps0_dps = preprocess::static_bias_dps(log.time_s(), gyro, bias_s)?;
         let (blocks, source) = still::blocks(log, bias_s, still_opts)?;
         Ok(Prepared {

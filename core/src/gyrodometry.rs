@@ -155,6 +155,7 @@ pub struct GyrodometryRun {
 /// Runs Gyrodometry on the rows that have gyro and both wheel values, from row 0.
 pub fn run(log: &DriveLog, opts: &GyrodometryOptions) -> Result<GyrodometryRun> {
     crate::options::Settings::validate(opts)?;
+    log.check_span()?;
     let wheelbase_m = opts
         .wheelbase_m
         .or(log.meta.wheelbase_m)

@@ -15,6 +15,51 @@ pub enum Split {
     Whitespace,
 }
 
+/// Caps on what a reader will take, so a wrong file (`/dev/zero`, a binary, a log far larger
+/// than memory) is an error early instead of an out-of-memory abort.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// Total bytes of the file.
+    pub max_bytes: u64,
+    /// Bytes of one line.
+    pub max_line_bytes: u64,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits { max_bytes: 4 << 30, max_line_bytes: 1 << 20 }
+    }
+}
+
+/// A reader that fails once the file or one line passes its cap.
+struct Capped<R> {
+    inner: R,
+    limits: Limits,
+    total: u64,
+    line: u64,
+}
+
+impl<R: Read> Read for Capped<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.total += n as u64;
+        if self.total > self.limits.max_bytes {
+            let msg = format!("the file is larger than {} bytes; split it or raise the limit", self.limits.max_bytes);
+            return Err(std::io::Error::new(std::io::ErrorKind::InvalidData, msg));
+        }
+        // Only the bytes after the chunk's last line break extend the current line.
+        self.line = match buf[..n].iter().rposition(|&b| b == b'\n') {
+            Some(i) => (n - i - 1) as u64,
+            None => self.line + n as u64,
+        };
+        if self.line > self.limits.max_line_bytes {
+            let msg = format!("a line is longer than {} bytes: not a text table (or raise the limit)", self.limits.max_line_bytes);
+            return Err(std::io::Error::new(std::io::ErrorKind::InvalidData, msg));
+        }
+        Ok(n)
+    }
+}
+
 /// One data row: its 1-based line in the file, the bytes read up to it (for progress), and
 /// its fields. Rows whose fields are all empty are never passed.
 pub struct Row<'a> {
@@ -31,10 +76,11 @@ pub fn read_rows(
     reader: impl Read,
     split: Split,
     skip_lines: usize,
+    limits: Limits,
     preamble: &mut dyn FnMut(u64, &str) -> Result<bool>,
     row: &mut dyn FnMut(Row) -> Result<()>,
 ) -> Result<()> {
-    let mut reader = BufReader::with_capacity(1 << 16, reader);
+    let mut reader = BufReader::with_capacity(1 << 16, Capped { inner: reader, limits, total: 0, line: 0 });
     let mut raw = Vec::new();
     let mut line_no: u64 = 0;
     let mut byte: u64 = 0;
@@ -133,7 +179,7 @@ mod tests {
     fn rows(text: &[u8], split: Split, skip: usize) -> Result<Vec<(u64, Vec<String>)>> {
         let mut out = Vec::new();
         let mut pre = |_: u64, t: &str| Ok(t.trim().is_empty() || t.starts_with('#'));
-        read_rows(text, split, skip, &mut pre, &mut |r| {
+        read_rows(text, split, skip, Limits::default(), &mut pre, &mut |r| {
             out.push((r.line, r.fields.iter().map(|s| s.to_string()).collect()));
             Ok(())
         })?;
@@ -160,5 +206,17 @@ mod tests {
         assert_eq!(e, Error::Line { line: 1, message: "not valid UTF-8 text".into() });
         assert!(matches!(rows(b"x\n", Split::Csv, 3), Err(Error::File(_))));
         assert!(rows(b"", Split::Csv, 0).unwrap().is_empty());
+    }
+
+    #[test]
+    fn caps_stop_endless_or_huge_input() {
+        let none = &mut |_: Row| Ok(());
+        let zeros = std::io::repeat(0).take(10 << 20);
+        let e = read_rows(zeros, Split::Csv, 0, Limits::default(), &mut |_, _| Ok(false), none).unwrap_err();
+        assert!(matches!(&e, Error::Io(m) if m.contains("a line is longer than 1048576 bytes")), "{e}");
+        let small = Limits { max_bytes: 100, max_line_bytes: 1000 };
+        let text = "a,b\n".repeat(100);
+        let e = read_rows(text.as_bytes(), Split::Whitespace, 0, small, &mut |_, _| Ok(false), none).unwrap_err();
+        assert!(matches!(&e, Error::Io(m) if m.contains("larger than 100 bytes")), "{e}");
     }
 }

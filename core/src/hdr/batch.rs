@@ -211,6 +211,7 @@ pub fn headings_only(samples: &Samples, params: HdrParams, eps0_dps: f64, out_hd
 pub fn run(log: &DriveLog, opts: &HdrOptions) -> Result<HdrRun> {
     crate::options::Settings::validate(opts)?;
     let (eps0, samples) = preprocess::prepare(log, opts.bias_s, opts.resample)?;
+    log.check_span()?;
     let mut trace = run_samples(&samples, opts.params, eps0)?;
     let result = Reference::from_log(log).and_then(|reference| {
         let raw = metrics::score(&trace.time_s, &trace.heading_raw_deg, &reference)?;

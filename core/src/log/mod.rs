@@ -35,6 +35,18 @@ pub enum Column {
 }
 
 impl Column {
+    /// The physical range of a cell: beyond it a value is a unit or logging mistake (a gyro
+    /// far past any full scale, a cabin hotter than an engine bay), refused with its line.
+    pub fn physical_range(self) -> Option<(f64, f64, &'static str)> {
+        match self {
+            Column::GyroDps | Column::TableRateDps => Some((-10_000.0, 10_000.0, "deg/s")),
+            Column::TempC => Some((-60.0, 150.0, "deg C")),
+            Column::SpeedMps => Some((-150.0, 150.0, "m/s")),
+            Column::RefHeadingDeg => Some((-100_000.0, 100_000.0, "deg")),
+            _ => None,
+        }
+    }
+
     pub const ALL: [Column; 8] = [
         Column::TimeS,
         Column::GyroDps,
@@ -94,12 +106,14 @@ pub struct DriveLog {
 pub struct ParseOptions {
     /// More data rows than this is an error rather than an out-of-memory abort.
     pub max_rows: usize,
+    /// Caps on the file's bytes and one line's.
+    pub limits: crate::table::Limits,
 }
 
 impl Default for ParseOptions {
     fn default() -> Self {
         // 30 M rows ~ 830 h at 10 Hz, ~2 GB of columns: beyond that a log is a mistake.
-        ParseOptions { max_rows: 30_000_000 }
+        ParseOptions { max_rows: 30_000_000, limits: Default::default() }
     }
 }
 
@@ -166,6 +180,15 @@ impl DriveLog {
     }
 
     /// Duration T_d in minutes: last minus first time_s of the whole log (methods.md detail 5).
+    /// A log a method can score: rows over a span of time (one row, or rows at one time,
+    /// would give NaN per minute).
+    pub fn check_span(&self) -> Result<()> {
+        if self.duration_min() > 0.0 {
+            return Ok(());
+        }
+        Err(Error::data(format!("the log lasts 0 s ({} row(s)): a method needs rows over a span of time", self.len())))
+    }
+
     pub fn duration_min(&self) -> f64 {
         let t = self.time_s();
         match (t.first(), t.last()) {

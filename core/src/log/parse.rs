@@ -69,7 +69,7 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
     let mut log = DriveLog::default();
     let mut prev_time: Option<(f64, u64)> = None;
     let mut rows = 0usize;
-    read_rows(reader, Split::Csv, 0, &mut preamble, &mut |r: Row| {
+    read_rows(reader, Split::Csv, 0, opts.limits, &mut preamble, &mut |r: Row| {
         let Some(h) = &header else {
             let h = Header::new(r.fields, r.line)?;
             for c in h.map.iter().flatten() {
@@ -110,6 +110,12 @@ fn data_row(h: &Header, r: &Row, prev_time: &mut Option<(f64, u64)>, log: &mut D
     for (j, col) in h.map.iter().enumerate() {
         let Some(c) = col else { continue };
         let v = parse_cell(r.fields[j], line, c.name())?;
+        if let Some((lo, hi, unit)) = c.physical_range() {
+            if !(v.is_nan() || (lo..=hi).contains(&v)) {
+                let message = format!("{v:?} {unit} is outside the physical range [{lo}, {hi}] {unit}: a unit mistake?");
+                return Err(Error::Cell { line, column: c.name().into(), message });
+            }
+        }
         if j == h.time_field {
             if v.is_nan() {
                 return Err(Error::Cell { line, column: c.name().into(), message: "empty, but every row needs a time".into() });

@@ -81,7 +81,7 @@ fn bad_metadata() {
 #[test]
 fn row_limit_is_an_error_not_an_abort() {
     let text = "time_s\n0\n1\n2\n";
-    let e = parse_log_with(text.as_bytes(), ParseOptions { max_rows: 2 }).unwrap_err();
+    let e = parse_log_with(text.as_bytes(), ParseOptions { max_rows: 2, ..Default::default() }).unwrap_err();
     assert!(e.to_string().contains("too many rows"), "{e}");
 }
 
