@@ -46,16 +46,17 @@ pub fn run_hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] o
     let run = hdr::run(&log.log, &opts).map_err(err)?;
     let out = run_object(&run.result, run.eps0_dps)?;
     let t = &run.trace;
-    let trace = Object::new();
-    set(&trace, "time_s", &f64s(&t.time_s))?;
-    set(&trace, "heading_raw_deg", &f64s(&t.heading_raw_deg))?;
-    set(&trace, "heading_hdr_deg", &f64s(&t.heading_hdr_deg))?;
-    set(&trace, "rate_raw_dps", &f64s(&t.rate_raw_dps))?;
-    set(&trace, "rate_corrected_dps", &f64s(&t.rate_corrected_dps))?;
-    set(&trace, "i_dps", &f64s(&t.i_dps))?;
-    set(&trace, "drift_estimate_dps", &f64s(&t.drift_estimate_dps()))?;
-    set(&trace, "turn_switch", &bools(&t.turn_switch))?;
-    set(&trace, "attenuation", &f64s(&t.attenuation))?;
+    let trace = object_of(&[
+        ("time_s", f64s(&t.time_s)),
+        ("heading_raw_deg", f64s(&t.heading_raw_deg)),
+        ("heading_hdr_deg", f64s(&t.heading_hdr_deg)),
+        ("rate_raw_dps", f64s(&t.rate_raw_dps)),
+        ("rate_corrected_dps", f64s(&t.rate_corrected_dps)),
+        ("i_dps", f64s(&t.i_dps)),
+        ("drift_estimate_dps", f64s(&t.drift_estimate_dps())),
+        ("turn_switch", bools(&t.turn_switch)),
+        ("attenuation", f64s(&t.attenuation)),
+    ])?;
     set(&out, "trace", &trace)?;
     let (reference, errors) = match run.errors(&log.log) {
         Some((r, e)) => (
@@ -118,12 +119,13 @@ pub fn run_gyrodometry(log: &Log, #[wasm_bindgen(unchecked_param_type = "Gyrodom
     let run = gyrodometry::run(&log.log, &opts).map_err(err)?;
     let out = run_object(&run.result, run.eps0_dps)?;
     let t = &run.trace;
-    let trace = Object::new();
-    set(&trace, "time_s", &f64s(&t.time_s))?;
-    set(&trace, "heading_odo_deg", &f64s(&t.heading_odo_deg))?;
-    set(&trace, "heading_gyro_deg", &f64s(&t.heading_gyro_deg))?;
-    set(&trace, "heading_gyrodometry_deg", &f64s(&t.heading_gyrodometry_deg))?;
-    set(&trace, "used_gyro", &bools(&t.used_gyro))?;
+    let trace = object_of(&[
+        ("time_s", f64s(&t.time_s)),
+        ("heading_odo_deg", f64s(&t.heading_odo_deg)),
+        ("heading_gyro_deg", f64s(&t.heading_gyro_deg)),
+        ("heading_gyrodometry_deg", f64s(&t.heading_gyrodometry_deg)),
+        ("used_gyro", bools(&t.used_gyro)),
+    ])?;
     set(&out, "trace", &trace)?;
     Ok(out.into())
 }
@@ -261,14 +263,15 @@ pub fn run_pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOp
     let out = result_object(&run.result)?;
     set(&out, "still_source", &to_js(&run.still_source)?)?;
     let t = &run.trace;
-    let trace = Object::new();
-    set(&trace, "time_s", &f64s(&t.time_s))?;
-    set(&trace, "heading_deg", &f64s(&t.heading_deg))?;
-    set(&trace, "heading_smoothed_deg", &f64s(&t.heading_smoothed_deg))?;
-    set(&trace, "bias_dps", &f64s(&t.bias_dps))?;
-    set(&trace, "bias_sigma_dps", &f64s(&t.bias_sigma_dps))?;
-    set(&trace, "bias_smoothed_dps", &f64s(&t.bias_smoothed_dps))?;
-    set(&trace, "stop", &bools(&t.stop))?;
+    let trace = object_of(&[
+        ("time_s", f64s(&t.time_s)),
+        ("heading_deg", f64s(&t.heading_deg)),
+        ("heading_smoothed_deg", f64s(&t.heading_smoothed_deg)),
+        ("bias_dps", f64s(&t.bias_dps)),
+        ("bias_sigma_dps", f64s(&t.bias_sigma_dps)),
+        ("bias_smoothed_dps", f64s(&t.bias_smoothed_dps)),
+        ("stop", bools(&t.stop)),
+    ])?;
     set(&out, "trace", &trace)?;
     let errors = match run.errors(&log.log) {
         Some(e) => series(&[("time_s", &e.time_s), ("pipeline_deg", &e.errors_deg[0]), ("smoothed_deg", &e.errors_deg[1])])?.into(),

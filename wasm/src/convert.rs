@@ -110,6 +110,15 @@ pub(crate) fn bools(v: &[bool]) -> JsValue {
     Uint8Array::from(&bytes[..]).into()
 }
 
+/// A JS object of named values (a trace: Float64Array series and Uint8Array flags).
+pub(crate) fn object_of(fields: &[(&str, JsValue)]) -> JsResult<Object> {
+    let out = Object::new();
+    for (name, v) in fields {
+        set(&out, name, v)?;
+    }
+    Ok(out)
+}
+
 /// A JS object of named Float64Array series (a trace, a reference, error series).
 pub(crate) fn series(fields: &[(&str, &[f64])]) -> JsResult<Object> {
     let out = Object::new();
