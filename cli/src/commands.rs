@@ -166,3 +166,15 @@ pub fn allan(log: &Path, json: bool) -> Result<(), Failure> {
     let result = gyrodrift::allan::run(&drive).map_err(|e| fail(log, e))?;
     emit(json, &result, || output::allan_table(log, &result))
 }
+
+/// `check`: the findings, text or JSON; exit 1 when one is an error (the log would give
+/// wrong results), so a pipeline can stop on it.
+pub fn check(log: &Path, json: bool) -> Result<(), Failure> {
+    let drive = read_log(log)?;
+    let r = gyrodrift::check::check(&drive);
+    emit(json, &r, || format!("{}: {}", log.display(), r.to_text()))?;
+    if r.findings.iter().any(|f| f.severity == gyrodrift::check::Severity::Error) {
+        std::process::exit(1);
+    }
+    Ok(())
+}

@@ -161,6 +161,13 @@ enum Cmd {
         #[arg(long)]
         json: bool,
     },
+    /// What a log looks like before any method runs: rate, gaps, units and sign against the
+    /// reference, bias, outliers; each finding with its fix. Exit 1 when it finds an error.
+    Check {
+        log: PathBuf,
+        #[arg(long)]
+        json: bool,
+    },
     /// Overlapping Allan deviation of a (static) gyro log.
     Allan {
         log: PathBuf,
@@ -323,6 +330,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Cmd::Import { recipe, data, allow_outside, out, json } => c::import(&recipe, data.as_deref(), allow_outside, out.as_deref(), json),
         Cmd::Allan { log, json } => c::allan(&log, json),
+        Cmd::Check { log, json } => c::check(&log, json),
     }
 }
 

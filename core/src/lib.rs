@@ -24,6 +24,7 @@
 pub mod allan;
 pub mod battery;
 pub mod calibration;
+pub mod check;
 pub mod compare;
 pub mod decimate;
 pub mod error;

@@ -144,3 +144,21 @@ test("wrong argument types throw TypeError (never a trap), misspelled recipe fie
   assert.equal(gd.defaults("gyrodometry").thres_rate_dps, 1.25);
   assert.equal(gd.defaultBiasS(), 20);
 });
+
+test("checkLog equals the CLI's check, and finds a clockwise gyro with its fix", () => {
+  const file = join(SAMPLES, "train", "city-1.csv");
+  const text = readFileSync(file, "utf8");
+  assert.deepEqual(plain(gd.checkLog(gd.Log.parse(text))), JSON.parse(cli("check", file, "--json")));
+  const lines = text.split("\n");
+  const h = lines.findIndex((l) => l.startsWith("time_s"));
+  const g = lines[h].split(",").indexOf("gyro_dps");
+  const cw = lines.map((l, i) => {
+    if (i <= h || !l) return l;
+    const c = l.split(",");
+    c[g] = String(-Number(c[g]));
+    return c.join(",");
+  });
+  const r = gd.checkLog(gd.Log.parse(cw.join("\n")));
+  const f = r.findings.find((x) => x.code === "gyro_sign");
+  assert.ok(f && f.severity === "error" && /positive = "cw"/.test(f.fix), JSON.stringify(r.findings));
+});

@@ -1,6 +1,6 @@
 // Compiled with `tsc --noEmit`: the package's types describe options and results (no `any`).
-import { Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, pipeline, runPipeline, compare } from "gyrodrift";
-import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, PipelineResult, PipelineRun, Compare } from "gyrodrift";
+import { Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, pipeline, runPipeline, compare, checkLog } from "gyrodrift";
+import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, PipelineResult, PipelineRun, Compare, CheckReport, CheckFinding } from "gyrodrift";
 
 const log: Log = Log.parse("time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1,0\n");
 const opts: HdrOptions = { i_c_dps: 0.0422, tau_s: 0.75, resample: true };
@@ -44,4 +44,9 @@ const cm: number = cmp.mean.pipeline;
 const badRecipe: Recipe = { ...recipe, yaw_rate: { ...recipe.yaw_rate, unit: "furlongs" } };
 // @ts-expect-error: pipeline results are typed, no such key
 pr.E_psi_kalman_deg;
-export { e, h, psi, st, rep, t, tcv, trec, sim, c0, rows, pe, stops, smoothed, ps, cm, badRecipe };
+const chk: CheckReport = checkLog(log);
+const fix: string | null = chk.findings[0]?.fix ?? null;
+const gap: number = chk.gaps_s[0]?.[1] ?? 0;
+// @ts-expect-error: a finding's code is one of the named checks
+const badCode: CheckFinding["code"] = "colour";
+export { e, h, psi, st, rep, t, tcv, trec, sim, c0, rows, pe, stops, smoothed, ps, cm, badRecipe, chk, fix, gap, badCode };

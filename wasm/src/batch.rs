@@ -213,6 +213,13 @@ pub fn simulate(#[wasm_bindgen(unchecked_param_type = "SimRequest")] request: Js
     sim::simulate(&req).map(Log::new).map_err(err)
 }
 
+/// What a log looks like before any method runs (the CLI's `check`): rate, gaps, units and
+/// sign against the reference, bias, outliers; each finding with its fix.
+#[wasm_bindgen(js_name = checkLog, unchecked_return_type = "CheckReport")]
+pub fn check_log(log: &Log) -> JsResult<JsValue> {
+    to_js(&gyrodrift::check::check(&log.log))
+}
+
 /// The default settings of a method, as core has them: "hdr", "pipeline", "gyrodometry",
 /// "calibration" or "tune"; `bias_s` (null) falls back to the log's or `defaultBiasS`.
 #[wasm_bindgen(unchecked_return_type = "any")]

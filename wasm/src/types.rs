@@ -193,6 +193,27 @@ export interface CalibrationRun extends CalibrationResult {
   sets: CalSet[];
 }
 
+/** One finding of `checkLog`, with the recipe field or setting that fixes it. */
+export interface CheckFinding {
+  severity: "error" | "warning" | "info";
+  code: "time_unit" | "gap" | "heading_unit" | "gyro_unit" | "gyro_sign" | "gyro_scale" | "bias" | "outlier";
+  message: string;
+  fix: string | null;
+}
+
+/** `checkLog`: what a log looks like before any method runs. */
+export interface CheckReport {
+  rows: number;
+  duration_min: number;
+  median_step_s: number;
+  jitter_p95: number;
+  /** [start time, length] of each gap, s. */
+  gaps_s: [number, number][];
+  eps0_dps: number | null;
+  gyro_over_reference: number | null;
+  findings: CheckFinding[];
+}
+
 /** Result keys of `allan` (methods.md). */
 export interface AllanResult {
   T0_s: number;

@@ -168,6 +168,17 @@ impl DriveLog {
         }
         self.line.drain(..first.min(self.line.len()));
     }
+    /// Keeps the rows whose time passes `keep` (a gap cut into a log, a span).
+    pub fn retain_rows(&mut self, keep: impl Fn(f64) -> bool) {
+        let mask: Vec<bool> = self.time_s().iter().map(|&t| keep(t)).collect();
+        for col in self.columns.iter_mut().flatten() {
+            let mut m = mask.iter();
+            col.retain(|_| *m.next().unwrap_or(&true));
+        }
+        let mut m = mask.iter();
+        self.line.retain(|_| *m.next().unwrap_or(&true));
+    }
+
     /// The column, or an error naming it and the method that needs it.
     pub fn require(&self, c: Column, needed_by: &str) -> Result<&[f64]> {
         self.column(c).ok_or_else(|| Error::missing(c.name(), needed_by))

@@ -1,0 +1,337 @@
+//! `gyrodrift check`: what a log looks like before any method runs on it. Sample rate and
+//! jitter, gaps, the unit the numbers seem to be in (time in milliseconds, heading in
+//! radians, gyro in rad/s or clockwise, found by comparing the integrated gyro with the
+//! reference heading's change), the static bias, outliers. Each finding says how to fix it.
+
+use crate::log::{Column, DriveLog};
+use crate::metrics::{interp_at, Reference};
+use crate::preprocess;
+use serde::{Deserialize, Serialize};
+
+/// How much a finding matters.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Severity {
+    /// The results would be wrong: fix before using them.
+    Error,
+    /// The results may mislead.
+    Warning,
+    Info,
+}
+
+/// One thing the check found, and what to do about it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Finding {
+    pub severity: Severity,
+    /// A stable name: time_unit, gap, heading_unit, gyro_unit, gyro_sign, gyro_scale, bias, outlier.
+    pub code: String,
+    pub message: String,
+    /// The recipe field or setting that fixes it.
+    pub fix: Option<String>,
+}
+
+/// What the check measured, and its findings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CheckReport {
+    pub rows: usize,
+    pub duration_min: f64,
+    /// Median time step of the gyro rows, s, and its 95th percentile over the median.
+    pub median_step_s: f64,
+    pub jitter_p95: f64,
+    /// Gaps longer than the gap threshold: (start time, length), s.
+    pub gaps_s: Vec<(f64, f64)>,
+    /// Static bias over the lead-in, deg/s (as the methods would take it).
+    pub eps0_dps: Option<f64>,
+    /// Integrated gyro over reference heading change on the largest turns (1 = as expected).
+    pub gyro_over_reference: Option<f64>,
+    pub findings: Vec<Finding>,
+}
+
+/// A gap is a step longer than this many median steps (and at least `GAP_MIN_S`).
+pub const GAP_STEPS: f64 = 20.0;
+pub const GAP_MIN_S: f64 = 5.0;
+
+fn finding(severity: Severity, code: &str, message: String, fix: Option<&str>) -> Finding {
+    Finding { severity, code: code.into(), message, fix: fix.map(str::to_string) }
+}
+
+/// Checks a parsed log.
+pub fn check(log: &DriveLog) -> CheckReport {
+    let t = log.time_s();
+    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+    steps.sort_by(f64::total_cmp);
+    let pick = |q: f64| steps.get(((steps.len() as f64 - 1.0) * q).round() as usize).copied().unwrap_or(f64::NAN);
+    let (median, p95) = (pick(0.5), pick(0.95));
+    let mut r = CheckReport {
+        rows: log.len(),
+        duration_min: log.duration_min(),
+        median_step_s: median,
+        jitter_p95: p95 / median,
+        gaps_s: Vec::new(),
+        eps0_dps: None,
+        gyro_over_reference: None,
+        findings: Vec::new(),
+    };
+    time_unit(&mut r, t);
+    let gap = (GAP_STEPS * median).max(GAP_MIN_S);
+    r.gaps_s = t.windows(2).filter(|w| w[1] - w[0] > gap).map(|w| (w[0], w[1] - w[0])).collect();
+    for &(at, len) in r.gaps_s.iter().take(5) {
+        let message = format!("a gap of {len:.1} s at t = {at:.1} s: every method integrates across it as if the rate had been constant");
+        r.findings.push(finding(Severity::Warning, "gap", message, Some("split the log at the gap (recipe span_s), or fill it")));
+    }
+    if let Some(g) = log.column(Column::GyroDps) {
+        r.eps0_dps = preprocess::static_bias_dps(t, g, log.bias_s(None)).ok();
+        outliers(&mut r, g);
+        let eps0 = r.eps0_dps.unwrap_or(0.0);
+        let k = gyro_over_reference(log, eps0, false);
+        r.gyro_over_reference = k;
+        // A reference that never leaves +-pi may be radians: see whether the gyro agrees.
+        let within_pi = log.column(Column::RefHeadingDeg).is_some_and(|h| h.iter().all(|v| v.is_nan() || v.abs() <= 3.1416));
+        let k_rad = if within_pi { gyro_over_reference(log, eps0, true) } else { None };
+        let near_one = |x: f64| (x.abs() - 1.0).abs() < 0.25;
+        match (k, k_rad) {
+            (k, Some(kr)) if near_one(kr) && !k.is_some_and(near_one) => {
+                let cw = if kr < 0.0 { ", positive = \"cw\"" } else { "" };
+                let message = format!(
+                    "ref_heading_deg stays within +-pi and, read as radians, agrees with the gyro ({kr:.3}): the heading is in radians"
+                );
+                let fix = format!("heading.unit = \"rad\"{cw} in the recipe");
+                r.findings.push(finding(Severity::Error, "heading_unit", message, Some(&fix)));
+            }
+            (Some(k), _) => units_from_ratio(&mut r, k),
+            _ => {}
+        }
+    }
+    if let Some(b) = r.eps0_dps.filter(|b| b.abs() > 5.0) {
+        let message = format!("static bias {b:.2} deg/s over the lead-in: the vehicle may not stand still then");
+        r.findings.push(finding(
+            Severity::Warning,
+            "bias",
+            message,
+            Some("bias_s = 0 when the log starts moving (# bias_s: 0, or --set bias_s=0)"),
+        ));
+    }
+    r
+}
+
+/// Time in milliseconds: a median step of 2 s or more on a log spanning days of "seconds".
+fn time_unit(r: &mut CheckReport, t: &[f64]) {
+    if r.median_step_s >= 2.0 && t.len() > 100 {
+        let message = format!(
+            "time_s steps by {:.0} (median) over {} rows: milliseconds, not seconds? ({:.0} min as seconds)",
+            r.median_step_s, r.rows, r.duration_min
+        );
+        r.findings.push(finding(
+            Severity::Error,
+            "time_unit",
+            message,
+            Some("time.unit = \"ms\" in the recipe (or divide time_s by 1000)"),
+        ));
+    }
+}
+
+/// Gyro cells far beyond a road vehicle's yaw rate.
+fn outliers(r: &mut CheckReport, g: &[f64]) {
+    let n = g.iter().filter(|v| v.abs() > 300.0).count();
+    if n > 0 {
+        let message = format!("{n} gyro value(s) above 300 deg/s: counts or a wrong unit, or spikes");
+        r.findings.push(finding(Severity::Warning, "outlier", message, Some("check yaw_rate.unit and scale in the recipe")));
+    }
+}
+
+/// The ratio of the integrated gyro's heading change to the reference's over the largest
+/// turns (median over 10 s windows), or None without a reference or turns.
+fn gyro_over_reference(log: &DriveLog, eps0_dps: f64, in_radians: bool) -> Option<f64> {
+    let mut reference = Reference::from_log(log).ok()?;
+    if in_radians {
+        // Radians wrap at +-pi, which the degree unwrap leaves alone: convert, then unwrap.
+        let deg: Vec<f64> = reference.heading_deg.iter().map(|h| h.to_degrees()).collect();
+        reference.heading_deg = crate::metrics::unwrap_deg(&deg);
+    }
+    let g = log.column(Column::GyroDps)?;
+    let blocks = preprocess::block_average_1hz(log.time_s(), g);
+    if blocks.len() < 20 || reference.time_s.len() < 10 {
+        return None;
+    }
+    let mut psi = vec![0.0; blocks.len()];
+    for i in 1..blocks.len() {
+        psi[i] = psi[i - 1] + (blocks.rate_dps[i] - eps0_dps) * (blocks.time_s[i] - blocks.time_s[i - 1]);
+    }
+    let at = |t: f64| {
+        let j = blocks.time_s.partition_point(|&x| x <= t).saturating_sub(1);
+        if t < blocks.time_s[0] || t > blocks.time_s[blocks.len() - 1] {
+            f64::NAN
+        } else {
+            interp_at(&blocks.time_s, &psi, j, t)
+        }
+    };
+    // 10 s windows between reference samples.
+    let (rt, rh) = (&reference.time_s, &reference.heading_deg);
+    let mut pairs = Vec::new();
+    let mut a = 0;
+    for b in 1..rt.len() {
+        if rt[b] - rt[a] >= 10.0 {
+            if rt[b] - rt[a] <= 30.0 {
+                pairs.push((at(rt[b]) - at(rt[a]), rh[b] - rh[a]));
+            }
+            a = b;
+        }
+    }
+    pairs.retain(|(dg, dr)| dg.is_finite() && dr.is_finite());
+    let big = pairs.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    // Only clear turns (20 deg or more in a window) say anything about scale and sign.
+    let min_turn = (0.3 * big).max(20.0);
+    let mut ratios: Vec<f64> = pairs.iter().filter(|p| p.1.abs() >= min_turn).map(|p| p.0 / p.1).collect();
+    if ratios.len() < 3 {
+        return None;
+    }
+    ratios.sort_by(f64::total_cmp);
+    Some(ratios[ratios.len() / 2])
+}
+
+/// What a gyro-over-reference ratio says about units and sign.
+fn units_from_ratio(r: &mut CheckReport, k: f64) {
+    let deg = 180.0 / std::f64::consts::PI;
+    let near = |x: f64, want: f64| (x / want - 1.0).abs() < 0.25;
+    let (code, message, fix) = if near(k, 1.0) {
+        if (k - 1.0).abs() > 0.03 {
+            let m = format!("the gyro's heading change is {k:.3} times the reference's: a scale error of {:+.1} %", (k - 1.0) * 100.0);
+            r.findings.push(finding(Severity::Info, "gyro_scale", m, Some("yaw_rate.scale in the recipe, or calibrate")));
+        }
+        return;
+    } else if near(k, -1.0) {
+        (
+            "gyro_sign",
+            "the gyro turns the other way from the reference: clockwise-positive, not counter-clockwise".to_string(),
+            "yaw_rate.positive = \"cw\" in the recipe (or negate gyro_dps)",
+        )
+    } else if near(k, 1.0 / deg) {
+        (
+            "gyro_unit",
+            format!("the gyro's heading change is {k:.4} of the reference's (1/57.3): the gyro is in rad/s"),
+            "yaw_rate.unit = \"rad/s\" in the recipe",
+        )
+    } else if near(k, -1.0 / deg) {
+        (
+            "gyro_unit",
+            format!("the gyro's heading change is {k:.4} of the reference's: rad/s and clockwise"),
+            "yaw_rate.unit = \"rad/s\", positive = \"cw\"",
+        )
+    } else if near(k, deg) {
+        (
+            "heading_unit",
+            format!("the reference changes {:.4} of the gyro's heading (1/57.3): ref_heading_deg is in radians", 1.0 / k),
+            "heading.unit = \"rad\" in the recipe",
+        )
+    } else if near(k, -deg) {
+        (
+            "heading_unit",
+            "ref_heading_deg is in radians and turns the other way (clockwise)".to_string(),
+            "heading.unit = \"rad\", positive = \"cw\"",
+        )
+    } else {
+        (
+            "gyro_scale",
+            format!("the gyro's heading change is {k:.3} times the reference's: a unit or scale mistake"),
+            "yaw_rate.unit and scale in the recipe",
+        )
+    };
+    r.findings.push(finding(Severity::Error, code, message, Some(fix)));
+}
+
+impl CheckReport {
+    /// The report as text, a finding a line.
+    pub fn to_text(&self) -> String {
+        let mut s = format!(
+            "{} rows, {:.1} min, median step {:.4} s (95th percentile {:.2}x), {} gap(s)",
+            self.rows,
+            self.duration_min,
+            self.median_step_s,
+            self.jitter_p95,
+            self.gaps_s.len()
+        );
+        if let Some(b) = self.eps0_dps {
+            s.push_str(&format!(", static bias {b:.4} deg/s"));
+        }
+        if let Some(k) = self.gyro_over_reference {
+            s.push_str(&format!(", gyro / reference heading change {k:.3}"));
+        }
+        s.push('\n');
+        if self.findings.is_empty() {
+            s.push_str("no findings\n");
+        }
+        for f in &self.findings {
+            let sev = match f.severity {
+                Severity::Error => "error",
+                Severity::Warning => "warning",
+                Severity::Info => "info",
+            };
+            s.push_str(&format!("{sev} [{}]: {}", f.code, f.message));
+            if let Some(fix) = &f.fix {
+                s.push_str(&format!("; fix: {fix}"));
+            }
+            s.push('\n');
+        }
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::log::parse_log;
+
+    fn city() -> DriveLog {
+        let p = concat!(env!("CARGO_MANIFEST_DIR"), "/../sample-logs/train/city-1.csv");
+        parse_log(std::fs::File::open(p).unwrap()).unwrap()
+    }
+
+    fn codes(log: &DriveLog) -> Vec<String> {
+        check(log).findings.into_iter().filter(|f| f.severity != Severity::Info).map(|f| f.code).collect()
+    }
+
+    fn scaled(log: &DriveLog, c: Column, k: f64) -> DriveLog {
+        let mut l = log.clone();
+        l.column_mut(c).unwrap().iter_mut().for_each(|v| *v *= k);
+        l
+    }
+
+    #[test]
+    fn the_city_drive_as_shipped_is_clean() {
+        let r = check(&city());
+        assert!(codes(&city()).is_empty(), "{}", r.to_text());
+        assert!((r.median_step_s - 0.1).abs() < 1e-9);
+        assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{:?}", r.gyro_over_reference);
+    }
+
+    #[test]
+    fn unit_sign_and_gap_mistakes_are_found_with_their_fix() {
+        let log = city();
+        let rad = 1.0 / (180.0 / std::f64::consts::PI);
+        let mut radians = scaled(&log, Column::RefHeadingDeg, rad);
+        // Radians wrap at +-pi.
+        radians
+            .column_mut(Column::RefHeadingDeg)
+            .unwrap()
+            .iter_mut()
+            .for_each(|v| *v = (*v + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI);
+        let cases = [
+            ("time_unit", scaled(&log, Column::TimeS, 1000.0)),
+            ("heading_unit", radians),
+            ("gyro_unit", scaled(&log, Column::GyroDps, rad)),
+            ("gyro_sign", scaled(&log, Column::GyroDps, -1.0)),
+        ];
+        for (want, l) in cases {
+            let r = check(&l);
+            let f = r.findings.iter().find(|f| f.code == want).unwrap_or_else(|| panic!("{want} not found: {}", r.to_text()));
+            assert!(f.fix.is_some());
+        }
+        // A 60 s gap: rows between 300 and 360 s removed.
+        let mut gap = log.clone();
+        gap.retain_rows(|t| !(300.0..360.0).contains(&t));
+        let r = check(&gap);
+        assert_eq!(r.gaps_s.len(), 1, "{}", r.to_text());
+        assert!((r.gaps_s[0].1 - 60.0).abs() < 0.2);
+        assert!(codes(&gap).contains(&"gap".to_string()));
+    }
+}
