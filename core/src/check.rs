@@ -86,7 +86,8 @@ pub fn check(log: &DriveLog) -> CheckReport {
         let k = gyro_over_reference(log, eps0, false);
         r.gyro_over_reference = k;
         // A reference that never leaves +-pi may be radians: see whether the gyro agrees.
-        let within_pi = log.column(Column::RefHeadingDeg).is_some_and(|h| h.iter().all(|v| v.is_nan() || v.abs() <= 3.1416));
+        let within_pi =
+            log.column(Column::RefHeadingDeg).is_some_and(|h| h.iter().all(|v| v.is_nan() || v.abs() <= std::f64::consts::PI + 1e-3));
         let k_rad = if within_pi { gyro_over_reference(log, eps0, true) } else { None };
         let near_one = |x: f64| (x.abs() - 1.0).abs() < 0.25;
         match (k, k_rad) {
