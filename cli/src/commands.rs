@@ -23,6 +23,23 @@ fn write_log(log: &DriveLog, out: Option<&Path>) -> Result<(), Failure> {
     }
 }
 
+/// Reads a log and prints what `check` finds wrong with it (errors and warnings, a line
+/// each) to stderr, so a unit mistake is said before its results are trusted.
+fn read_checked(path: &Path) -> Result<DriveLog, Failure> {
+    let drive = read_log(path)?;
+    for f in gyrodrift::check::check(&drive).findings.iter().filter(|f| f.severity != gyrodrift::check::Severity::Info) {
+        let fix = f.fix.as_deref().map(|x| format!("; fix: {x}")).unwrap_or_default();
+        eprintln!(
+            "{}: check: {} [{}]: {}{fix}",
+            path.display(),
+            if f.severity == gyrodrift::check::Severity::Error { "error" } else { "warning" },
+            f.code,
+            f.message
+        );
+    }
+    Ok(drive)
+}
+
 /// Logs named by their `# name:` or file stem, as core's batch functions take them.
 fn named(logs: &[(String, DriveLog)]) -> Vec<(String, &DriveLog)> {
     logs.iter().map(|(n, l)| (n.clone(), l)).collect()
@@ -30,7 +47,7 @@ fn named(logs: &[(String, DriveLog)]) -> Vec<(String, &DriveLog)> {
 
 pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option<&Path>) -> Result<(), Failure> {
     let opts = hdr::HdrOptions { resample, ..settings(set)? };
-    let drive = read_log(log)?;
+    let drive = read_checked(log)?;
     let run = hdr::run(&drive, &opts).map_err(|e| fail(log, e))?;
     if let Some(path) = trace {
         let f = std::fs::File::create(path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
@@ -42,14 +59,14 @@ pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option
 
 pub fn pipeline(log: &Path, set: &[String], json: bool) -> Result<(), Failure> {
     let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
-    let drive = read_log(log)?;
+    let drive = read_checked(log)?;
     let result = gyrodrift::pipeline::run(&drive, &params).and_then(|r| r.result).map_err(|e| fail(log, e))?;
     emit(json, &result, || output::pipeline_table(log, &result))
 }
 
 pub fn gyrodometry(log: &Path, set: &[String], json: bool) -> Result<(), Failure> {
     let opts: gyrodometry::GyrodometryOptions = settings(set)?;
-    let drive = read_log(log)?;
+    let drive = read_checked(log)?;
     let result = gyrodometry::run(&drive, &opts).and_then(|r| r.result).map_err(|e| fail(log, e))?;
     emit(json, &result, || output::gyrodometry_table(log, &result))
 }
