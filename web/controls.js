@@ -21,6 +21,14 @@ export function renderList() {
       b.querySelector(".meta").textContent = `${e.kind} · ${fmt(e.log.durationMin, 1)} min · ${e.headline}`;
       b.addEventListener("click", () => selectEntry(i));
       li.append(b);
+      if (e.findings?.length) {
+        const badge = document.createElement("div");
+        const worst = e.findings.some((f) => f.severity === "error") ? "error" : "warning";
+        badge.className = `check ${worst}`;
+        badge.textContent = `⚠ check: ${e.findings.map((f) => f.code).join(", ")}`;
+        badge.title = e.findings.map((f) => `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}`).join("\n");
+        li.append(badge);
+      }
     }
     ul.append(li);
   });

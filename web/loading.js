@@ -57,8 +57,10 @@ export function addParsed(name, make) {
   try {
     const log = make();
     if (!log.name) log.name = name.replace(/\.csv$/, "");
-    const entry = { name: log.name, file: name, log, error: null, kind: log.kind, headline: "" };
+    const entry = { name: log.name, file: name, log, error: null, kind: log.kind, headline: "", findings: [] };
     entry.headline = headline(entry);
+    // What `gyrodrift check` would say: unit, sign and gap mistakes, each with its fix.
+    entry.findings = gd.checkLog(log).findings.filter((f) => f.severity !== "info");
     state.entries.push(entry);
     return entry;
   } catch (e) {

@@ -5,7 +5,7 @@
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
-import { mkdirSync, mkdtempSync, writeFileSync } from "node:fs";
+import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { chromium } from "playwright-core";
@@ -141,6 +141,24 @@ test("a loaded log shows the CLI's numbers; a bad one shows line and column and 
   assert.match(await page.locator("#logs li.selected").innerText(), /Rural 3/);
   assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
   await page.screenshot({ path: join(ARTIFACTS, "bad-file.png"), fullPage: true });
+});
+
+test("a log with a clockwise gyro gets a check badge naming the fix; the shipped ones none", async () => {
+  assert.equal(await page.locator("#logs li .check").count(), 0);
+  const dir = mkdtempSync(join(tmpdir(), "gd-cw-"));
+  const cw = join(dir, "city-cw.csv");
+  const lines = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").split("\n");
+  const h = lines.findIndex((l) => l.startsWith("time_s"));
+  const g = lines[h].split(",").indexOf("gyro_dps");
+  const name = lines.findIndex((l) => l.startsWith("# name:"));
+  if (name >= 0) lines[name] = "# name: City CW";
+  writeFileSync(cw, lines.map((l, i) => (i <= h || !l ? l : l.split(",").map((c, j) => (j === g ? String(-Number(c)) : c)).join(","))).join("\n"));
+  await page.locator("#file-input").setInputFiles([cw]);
+  await page.waitForSelector("#logs li .check.error");
+  const badge = page.locator("#logs li .check.error");
+  assert.match(await badge.innerText(), /gyro_sign/);
+  assert.match(await badge.getAttribute("title"), /positive = "cw"/);
+  await page.screenshot({ path: join(ARTIFACTS, "check-badge.png") });
 });
 
 test("a large log is parsed in a Web Worker and gives the CLI's numbers", async () => {
