@@ -29,13 +29,7 @@ fn read_checked(path: &Path) -> Result<DriveLog, Failure> {
     let drive = read_log(path)?;
     for f in gyrodrift::check::check(&drive).findings.iter().filter(|f| f.severity != gyrodrift::check::Severity::Info) {
         let fix = f.fix.as_deref().map(|x| format!("; fix: {x}")).unwrap_or_default();
-        eprintln!(
-            "{}: check: {} [{}]: {}{fix}",
-            path.display(),
-            if f.severity == gyrodrift::check::Severity::Error { "error" } else { "warning" },
-            f.code,
-            f.message
-        );
+        eprintln!("{}: check: {} [{}]: {}{fix}", path.display(), f.severity.name(), f.code, f.message);
     }
     Ok(drive)
 }

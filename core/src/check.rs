@@ -4,7 +4,7 @@
 //! reference heading's change), the static bias, outliers. Each finding says how to fix it.
 
 use crate::log::{Column, DriveLog};
-use crate::metrics::{interp_at, Reference};
+use crate::metrics::{value_at, Reference};
 use crate::preprocess;
 use serde::{Deserialize, Serialize};
 
@@ -17,6 +17,16 @@ pub enum Severity {
     /// The results may mislead.
     Warning,
     Info,
+}
+
+impl Severity {
+    pub fn name(self) -> &'static str {
+        match self {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+            Severity::Info => "info",
+        }
+    }
 }
 
 /// One thing the check found, and what to do about it.
@@ -154,18 +164,10 @@ fn gyro_over_reference(log: &DriveLog, eps0_dps: f64, in_radians: bool) -> Optio
     if blocks.len() < 20 || reference.time_s.len() < 10 {
         return None;
     }
-    let mut psi = vec![0.0; blocks.len()];
-    for i in 1..blocks.len() {
-        psi[i] = psi[i - 1] + (blocks.rate_dps[i] - eps0_dps) * (blocks.time_s[i] - blocks.time_s[i - 1]);
-    }
-    let at = |t: f64| {
-        let j = blocks.time_s.partition_point(|&x| x <= t).saturating_sub(1);
-        if t < blocks.time_s[0] || t > blocks.time_s[blocks.len() - 1] {
-            f64::NAN
-        } else {
-            interp_at(&blocks.time_s, &psi, j, t)
-        }
-    };
+    // The paper's "without HDR" heading on the blocks.
+    let mut raw = crate::hdr::RawIntegrator::new(eps0_dps);
+    let psi: Vec<f64> = blocks.time_s.iter().zip(&blocks.rate_dps).map(|(&t, &w)| raw.update(t, w)).collect();
+    let at = |t: f64| value_at(&blocks.time_s, &psi, t);
     // 10 s windows between reference samples.
     let (rt, rh) = (&reference.time_s, &reference.heading_deg);
     let mut pairs = Vec::new();
@@ -262,12 +264,7 @@ impl CheckReport {
             s.push_str("no findings\n");
         }
         for f in &self.findings {
-            let sev = match f.severity {
-                Severity::Error => "error",
-                Severity::Warning => "warning",
-                Severity::Info => "info",
-            };
-            s.push_str(&format!("{sev} [{}]: {}", f.code, f.message));
+            s.push_str(&format!("{} [{}]: {}", f.severity.name(), f.code, f.message));
             if let Some(fix) = &f.fix {
                 s.push_str(&format!("; fix: {fix}"));
             }

@@ -45,13 +45,6 @@ impl Error {
     pub fn within(self, name: &str) -> Self {
         Error::In { name: name.to_string(), source: Box::new(self) }
     }
-    /// The error under every name it was wrapped in.
-    pub fn innermost(&self) -> &Error {
-        match self {
-            Error::In { source, .. } => source.innermost(),
-            e => e,
-        }
-    }
     pub(crate) fn missing(column: &str, needed_by: &str) -> Self {
         Error::MissingColumn { column: column.to_string(), needed_by: needed_by.to_string() }
     }

@@ -61,6 +61,16 @@ pub fn interp_at(time_s: &[f64], psi: &[f64], j: usize, t: f64) -> f64 {
     }
 }
 
+/// A series' value at time t, linearly interpolated (detail 4's rule), NaN outside it.
+pub fn value_at(x: &[f64], y: &[f64], t: f64) -> f64 {
+    let n = x.len().min(y.len());
+    if n == 0 || !(t >= x[0] && t <= x[n - 1]) {
+        return f64::NAN;
+    }
+    let j = x[..n].partition_point(|&v| v <= t).saturating_sub(1);
+    interp_at(&x[..n], &y[..n], j, t)
+}
+
 /// How a heading trace scores against the reference.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Score {

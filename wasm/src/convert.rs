@@ -53,12 +53,17 @@ pub(crate) fn options<T: gyrodrift::options::Settings>(what: &str, value: JsValu
     if value.is_undefined() || value.is_null() {
         return Ok(T::default());
     }
-    let obj: &Object =
-        value.dyn_ref().filter(|_| value.is_object()).ok_or_else(|| type_err(format!("{what} options: expected an object")))?;
-    reject_non_finite(&format!("{what} options"), obj, "")?;
-    let json: serde_json::Value =
-        serde_wasm_bindgen::from_value(value.clone()).map_err(|e| err(format!("{what} options: {}", js_message(e))))?;
-    gyrodrift::options::from_json(json).map_err(|e| err(format!("{what} options: {e}")))
+    let what = format!("{what} options");
+    gyrodrift::options::from_json(js_json(&what, &value)?).map_err(|e| err(format!("{what}: {e}")))
+}
+
+/// A JS object as JSON, for core's serde (which, unlike serde-wasm-bindgen's struct reader,
+/// sees every key, so unknown fields are refused). A non-object is a `TypeError`; a
+/// non-finite number is refused by name, since JSON would turn it into "absent".
+pub(crate) fn js_json(what: &str, value: &JsValue) -> JsResult<serde_json::Value> {
+    let obj: &Object = value.dyn_ref().filter(|_| value.is_object()).ok_or_else(|| type_err(format!("{what}: expected an object")))?;
+    reject_non_finite(what, obj, "")?;
+    serde_wasm_bindgen::from_value(value.clone()).map_err(|e| err(format!("{what}: {}", js_message(e))))
 }
 
 /// An error naming the first non-finite number in an options object or recipe (at any

@@ -15,10 +15,7 @@ pub fn import_log(
     #[wasm_bindgen(unchecked_param_type = "Record<string, Uint8Array>")] files: JsValue,
 ) -> JsResult<JsValue> {
     // Through JSON, so unknown (misspelled) fields are refused as the CLI refuses them.
-    let obj: &Object = recipe.dyn_ref().filter(|_| recipe.is_object()).ok_or_else(|| type_err("recipe: expected an object"))?;
-    reject_non_finite("recipe", obj, "")?;
-    let json: serde_json::Value = serde_wasm_bindgen::from_value(recipe.clone()).map_err(|e| err(format!("recipe: {}", js_message(e))))?;
-    let recipe: gyrodrift::import::Recipe = serde_json::from_value(json).map_err(|e| err(format!("recipe: {e}")))?;
+    let recipe: gyrodrift::import::Recipe = serde_json::from_value(js_json("recipe", &recipe)?).map_err(|e| err(format!("recipe: {e}")))?;
     let obj: &Object =
         files.dyn_ref().filter(|_| files.is_object()).ok_or_else(|| type_err("files: expected an object of name -> Uint8Array"))?;
     let mut map = std::collections::BTreeMap::new();

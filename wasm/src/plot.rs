@@ -334,10 +334,5 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
 /// The value of a series at time t, linearly interpolated (core's rule), NaN outside.
 #[wasm_bindgen(js_name = valueAt)]
 pub fn value_at(x: &[f64], y: &[f64], t: f64) -> f64 {
-    let n = x.len().min(y.len());
-    if n == 0 || !(t >= x[0] && t <= x[n - 1]) {
-        return f64::NAN;
-    }
-    let j = x[..n].partition_point(|&v| v <= t).saturating_sub(1);
-    gyrodrift::metrics::interp_at(&x[..n], &y[..n], j, t)
+    gyrodrift::metrics::value_at(x, y, t)
 }

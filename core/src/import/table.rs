@@ -80,13 +80,6 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
     let file = spec.file.clone();
     let at = |e: Error| -> Error { e.within(&file) };
     let scale = time_unit(&spec.time.unit)?;
-    if let Some(p) = spec.time.period_s {
-        if !(p.is_finite() && p > 0.0) {
-            return Err(recipe_err(&format!("table {} time.period_s", spec.id), format!("{p} is not a period > 0")));
-        }
-    } else if spec.time.column.is_none() {
-        return Err(recipe_err(&format!("table {}", spec.id), "time needs a column or a period_s"));
-    }
     let reader = files.open(&spec.file)?;
     let mut header: Option<Vec<String>> = spec.columns.clone();
     // Indices of the wanted columns and of the time, once the header is known.
