@@ -29,6 +29,13 @@ export function renderList() {
         badge.title = e.findings.map((f) => `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}`).join("\n");
         li.append(badge);
       }
+      if (e.note) {
+        const note = document.createElement("div");
+        note.className = "check split";
+        note.textContent = "✂ split at a gap in time";
+        note.title = e.note;
+        li.append(note);
+      }
     }
     ul.append(li);
   });

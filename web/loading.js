@@ -55,14 +55,33 @@ export async function parseInWorker(file, buffer) {
 
 export function addParsed(name, make) {
   try {
-    const log = make();
-    if (!log.name) log.name = name.replace(/\.csv$/, "");
-    const entry = { name: log.name, file: name, log, error: null, kind: log.kind, headline: "", findings: [] };
-    entry.headline = headline(entry);
-    // What `gyrodrift check` would say: unit, sign and gap mistakes, each with its fix.
-    entry.findings = gd.checkLog(log).findings.filter((f) => f.severity !== "info");
-    state.entries.push(entry);
-    return entry;
+    const whole = make();
+    const base = whole.name || name.replace(/\.csv$/, "");
+    const check = gd.checkLog(whole);
+    let parts = [whole];
+    let note = null;
+    if (check.gaps_s.length) {
+      // No method may integrate across a gap in time: the log becomes its parts, each a
+      // drive of its own (as the CLI's --gaps split).
+      const split = whole.splitAtGaps(undefined);
+      whole.free();
+      parts = split.parts;
+      note = split.summary;
+      if (!parts.length) throw new Error(`every part between its gaps is shorter than 30 s (${note})`);
+      parts.forEach((log, k) => (log.name = `${base} (part ${k + 1} of ${parts.length})`));
+    } else {
+      whole.name = base;
+    }
+    const entries = parts.map((log) => {
+      const entry = { name: log.name, file: name, log, error: null, kind: log.kind, headline: "", findings: [], note };
+      entry.headline = headline(entry);
+      // What `gyrodrift check` would say: unit, sign and gap mistakes, each with its fix.
+      const findings = parts.length > 1 ? gd.checkLog(log).findings : check.findings;
+      entry.findings = findings.filter((f) => f.severity !== "info");
+      return entry;
+    });
+    state.entries.push(...entries);
+    return entries[0];
   } catch (e) {
     const entry = { name, file: name, log: null, error: `${name}: ${e.message}`, kind: null, headline: "" };
     state.entries.push(entry);

@@ -1,6 +1,7 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
 use crate::{expand_recipes, fail, import_recipe, output, print_json, read_log, read_logs, settings, write_stdout, Failure};
+use gyrodrift::log::gaps::GapPolicy;
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
 use std::path::{Path, PathBuf};
 
@@ -24,14 +25,34 @@ fn write_log(log: &DriveLog, out: Option<&Path>) -> Result<(), Failure> {
 }
 
 /// Reads a log and prints what `check` finds wrong with it (errors and warnings, a line
-/// each) to stderr, so a unit mistake is said before its results are trusted.
-fn read_checked(path: &Path) -> Result<DriveLog, Failure> {
+/// each) to stderr, so a unit mistake is said before its results are trusted; then applies
+/// the gap policy: the parts to score, each a drive of its own.
+fn read_checked(path: &Path, gaps: GapPolicy, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
     let drive = read_log(path)?;
     for f in gyrodrift::check::check(&drive).findings.iter().filter(|f| f.severity != gyrodrift::check::Severity::Info) {
+        if f.code == "gap" {
+            continue; // said once below, with what the policy did
+        }
         let fix = f.fix.as_deref().map(|x| format!("; fix: {x}")).unwrap_or_default();
         eprintln!("{}: check: {} [{}]: {}{fix}", path.display(), f.severity.name(), f.code, f.message);
     }
-    Ok(drive)
+    split(path, drive, gaps, bias_s)
+}
+
+/// The gap policy on one log; the split is said on stderr.
+pub(crate) fn split(path: &Path, drive: DriveLog, gaps: GapPolicy, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
+    let s = gyrodrift::log::gaps::split_at_gaps(&drive, gaps, drive.bias_s(bias_s)).map_err(|e| fail(path, e))?;
+    if let Some(line) = s.summary() {
+        eprintln!("{}: {line}", path.display());
+    }
+    if s.parts.is_empty() {
+        return Err(Failure(format!(
+            "{}: every part between its gaps is shorter than {} s",
+            path.display(),
+            gyrodrift::log::gaps::MIN_PART_S
+        )));
+    }
+    Ok(if s.gaps.is_empty() { vec![drive] } else { s.parts })
 }
 
 /// Logs named by their `# name:` or file stem, as core's batch functions take them.
@@ -39,30 +60,65 @@ fn named(logs: &[(String, DriveLog)]) -> Vec<(String, &DriveLog)> {
     logs.iter().map(|(n, l)| (n.clone(), l)).collect()
 }
 
-pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option<&Path>) -> Result<(), Failure> {
-    let opts = hdr::HdrOptions { resample, ..settings(set)? };
-    let drive = read_checked(log)?;
-    let run = hdr::run(&drive, &opts).map_err(|e| fail(log, e))?;
-    if let Some(path) = trace {
-        let f = std::fs::File::create(path).map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))?;
-        run.trace.write_csv(f).map_err(|e| fail(path, e))?;
+/// Runs `one` on every part of a log and prints: one result as before; the parts of a
+/// split log as a JSON array, or their tables one after another under their names.
+fn per_part<T: serde::Serialize>(
+    log: &Path,
+    parts: &[DriveLog],
+    json: bool,
+    mut one: impl FnMut(usize, &DriveLog) -> gyrodrift::Result<T>,
+    text: impl Fn(&T) -> String,
+) -> Result<(), Failure> {
+    let results = parts.iter().enumerate().map(|(i, p)| one(i, p).map_err(|e| fail(log, e))).collect::<Result<Vec<T>, _>>()?;
+    match results.as_slice() {
+        [only] => emit(json, only, || text(only)),
+        all => emit(json, &all, || {
+            let name = |p: &DriveLog| p.meta.name.clone().unwrap_or_default();
+            parts.iter().zip(all).map(|(p, r)| format!("== {} ==\n{}", name(p), text(r))).collect::<Vec<_>>().join("\n")
+        }),
     }
-    let result = run.result.map_err(|e| fail(log, e))?;
-    emit(json, &result, || output::hdr_table(log, &opts, &result))
 }
 
-pub fn pipeline(log: &Path, set: &[String], json: bool) -> Result<(), Failure> {
+/// The trace file of part `i` (the second part of `t.csv` goes to `t.part2.csv`).
+fn part_path(path: &Path, i: usize) -> PathBuf {
+    if i == 0 {
+        return path.to_path_buf();
+    }
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let ext = path.extension().map(|e| format!(".{}", e.to_string_lossy())).unwrap_or_default();
+    path.with_file_name(format!("{stem}.part{}{ext}", i + 1))
+}
+
+pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option<&Path>, gaps: GapPolicy) -> Result<(), Failure> {
+    let opts = hdr::HdrOptions { resample, ..settings(set)? };
+    let parts = read_checked(log, gaps, opts.bias_s)?;
+    let mut trace_err = None;
+    let mut one = |i: usize, drive: &DriveLog| {
+        let run = hdr::run(drive, &opts)?;
+        if let Some(path) = trace.map(|t| part_path(t, i)) {
+            let written = std::fs::File::create(&path)
+                .map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))
+                .and_then(|f| run.trace.write_csv(f).map_err(|e| fail(&path, e)));
+            if let Err(e) = written {
+                trace_err.get_or_insert(e);
+            }
+        }
+        run.result
+    };
+    let printed = per_part(log, &parts, json, &mut one, |r| output::hdr_table(log, &opts, r));
+    trace_err.map_or(printed, Err)
+}
+
+pub fn pipeline(log: &Path, set: &[String], json: bool, gaps: GapPolicy) -> Result<(), Failure> {
     let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
-    let drive = read_checked(log)?;
-    let result = gyrodrift::pipeline::run(&drive, &params).and_then(|r| r.result).map_err(|e| fail(log, e))?;
-    emit(json, &result, || output::pipeline_table(log, &result))
+    let parts = read_checked(log, gaps, params.bias_s)?;
+    per_part(log, &parts, json, |_, d| gyrodrift::pipeline::run(d, &params).and_then(|r| r.result), |r| output::pipeline_table(log, r))
 }
 
-pub fn gyrodometry(log: &Path, set: &[String], json: bool) -> Result<(), Failure> {
+pub fn gyrodometry(log: &Path, set: &[String], json: bool, gaps: GapPolicy) -> Result<(), Failure> {
     let opts: gyrodometry::GyrodometryOptions = settings(set)?;
-    let drive = read_checked(log)?;
-    let result = gyrodometry::run(&drive, &opts).and_then(|r| r.result).map_err(|e| fail(log, e))?;
-    emit(json, &result, || output::gyrodometry_table(log, &result))
+    let parts = read_checked(log, gaps, opts.bias_s)?;
+    per_part(log, &parts, json, |_, d| gyrodometry::run(d, &opts).and_then(|r| r.result), |r| output::gyrodometry_table(log, r))
 }
 
 pub fn calibrate(log: &Path, set: &[String], json: bool) -> Result<(), Failure> {
@@ -73,32 +129,32 @@ pub fn calibrate(log: &Path, set: &[String], json: bool) -> Result<(), Failure> 
 }
 
 /// `report --compare`: every method side by side, HDR tuned on `tune_on` when given.
-pub fn compare(files: &[PathBuf], set: &[String], json: bool, tune_on: &[PathBuf]) -> Result<(), Failure> {
+pub fn compare(files: &[PathBuf], set: &[String], json: bool, tune_on: &[PathBuf], gaps: GapPolicy) -> Result<(), Failure> {
     let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
     let tuned = if tune_on.is_empty() {
         None
     } else {
-        let train = read_logs(tune_on)?;
+        let train = read_logs(tune_on, gaps, None)?;
         let prepared = tune::prepare_all(&named(&train), &hdr::HdrOptions::default()).map_err(|e| Failure(e.to_string()))?;
         Some(tune::tune(&prepared, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?.recommended)
     };
-    let logs = read_logs(files)?;
+    let logs = read_logs(files, gaps, params.bias_s)?;
     let c = gyrodrift::compare::compare(&named(&logs), &params, tuned).map_err(|e| Failure(e.to_string()))?;
     emit(json, &c, || c.to_markdown())
 }
 
 /// The paper's Table II over the drives.
-pub fn report(files: &[PathBuf], set: &[String], resample: bool, json: bool, markdown: bool) -> Result<(), Failure> {
+pub fn report(files: &[PathBuf], set: &[String], resample: bool, json: bool, markdown: bool, gaps: GapPolicy) -> Result<(), Failure> {
     let opts = hdr::HdrOptions { resample, ..settings(set)? };
-    let logs = read_logs(files)?;
+    let logs = read_logs(files, gaps, opts.bias_s)?;
     let report = gyrodrift::report::Report::build(&named(&logs), &opts).map_err(|e| Failure(e.to_string()))?;
     emit(json, &report, || if markdown { report.to_markdown() } else { report.to_text() })
 }
 
-pub fn tune(train: &[PathBuf], test: &[PathBuf], json: bool, markdown: bool) -> Result<(), Failure> {
+pub fn tune(train: &[PathBuf], test: &[PathBuf], json: bool, markdown: bool, gaps: GapPolicy) -> Result<(), Failure> {
     let opts = hdr::HdrOptions::default();
     let prep = |paths: &[PathBuf]| -> Result<Vec<tune::PreparedDrive>, Failure> {
-        tune::prepare_all(&named(&read_logs(paths)?), &opts).map_err(|e| Failure(e.to_string()))
+        tune::prepare_all(&named(&read_logs(paths, gaps, opts.bias_s)?), &opts).map_err(|e| Failure(e.to_string()))
     };
     let (train_p, test_p) = (prep(train)?, prep(test)?);
     let rep = tune::tune_and_report(&train_p, &test_p, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?;

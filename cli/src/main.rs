@@ -15,6 +15,16 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
+    /// A gap in time (over 20 median steps, at least 5 s): split the log there into drives of
+    /// their own (parts under 30 s dropped), or refuse it. No method integrates across one.
+    #[arg(long, global = true, value_enum, default_value = "split")]
+    gaps: GapsArg,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum GapsArg {
+    Split,
+    Error,
 }
 
 #[derive(Subcommand)]
@@ -203,16 +213,19 @@ fn read_log(path: &Path) -> Result<DriveLog, Failure> {
     gyrodrift::parse_log(file).map_err(|e| fail(path, e))
 }
 
-/// Reads many logs, each named by its `# name:` or its file stem.
-fn read_logs(paths: &[PathBuf]) -> Result<Vec<(String, DriveLog)>, Failure> {
-    paths
-        .iter()
-        .map(|p| {
-            let log = read_log(p)?;
-            let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-            Ok((log.meta.name.clone().unwrap_or(stem), log))
-        })
-        .collect()
+/// Reads many logs, each named by its `# name:` or its file stem; a log with gaps is split
+/// into parts under the policy, each a drive of its own.
+fn read_logs(paths: &[PathBuf], gaps: gyrodrift::log::gaps::GapPolicy, bias_s: Option<f64>) -> Result<Vec<(String, DriveLog)>, Failure> {
+    let mut out = Vec::new();
+    for p in paths {
+        let mut log = read_log(p)?;
+        let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        log.meta.name.get_or_insert(stem);
+        for part in commands::split(p, log, gaps, bias_s)? {
+            out.push((part.meta.name.clone().unwrap_or_default(), part));
+        }
+    }
+    Ok(out)
 }
 
 /// Splits `key=value` and parses the value as a number.
@@ -302,14 +315,18 @@ fn write_stdout(text: &str) -> Result<(), Failure> {
 
 fn run(cli: Cli) -> Result<(), Failure> {
     use commands as c;
+    let gaps = match cli.gaps {
+        GapsArg::Split => gyrodrift::log::gaps::GapPolicy::Split,
+        GapsArg::Error => gyrodrift::log::gaps::GapPolicy::Error,
+    };
     match cli.cmd {
-        Cmd::Hdr { log, no_resample, set, json, trace } => c::hdr(&log, !no_resample, &set, json, trace.as_deref()),
-        Cmd::Pipeline { log, set, json } => c::pipeline(&log, &set, json),
-        Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json),
+        Cmd::Hdr { log, no_resample, set, json, trace } => c::hdr(&log, !no_resample, &set, json, trace.as_deref(), gaps),
+        Cmd::Pipeline { log, set, json } => c::pipeline(&log, &set, json, gaps),
+        Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json, gaps),
         Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json),
-        Cmd::Report { files, set, json, compare: true, tune_on, .. } => c::compare(&files, &set, json, &tune_on),
-        Cmd::Report { files, set, no_resample, json, markdown, .. } => c::report(&files, &set, !no_resample, json, markdown),
-        Cmd::Tune { train, test, json, markdown } => c::tune(&train, &test, json, markdown),
+        Cmd::Report { files, set, json, compare: true, tune_on, .. } => c::compare(&files, &set, json, &tune_on, gaps),
+        Cmd::Report { files, set, no_resample, json, markdown, .. } => c::report(&files, &set, !no_resample, json, markdown, gaps),
+        Cmd::Tune { train, test, json, markdown } => c::tune(&train, &test, json, markdown, gaps),
         Cmd::Simulate { kind, scenario, minutes, seed, name, out } => {
             let kind = match kind {
                 SimKindArg::Drive => SimKind::Drive,

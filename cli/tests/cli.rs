@@ -365,3 +365,32 @@ fn endless_short_and_absurd_inputs_exit_2() {
         assert_eq!(o.status.code(), Some(2), "{set}");
     }
 }
+
+/// A 60 s gap: no method integrates across it. By default the log is split into drives of
+/// their own (said on stderr; JSON an array of the parts); `--gaps error` exits 2 naming the line.
+#[test]
+fn a_gap_in_time_splits_the_log_or_is_refused() {
+    let text: String = drive_csv()
+        .lines()
+        .filter(|l| l.split(',').next().and_then(|t| t.parse::<f64>().ok()).is_none_or(|t| !(300.0..360.0).contains(&t)))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let p = write("gap.csv", &text);
+    let whole = run(&["hdr", p.to_str().unwrap(), "--json", "--gaps", "split"]);
+    assert!(whole.status.success(), "{}", String::from_utf8_lossy(&whole.stderr));
+    let err = String::from_utf8_lossy(&whole.stderr);
+    assert!(err.contains("split at 1 gap(s) (60.1 s at line"), "{err}");
+    let v: serde_json::Value = serde_json::from_slice(&whole.stdout).unwrap();
+    let parts = v.as_array().unwrap();
+    assert_eq!(parts.len(), 2);
+    for part in parts {
+        assert!(part["E_psi_hdr_deg"].as_f64().unwrap() < 5.0, "{part}");
+    }
+    let refused = run(&["pipeline", p.to_str().unwrap(), "--gaps", "error"]);
+    assert_eq!(refused.status.code(), Some(2));
+    let msg = String::from_utf8_lossy(&refused.stderr);
+    assert!(msg.contains("gap.csv: line 3003, column time_s: a gap of 60.1 s"), "{msg}");
+    let report = run(&["report", p.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&report.stdout).unwrap();
+    assert!(v.to_string().contains("test drive (part 2 of 2)"), "{v}");
+}

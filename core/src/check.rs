@@ -57,10 +57,6 @@ pub struct CheckReport {
     pub findings: Vec<Finding>,
 }
 
-/// A gap is a step longer than this many median steps (and at least `GAP_MIN_S`).
-pub const GAP_STEPS: f64 = 20.0;
-pub const GAP_MIN_S: f64 = 5.0;
-
 fn finding(severity: Severity, code: &str, message: String, fix: Option<&str>) -> Finding {
     Finding { severity, code: code.into(), message, fix: fix.map(str::to_string) }
 }
@@ -83,11 +79,15 @@ pub fn check(log: &DriveLog) -> CheckReport {
         findings: Vec::new(),
     };
     time_unit(&mut r, t);
-    let gap = (GAP_STEPS * median).max(GAP_MIN_S);
-    r.gaps_s = t.windows(2).filter(|w| w[1] - w[0] > gap).map(|w| (w[0], w[1] - w[0])).collect();
+    r.gaps_s = crate::log::gaps::find_gaps(log).iter().map(|g| (g.at_s, g.length_s)).collect();
     for &(at, len) in r.gaps_s.iter().take(5) {
-        let message = format!("a gap of {len:.1} s at t = {at:.1} s: every method integrates across it as if the rate had been constant");
-        r.findings.push(finding(Severity::Warning, "gap", message, Some("split the log at the gap (recipe span_s), or fill it")));
+        let message = format!("a gap of {len:.1} s at t = {at:.1} s: no method may integrate across it, so the log is scored in parts");
+        r.findings.push(finding(
+            Severity::Warning,
+            "gap",
+            message,
+            Some("the CLI and the dashboard split the log there (--gaps split, the default; --gaps error refuses it)"),
+        ));
     }
     if let Some(g) = log.column(Column::GyroDps) {
         r.eps0_dps = preprocess::static_bias_dps(t, g, log.bias_s(None)).ok();

@@ -161,6 +161,21 @@ test("a log with a clockwise gyro gets a check badge naming the fix; the shipped
   await page.screenshot({ path: join(ARTIFACTS, "check-badge.png") });
 });
 
+test("a log with a 60 s gap becomes two drives, each marked as split, with the CLI's numbers", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-gap-"));
+  const file = join(dir, "city-gap.csv");
+  const lines = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").split("\n");
+  const name = lines.findIndex((l) => l.startsWith("# name:"));
+  lines[name] = "# name: City gap";
+  writeFileSync(file, lines.filter((l) => !(l && !l.startsWith("#") && Number(l.split(",")[0]) >= 300 && Number(l.split(",")[0]) < 360)).join("\n"));
+  await page.locator("#file-input").setInputFiles([file]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City gap (part 1 of 2)"));
+  assert.equal(await page.locator("#logs li", { hasText: "City gap (part" }).count(), 2);
+  assert.match(await page.locator("#logs li", { hasText: "City gap (part 2 of 2)" }).locator(".check.split").getAttribute("title"), /60\.1 s at line/);
+  const native = JSON.parse(cli("hdr", file, "--json"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native[0].E_psi_hdr_deg.toFixed(2));
+});
+
 test("a large log is parsed in a Web Worker and gives the CLI's numbers", async () => {
   const dir = mkdtempSync(join(tmpdir(), "gd-big-"));
   const big = join(dir, "long-drive.csv");

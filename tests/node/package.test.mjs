@@ -2,7 +2,8 @@
 // fleet example. Run: node --test tests/node/
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { readFileSync, readdirSync } from "node:fs";
+import { readFileSync, readdirSync, mkdtempSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { execFileSync } from "node:child_process";
 import * as gd from "gyrodrift";
@@ -161,4 +162,27 @@ test("checkLog equals the CLI's check, and finds a clockwise gyro with its fix",
   const r = gd.checkLog(gd.Log.parse(cw.join("\n")));
   const f = r.findings.find((x) => x.code === "gyro_sign");
   assert.ok(f && f.severity === "error" && /positive = "cw"/.test(f.fix), JSON.stringify(r.findings));
+});
+
+test("splitAtGaps gives the CLI's parts: no method integrates across a 60 s gap", () => {
+  const text = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const lines = text.split("\n").filter((l) => {
+    const t = Number(l.split(",")[0]);
+    return !(l && !l.startsWith("#") && t >= 300 && t < 360);
+  });
+  const dir = mkdtempSync(join(tmpdir(), "gd-gap-"));
+  const file = join(dir, "city-gap.csv");
+  writeFileSync(file, lines.join("\n"));
+  const split = gd.Log.parse(lines.join("\n")).splitAtGaps(undefined);
+  assert.equal(split.parts.length, 2);
+  assert.equal(split.gaps.length, 1);
+  assert.match(split.summary, /60\.1 s at line/);
+  const native = JSON.parse(cli("hdr", file, "--json"));
+  assert.equal(native.length, 2);
+  split.parts.forEach((p, i) => assert.equal(gd.hdr(p, {}).E_psi_hdr_deg, native[i].E_psi_hdr_deg));
+  // each part far below the 242 deg of integrating across the gap
+  assert.ok(native.every((r) => r.E_psi_hdr_deg < 20), JSON.stringify(native));
+  const whole = gd.Log.parse(text).splitAtGaps(undefined);
+  assert.deepEqual([whole.parts.length, whole.gaps.length, whole.summary], [1, 0, null]);
+  assert.throws(() => gd.Log.parse(text).splitAtGaps(NaN), TypeError);
 });

@@ -184,6 +184,29 @@ impl Log {
         Ok(Float64Array::from(v))
     }
 
+    /// The log split at its gaps in time (as the CLI's `--gaps split`): `parts` are drives of
+    /// their own (one part, this log's copy, when there is no gap), `summary` says what was
+    /// done. `bias_s` is the static-bias window (default: the log's, else `defaultBiasS()`).
+    #[wasm_bindgen(js_name = splitAtGaps, unchecked_return_type = "GapSplit")]
+    pub fn split_at_gaps(&self, bias_s: Option<f64>) -> JsResult<JsValue> {
+        if bias_s.is_some_and(|b| !b.is_finite()) {
+            return Err(type_err("Log.splitAtGaps(bias_s): expected a finite number of seconds"));
+        }
+        let s = gyrodrift::log::gaps::split_at_gaps(&self.log, Default::default(), self.log.bias_s(bias_s)).map_err(err)?;
+        let parts = Array::new();
+        for p in s.parts.iter().cloned() {
+            parts.push(&JsValue::from(Log::new(p)));
+        }
+        let summary = s.summary().map(|t| JsValue::from_str(&t)).unwrap_or(JsValue::NULL);
+        Ok(object_of(&[
+            ("parts", parts.into()),
+            ("gaps", to_js(&s.gaps)?),
+            ("dropped", JsValue::from(s.dropped.len() as u32)),
+            ("summary", summary),
+        ])?
+        .into())
+    }
+
     /// The log as CSV v1 text.
     #[wasm_bindgen(js_name = toCsv)]
     pub fn to_csv(&self) -> JsResult<String> {

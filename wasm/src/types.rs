@@ -201,6 +201,16 @@ export interface CheckFinding {
   fix: string | null;
 }
 
+/** `Log.splitAtGaps`: the drives between a log's gaps in time. */
+export interface GapSplit {
+  parts: Log[];
+  /** Each gap: the time before it, its length (s), the line of the row after it. */
+  gaps: { at_s: number; length_s: number; line: number }[];
+  /** Parts under 30 s, dropped. */
+  dropped: number;
+  summary: string | null;
+}
+
 /** `checkLog`: what a log looks like before any method runs. */
 export interface CheckReport {
   rows: number;

@@ -168,6 +168,15 @@ impl DriveLog {
         }
         self.line.drain(..first.min(self.line.len()));
     }
+    /// Keeps rows `a..b` (one part of a log split at its gaps).
+    pub fn keep_range(&mut self, a: usize, b: usize) {
+        for col in self.columns.iter_mut().flatten() {
+            col.truncate(b);
+            col.drain(..a);
+        }
+        self.line.truncate(b);
+        self.line.drain(..a.min(self.line.len()));
+    }
     /// Keeps the rows whose time passes `keep` (a gap cut into a log, a span).
     pub fn retain_rows(&mut self, keep: impl Fn(f64) -> bool) {
         let mask: Vec<bool> = self.time_s().iter().map(|&t| keep(t)).collect();
@@ -222,7 +231,11 @@ impl DriveLog {
     }
 
     /// The static-bias window length: the option, else `# bias_s:`, else 20 s (detail 1).
+    /// A part split off after a gap has its bias removed already: 0 (see `gaps`).
     pub fn bias_s(&self, option: Option<f64>) -> f64 {
+        if self.meta.other.contains_key(gaps::BIAS_REMOVED_KEY) {
+            return 0.0;
+        }
         option.or(self.meta.bias_s).unwrap_or(DEFAULT_BIAS_S)
     }
 
@@ -333,6 +346,7 @@ pub enum LogKind {
     Static,
 }
 
+pub mod gaps;
 mod parse;
 pub use parse::{parse_log, parse_log_progress, parse_log_str, parse_log_with};
 
