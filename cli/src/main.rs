@@ -2,7 +2,11 @@
 //! options, calls core and prints; every number comes from core.
 
 mod commands;
+mod oom;
 mod output;
+
+#[global_allocator]
+static ALLOC: oom::Graceful = oom::Graceful;
 
 use clap::{Parser, Subcommand};
 use gyrodrift::sim::{SimKind, SimRequest};

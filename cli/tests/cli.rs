@@ -394,3 +394,20 @@ fn a_gap_in_time_splits_the_log_or_is_refused() {
     let v: serde_json::Value = serde_json::from_slice(&report.stdout).unwrap();
     assert!(v.to_string().contains("test drive (part 2 of 2)"), "{v}");
 }
+
+/// Out of memory (here a 60 MB address-space limit and a 16 MB log) exits 2 with one line,
+/// never an abort with a backtrace (exit 134).
+#[cfg(unix)]
+#[test]
+fn out_of_memory_exits_2_with_one_line() {
+    let mut s = String::from("time_s,gyro_dps,ref_heading_deg,speed_mps\n");
+    for i in 0..600_000 {
+        s.push_str(&format!("{:.1},{:.3},{},10\n", i as f64 / 10.0, 0.5 + (i % 7) as f64 * 0.01, (i / 10) % 360));
+    }
+    let p = write("big.csv", &s);
+    let cmd = format!("ulimit -v 60000; exec '{}' pipeline '{}'", env!("CARGO_BIN_EXE_gyrodrift"), p.display());
+    let out = Command::new("sh").args(["-c", &cmd]).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.starts_with("gyrodrift: out of memory (a request for ") && err.lines().count() == 1, "{err}");
+}
