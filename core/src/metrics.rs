@@ -122,6 +122,13 @@ pub fn score(time_s: &[f64], psi_deg: &[f64], reference: &Reference) -> Result<S
     if n == 0 {
         return Err(Error::data(format!("no valid reference heading between {t_first} s and {t_last} s, where the heading trace is")));
     }
+    if n == 1 {
+        // The first sample aligns the heading: its error is 0 by construction, so one sample
+        // would give E_psi 0 and an improvement of 0/0.
+        return Err(Error::data(format!(
+            "one valid reference heading between {t_first} s and {t_last} s: it aligns the heading, none is left to score"
+        )));
+    }
     Ok(Score { shift_deg: shift, e_psi_deg: sum / n as f64, n_samples: n, final_err_deg: last_err })
 }
 
@@ -226,6 +233,16 @@ mod tests {
     fn score_without_reference_in_span_is_an_error() {
         let reference = Reference { time_s: vec![10.0], heading_deg: vec![0.0] };
         assert!(score(&[0.0, 1.0], &[0.0, 0.0], &reference).is_err());
+    }
+
+    #[test]
+    fn one_reference_sample_only_aligns_and_is_an_error_not_a_0_over_0_improvement() {
+        let reference = Reference { time_s: vec![0.5], heading_deg: vec![10.0] };
+        let e = score(&[0.0, 1.0], &[0.0, 5.0], &reference).unwrap_err().to_string();
+        assert!(e.contains("one valid reference heading"), "{e}");
+        let two = Reference { time_s: vec![0.5, 1.0], heading_deg: vec![10.0, 10.0] };
+        assert_eq!(score(&[0.0, 1.0], &[0.0, 5.0], &two).unwrap().e_psi_deg, 1.25);
+        // errors 0 and 2.5
     }
 
     #[test]

@@ -112,7 +112,10 @@ pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, Impor
     if let Some(lag) = align_offset {
         meta.other.insert("align_offset_s".into(), format!("{lag}"));
     }
-    let log = DriveLog::from_columns(meta, Vec::new(), columns)?;
+    // Cells past physical ranges (a wrong unit or scale in the recipe) are refused as the
+    // parser refuses them; the line is the imported log's row.
+    let log =
+        DriveLog::from_columns(meta, Vec::new(), columns).map_err(|e| e.within("the imported log (check the recipe's unit and scale)"))?;
     let finite = |c: Column| log.column(c).map_or(0, |v| v.iter().filter(|x| x.is_finite()).count());
     let n_reference = finite(Column::RefHeadingDeg);
     let summary = ImportSummary {

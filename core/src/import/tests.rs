@@ -67,6 +67,20 @@ fn a_bad_cell_keeps_its_line_and_column_under_the_file_name() {
     assert!(e.to_string().starts_with("a.csv: line 3, column w: "), "{e}");
 }
 
+#[test]
+fn a_rate_past_the_physical_range_is_refused_as_the_parser_refuses_it() {
+    // 1e3 rad/s = 57 296 deg/s: a wrong unit in the recipe, found by the fuzz loop as a NaN pipeline
+    let a: String = (0..40).map(|i| format!("{i},{}\n", if i == 20 { 1000.0 } else { 0.01 * (i % 3) as f64 })).collect();
+    let b: String = (0..40).map(|i| format!("{i} {} 0\n", 5 * i)).collect();
+    let mut files = BTreeMap::new();
+    files.insert("a.csv".to_string(), format!("t,w\n{a}").into_bytes());
+    files.insert("b.txt".to_string(), b.into_bytes());
+    let mut r = recipe();
+    r.align = None;
+    let e = import(&r, &mut files).unwrap_err().to_string();
+    assert!(e.contains("the imported log") && e.contains("column gyro_dps") && e.contains("outside the physical range"), "{e}");
+}
+
 proptest::proptest! {
     #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
     /// Arbitrary bytes in either file: an error or a log, never a panic.

@@ -47,6 +47,16 @@ impl Column {
         }
     }
 
+    /// The range check of one cell: the message when `v` is outside `physical_range`.
+    pub fn check_physical(self, v: f64) -> std::result::Result<(), String> {
+        match self.physical_range() {
+            Some((lo, hi, unit)) if !(v.is_nan() || (lo..=hi).contains(&v)) => {
+                Err(format!("{v:?} {unit} is outside the physical range [{lo}, {hi}] {unit}: a unit mistake?"))
+            }
+            _ => Ok(()),
+        }
+    }
+
     pub const ALL: [Column; 8] = [
         Column::TimeS,
         Column::GyroDps,
@@ -314,6 +324,10 @@ impl DriveLog {
                 }
                 if let Some(i) = v.iter().position(|x| x.is_infinite()) {
                     return Err(Error::Cell { line: log.line[i], column: c.name().into(), message: "not a finite number".into() });
+                }
+                // the import and a worker's columns meet the parser's physical ranges too
+                for (i, &x) in v.iter().enumerate() {
+                    c.check_physical(x).map_err(|message| Error::Cell { line: log.line[i], column: c.name().into(), message })?;
                 }
             }
         }

@@ -110,12 +110,7 @@ fn data_row(h: &Header, r: &Row, prev_time: &mut Option<(f64, u64)>, log: &mut D
     for (j, col) in h.map.iter().enumerate() {
         let Some(c) = col else { continue };
         let v = parse_cell(r.fields[j], line, c.name())?;
-        if let Some((lo, hi, unit)) = c.physical_range() {
-            if !(v.is_nan() || (lo..=hi).contains(&v)) {
-                let message = format!("{v:?} {unit} is outside the physical range [{lo}, {hi}] {unit}: a unit mistake?");
-                return Err(Error::Cell { line, column: c.name().into(), message });
-            }
-        }
+        c.check_physical(v).map_err(|message| Error::Cell { line, column: c.name().into(), message })?;
         if j == h.time_field {
             if v.is_nan() {
                 return Err(Error::Cell { line, column: c.name().into(), message: "empty, but every row needs a time".into() });
