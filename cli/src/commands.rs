@@ -1,6 +1,6 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
-use crate::{expand_recipes, fail, import_recipe, output, print_json, read_log, read_logs, settings, write_stdout, Failure};
+use crate::{expand_recipes, fail, import_recipe, output, print_json, read_log, settings, write_stdout, Failure};
 use gyrodrift::log::gaps::GapPolicy;
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
 use std::path::{Path, PathBuf};
@@ -24,23 +24,54 @@ fn write_log(log: &DriveLog, out: Option<&Path>) -> Result<(), Failure> {
     }
 }
 
-/// Reads a log and prints what `check` finds wrong with it (errors and warnings, a line
-/// each) to stderr, so a unit mistake is said before its results are trusted; then applies
-/// the gap policy: the parts to score, each a drive of its own.
-fn read_checked(path: &Path, gaps: GapPolicy, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
-    let drive = read_log(path)?;
+/// How the commands take their input logs: the gap policy, and whether a log `check` finds
+/// an error in (a unit or sign mistake) is refused (the default) or run anyway.
+#[derive(Clone, Copy)]
+pub struct Input {
+    pub gaps: GapPolicy,
+    pub ignore_check: bool,
+}
+
+/// Reads a log and prints what `check` finds wrong with it (a line each) to stderr; an error
+/// (ms time, radian heading, rad/s or clockwise gyro) refuses the log, since every figure
+/// from it would be absurd, unless `--ignore-check`. Then applies the gap policy: the parts
+/// to score, each a drive of its own, named by `# name:` or the file stem.
+fn read_checked(path: &Path, input: Input, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
+    let mut drive = read_log(path)?;
+    let mut refused = None;
     for f in gyrodrift::check::check(&drive).findings.iter().filter(|f| f.severity != gyrodrift::check::Severity::Info) {
         if f.code == "gap" {
             continue; // said once below, with what the policy did
         }
         let fix = f.fix.as_deref().map(|x| format!("; fix: {x}")).unwrap_or_default();
-        eprintln!("{}: check: {} [{}]: {}{fix}", path.display(), f.severity.name(), f.code, f.message);
+        let line = format!("{}: check: {} [{}]: {}{fix}", path.display(), f.severity.name(), f.code, f.message);
+        if f.severity == gyrodrift::check::Severity::Error && !input.ignore_check {
+            refused.get_or_insert(line);
+        } else {
+            eprintln!("{line}");
+        }
     }
-    split(path, drive, gaps, bias_s)
+    if let Some(line) = refused {
+        return Err(Failure(format!("{line} (refused: its results would be absurd; --ignore-check runs it anyway)")));
+    }
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    drive.meta.name.get_or_insert(stem);
+    split(path, drive, input.gaps, bias_s)
+}
+
+/// Reads many logs (checked and split as `read_checked`), with their names.
+fn read_logs(paths: &[PathBuf], input: Input, bias_s: Option<f64>) -> Result<Vec<(String, DriveLog)>, Failure> {
+    let mut out = Vec::new();
+    for p in paths {
+        for part in read_checked(p, input, bias_s)? {
+            out.push((part.meta.name.clone().unwrap_or_default(), part));
+        }
+    }
+    Ok(out)
 }
 
 /// The gap policy on one log; the split is said on stderr.
-pub(crate) fn split(path: &Path, drive: DriveLog, gaps: GapPolicy, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
+fn split(path: &Path, drive: DriveLog, gaps: GapPolicy, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
     let s = gyrodrift::log::gaps::split_at_gaps(&drive, gaps, drive.bias_s(bias_s)).map_err(|e| fail(path, e))?;
     if let Some(line) = s.summary() {
         eprintln!("{}: {line}", path.display());
@@ -89,9 +120,9 @@ fn part_path(path: &Path, i: usize) -> PathBuf {
     path.with_file_name(format!("{stem}.part{}{ext}", i + 1))
 }
 
-pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option<&Path>, gaps: GapPolicy) -> Result<(), Failure> {
+pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option<&Path>, input: Input) -> Result<(), Failure> {
     let opts = hdr::HdrOptions { resample, ..settings(set)? };
-    let parts = read_checked(log, gaps, opts.bias_s)?;
+    let parts = read_checked(log, input, opts.bias_s)?;
     let mut trace_err = None;
     let mut one = |i: usize, drive: &DriveLog| {
         let run = hdr::run(drive, &opts)?;
@@ -109,15 +140,15 @@ pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option
     trace_err.map_or(printed, Err)
 }
 
-pub fn pipeline(log: &Path, set: &[String], json: bool, gaps: GapPolicy) -> Result<(), Failure> {
+pub fn pipeline(log: &Path, set: &[String], json: bool, input: Input) -> Result<(), Failure> {
     let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
-    let parts = read_checked(log, gaps, params.bias_s)?;
+    let parts = read_checked(log, input, params.bias_s)?;
     per_part(log, &parts, json, |_, d| gyrodrift::pipeline::run(d, &params).and_then(|r| r.result), |r| output::pipeline_table(log, r))
 }
 
-pub fn gyrodometry(log: &Path, set: &[String], json: bool, gaps: GapPolicy) -> Result<(), Failure> {
+pub fn gyrodometry(log: &Path, set: &[String], json: bool, input: Input) -> Result<(), Failure> {
     let opts: gyrodometry::GyrodometryOptions = settings(set)?;
-    let parts = read_checked(log, gaps, opts.bias_s)?;
+    let parts = read_checked(log, input, opts.bias_s)?;
     per_part(log, &parts, json, |_, d| gyrodometry::run(d, &opts).and_then(|r| r.result), |r| output::gyrodometry_table(log, r))
 }
 
@@ -129,32 +160,32 @@ pub fn calibrate(log: &Path, set: &[String], json: bool) -> Result<(), Failure> 
 }
 
 /// `report --compare`: every method side by side, HDR tuned on `tune_on` when given.
-pub fn compare(files: &[PathBuf], set: &[String], json: bool, tune_on: &[PathBuf], gaps: GapPolicy) -> Result<(), Failure> {
+pub fn compare(files: &[PathBuf], set: &[String], json: bool, tune_on: &[PathBuf], input: Input) -> Result<(), Failure> {
     let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
     let tuned = if tune_on.is_empty() {
         None
     } else {
-        let train = read_logs(tune_on, gaps, None)?;
+        let train = read_logs(tune_on, input, None)?;
         let prepared = tune::prepare_all(&named(&train), &hdr::HdrOptions::default()).map_err(|e| Failure(e.to_string()))?;
         Some(tune::tune(&prepared, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?.recommended)
     };
-    let logs = read_logs(files, gaps, params.bias_s)?;
+    let logs = read_logs(files, input, params.bias_s)?;
     let c = gyrodrift::compare::compare(&named(&logs), &params, tuned).map_err(|e| Failure(e.to_string()))?;
     emit(json, &c, || c.to_markdown())
 }
 
 /// The paper's Table II over the drives.
-pub fn report(files: &[PathBuf], set: &[String], resample: bool, json: bool, markdown: bool, gaps: GapPolicy) -> Result<(), Failure> {
+pub fn report(files: &[PathBuf], set: &[String], resample: bool, json: bool, markdown: bool, input: Input) -> Result<(), Failure> {
     let opts = hdr::HdrOptions { resample, ..settings(set)? };
-    let logs = read_logs(files, gaps, opts.bias_s)?;
+    let logs = read_logs(files, input, opts.bias_s)?;
     let report = gyrodrift::report::Report::build(&named(&logs), &opts).map_err(|e| Failure(e.to_string()))?;
     emit(json, &report, || if markdown { report.to_markdown() } else { report.to_text() })
 }
 
-pub fn tune(train: &[PathBuf], test: &[PathBuf], json: bool, markdown: bool, gaps: GapPolicy) -> Result<(), Failure> {
+pub fn tune(train: &[PathBuf], test: &[PathBuf], json: bool, markdown: bool, input: Input) -> Result<(), Failure> {
     let opts = hdr::HdrOptions::default();
     let prep = |paths: &[PathBuf]| -> Result<Vec<tune::PreparedDrive>, Failure> {
-        tune::prepare_all(&named(&read_logs(paths, gaps, opts.bias_s)?), &opts).map_err(|e| Failure(e.to_string()))
+        tune::prepare_all(&named(&read_logs(paths, input, opts.bias_s)?), &opts).map_err(|e| Failure(e.to_string()))
     };
     let (train_p, test_p) = (prep(train)?, prep(test)?);
     let rep = tune::tune_and_report(&train_p, &test_p, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?;

@@ -23,6 +23,10 @@ struct Cli {
     /// their own (parts under 30 s dropped), or refuse it. No method integrates across one.
     #[arg(long, global = true, value_enum, default_value = "split")]
     gaps: GapsArg,
+    /// Run a log even when `check` finds an error in it (ms time, radian heading, rad/s or
+    /// clockwise gyro), whose results would otherwise be absurd and are refused.
+    #[arg(long, global = true)]
+    ignore_check: bool,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -217,21 +221,6 @@ fn read_log(path: &Path) -> Result<DriveLog, Failure> {
     gyrodrift::parse_log(file).map_err(|e| fail(path, e))
 }
 
-/// Reads many logs, each named by its `# name:` or its file stem; a log with gaps is split
-/// into parts under the policy, each a drive of its own.
-fn read_logs(paths: &[PathBuf], gaps: gyrodrift::log::gaps::GapPolicy, bias_s: Option<f64>) -> Result<Vec<(String, DriveLog)>, Failure> {
-    let mut out = Vec::new();
-    for p in paths {
-        let mut log = read_log(p)?;
-        let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-        log.meta.name.get_or_insert(stem);
-        for part in commands::split(p, log, gaps, bias_s)? {
-            out.push((part.meta.name.clone().unwrap_or_default(), part));
-        }
-    }
-    Ok(out)
-}
-
 /// Splits `key=value` and parses the value as a number.
 fn parse_set(s: &str) -> Result<(String, f64), Failure> {
     let (k, v) = s.split_once('=').ok_or_else(|| Failure(format!("--set {s}: expected KEY=VALUE")))?;
@@ -323,14 +312,15 @@ fn run(cli: Cli) -> Result<(), Failure> {
         GapsArg::Split => gyrodrift::log::gaps::GapPolicy::Split,
         GapsArg::Error => gyrodrift::log::gaps::GapPolicy::Error,
     };
+    let input = commands::Input { gaps, ignore_check: cli.ignore_check };
     match cli.cmd {
-        Cmd::Hdr { log, no_resample, set, json, trace } => c::hdr(&log, !no_resample, &set, json, trace.as_deref(), gaps),
-        Cmd::Pipeline { log, set, json } => c::pipeline(&log, &set, json, gaps),
-        Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json, gaps),
+        Cmd::Hdr { log, no_resample, set, json, trace } => c::hdr(&log, !no_resample, &set, json, trace.as_deref(), input),
+        Cmd::Pipeline { log, set, json } => c::pipeline(&log, &set, json, input),
+        Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json, input),
         Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json),
-        Cmd::Report { files, set, json, compare: true, tune_on, .. } => c::compare(&files, &set, json, &tune_on, gaps),
-        Cmd::Report { files, set, no_resample, json, markdown, .. } => c::report(&files, &set, !no_resample, json, markdown, gaps),
-        Cmd::Tune { train, test, json, markdown } => c::tune(&train, &test, json, markdown, gaps),
+        Cmd::Report { files, set, json, compare: true, tune_on, .. } => c::compare(&files, &set, json, &tune_on, input),
+        Cmd::Report { files, set, no_resample, json, markdown, .. } => c::report(&files, &set, !no_resample, json, markdown, input),
+        Cmd::Tune { train, test, json, markdown } => c::tune(&train, &test, json, markdown, input),
         Cmd::Simulate { kind, scenario, minutes, seed, name, out } => {
             let kind = match kind {
                 SimKindArg::Drive => SimKind::Drive,

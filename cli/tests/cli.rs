@@ -411,3 +411,30 @@ fn out_of_memory_exits_2_with_one_line() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.starts_with("gyrodrift: out of memory (a request for ") && err.lines().count() == 1, "{err}");
 }
+
+/// A log `check` finds an error in (here a clockwise gyro) is refused by every method with
+/// the finding and its fix, exit 2, rather than given absurd figures; `--ignore-check` runs it.
+#[test]
+fn a_log_check_finds_an_error_in_is_refused_unless_ignored() {
+    let text: String = drive_csv()
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            let mut c: Vec<String> = l.split(',').map(str::to_string).collect();
+            if i > 1 {
+                c[1] = format!("{}", -c[1].parse::<f64>().unwrap());
+            }
+            c.join(",") + "\n"
+        })
+        .collect();
+    let p = write("cw.csv", &text);
+    for cmd in [&["hdr"][..], &["pipeline"], &["report"], &["report", "--compare"]] {
+        let out = run(&[cmd, &[p.to_str().unwrap()]].concat());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{cmd:?}: {err}");
+        assert!(err.contains("check: error [gyro_sign]") && err.contains("positive = \"cw\"") && err.contains("--ignore-check"), "{err}");
+    }
+    let forced = run(&["hdr", p.to_str().unwrap(), "--ignore-check", "--json"]);
+    assert!(forced.status.success());
+    assert!(String::from_utf8_lossy(&forced.stderr).contains("check: error [gyro_sign]"));
+}
