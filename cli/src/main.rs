@@ -179,6 +179,16 @@ enum Cmd {
         #[arg(long)]
         json: bool,
     },
+    /// Road geometry of the recorded drives (via recipes) against the simulated sample
+    /// drives: yaw rate while moving, straight runs, slow curvature, and their distances.
+    Roads {
+        #[arg(long, num_args = 1.., default_value = "sample-logs/recipes")]
+        recipes: Vec<PathBuf>,
+        #[arg(long)]
+        data: Option<PathBuf>,
+        #[arg(long)]
+        json: bool,
+    },
     /// What a log looks like before any method runs: rate, gaps, units and sign against the
     /// reference, bias, outliers; each finding with its fix. Exit 1 when it finds an error.
     Check {
@@ -342,6 +352,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Cmd::Import { recipe, data, allow_outside, out, json } => c::import(&recipe, data.as_deref(), allow_outside, out.as_deref(), json),
         Cmd::Allan { log, json } => c::allan(&log, json),
         Cmd::Check { log, json } => c::check(&log, json),
+        Cmd::Roads { recipes, data, json } => c::roads(&recipes, data.as_deref(), json),
     }
 }
 

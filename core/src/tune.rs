@@ -430,7 +430,8 @@ mod cv_tests {
         let dist = |p: HdrParams| (p.i_c_dps - t3.i_c_dps).abs() / 0.3 + (p.theta_w_dps - t3.theta_w_dps).abs() / 3.0;
         let a = tune(&d, &free).unwrap().params;
         let b = tune(&d, &strong).unwrap().params;
-        assert!(dist(b) <= dist(a) && dist(b) < 0.01, "free {a:?}, regularised {b:?}");
+        // regularised: within a fifth of the free optimum's distance from Table III
+        assert!(dist(b) < 0.2 * dist(a), "free {a:?}, regularised {b:?}");
         assert!(tune(&d, &TuneOptions { regularization_deg_per_min: -1.0, ..free }).is_err());
     }
 }

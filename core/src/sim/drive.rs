@@ -68,6 +68,10 @@ struct Style {
     curve_deg: (f64, f64),
     curve_radius_m: (f64, f64),
     sway_dps: f64,
+    /// Road meander: a Gauss-Markov curvature in distance (sigma, deg/m; correlation
+    /// length, m), so roads that look straight still turn slowly, as recorded ones do.
+    meander_deg_per_m: f64,
+    meander_len_m: f64,
 }
 
 fn style(s: Scenario) -> Style {
@@ -83,6 +87,8 @@ fn style(s: Scenario) -> Style {
             curve_deg: (15.0, 45.0),
             curve_radius_m: (80.0, 200.0),
             sway_dps: 0.2,
+            meander_deg_per_m: 0.0105,
+            meander_len_m: 80.0,
         },
         Scenario::Downtown => Style {
             cruise_mps: 9.0,
@@ -95,6 +101,8 @@ fn style(s: Scenario) -> Style {
             curve_deg: (10.0, 20.0),
             curve_radius_m: (60.0, 100.0),
             sway_dps: 0.2,
+            meander_deg_per_m: 0.0105,
+            meander_len_m: 50.0,
         },
         Scenario::Suburbs => Style {
             cruise_mps: 12.0,
@@ -107,6 +115,8 @@ fn style(s: Scenario) -> Style {
             curve_deg: (20.0, 90.0),
             curve_radius_m: (40.0, 150.0),
             sway_dps: 0.15,
+            meander_deg_per_m: 0.014,
+            meander_len_m: 60.0,
         },
         Scenario::Rural => Style {
             cruise_mps: 22.0,
@@ -119,6 +129,8 @@ fn style(s: Scenario) -> Style {
             curve_deg: (10.0, 60.0),
             curve_radius_m: (200.0, 600.0),
             sway_dps: 0.12,
+            meander_deg_per_m: 0.0025,
+            meander_len_m: 200.0,
         },
         Scenario::Highway => Style {
             cruise_mps: 30.0,
@@ -131,6 +143,8 @@ fn style(s: Scenario) -> Style {
             curve_deg: (5.0, 40.0),
             curve_radius_m: (800.0, 2500.0),
             sway_dps: 0.08,
+            meander_deg_per_m: 0.0032,
+            meander_len_m: 600.0,
         },
     }
 }
@@ -269,12 +283,28 @@ impl Phase {
 struct Gps {
     bias_deg: f64,
     dropout_s: f64,
+    /// A multipath excursion (urban canyons): its offset and seconds left.
+    jump_deg: f64,
+    jump_s: f64,
 }
+
+/// GPS course latency, in 0.1 s steps: the course describes the heading this long ago.
+const GPS_LATENCY_STEPS: usize = 3;
 
 impl Gps {
     /// The reference heading at a whole second (NaN when none): noisier when slow, none
-    /// below 2 m/s, rare dropouts.
-    fn course(&mut self, heading_deg: f64, v: f64, rng: &mut SimRng) -> f64 {
+    /// below 2 m/s, rare dropouts, multipath excursions where `urban`.
+    fn course(&mut self, heading_deg: f64, v: f64, urban: bool, rng: &mut SimRng) -> f64 {
+        if self.jump_s > 0.0 {
+            self.jump_s -= 1.0;
+        } else {
+            self.jump_deg = 0.0;
+            if urban && rng.chance(0.01) {
+                self.jump_deg = 6.0 * rng.normal();
+                self.jump_s = rng.range(2.0, 6.0);
+            }
+        }
+        let heading_deg = heading_deg + self.jump_deg;
         if self.dropout_s > 0.0 {
             self.dropout_s -= 1.0;
         } else if rng.chance(0.003) {
@@ -310,8 +340,10 @@ pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
     let mut gyro = GyroModel::draw(spec, temp_start, &mut rng);
     let mut heading_deg = rng.range(0.0, 360.0);
     let (mut v, mut sway_rate, mut sway_dev) = (0.0f64, 0.0f64, 0.0f64);
+    let mut meander_deg_per_m = 0.0f64;
     let mut phase = Phase::Still { left_s: LEAD_IN_S };
-    let mut gps = Gps { bias_deg: rng.range(-0.3, 0.3), dropout_s: 0.0 };
+    let mut gps = Gps { bias_deg: rng.range(-0.3, 0.3), dropout_s: 0.0, jump_deg: 0.0, jump_s: 0.0 };
+    let mut past_heading = [0.0f64; GPS_LATENCY_STEPS + 1];
     let n = (cfg.minutes * 600.0).round() as usize;
     for i in 0..=n {
         let t = i as f64 / 10.0;
@@ -335,11 +367,21 @@ pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
             sway_rate = 0.0;
             sway_dev *= 0.9;
         }
-        let true_rate = if i == 0 { 0.0 } else { road_rate + if v > 1.0 { sway_rate } else { 0.0 } };
+        // Road meander: first-order Gauss-Markov curvature over the distance driven.
+        let a = libm::exp(-v * DT / st.meander_len_m);
+        meander_deg_per_m = a * meander_deg_per_m + st.meander_deg_per_m * libm::sqrt(1.0 - a * a) * rng.normal();
+        let meander_rate = v * meander_deg_per_m;
+        let true_rate = if i == 0 { 0.0 } else { road_rate + if v > 1.0 { sway_rate + meander_rate } else { 0.0 } };
         heading_deg += true_rate * DT;
+        past_heading.rotate_right(1);
+        past_heading[0] = heading_deg;
+        if i == 0 {
+            past_heading = [heading_deg; GPS_LATENCY_STEPS + 1];
+        }
         let temp = temp_end + (temp_start - temp_end) * libm::exp(-t / warm_tau_s);
         let g = gyro.measure(true_rate, temp, DT, &mut rng);
-        let reference = if i % 10 == 0 { gps.course(heading_deg, v, &mut rng) } else { f64::NAN };
+        let urban = matches!(scenario, Scenario::City | Scenario::Downtown);
+        let reference = if i % 10 == 0 { gps.course(past_heading[GPS_LATENCY_STEPS], v, urban, &mut rng) } else { f64::NAN };
         let speed_meas = (v + 0.03 * rng.normal()).max(0.0);
         log.push_row(&[
             (Column::TimeS, t),

@@ -9,6 +9,7 @@
 pub mod drive;
 pub mod errors;
 pub mod gyro;
+pub mod roads;
 pub mod robot;
 pub mod samples;
 pub mod turntable;
