@@ -3,7 +3,7 @@
 // state.js (settings, URL), loading.js (files, worker), controls.js (list, forms),
 // charts.js (canvases, zoom), render.js (the active view), views/*.js (one per view).
 import init, * as gd from "./pkg/gyrodrift.js";
-import { $, state, defaults, readUrl, hdrOptions, PARAMS, GYRO_PARAMS, VIEW_KIND } from "./state.js";
+import { $, state, defaults, readUrl, urlHash, hdrOptions, PARAMS, GYRO_PARAMS, VIEW_KIND } from "./state.js";
 import { loadFiles, loadSamples } from "./loading.js";
 import { buildParams, syncParams, logFor } from "./controls.js";
 import { attachTimeInteraction, download } from "./charts.js";
@@ -29,25 +29,46 @@ async function main() {
     reset.textContent = "Reset to Table III";
     reset.addEventListener("click", () => { state.params = defaults(); state.resample = true; syncParams(); render(); });
     form.append(row, reset);
-  });
-  buildParams($("gyro-params"), GYRO_PARAMS, (k) => state.gyro[k], (k, v) => { state.gyro[k] = v; });
+  }, (k, v) => gd.checkOptions("hdr", { ...hdrOptions(), [k]: v }) ?? null);
+  buildParams($("gyro-params"), GYRO_PARAMS, (k) => state.gyro[k], (k, v) => { state.gyro[k] = v; }, null, (k, v) => gd.checkOptions("gyrodometry", { ...state.gyro, [k]: v }) ?? null);
   for (const b of document.querySelectorAll("#tabs button")) b.addEventListener("click", () => { state.view = b.dataset.view; state.zoom = null; render(); });
   for (const id of ["c-heading", "c-error", "c-rate", "c-gyrodometry"]) attachTimeInteraction(id);
   for (const b of document.querySelectorAll("button.png")) b.addEventListener("click", () => download(`${b.dataset.canvas}.png`, $(b.dataset.canvas).toDataURL("image/png")));
   $("export-trace").addEventListener("click", () => { const e = logFor("hdr"); if (e) download(`${e.name}-heading.csv`, gd.hdrTraceCsv(e.log, hdrOptions()), "text/csv"); });
   $("export-json").addEventListener("click", () => { const e = logFor("hdr"); if (e) download(`${e.name}-hdr.json`, JSON.stringify(gd.hdr(e.log, hdrOptions()), null, 2), "application/json"); });
   $("tune").addEventListener("click", runTune);
-  $("file-input").addEventListener("change", (ev) => loadFiles([...ev.target.files]));
+  $("file-input").addEventListener("change", (ev) => {
+    const files = [...ev.target.files];
+    ev.target.value = ""; // the same file can be opened again
+    loadFiles(files);
+  });
   document.addEventListener("dragover", (ev) => { ev.preventDefault(); document.body.classList.add("dragging"); });
   document.addEventListener("dragleave", () => document.body.classList.remove("dragging"));
   document.addEventListener("drop", (ev) => { ev.preventDefault(); document.body.classList.remove("dragging"); loadFiles([...ev.dataTransfer.files]); });
   window.addEventListener("resize", scheduleRender);
 
   await loadSamples();
-  let idx = state.entries.findIndex((e) => e.name === wantLog);
-  if (idx < 0) idx = state.entries.findIndex((e) => e.kind === VIEW_KIND[state.view]) ;
-  state.selected = Math.max(0, idx);
+  applyLog(wantLog);
   render();
+  // A link pasted into this tab, or Back and Forward: apply the state it names.
+  const follow = () => {
+    if (location.hash === urlHash()) return;
+    const log = readUrl();
+    applyLog(log);
+    syncParams();
+    render();
+  };
+  window.addEventListener("hashchange", follow);
+  window.addEventListener("popstate", follow);
+}
+
+/** Selects the log a link names; one opened from disk before a reload cannot come back, and
+ * the page says so instead of showing another log silently. */
+function applyLog(name) {
+  let idx = name ? state.entries.findIndex((e) => e.name === name && !e.error) : -1;
+  $("status").textContent = name && idx < 0 ? `The link names the log "${name}", which is not loaded (a log opened from disk is not kept across reloads): open it again.` : "";
+  if (idx < 0) idx = state.entries.findIndex((e) => !e.error && e.kind === VIEW_KIND[state.view]);
+  state.selected = Math.max(0, idx);
 }
 
 main().catch((e) => showError(`could not start: ${e.message}`));

@@ -6,21 +6,28 @@ import { render, scheduleRender } from "./render.js";
 export function renderList() {
   const ul = $("logs");
   ul.replaceChildren();
+  const shown = logFor(state.view);
   state.entries.forEach((e, i) => {
     const li = document.createElement("li");
     if (e.error) {
       li.className = "bad";
-      li.textContent = e.error;
+      const text = document.createElement("span");
+      text.textContent = e.error;
+      li.append(text, removeButton(i, `Dismiss the error of ${e.name}`));
       li.dataset.error = "1";
     } else {
-      if (i === state.selected) li.className = "selected";
+      // the highlighted log is the one the view plots
+      if (e === shown) {
+        li.className = "selected";
+        li.setAttribute("aria-current", "true");
+      }
       const b = document.createElement("button");
       b.className = "pick";
       b.innerHTML = `<div><b></b></div><div class="meta"></div>`;
       b.querySelector("b").textContent = e.name;
       b.querySelector(".meta").textContent = `${e.kind} · ${fmt(e.log.durationMin, 1)} min · ${e.headline}`;
       b.addEventListener("click", () => selectEntry(i));
-      li.append(b);
+      li.append(b, removeButton(i, `Remove ${e.name}`));
       if (e.findings?.length) {
         const badge = document.createElement("div");
         const worst = e.findings.some((f) => f.severity === "error") ? "error" : "warning";
@@ -39,6 +46,28 @@ export function renderList() {
     }
     ul.append(li);
   });
+}
+
+function removeButton(i, label) {
+  const x = document.createElement("button");
+  x.className = "remove";
+  x.type = "button";
+  x.textContent = "×";
+  x.title = label;
+  x.setAttribute("aria-label", label);
+  x.addEventListener("click", () => removeEntry(i));
+  return x;
+}
+
+/** Removes a log (its wasm memory freed) or dismisses an error entry. */
+export function removeEntry(i) {
+  const [e] = state.entries.splice(i, 1);
+  e?.log?.free();
+  if (state.selected > i || state.selected >= state.entries.length) state.selected--;
+  state.selected = Math.max(0, Math.min(state.selected, state.entries.length - 1));
+  state.zoom = null;
+  renderList(); // the list may have been drawn outside render() (a failed load)
+  render();
 }
 
 export function selectEntry(i) {
@@ -68,26 +97,46 @@ export function logFor(view) {
 }
 
 // ---------- parameters ----------
-export function buildParams(form, list, get, set, extra) {
+/** A form of parameters, slider and box each. `check(key, value)` asks core whether the
+ * value is valid (null) or why not: a bad, empty or out-of-range value is refused in place,
+ * with the reason beside the box, and the settings, slider, results and URL keep the last
+ * valid value. */
+export function buildParams(form, list, get, set, extra, check) {
   form.replaceChildren();
   for (const p of list) {
     const row = document.createElement("div");
     row.className = "param";
     const id = `p-${p.key}`;
-    row.innerHTML = `<label for="${id}"></label><input type="range" id="${id}"><input type="number" aria-label=""><span class="unit"></span>`;
+    row.innerHTML = `<label for="${id}"></label><input type="range" id="${id}"><input type="number" aria-label=""><span class="unit"></span><span class="param-error" role="alert"></span>`;
     row.querySelector("label").textContent = p.label;
     row.querySelector(".unit").textContent = p.unit;
     const [range, num] = row.querySelectorAll("input");
+    const msg = row.querySelector(".param-error");
+    num.id = `${id}-value`;
     num.setAttribute("aria-label", `${p.label} (${p.unit || "no unit"})`);
+    num.setAttribute("aria-describedby", `${id}-error`);
+    msg.id = `${id}-error`;
     for (const el of [range, num]) Object.assign(el, { min: p.min, max: p.max, step: p.step });
+    const showWhy = (why) => {
+      msg.textContent = why ? `${why} (kept ${get(p.key)})` : "";
+      row.classList.toggle("invalid", !!why);
+      if (why) num.setAttribute("aria-invalid", "true");
+      else num.removeAttribute("aria-invalid");
+    };
     const sync = () => {
       const v = get(p.key);
       range.value = v;
       num.value = v;
+      showWhy(null);
     };
     const onInput = (el) => () => {
-      const v = Number(el.value);
-      if (!Number.isFinite(v)) return;
+      const text = String(el.value).trim();
+      const v = Number(text);
+      const why = el.validity?.badInput || (text !== "" && !Number.isFinite(v)) ? "not a number"
+        : text === "" ? "enter a number"
+        : check?.(p.key, v) || null;
+      if (why) return showWhy(why);
+      showWhy(null);
       set(p.key, v);
       (el === range ? num : range).value = v;
       scheduleRender();

@@ -53,10 +53,18 @@ export async function parseInWorker(file, buffer) {
   return res;
 }
 
+/** A name no loaded log has: "City 1", then "City 1 (2)", ... (the list and the URL name logs). */
+function uniqueName(name) {
+  const taken = new Set(state.entries.map((e) => e.name));
+  let out = name;
+  for (let k = 2; taken.has(out); k++) out = `${name} (${k})`;
+  return out;
+}
+
 export function addParsed(name, make) {
   try {
     const whole = make();
-    const base = whole.name || name.replace(/\.csv$/, "");
+    const base = uniqueName(whole.name || name.replace(/\.csv$/, ""));
     const check = gd.checkLog(whole);
     let parts = [whole];
     let note = null;

@@ -28,7 +28,7 @@ export function showError(msg) {
 export function render() {
   for (const b of document.querySelectorAll("#tabs button")) b.setAttribute("aria-selected", String(b.dataset.view === state.view));
   for (const s of document.querySelectorAll(".view")) s.hidden = s.id !== `view-${state.view}`;
-  const listKey = state.entries.length + ":" + state.selected;
+  const listKey = [state.view, state.selected, ...state.entries.map((e) => e.name)].join("|");
   if (listKey !== lastListKey) {
     renderList();
     lastListKey = listKey;

@@ -49,20 +49,25 @@ export function hdrOptions() {
 }
 
 // ---------- URL state ----------
+/** Applies a link's state (view, parameters, zoom); returns the log name it asks for. Only
+ * valid values are taken, 0 included. */
 export function readUrl() {
   const h = new URLSearchParams(location.hash.slice(1));
   if (h.has("view") && h.get("view") in VIEW_KIND) state.view = h.get("view");
+  const num = (k) => {
+    const text = h.get(k);
+    const v = text === null || text.trim() === "" ? NaN : Number(text);
+    return Number.isFinite(v) ? v : null;
+  };
   for (const p of PARAMS) {
-    if (h.has(p.key)) {
-      const v = Number(h.get(p.key));
-      if (Number.isFinite(v)) state.params[p.key] = v;
-    }
+    const v = num(p.key);
+    if (v !== null && !gd.checkOptions("hdr", { [p.key]: v })) state.params[p.key] = v;
   }
   if (h.has("resample")) state.resample = h.get("resample") !== "0";
-  if (h.has("thres_rate_dps")) {
-    const v = Number(h.get("thres_rate_dps"));
-    if (Number.isFinite(v)) state.gyro.thres_rate_dps = v;
-  }
+  const thres = num("thres_rate_dps");
+  if (thres !== null && !gd.checkOptions("gyrodometry", { thres_rate_dps: thres })) state.gyro.thres_rate_dps = thres;
+  const z = (h.get("zoom") || "").split(",").map(Number);
+  state.zoom = z.length === 2 && z.every(Number.isFinite) && z[0] < z[1] ? z : null;
   return h.get("log");
 }
 
@@ -73,13 +78,28 @@ export function writeUrl() {
   urlTimer = setTimeout(writeUrlNow, 150);
 }
 
-export function writeUrlNow() {
+/** The hash the current state makes. */
+export function urlHash() {
   const h = new URLSearchParams();
   h.set("view", state.view);
   const e = state.entries[state.selected];
-  if (e) h.set("log", e.name);
+  if (e && !e.error) h.set("log", e.name);
   for (const p of PARAMS) if (state.params[p.key] != null) h.set(p.key, String(state.params[p.key]));
   h.set("resample", state.resample ? "1" : "0");
   h.set("thres_rate_dps", String(state.gyro.thres_rate_dps));
-  history.replaceState(null, "", "#" + h.toString());
+  if (state.zoom) h.set("zoom", state.zoom.map((v) => +v.toFixed(3)).join(","));
+  return "#" + h.toString();
+}
+
+/** Writes the URL: a new history entry when the view or the log changed (Back steps back),
+ * else the current entry is replaced (sliders, zoom). */
+export function writeUrlNow() {
+  clearTimeout(urlTimer);
+  const hash = urlHash();
+  if (hash === location.hash) return;
+  const was = new URLSearchParams(location.hash.slice(1));
+  const now = new URLSearchParams(hash.slice(1));
+  const step = was.get("view") !== now.get("view") || was.get("log") !== now.get("log");
+  if (step && was.has("view")) history.pushState(null, "", hash);
+  else history.replaceState(null, "", hash);
 }

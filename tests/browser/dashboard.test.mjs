@@ -81,7 +81,7 @@ test("moving a slider changes the metrics and the plot", async () => {
   const native = JSON.parse(cli("hdr", join(SAMPLES, "train", "city-1.csv"), "--json", "--set", "i_c=0.01"));
   assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
   // slider-to-redraw time on the 52 min 10 Hz drive (Highway 1): re-run HDR and redraw 3 charts
-  await page.locator("#logs li", { hasText: "Highway 1" }).locator("button").click();
+  await page.locator("#logs li", { hasText: "Highway 1" }).locator("button.pick").click();
   await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Highway 1"));
   const ms = await page.evaluate(async () => {
     const s = [];
@@ -97,7 +97,33 @@ test("moving a slider changes the metrics and the plot", async () => {
     return s[Math.floor(s.length / 2)];
   });
   console.log(`# slider -> re-run + redraw of the HDR view (Highway 1, 52.1 min at 10 Hz): median ${ms} ms`);
-  await page.locator("#logs li", { hasText: "City 1" }).locator("button").click();
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+});
+
+test("a bad, empty or out-of-range value is refused in place; results, slider and URL keep the last valid one", async () => {
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+  const box = page.locator("#p-i_c_dps-value");
+  await box.fill("0.03");
+  await box.dispatchEvent("change");
+  await page.waitForFunction(() => location.hash.includes("i_c_dps=0.03"));
+  const good = await page.locator("#m-e-hdr").innerText();
+  for (const bad of ["", "1e9", "-1"]) {
+    await box.fill(bad);
+    await box.dispatchEvent("change");
+    const why = page.locator("#p-i_c_dps-error");
+    await page.waitForFunction(() => document.getElementById("p-i_c_dps-error").textContent !== "");
+    assert.match(await why.innerText(), bad === "" ? /enter a number/ : /i_c.*\[0, 10\]/, bad);
+    assert.match(await why.innerText(), /kept 0\.03/);
+    assert.equal(await box.getAttribute("aria-invalid"), "true");
+    assert.equal(await page.locator("#p-i_c_dps").inputValue(), "0.03", "slider untouched");
+    assert.equal(await page.locator("#m-e-hdr").innerText(), good, "results untouched");
+    assert.ok(page.url().includes("i_c_dps=0.03"), "URL untouched");
+  }
+  await page.screenshot({ path: join(ARTIFACTS, "refused-input.png") });
+  await box.fill("0.01");
+  await box.dispatchEvent("change");
+  await page.waitForFunction(() => document.getElementById("p-i_c_dps-error").textContent === "");
+  assert.equal(await box.getAttribute("aria-invalid"), null);
 });
 
 test("charts zoom with the keyboard and reset", async () => {
@@ -174,6 +200,59 @@ test("a log with a 60 s gap becomes two drives, each marked as split, with the C
   assert.match(await page.locator("#logs li", { hasText: "City gap (part 2 of 2)" }).locator(".check.split").getAttribute("title"), /60\.1 s at line/);
   const native = JSON.parse(cli("hdr", file, "--json"));
   assert.equal(await page.locator("#m-e-hdr").innerText(), native[0].E_psi_hdr_deg.toFixed(2));
+});
+
+test("log management: same name made unique, the same file re-opened, a log removed, an error dismissed", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-manage-"));
+  const copy = join(dir, "rural-copy.csv");
+  writeFileSync(copy, readFileSync(join(SAMPLES, "test", "rural-3.csv")));
+  const before = await page.locator("#logs li").count();
+  await page.locator("#file-input").setInputFiles([copy]);
+  await page.locator("#file-input").setInputFiles([copy]); // the same file again: loads again
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li").length === n + 2, before);
+  const names = await page.locator("#logs li b").allInnerTexts();
+  const copies = names.filter((n) => n.startsWith("Rural 3"));
+  assert.equal(new Set(copies).size, copies.length, `unique names: ${names.join(" | ")}`);
+  assert.ok(copies.length >= 2, names.join(" | "));
+  const last = copies[copies.length - 1];
+  await page.getByRole("button", { name: `Remove ${last}`, exact: true }).click();
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li").length === n + 1, before);
+  assert.ok(!(await page.locator("#logs li b").allInnerTexts()).includes(last));
+  await page.getByRole("button", { name: `Remove ${copies[copies.length - 2]}`, exact: true }).click();
+  const bad = join(dir, "broken2.csv");
+  writeFileSync(bad, "time_s,gyro_dps\n0,x\n");
+  await page.locator("#file-input").setInputFiles([bad]);
+  await page.waitForSelector("#logs li.bad");
+  await page.locator("#logs li.bad button.remove").last().click();
+  await page.waitForFunction(() => ![...document.querySelectorAll("#logs li.bad")].some((li) => li.innerText.includes("broken2")));
+});
+
+test("the list highlights the log each view plots", async () => {
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+  await page.locator("#tabs button[data-view=gyrodometry]").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Robot straight"));
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City 1"));
+});
+
+test("a link pasted into the open tab is applied, zoom included, and Back steps back", async () => {
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+  await page.waitForFunction(() => location.hash.includes("view=hdr") && location.hash.includes("log=City"));
+  const hdrUrl = page.url();
+  const shared = hdrUrl.split("#")[0] + "#view=hdr&log=Highway+1&i_c_dps=0&tau_s=0.75&zoom=100,400";
+  await page.evaluate((u) => { location.href = u; }, shared);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Highway 1"));
+  assert.equal(await page.locator("#p-i_c_dps").inputValue(), "0", "a threshold of 0 round-trips");
+  await page.waitForFunction(() => {
+    const L = window.gyrodrift.state.layouts["c-heading"];
+    return L && Math.abs(L.x_min - 100) < 1 && Math.abs(L.x_max - 400) < 1;
+  });
+  await page.locator("#tabs button[data-view=track]").click();
+  await page.waitForFunction(() => location.hash.includes("view=track"));
+  await page.goBack();
+  await page.waitForFunction(() => window.gyrodrift.state.view === "hdr");
+  assert.ok(page.url().includes("view=hdr"));
+  await page.locator("#reset").click();
 });
 
 test("a large log is parsed in a Web Worker and gives the CLI's numbers", async () => {

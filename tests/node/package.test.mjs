@@ -186,3 +186,11 @@ test("splitAtGaps gives the CLI's parts: no method integrates across a 60 s gap"
   assert.deepEqual([whole.parts.length, whole.gaps.length, whole.summary], [1, 0, null]);
   assert.throws(() => gd.Log.parse(text).splitAtGaps(NaN), TypeError);
 });
+
+test("checkOptions gives core's reason for a bad setting, or nothing for a good one", () => {
+  assert.equal(gd.checkOptions("hdr", { i_c_dps: 0.03 }), undefined);
+  assert.match(gd.checkOptions("hdr", { i_c_dps: 1e9 }), /i_c.*\[0, 10\]/);
+  assert.match(gd.checkOptions("gyrodometry", { thres_rate_dps: -1 }), /thres/);
+  assert.match(gd.checkOptions("hdr", { ofset: 1 }), /unknown field/);
+  assert.throws(() => gd.checkOptions("nope", {}), /unknown method/);
+});

@@ -234,6 +234,26 @@ pub fn defaults(#[wasm_bindgen(unchecked_param_type = "string")] method: JsValue
     }
 }
 
+/// Checks settings for a method ("hdr", "pipeline", "gyrodometry", "calibration", "tune")
+/// by core's schema and ranges without running anything: the message naming the field
+/// and its range, or null when they are valid. For forms that refuse a bad value in place.
+#[wasm_bindgen(js_name = checkOptions)]
+pub fn check_options(
+    #[wasm_bindgen(unchecked_param_type = "string")] method: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "object")] settings: JsValue,
+) -> JsResult<Option<String>> {
+    let method = js_string(&method, "checkOptions(method)")?;
+    let checked = match method.as_str() {
+        "hdr" => options::<HdrOptions>("hdr", settings.clone()).map(|_| ()),
+        "pipeline" => options::<gyrodrift::pipeline::PipelineParams>("pipeline", settings.clone()).map(|_| ()),
+        "gyrodometry" => options::<gyrodometry::GyrodometryOptions>("gyrodometry", settings.clone()).map(|_| ()),
+        "calibration" => options::<calibration::CalibrationOptions>("calibration", settings.clone()).map(|_| ()),
+        "tune" => options::<tune::TuneOptions>("tune", settings.clone()).map(|_| ()),
+        other => return Err(err(format!("checkOptions: unknown method \"{other}\" (hdr, pipeline, gyrodometry, calibration, tune)"))),
+    };
+    Ok(checked.err().map(|e| e.dyn_into::<js_sys::Error>().map(|e| String::from(e.message())).unwrap_or_else(|v| format!("{v:?}"))))
+}
+
 /// The static-bias window used when neither the options nor the log give one, s.
 #[wasm_bindgen(js_name = defaultBiasS)]
 pub fn default_bias_s() -> f64 {
