@@ -266,6 +266,21 @@ test("a large log is parsed in a Web Worker and gives the CLI's numbers", async 
   assert.equal(await page.locator("#progress").isVisible(), false);
 });
 
+test("the Track view has equal metres per pixel across and up", async () => {
+  await page.locator("#tabs button[data-view=track]").click();
+  await page.waitForFunction(() => window.gyrodrift.state.layouts["c-track"]);
+  for (const width of [1400, 390]) {
+    await page.setViewportSize({ width, height: 1000 });
+    await page.waitForTimeout(200);
+    const L = await page.evaluate(() => window.gyrodrift.state.layouts["c-track"]);
+    const across = (L.x_max - L.x_min) / (L.right - L.left);
+    const up = (L.y_max - L.y_min) / (L.bottom - L.top);
+    assert.ok(Math.abs(across / up - 1) < 0.01, `width ${width}: ${across} m/px across, ${up} m/px up`);
+  }
+  await page.setViewportSize({ width: 1400, height: 1000 });
+  await page.locator("#tabs button[data-view=hdr]").click();
+});
+
 for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyrodometry"]], ["calibration", ["c-cal-before", "c-cal-after"]], ["allan", ["c-allan"]], ["report", []]]) {
   test(`the ${view} view draws`, async () => {
     await page.locator(`#tabs button[data-view="${view}"]`).click();

@@ -13,18 +13,30 @@ export function renderTrack() {
   if (tr.reference) series.push({ name: "reference heading", color: COLORS.ref, x: tr.reference.x_m, y: tr.reference.y_m, points: false, width: 2 });
   series.push({ name: "raw", color: COLORS.raw, x: tr.raw.x_m, y: tr.raw.y_m, points: false });
   series.push({ name: "HDR", color: COLORS.hdr, x: tr.hdr.x_m, y: tr.hdr.y_m, points: false, width: 2 });
-  // Equal axes: a square range around all paths (the canvas is square).
-  let lo = Infinity, hi = -Infinity;
-  for (const s of series) for (const arr of [s.x, s.y]) for (const v of arr) if (Number.isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
-  const span = hi - lo || 1;
-  const mid = (a) => { let l = Infinity, h = -Infinity; for (const v of a) { l = Math.min(l, v); h = Math.max(h, v); } return [l, h]; };
-  const xs = series.map((s) => mid(s.x)), ys = series.map((s) => mid(s.y));
-  const xc = (Math.min(...xs.map((r) => r[0])) + Math.max(...xs.map((r) => r[1]))) / 2;
-  const yc = (Math.min(...ys.map((r) => r[0])) + Math.max(...ys.map((r) => r[1]))) / 2;
-  const half = span / 2 * 1.05;
-  chart("c-track", {
+  // Equal axes: the same metres per pixel across and up. The plot area inside the canvas
+  // (margins for labels) is not square, so its size is read from the last drawing.
+  const ext = (key) => {
+    let l = Infinity, h = -Infinity;
+    for (const s of series) for (const v of s[key]) if (Number.isFinite(v)) { l = Math.min(l, v); h = Math.max(h, v); }
+    return Number.isFinite(l) ? [l, h] : [0, 1];
+  };
+  const [x0, x1] = ext("x"), [y0, y1] = ext("y");
+  const ranges = (w, h) => {
+    const mpp = Math.max((x1 - x0) / w, (y1 - y0) / h, 1e-9) * 1.05;
+    const xc = (x0 + x1) / 2, yc = (y0 + y1) / 2;
+    return { x_range: [xc - (mpp * w) / 2, xc + (mpp * w) / 2], y_range: [yc - (mpp * h) / 2, yc + (mpp * h) / 2] };
+  };
+  const spec = (w, h) => ({
     title: `${e.name}: dead-reckoned track`, x_label: "east (m)", y_label: "north (m)",
-    x_range: [xc - half, xc + half], y_range: [yc - half, yc + half],
+    ...ranges(w, h),
     series: series.map((s) => ({ ...s, points: false, path: true })),
   });
+  const area = () => {
+    const L = state.layouts["c-track"];
+    return L ? [L.right - L.left, L.bottom - L.top] : [1, 1];
+  };
+  const [w, h] = area();
+  chart("c-track", spec(w, h));
+  const [w2, h2] = area();
+  if (w2 !== w || h2 !== h) chart("c-track", spec(w2, h2)); // first drawing, or the canvas was resized
 }
