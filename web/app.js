@@ -31,11 +31,30 @@ async function main() {
     form.append(row, reset);
   }, (k, v) => gd.checkOptions("hdr", { ...hdrOptions(), [k]: v }) ?? null);
   buildParams($("gyro-params"), GYRO_PARAMS, (k) => state.gyro[k], (k, v) => { state.gyro[k] = v; }, null, (k, v) => gd.checkOptions("gyrodometry", { ...state.gyro, [k]: v }) ?? null);
-  for (const b of document.querySelectorAll("#tabs button")) b.addEventListener("click", () => { state.view = b.dataset.view; state.zoom = null; render(); });
+  const tabs = [...document.querySelectorAll("#tabs button")];
+  for (const b of tabs) b.addEventListener("click", () => { state.view = b.dataset.view; state.zoom = null; render(); });
+  // Tabs as a tablist: arrow keys move between them (roving tabindex set in render).
+  $("tabs").addEventListener("keydown", (ev) => {
+    const i = tabs.findIndex((b) => b.dataset.view === state.view);
+    const j = { ArrowRight: i + 1, ArrowLeft: i - 1, Home: 0, End: tabs.length - 1 }[ev.key];
+    if (j === undefined) return;
+    ev.preventDefault();
+    const b = tabs[(j + tabs.length) % tabs.length];
+    b.click();
+    b.focus();
+  });
   for (const id of ["c-heading", "c-error", "c-rate", "c-gyrodometry"]) attachTimeInteraction(id);
-  for (const b of document.querySelectorAll("button.png")) b.addEventListener("click", () => download(`${b.dataset.canvas}.png`, $(b.dataset.canvas).toDataURL("image/png")));
-  $("export-trace").addEventListener("click", () => { const e = logFor("hdr"); if (e) download(`${e.name}-heading.csv`, gd.hdrTraceCsv(e.log, hdrOptions()), "text/csv"); });
-  $("export-json").addEventListener("click", () => { const e = logFor("hdr"); if (e) download(`${e.name}-hdr.json`, JSON.stringify(gd.hdr(e.log, hdrOptions()), null, 2), "application/json"); });
+  // File names from the log and the chart (City 1-heading.png).
+  const fileName = (suffix) => `${(logFor(state.view)?.name || "gyrodrift").replace(/[^\w.() -]+/g, "_")}-${suffix}`;
+  for (const b of document.querySelectorAll("button.png")) b.addEventListener("click", () => download(fileName(`${b.dataset.canvas.replace(/^c-/, "")}.png`), $(b.dataset.canvas).toDataURL("image/png")));
+  $("export-trace").addEventListener("click", () => { const e = logFor("hdr"); if (e) download(fileName("heading.csv"), gd.hdrTraceCsv(e.log, hdrOptions()), "text/csv"); });
+  // A result JSON that reproduces: the log, the settings, the version, then the numbers.
+  $("export-json").addEventListener("click", () => {
+    const e = logFor("hdr");
+    if (!e) return;
+    const out = { log: e.name, file: e.file, gyrodrift: gd.version(), method: "hdr", options: hdrOptions(), result: gd.hdr(e.log, hdrOptions()) };
+    download(fileName("hdr.json"), JSON.stringify(out, null, 2), "application/json");
+  });
   $("tune").addEventListener("click", runTune);
   $("file-input").addEventListener("change", (ev) => {
     const files = [...ev.target.files];

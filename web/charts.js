@@ -14,8 +14,12 @@ export function sizeCanvas(c) {
 export function chart(id, spec) {
   const c = $(id);
   const dpr = sizeCanvas(c);
-  state.layouts[id] = gd.drawChart(c, { ...spec, dpr });
+  const L = (state.layouts[id] = gd.drawChart(c, { ...spec, dpr }));
   c.dataset.drawn = String(Number(c.dataset.drawn || 0) + 1);
+  // A text alternative for screen readers: what the chart shows and over which ranges.
+  const r = (v) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
+  const names = (spec.series || []).map((s) => s.name).filter((n) => n && n !== "zero");
+  c.setAttribute("aria-label", `${spec.title}: ${names.join(", ")}; ${spec.x_label || "x"} ${r(L.x_min)} to ${r(L.x_max)}, ${spec.y_label || "y"} ${r(L.y_min)} to ${r(L.y_max)}`);
 }
 
 export function timeRange(t) {

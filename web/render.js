@@ -26,7 +26,11 @@ export function showError(msg) {
 }
 
 export function render() {
-  for (const b of document.querySelectorAll("#tabs button")) b.setAttribute("aria-selected", String(b.dataset.view === state.view));
+  for (const b of document.querySelectorAll("#tabs button")) {
+    const on = b.dataset.view === state.view;
+    b.setAttribute("aria-selected", String(on));
+    b.tabIndex = on ? 0 : -1;
+  }
   for (const s of document.querySelectorAll(".view")) s.hidden = s.id !== `view-${state.view}`;
   const listKey = [state.view, state.selected, ...state.entries.map((e) => e.name)].join("|");
   if (listKey !== lastListKey) {

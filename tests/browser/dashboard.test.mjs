@@ -281,6 +281,37 @@ test("the Track view has equal metres per pixel across and up", async () => {
   await page.locator("#tabs button[data-view=hdr]").click();
 });
 
+test("exports reproduce: the JSON names the log, settings and version; files are named by log and chart", async () => {
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+  const [json] = await Promise.all([page.waitForEvent("download"), page.locator("#export-json").click()]);
+  assert.equal(json.suggestedFilename(), "City 1-hdr.json");
+  const out = JSON.parse(readFileSync(await json.path(), "utf8"));
+  assert.equal(out.log, "City 1");
+  assert.equal(out.method, "hdr");
+  assert.match(out.gyrodrift, /^\d+\.\d+\.\d+/);
+  assert.equal(out.options.i_c_dps, Number(await page.locator("#p-i_c_dps").inputValue()));
+  const native = JSON.parse(cli("hdr", join(SAMPLES, "train", "city-1.csv"), "--json", "--set", `i_c=${out.options.i_c_dps}`, "--set", `tau=${out.options.tau_s}`));
+  assert.equal(out.result.E_psi_hdr_deg, native.E_psi_hdr_deg, "the JSON's settings give its numbers");
+  const [png] = await Promise.all([page.waitForEvent("download"), page.locator("button.png[data-canvas=c-heading]").click()]);
+  assert.equal(png.suggestedFilename(), "City 1-heading.png");
+});
+
+test("accessibility: tabs move with arrow keys, buttons have unique names, charts have a text alternative", async () => {
+  await page.locator("#tabs button[data-view=hdr]").focus();
+  await page.keyboard.press("ArrowRight");
+  await page.waitForFunction(() => window.gyrodrift.state.view === "track");
+  assert.equal(await page.evaluate(() => document.activeElement.dataset.view), "track");
+  assert.equal(await page.locator("#tabs button[tabindex='0']").count(), 1);
+  await page.keyboard.press("ArrowLeft");
+  await page.waitForFunction(() => window.gyrodrift.state.view === "hdr");
+  const names = await page.locator("button.png").evaluateAll((bs) => bs.map((b) => b.getAttribute("aria-label")));
+  assert.equal(new Set(names).size, names.length, names.join(" | "));
+  const label = await page.locator("#c-heading").getAttribute("aria-label");
+  assert.equal(await page.locator("#c-heading").getAttribute("role"), "img");
+  assert.match(label, /heading: reference \(GPS\), raw, HDR.*time \(s\) [\d.]+ to \d+/);
+  assert.equal(await page.locator("#view-error").getAttribute("role"), "alert");
+});
+
 for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyrodometry"]], ["calibration", ["c-cal-before", "c-cal-after"]], ["allan", ["c-allan"]], ["report", []]]) {
   test(`the ${view} view draws`, async () => {
     await page.locator(`#tabs button[data-view="${view}"]`).click();

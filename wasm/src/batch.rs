@@ -254,6 +254,12 @@ pub fn check_options(
     Ok(checked.err().map(|e| e.dyn_into::<js_sys::Error>().map(|e| String::from(e.message())).unwrap_or_else(|v| format!("{v:?}"))))
 }
 
+/// The package's version (the core's), for exports that say what made them.
+#[wasm_bindgen]
+pub fn version() -> String {
+    env!("CARGO_PKG_VERSION").to_string()
+}
+
 /// The static-bias window used when neither the options nor the log give one, s.
 #[wasm_bindgen(js_name = defaultBiasS)]
 pub fn default_bias_s() -> f64 {
