@@ -378,7 +378,14 @@ export interface TableSpec {
   skip_lines?: number;
   columns?: string[];
   record?: string;
-  time: { column?: string; format?: "seconds" | "iso8601"; unit?: "s" | "ms" | "us" | "ns"; period_s?: number; relative?: boolean };
+  time: {
+    column?: string; format?: "seconds" | "iso8601"; unit?: "s" | "ms" | "us" | "ns"; period_s?: number; relative?: boolean;
+    /** Rows repeating a time: merged (default), the first kept, or an error. */
+    duplicates?: "mean" | "drop" | "error";
+    /** Rows a little earlier than the one before (up to max_backward_s, default 1 s): sorted in (default), dropped, or an error. */
+    backward?: "sort" | "drop" | "error";
+    max_backward_s?: number;
+  };
   offset_s?: number;
 }
 export interface Recipe {
@@ -406,6 +413,8 @@ export interface ImportSummary {
   up: [number, number, number] | null;
   align_offset_s: number | null;
   start_time_s: number;
+  /** What the time policies did, over all tables. */
+  time_fixes: { merged_duplicates: number; dropped_duplicates: number; sorted_backward: number; dropped_backward: number };
 }
 export interface ImportResult {
   log: Log;

@@ -126,8 +126,19 @@ pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, Impor
         up,
         align_offset_s: align_offset,
         start_time_s: start,
+        time_fixes: time_fixes(&tables),
     };
     Ok((log, summary))
+}
+
+/// The time policies' counts summed over the tables.
+fn time_fixes(tables: &BTreeMap<String, Table>) -> TimeFixes {
+    tables.values().fold(TimeFixes::default(), |a, t| TimeFixes {
+        merged_duplicates: a.merged_duplicates + t.fixes.merged_duplicates,
+        dropped_duplicates: a.dropped_duplicates + t.fixes.dropped_duplicates,
+        sorted_backward: a.sorted_backward + t.fixes.sorted_backward,
+        dropped_backward: a.dropped_backward + t.fixes.dropped_backward,
+    })
 }
 
 /// Which columns each table must provide, from every section that names a table.

@@ -57,6 +57,9 @@ impl Recipe {
                 }
                 _ => {}
             }
+            if !(t.time.max_backward_s.is_finite() && (0.0..=3600.0).contains(&t.time.max_backward_s)) {
+                return Err(recipe_err(&at("time.max_backward_s"), format!("{} is not a time in [0, 3600] s", t.time.max_backward_s)));
+            }
         }
         if let Some([a, b]) = self.span_s {
             if !(a.is_finite() && b.is_finite() && a < b) {
@@ -120,6 +123,42 @@ pub struct TimeSpec {
     /// Subtract the table's first time (for a sensor's own clock, then aligned).
     #[serde(default)]
     pub relative: bool,
+    /// Rows with the same time (a logger writing one sample twice): `mean` (the default:
+    /// one row, each column the mean of its present values), `drop` (keep the first) or
+    /// `error`.
+    #[serde(default)]
+    pub duplicates: DuplicatePolicy,
+    /// A row earlier than the one before it by at most `max_backward_s` (out-of-order
+    /// writes): `sort` (the default: the rows are put in time order), `drop` (the late row
+    /// is dropped) or `error`. A larger step back is a clock reset: always an error.
+    #[serde(default)]
+    pub backward: BackwardPolicy,
+    #[serde(default = "default_max_backward_s")]
+    pub max_backward_s: f64,
+}
+
+pub(super) fn default_max_backward_s() -> f64 {
+    1.0
+}
+
+/// What the import does with rows that repeat a time.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DuplicatePolicy {
+    #[default]
+    Mean,
+    Drop,
+    Error,
+}
+
+/// What the import does with rows that step back in time a little.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BackwardPolicy {
+    #[default]
+    Sort,
+    Drop,
+    Error,
 }
 
 pub(super) fn default_time_unit() -> String {
@@ -437,4 +476,18 @@ pub struct ImportSummary {
     pub align_offset_s: Option<f64>,
     /// The first gyro time in the source clock (the log's time 0), seconds.
     pub start_time_s: f64,
+    /// What the time policies did, over all tables: rows merged into another of the same
+    /// time (`mean`), rows dropped (`drop`), rows put back in time order (`sort`).
+    #[serde(default)]
+    pub time_fixes: TimeFixes,
+}
+
+/// Counts of the time policies' work.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct TimeFixes {
+    pub merged_duplicates: usize,
+    pub dropped_duplicates: usize,
+    pub sorted_backward: usize,
+    pub dropped_backward: usize,
 }

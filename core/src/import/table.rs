@@ -10,6 +10,8 @@ pub(super) struct Table {
     pub(super) time_s: Vec<f64>,
     pub(super) line: Vec<u64>,
     pub(super) cols: BTreeMap<String, Vec<f64>>,
+    /// What the time policies did to it.
+    pub(super) fixes: TimeFixes,
 }
 
 impl Table {
@@ -87,7 +89,8 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
     let mut time_idx: Option<usize> = None;
     let mut resolved = false;
     let time_name = spec.time.column.clone().unwrap_or_else(|| "time".into());
-    let mut t = Table { file: file.clone(), time_s: Vec::new(), line: Vec::new(), cols: BTreeMap::new() };
+    let mut t = Table { file: file.clone(), time_s: Vec::new(), line: Vec::new(), cols: BTreeMap::new(), fixes: TimeFixes::default() };
+    let mut latest = f64::NEG_INFINITY;
     let mut cols: Vec<Vec<f64>> = Vec::new();
     let mut row_n: u64 = 0;
     let mut on_row = |line: u64, fields: &[&str]| -> Result<()> {
@@ -106,15 +109,8 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
             }
         }
         let time = row_time(spec, scale, time_idx, &time_name, row_n, line, fields)?;
-        if let Some(&prev) = t.time_s.last() {
-            if !(time > prev) {
-                return Err(Error::Cell {
-                    line,
-                    column: time_name.clone(),
-                    message: format!("time {time} does not increase (previous row {prev})"),
-                });
-            }
-        }
+        check_step(&spec.time, time, t.time_s.last().copied(), latest, line, &time_name)?;
+        latest = latest.max(time);
         for (k, (name, j)) in idx.iter().enumerate() {
             cols[k].push(cell(fields, *j, name, line)?);
         }
@@ -145,6 +141,7 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
     if t.time_s.is_empty() {
         return Err(at(Error::File(format!("table {} has no data rows", spec.id))));
     }
+    t.fixes = put_in_time_order(&spec.time, &mut t.time_s, &mut t.line, &mut cols);
     let first = t.time_s[0];
     for x in t.time_s.iter_mut() {
         if spec.time.relative {
@@ -156,6 +153,96 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
         t.cols.insert(name, v);
     }
     Ok(t)
+}
+
+/// A row's time against the one before (`prev`) and the latest so far: a repeat or a small
+/// step back is left to the policies unless they say `error`; a step back past
+/// `max_backward_s` is a clock reset, an error naming the line.
+fn check_step(spec: &TimeSpec, time: f64, prev: Option<f64>, latest: f64, line: u64, column: &str) -> Result<()> {
+    let Some(prev) = prev else { return Ok(()) };
+    let err = |message: String| Err(Error::Cell { line, column: column.to_string(), message });
+    if time == prev && spec.duplicates == DuplicatePolicy::Error {
+        return err(format!("time {time} repeats the previous row's (time.duplicates = \"mean\" or \"drop\" merges or drops such rows)"));
+    }
+    if time < latest {
+        if latest - time > spec.max_backward_s {
+            return err(format!(
+                "time {time} goes back {:.3} s from {latest}: a clock reset? (more than time.max_backward_s = {} s; split the file, or span_s)",
+                latest - time,
+                spec.max_backward_s
+            ));
+        }
+        if spec.backward == BackwardPolicy::Error {
+            return err(format!("time {time} goes back from {latest} (time.backward = \"sort\" or \"drop\" handles such rows)"));
+        }
+    }
+    Ok(())
+}
+
+/// Applies the time policies to rows read in file order: late rows sorted in (a stable sort,
+/// so equal times keep their order) or dropped, then rows of one time merged (each column's
+/// mean of its present values) or all but the first dropped. Times strictly increase after.
+fn put_in_time_order(spec: &TimeSpec, time: &mut Vec<f64>, line: &mut Vec<u64>, cols: &mut [Vec<f64>]) -> TimeFixes {
+    let mut fixes = TimeFixes::default();
+    let in_order = time.windows(2).all(|w| w[1] > w[0]);
+    if in_order {
+        return fixes;
+    }
+    // Which rows stay, in which order.
+    let mut order: Vec<usize> = Vec::with_capacity(time.len());
+    let mut latest = f64::NEG_INFINITY;
+    for i in 0..time.len() {
+        if time[i] < latest {
+            match spec.backward {
+                BackwardPolicy::Drop => {
+                    fixes.dropped_backward += 1;
+                    continue;
+                }
+                _ => fixes.sorted_backward += 1,
+            }
+        }
+        latest = latest.max(time[i]);
+        order.push(i);
+    }
+    order.sort_by(|&a, &b| time[a].total_cmp(&time[b]));
+    // Groups of one time become one row.
+    let (mut t2, mut l2) = (Vec::with_capacity(order.len()), Vec::with_capacity(order.len()));
+    let mut c2: Vec<Vec<f64>> = cols.iter().map(|_| Vec::with_capacity(order.len())).collect();
+    let mut g = 0;
+    while g < order.len() {
+        let mut end = g + 1;
+        while end < order.len() && time[order[end]] == time[order[g]] {
+            end += 1;
+        }
+        let group = &order[g..end];
+        t2.push(time[group[0]]);
+        l2.push(line[group[0]]);
+        for (c, out) in cols.iter().zip(c2.iter_mut()) {
+            let v = match spec.duplicates {
+                DuplicatePolicy::Mean => {
+                    let (s, n) = group.iter().map(|&i| c[i]).filter(|x| !x.is_nan()).fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+                    if n > 0 {
+                        s / n as f64
+                    } else {
+                        f64::NAN
+                    }
+                }
+                _ => c[group[0]],
+            };
+            out.push(v);
+        }
+        match spec.duplicates {
+            DuplicatePolicy::Mean => fixes.merged_duplicates += group.len() - 1,
+            _ => fixes.dropped_duplicates += group.len() - 1,
+        }
+        g = end;
+    }
+    *time = t2;
+    *line = l2;
+    for (c, v) in cols.iter_mut().zip(c2) {
+        *c = v;
+    }
+    fixes
 }
 
 /// Times, yaw rates (deg/s, CCW positive) and, when projected, the up vector.

@@ -155,3 +155,48 @@ fn a_line_break_in_metadata_is_never_written() {
     assert!(log.write_csv(&mut out).is_err());
     assert!(out.is_empty());
 }
+
+/// A one-table recipe over `a.csv` (t, w in deg/s) with the given time policies.
+fn one_table(policies: &str) -> Recipe {
+    let text = format!(
+        r#"{{"table": [{{"id": "a", "file": "a.csv", "time": {{"column": "t"{policies}}}}}],
+            "yaw_rate": {{"table": "a", "column": "w", "unit": "deg/s", "positive": "ccw"}}}}"#
+    );
+    serde_json::from_str(&text).unwrap()
+}
+
+fn files(csv: &str) -> BTreeMap<String, Vec<u8>> {
+    BTreeMap::from([("a.csv".to_string(), csv.as_bytes().to_vec())])
+}
+
+#[test]
+fn time_policies_merge_repeats_and_sort_late_rows_by_default() {
+    // line 4 repeats t = 1 (w 3 and 5: mean 4); line 6 (t = 2.5) comes after t = 3
+    let csv = "t,w\n0,1\n1,3\n1,5\n3,7\n2.5,9\n4,11\n";
+    let (log, s) = import(&one_table(""), &mut files(csv)).unwrap();
+    assert_eq!(log.time_s(), &[0.0, 1.0, 2.5, 3.0, 4.0]);
+    assert_eq!(log.column(Column::GyroDps).unwrap(), &[1.0, 4.0, 9.0, 7.0, 11.0]);
+    assert_eq!(s.time_fixes, TimeFixes { merged_duplicates: 1, sorted_backward: 1, ..Default::default() });
+    // drop: the first of a repeat is kept, the late row is dropped
+    let (log, s) = import(&one_table(r#", "duplicates": "drop", "backward": "drop""#), &mut files(csv)).unwrap();
+    assert_eq!(log.time_s(), &[0.0, 1.0, 3.0, 4.0]);
+    assert_eq!(log.column(Column::GyroDps).unwrap(), &[1.0, 3.0, 7.0, 11.0]);
+    assert_eq!(s.time_fixes, TimeFixes { dropped_duplicates: 1, dropped_backward: 1, ..Default::default() });
+    // in-order files are untouched
+    let (_, s) = import(&one_table(""), &mut files("t,w\n0,1\n1,2\n")).unwrap();
+    assert_eq!(s.time_fixes, TimeFixes::default());
+}
+
+#[test]
+fn time_policies_error_and_a_clock_reset_name_the_line() {
+    let csv = "t,w\n0,1\n1,3\n1,5\n3,7\n2.5,9\n";
+    let e = import(&one_table(r#", "duplicates": "error""#), &mut files(csv)).unwrap_err().to_string();
+    assert!(e.contains("line 4, column t") && e.contains("repeats"), "{e}");
+    let e = import(&one_table(r#", "backward": "error""#), &mut files(csv)).unwrap_err().to_string();
+    assert!(e.contains("line 6, column t") && e.contains("goes back"), "{e}");
+    // 10 s back is past max_backward_s (1 s): a clock reset, whatever the policy
+    let e = import(&one_table(""), &mut files("t,w\n0,1\n20,2\n10,3\n")).unwrap_err().to_string();
+    assert!(e.contains("line 4") && e.contains("clock reset"), "{e}");
+    let e = import(&one_table(r#", "max_backward_s": -1"#), &mut files("t,w\n0,1\n")).unwrap_err().to_string();
+    assert!(e.contains("max_backward_s"), "{e}");
+}
