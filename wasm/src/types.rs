@@ -396,9 +396,9 @@ export interface Recipe {
   yaw_rate: RateSpec;
   positions?: { table: string; kind: "latlon" | "utm" | "ecef" | "enu"; columns: string[] };
   heading?:
-    | { source: "column"; table: string; column: string; unit: "deg" | "rad"; positive: Sense; speed_column?: string; min_speed_mps?: number }
+    | { source: "column"; table: string; column: string; unit: "deg" | "rad"; positive: Sense; speed_column?: string; min_speed_mps?: number; time_column?: string }
     | { source: "positions"; min_distance_m?: number; min_speed_mps?: number };
-  speed?: { source: "column"; table: string; column: string; unit: "m/s" | "km/h" | "mph" } | { source: "positions"; window_s?: number };
+  speed?: { source: "column"; table: string; column: string; unit: "m/s" | "km/h" | "mph"; time_column?: string } | { source: "positions"; window_s?: number };
   odometry?: { table: string; left: string[]; right: string[]; kind: "speed" | "travel"; unit: string; track_m: number };
   temperature?: { table: string; column: string; unit: "C" | "K" | "F" };
   align?: { rate: RateSpec; max_lag_s?: number };

@@ -166,9 +166,10 @@ fn wanted_columns(recipe: &Recipe) -> Result<BTreeMap<String, BTreeSet<String>>>
         want(&p.table, &p.columns.iter().collect::<Vec<_>>(), "positions")?;
     }
     match &recipe.heading {
-        Some(HeadingSpec::Column { table, column, speed_column, .. }) => {
+        Some(HeadingSpec::Column { table, column, speed_column, time_column, .. }) => {
             let mut c = vec![column];
             c.extend(speed_column.iter());
+            c.extend(time_column.iter());
             want(table, &c, "heading")?;
         }
         Some(HeadingSpec::Positions { .. }) if recipe.positions.is_none() => {
@@ -177,7 +178,11 @@ fn wanted_columns(recipe: &Recipe) -> Result<BTreeMap<String, BTreeSet<String>>>
         _ => {}
     }
     match &recipe.speed {
-        Some(SpeedSpec::Column { table, column, .. }) => want(table, &[column], "speed")?,
+        Some(SpeedSpec::Column { table, column, time_column, .. }) => {
+            let mut c = vec![column];
+            c.extend(time_column.iter());
+            want(table, &c, "speed")?
+        }
         Some(SpeedSpec::Positions { .. }) if recipe.positions.is_none() => {
             return Err(recipe_err("speed", "source = \"positions\" needs a [positions] section"));
         }
@@ -192,11 +197,38 @@ fn wanted_columns(recipe: &Recipe) -> Result<BTreeMap<String, BTreeSet<String>>>
     Ok(wanted)
 }
 
+/// The rows that carry a sample and its time: every row, or (with a slow sensor's own time
+/// column) only rows where that time changes. The sensor's clock is put on the table's by
+/// the smallest delay seen (a new sample appears in the first row written after it), so
+/// the sample keeps its own time instead of lagging to the row's.
+fn samples_of(t: &Table, time_column: Option<&str>, used_by: &str) -> Result<Vec<(usize, f64)>> {
+    let Some(c) = time_column else {
+        return Ok(t.time_s.iter().copied().enumerate().collect());
+    };
+    let own = t.col(c, used_by)?;
+    let mut rows: Vec<(usize, f64)> = Vec::new();
+    for (i, &o) in own.iter().enumerate() {
+        if o.is_finite() && rows.last().is_none_or(|&(_, last)| o != last) {
+            rows.push((i, o));
+        }
+    }
+    let offset = rows.iter().map(|&(i, o)| t.time_s[i] - o).fold(f64::INFINITY, f64::min);
+    let mut out: Vec<(usize, f64)> = rows.into_iter().map(|(i, o)| (i, o + offset)).collect();
+    // a sensor clock that steps back is not a sample stream: keep increasing times only
+    let mut latest = f64::NEG_INFINITY;
+    out.retain(|&(_, time)| {
+        let keep = time > latest;
+        latest = latest.max(time);
+        keep
+    });
+    Ok(out)
+}
+
 /// The reference heading, deg CCW: (time, value), never resampled.
 fn reference_heading(recipe: &Recipe, tables: &BTreeMap<String, Table>, positions: Option<&Positions>) -> Result<(Vec<f64>, Vec<f64>)> {
     Ok(match &recipe.heading {
         None => (Vec::new(), Vec::new()),
-        Some(HeadingSpec::Column { table, column, unit, positive, speed_column, min_speed_mps }) => {
+        Some(HeadingSpec::Column { table, column, unit, positive, speed_column, min_speed_mps, time_column }) => {
             let t = &tables[table];
             let k = angle_unit(unit, "heading.unit")? * positive.factor();
             let v = t.col(column, "heading")?;
@@ -205,10 +237,10 @@ fn reference_heading(recipe: &Recipe, tables: &BTreeMap<String, Table>, position
                 None => None,
             };
             let (mut ts, mut vs) = (Vec::new(), Vec::new());
-            for i in 0..t.time_s.len() {
+            for (i, time) in samples_of(t, time_column.as_deref(), "heading.time_column")? {
                 let moving = s.is_none_or(|s| s[i] >= *min_speed_mps);
                 if v[i].is_finite() && moving {
-                    ts.push(t.time_s[i]);
+                    ts.push(time);
                     vs.push(crate::metrics::wrap_diff_deg(v[i] * k));
                 }
             }
@@ -229,10 +261,13 @@ fn reference_heading(recipe: &Recipe, tables: &BTreeMap<String, Table>, position
 fn speed_series(recipe: &Recipe, tables: &BTreeMap<String, Table>, positions: Option<&Positions>) -> Result<Option<(Vec<f64>, Vec<f64>)>> {
     Ok(match &recipe.speed {
         None => None,
-        Some(SpeedSpec::Column { table, column, unit }) => {
+        Some(SpeedSpec::Column { table, column, unit, time_column }) => {
             let t = &tables[table];
             let k = speed_unit(unit, "speed.unit")?;
-            Some((t.time_s.clone(), t.col(column, "speed")?.iter().map(|v| v * k).collect()))
+            let v = t.col(column, "speed")?;
+            let (ts, vs) =
+                samples_of(t, time_column.as_deref(), "speed.time_column")?.into_iter().map(|(i, time)| (time, v[i] * k)).unzip();
+            Some((ts, vs))
         }
         Some(SpeedSpec::Positions { window_s }) => {
             if !(window_s.is_finite() && *window_s > 0.0) {

@@ -273,6 +273,10 @@ pub enum HeadingSpec {
         /// A speed column of the same table, m/s, gating the heading.
         speed_column: Option<String>,
         min_speed_mps: f64,
+        /// A slow sensor repeated on every fast row (a phone's location in its IMU rows):
+        /// the column of the sensor's own time, s. A sample is taken only where it
+        /// changes, stamped with it on the table's clock (see `own_samples`).
+        time_column: Option<String>,
     },
     /// The course over ground between positions at least `min_distance_m` apart (default
     /// 2 m), stamped at the middle of the segment, kept when the segment's speed is at least
@@ -300,6 +304,7 @@ pub(super) struct HeadingWire {
     speed_column: Option<String>,
     min_speed_mps: Option<f64>,
     min_distance_m: Option<f64>,
+    time_column: Option<String>,
 }
 
 /// A field the chosen `source` needs, or an error naming it.
@@ -321,6 +326,7 @@ impl TryFrom<HeadingWire> for HeadingSpec {
         match w.source {
             Source::Column => {
                 unused("heading", "column", &[("min_distance_m", w.min_distance_m.is_some())])?;
+                let time_column = w.time_column;
                 Ok(HeadingSpec::Column {
                     table: needed(w.table, "heading", "table", "column")?,
                     column: needed(w.column, "heading", "column", "column")?,
@@ -328,6 +334,7 @@ impl TryFrom<HeadingWire> for HeadingSpec {
                     positive: needed(w.positive, "heading", "positive", "column")?,
                     speed_column: w.speed_column,
                     min_speed_mps: w.min_speed_mps.unwrap_or(0.0),
+                    time_column,
                 })
             }
             Source::Positions => {
@@ -340,6 +347,7 @@ impl TryFrom<HeadingWire> for HeadingSpec {
                         ("unit", w.unit.is_some()),
                         ("positive", w.positive.is_some()),
                         ("speed_column", w.speed_column.is_some()),
+                        ("time_column", w.time_column.is_some()),
                     ],
                 )?;
                 Ok(HeadingSpec::Positions {
@@ -361,6 +369,8 @@ pub enum SpeedSpec {
         column: String,
         /// m/s, km/h or mph.
         unit: String,
+        /// As `heading.time_column`: a sample only where the sensor's own time changes.
+        time_column: Option<String>,
     },
     Positions {
         window_s: f64,
@@ -375,6 +385,7 @@ pub(super) struct SpeedWire {
     column: Option<String>,
     unit: Option<String>,
     window_s: Option<f64>,
+    time_column: Option<String>,
 }
 
 impl TryFrom<SpeedWire> for SpeedSpec {
@@ -387,10 +398,20 @@ impl TryFrom<SpeedWire> for SpeedSpec {
                     table: needed(w.table, "speed", "table", "column")?,
                     column: needed(w.column, "speed", "column", "column")?,
                     unit: needed(w.unit, "speed", "unit", "column")?,
+                    time_column: w.time_column,
                 })
             }
             Source::Positions => {
-                unused("speed", "positions", &[("table", w.table.is_some()), ("column", w.column.is_some()), ("unit", w.unit.is_some())])?;
+                unused(
+                    "speed",
+                    "positions",
+                    &[
+                        ("table", w.table.is_some()),
+                        ("column", w.column.is_some()),
+                        ("unit", w.unit.is_some()),
+                        ("time_column", w.time_column.is_some()),
+                    ],
+                )?;
                 Ok(SpeedSpec::Positions { window_s: w.window_s.unwrap_or(1.0) })
             }
         }

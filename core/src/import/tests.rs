@@ -200,3 +200,31 @@ fn time_policies_error_and_a_clock_reset_name_the_line() {
     let e = import(&one_table(r#", "max_backward_s": -1"#), &mut files("t,w\n0,1\n")).unwrap_err().to_string();
     assert!(e.contains("max_backward_s"), "{e}");
 }
+
+#[test]
+fn a_slow_sensor_in_fast_rows_gives_one_sample_per_own_time_at_that_time() {
+    // 10 Hz rows; the location (course, its own clock 1000 s ahead) updates once a second
+    // and reaches the rows 0.3 s late (first written at x.3), repeated on every row after.
+    let mut csv = String::from("t,w,course,loc_t\n");
+    for i in 0..50 {
+        let t = i as f64 / 10.0;
+        let k = ((t - 0.3) / 1.0).floor().max(0.0); // the latest fix written so far
+        csv.push_str(&format!("{t},0,{},{}\n", 10.0 * k, 1000.0 + k));
+    }
+    let text = r#"{"table": [{"id": "a", "file": "a.csv", "time": {"column": "t"}}],
+        "yaw_rate": {"table": "a", "column": "w", "unit": "deg/s", "positive": "ccw"},
+        "heading": {"source": "column", "table": "a", "column": "course", "unit": "deg", "positive": "ccw", "time_column": "loc_t"}}"#;
+    let recipe: Recipe = serde_json::from_str(text).unwrap();
+    let (log, s) = import(&recipe, &mut files(&csv)).unwrap();
+    assert_eq!(s.n_reference, 5, "one sample per fix, not one per row");
+    let r = log.column(Column::RefHeadingDeg).unwrap();
+    let stamped: Vec<(f64, f64)> = log.time_s().iter().zip(r).filter(|(_, v)| v.is_finite()).map(|(t, v)| (*t, *v)).collect();
+    // fix k is stamped at its own time k on the rows' clock (1000 s removed by the smallest
+    // delay, which is the 0 s of the first rows), not 0.3 s late; values 0, 10, ... deg
+    for (k, &(t, v)) in stamped.iter().enumerate() {
+        assert!((t - k as f64).abs() < 1e-9 && (v - 10.0 * k as f64).abs() < 1e-9, "{stamped:?}");
+    }
+    // a time_column with source = positions is refused by name
+    let bad = r#"{"source": "positions", "time_column": "x"}"#;
+    assert!(serde_json::from_str::<HeadingSpec>(bad).unwrap_err().to_string().contains("time_column"));
+}
