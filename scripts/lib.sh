@@ -75,6 +75,11 @@ build_wasm() {
   mkdir -p tests/node_modules examples/node/node_modules
   ln -sfn ../../web/pkg tests/node_modules/gyrodrift
   ln -sfn ../../../web/pkg examples/node/node_modules/gyrodrift
+  # web/ is a static site on its own (any host, any sub-path): the sample logs the page
+  # opens are copied in beside it.
+  rm -rf web/sample-logs
+  mkdir -p web/sample-logs
+  cp -r sample-logs/train sample-logs/test sample-logs/robot sample-logs/turntable sample-logs/static web/sample-logs/
 }
 
 build_cli() {

@@ -1,6 +1,6 @@
 #!/usr/bin/env node
-// A static file server for the dashboard on 127.0.0.1 (no server logic): web/ at /, and the
-// shipped sample logs at /sample-logs/. Usage: node scripts/serve.mjs [port]
+// A static file server for the dashboard on 127.0.0.1 (no server logic): web/ at / (the
+// build copies the sample logs into web/sample-logs/). Usage: node scripts/serve.mjs [port]
 import { createServer } from "node:http";
 import { createReadStream, statSync } from "node:fs";
 import { extname, join, normalize, resolve } from "node:path";
@@ -23,7 +23,7 @@ const types = {
 
 function resolvePath(urlPath) {
   const p = decodeURIComponent(urlPath.split("?")[0]);
-  const [base, rest] = p.startsWith("/sample-logs/") ? [join(root, "sample-logs"), p.slice("/sample-logs".length)] : [join(root, "web"), p];
+  const [base, rest] = [join(root, "web"), p];
   const full = normalize(join(base, rest));
   if (!full.startsWith(base)) return null; // no escaping the served folders
   try {
