@@ -66,6 +66,10 @@ async function main() {
   document.addEventListener("drop", (ev) => { ev.preventDefault(); document.body.classList.remove("dragging"); loadFiles([...ev.dataTransfer.files]); });
   window.addEventListener("resize", scheduleRender);
 
+  // The first-use panel is open until it has been closed once (remembered in this browser).
+  const intro = $("first-use");
+  intro.open = localStorage.getItem("gyrodrift.intro") !== "closed";
+  intro.addEventListener("toggle", () => localStorage.setItem("gyrodrift.intro", intro.open ? "open" : "closed"));
   await loadSamples();
   applyLog(wantLog);
   render();

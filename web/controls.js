@@ -111,6 +111,7 @@ export function buildParams(form, list, get, set, extra, check) {
     row.querySelector("label").textContent = p.label;
     row.querySelector(".unit").textContent = p.unit;
     const [range, num] = row.querySelectorAll("input");
+    if (p.help) for (const el of [row.querySelector("label"), range, num]) el.title = p.help;
     const msg = row.querySelector(".param-error");
     num.id = `${id}-value`;
     num.setAttribute("aria-label", `${p.label} (${p.unit || "no unit"})`);

@@ -3,14 +3,21 @@
 import * as gd from "./pkg/gyrodrift.js";
 
 export const PARAMS = [
-  { key: "i_c_dps", label: "i_c", unit: "deg/s", min: 0, max: 0.2, step: 0.0001 },
-  { key: "tau_s", label: "tau", unit: "s", min: 0, max: 5, step: 0.01 },
-  { key: "theta_w_dps", label: "theta_w", unit: "deg/s", min: 0, max: 3, step: 0.001 },
-  { key: "c1", label: "c1", unit: "", min: 0.005, max: 3, step: 0.005 },
-  { key: "c2", label: "c2", unit: "", min: 0, max: 4, step: 0.01 },
-  { key: "bias_s", label: "bias_s", unit: "s", min: 0, max: 120, step: 1 },
+  { key: "i_c_dps", label: "i_c", unit: "deg/s", min: 0, max: 0.2, step: 0.0001, help: "HDR's correction step: how fast the drift estimate I moves per second while the road looks straight (Eq. 11). 0 turns HDR off." },
+  { key: "tau_s", label: "tau", unit: "s", min: 0, max: 5, step: 0.01, help: "Time constant of the rate low-pass (Eq. 7), undone on the heading by the de-lag step (Eq. 13)." },
+  { key: "theta_w_dps", label: "theta_w", unit: "deg/s", min: 0, max: 3, step: 0.001, help: "Turn threshold: below this corrected rate the road is taken as straight and HDR corrects (Eq. 8)." },
+  { key: "c1", label: "c1", unit: "", min: 0.005, max: 3, step: 0.005, help: "Shape of the step's decay with the number r of same-sign steps: R = (1 + c1) / (1 + c1 r^c2) (Eq. 10)." },
+  { key: "c2", label: "c2", unit: "", min: 0, max: 4, step: 0.01, help: "Exponent of that decay (Eq. 10): larger = the step shrinks faster while the sign stays the same." },
+  { key: "bias_s", label: "bias_s", unit: "s", min: 0, max: 120, step: 1, help: "Stationary lead-in whose mean gyro rate is the static bias eps0, removed before everything (Eq. 2). 0 = the log starts moving." },
 ];
-export const GYRO_PARAMS = [{ key: "thres_rate_dps", label: "threshold", unit: "deg/s", min: 0, max: 10, step: 0.05 }];
+/** What the metrics mean (methods.md, HDR Eqs. 15-16). */
+export const METRIC_HELP = {
+  E_psi: "E_psi: mean absolute heading error against the reference at its samples, deg (Eq. 15; drift past 180 deg counts in full).",
+  NE_psi: "NE_psi: E_psi divided by the log's duration, deg/min (Eq. 16): comparable across drives of different lengths.",
+  improvement: "Improvement: E_psi without correction divided by E_psi with it.",
+  eps0: "eps0: static bias, the mean gyro rate over the first bias_s seconds, deg/s.",
+};
+export const GYRO_PARAMS = [{ key: "thres_rate_dps", label: "threshold", unit: "deg/s", min: 0, max: 10, step: 0.05, help: "Gyrodometry's threshold: where gyro and odometry disagree by more than this rate, the gyro's increment is used (Borenstein & Feng)." }];
 export const SAMPLES = [
   "sample-logs/train/city-1.csv",
   "sample-logs/train/highway-1.csv",

@@ -312,6 +312,20 @@ test("accessibility: tabs move with arrow keys, buttons have unique names, chart
   assert.equal(await page.locator("#view-error").getAttribute("role"), "alert");
 });
 
+test("first use: a panel says what the tool is for, every parameter and metric explains itself", async () => {
+  const intro = page.locator("#first-use");
+  assert.match(await intro.locator("summary").innerText(), /What is this/);
+  for (const p of ["i_c_dps", "tau_s", "theta_w_dps", "c1", "c2", "bias_s"]) {
+    const help = await page.locator(`label[for=p-${p}]`).getAttribute("title");
+    assert.ok(help && help.length > 30, `${p}: ${help}`);
+  }
+  assert.match(await page.locator("label[for=p-i_c_dps]").getAttribute("title"), /Eq\. 11/);
+  assert.match(await page.locator("#m-e-hdr").locator("xpath=..").getAttribute("title"), /mean absolute heading error/);
+  const example = await intro.locator("a[download]").getAttribute("href");
+  const res = await page.request.get(new URL(example, page.url()).href);
+  assert.ok(res.ok() && (await res.text()).includes("time_s"), "the example CSV downloads");
+});
+
 for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyrodometry"]], ["calibration", ["c-cal-before", "c-cal-after"]], ["allan", ["c-allan"]], ["report", []]]) {
   test(`the ${view} view draws`, async () => {
     await page.locator(`#tabs button[data-view="${view}"]`).click();

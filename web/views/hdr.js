@@ -1,6 +1,6 @@
 // The HDR view: heading, error and rate charts for the paper's method beside the pipeline.
 import * as gd from "../pkg/gyrodrift.js";
-import { $, fmt, state, hdrOptions, COLORS, PALETTE } from "../state.js";
+import { $, fmt, state, hdrOptions, COLORS, PALETTE, METRIC_HELP } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
 import { chart, timeRange } from "../charts.js";
 import { showError, render } from "../render.js";
@@ -23,12 +23,12 @@ export function renderHdr() {
   const pr = pipe.result;
   const m = $("hdr-metrics");
   if (r) {
-    m.innerHTML = `<span>E<sub>ψ</sub> raw <b id="m-e-raw">${fmt(r.E_psi_raw_deg, 2)}</b> deg</span>
-      <span>E<sub>ψ</sub> HDR <b id="m-e-hdr">${fmt(r.E_psi_hdr_deg, 2)}</b> deg</span>
-      <span>NE<sub>ψ</sub> raw <b>${fmt(r.NE_psi_raw_deg_per_min, 3)}</b> deg/min</span>
-      <span>NE<sub>ψ</sub> HDR <b id="m-ne-hdr">${fmt(r.NE_psi_hdr_deg_per_min, 3)}</b> deg/min</span>
-      <span>improvement <b id="m-improvement">${fmt(r.improvement, 2)}</b>×</span>
-      <span>ε<sub>0</sub> <b>${fmt(r.eps0_dps, 4)}</b> deg/s · ${r.n_processed} samples · ${fmt(r.duration_min, 1)} min</span>` +
+    m.innerHTML = `<span title="${METRIC_HELP.E_psi}">E<sub>ψ</sub> raw <b id="m-e-raw">${fmt(r.E_psi_raw_deg, 2)}</b> deg</span>
+      <span title="${METRIC_HELP.E_psi}">E<sub>ψ</sub> HDR <b id="m-e-hdr">${fmt(r.E_psi_hdr_deg, 2)}</b> deg</span>
+      <span title="${METRIC_HELP.NE_psi}">NE<sub>ψ</sub> raw <b>${fmt(r.NE_psi_raw_deg_per_min, 3)}</b> deg/min</span>
+      <span title="${METRIC_HELP.NE_psi}">NE<sub>ψ</sub> HDR <b id="m-ne-hdr">${fmt(r.NE_psi_hdr_deg_per_min, 3)}</b> deg/min</span>
+      <span title="${METRIC_HELP.improvement}">improvement <b id="m-improvement">${fmt(r.improvement, 2)}</b>×</span>
+      <span title="${METRIC_HELP.eps0}">ε<sub>0</sub> <b>${fmt(r.eps0_dps, 4)}</b> deg/s · ${r.n_processed} samples · ${fmt(r.duration_min, 1)} min</span>` +
       (pr ? `<span class="recommended" title="bank of bias Kalman filters: zero-rate updates at stops, HDR's straight-road heuristic around the drive's dominant rate (docs/pipeline.md)">pipeline (recommended): E<sub>ψ</sub> <b id="m-e-pipeline">${fmt(pr.E_psi_pipeline_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_deg_per_min, 3)}</b> deg/min · <b id="m-improvement-pipeline">${fmt(pr.improvement_pipeline, 2)}</b>× · stops ${fmt(pr.stop_s, 0)} s (${pr.still_source})</span>
       <span class="smoothed" title="forward-backward over the whole log: for recorded logs, not available live">smoothed (offline, non-causal): E<sub>ψ</sub> <b id="m-e-smoothed">${fmt(pr.E_psi_pipeline_smoothed_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_smoothed_deg_per_min, 3)}</b> deg/min</span>` : "");
   } else {
