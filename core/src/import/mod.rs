@@ -12,10 +12,12 @@
 mod geo;
 mod recipe;
 mod table;
+mod time;
 mod units;
 
 pub use geo::*;
 pub use recipe::*;
+pub use time::*;
 pub use units::parse_iso8601;
 
 use crate::error::{Error, Result};

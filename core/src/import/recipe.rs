@@ -106,73 +106,6 @@ pub enum TableFormat {
     Nmea,
 }
 
-/// The time of a table's rows.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TimeSpec {
-    /// The time column; absent = row index times `period_s`.
-    pub column: Option<String>,
-    /// `seconds` (numbers, with `unit`) or `iso8601` (e.g. `2023-08-06 10:48:05-04:00`).
-    #[serde(default)]
-    pub format: TimeFormat,
-    /// Unit of numeric times: s, ms, us, ns.
-    #[serde(default = "default_time_unit")]
-    pub unit: String,
-    /// Sample period for tables without a time column (or with a wrong one), seconds.
-    pub period_s: Option<f64>,
-    /// Subtract the table's first time (for a sensor's own clock, then aligned).
-    #[serde(default)]
-    pub relative: bool,
-    /// Rows with the same time (a logger writing one sample twice): `mean` (the default:
-    /// one row, each column the mean of its present values), `drop` (keep the first) or
-    /// `error`.
-    #[serde(default)]
-    pub duplicates: DuplicatePolicy,
-    /// A row earlier than the one before it by at most `max_backward_s` (out-of-order
-    /// writes): `sort` (the default: the rows are put in time order), `drop` (the late row
-    /// is dropped) or `error`. A larger step back is a clock reset: always an error.
-    #[serde(default)]
-    pub backward: BackwardPolicy,
-    #[serde(default = "default_max_backward_s")]
-    pub max_backward_s: f64,
-}
-
-pub(super) fn default_max_backward_s() -> f64 {
-    1.0
-}
-
-/// What the import does with rows that repeat a time.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum DuplicatePolicy {
-    #[default]
-    Mean,
-    Drop,
-    Error,
-}
-
-/// What the import does with rows that step back in time a little.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum BackwardPolicy {
-    #[default]
-    Sort,
-    Drop,
-    Error,
-}
-
-pub(super) fn default_time_unit() -> String {
-    "s".into()
-}
-
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum TimeFormat {
-    #[default]
-    Seconds,
-    Iso8601,
-}
-
 /// Which way a positive value turns the vehicle, seen from above.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -501,14 +434,4 @@ pub struct ImportSummary {
     /// time (`mean`), rows dropped (`drop`), rows put back in time order (`sort`).
     #[serde(default)]
     pub time_fixes: TimeFixes,
-}
-
-/// Counts of the time policies' work.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(default)]
-pub struct TimeFixes {
-    pub merged_duplicates: usize,
-    pub dropped_duplicates: usize,
-    pub sorted_backward: usize,
-    pub dropped_backward: usize,
 }
