@@ -6,7 +6,7 @@ import init, * as gd from "./pkg/gyrodrift.js";
 import { $, state, defaults, readUrl, urlHash, hdrOptions, PARAMS, GYRO_PARAMS, VIEW_KIND } from "./state.js";
 import { loadFiles, loadSamples } from "./loading.js";
 import { buildParams, syncParams, logFor } from "./controls.js";
-import { attachTimeInteraction, download } from "./charts.js";
+import { attachTimeInteraction, download, pngOf } from "./charts.js";
 import { render, scheduleRender, showError } from "./render.js";
 import { runTune } from "./views/report.js";
 
@@ -46,7 +46,7 @@ async function main() {
   for (const id of ["c-heading", "c-error", "c-rate", "c-gyrodometry"]) attachTimeInteraction(id);
   // File names from the log and the chart (City 1-heading.png).
   const fileName = (suffix) => `${(logFor(state.view)?.name || "gyrodrift").replace(/[^\w.() -]+/g, "_")}-${suffix}`;
-  for (const b of document.querySelectorAll("button.png")) b.addEventListener("click", () => download(fileName(`${b.dataset.canvas.replace(/^c-/, "")}.png`), $(b.dataset.canvas).toDataURL("image/png")));
+  for (const b of document.querySelectorAll("button.png")) b.addEventListener("click", () => download(fileName(`${b.dataset.canvas.replace(/^c-/, "")}.png`), pngOf(b.dataset.canvas)));
   $("export-trace").addEventListener("click", () => { const e = logFor("hdr"); if (e) download(fileName("heading.csv"), gd.hdrTraceCsv(e.log, hdrOptions()), "text/csv"); });
   // A result JSON that reproduces: the log, the settings, the version, then the numbers.
   $("export-json").addEventListener("click", () => {

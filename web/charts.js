@@ -11,10 +11,51 @@ export function sizeCanvas(c) {
   return dpr;
 }
 
+/** The chart's legend as buttons above it, outside the data; a click hides or shows the
+ * series. Guide lines ("zero") are not listed. */
+function legend(id, spec, hidden) {
+  const c = $(id);
+  let box = document.getElementById(`legend-${id}`);
+  if (!box) {
+    box = document.createElement("div");
+    box.id = `legend-${id}`;
+    box.className = "legend";
+    box.setAttribute("role", "group");
+    box.setAttribute("aria-label", "Series (click to hide or show)");
+    c.before(box);
+  }
+  const keys = [...(spec.shade?.label ? [{ name: spec.shade.label, color: spec.shade.color, shade: true }] : []), ...(spec.series || [])].filter((s) => s.name && s.name !== "zero");
+  const sig = keys.map((k) => `${k.name}:${hidden.has(k.name)}`).join("|");
+  if (box.dataset.sig === sig) return;
+  box.dataset.sig = sig;
+  box.replaceChildren(
+    ...keys.map((k) => {
+      const b = document.createElement("button");
+      b.type = "button";
+      b.className = "key";
+      b.setAttribute("aria-pressed", String(!hidden.has(k.name)));
+      b.innerHTML = `<span class="swatch${k.shade ? " shade" : ""}"></span>`;
+      b.querySelector(".swatch").style.background = k.color;
+      b.append(k.name);
+      b.addEventListener("click", () => {
+        if (hidden.has(k.name)) hidden.delete(k.name);
+        else hidden.add(k.name);
+        scheduleRender();
+      });
+      return b;
+    }),
+  );
+}
+
 export function chart(id, spec) {
   const c = $(id);
   const dpr = sizeCanvas(c);
-  const L = (state.layouts[id] = gd.drawChart(c, { ...spec, dpr }));
+  const hidden = (state.hidden[id] ||= new Set());
+  legend(id, spec, hidden);
+  const shown = { ...spec, series: (spec.series || []).filter((s) => !hidden.has(s.name)), legend: false, dpr };
+  if (spec.shade && hidden.has(spec.shade.label)) delete shown.shade;
+  state.specs[id] = shown;
+  const L = (state.layouts[id] = gd.drawChart(c, shown));
   c.dataset.drawn = String(Number(c.dataset.drawn || 0) + 1);
   // A text alternative for screen readers: what the chart shows and over which ranges.
   const r = (v) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
@@ -85,6 +126,15 @@ export function attachTimeInteraction(id) {
     scheduleRender();
   });
   c.addEventListener("mouseleave", () => { state.cursor = null; scheduleRender(); });
+}
+
+/** The chart as a PNG data URL, its legend drawn in (the page's legend is outside it). */
+export function pngOf(id) {
+  const c = $(id);
+  if (state.specs[id]) gd.drawChart(c, { ...state.specs[id], legend: true });
+  const url = c.toDataURL("image/png");
+  if (state.specs[id]) gd.drawChart(c, state.specs[id]);
+  return url;
 }
 
 export function download(name, data, type) {

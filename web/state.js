@@ -39,6 +39,8 @@ export const state = {
   zoom: null,
   cursor: null,
   layouts: {},
+  hidden: {}, // per chart: the series names the user has hidden
+  specs: {}, // per chart: what was last drawn (for the PNG export)
 };
 
 export const $ = (id) => document.getElementById(id);

@@ -326,6 +326,21 @@ test("first use: a panel says what the tool is for, every parameter and metric e
   assert.ok(res.ok() && (await res.text()).includes("time_s"), "the example CSV downloads");
 });
 
+test("legends sit outside the data and hide a series on click; guide lines are not listed", async () => {
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+  await page.locator("#tabs button[data-view=hdr]").click();
+  const keys = page.locator("#legend-c-error button.key");
+  const names = await keys.allInnerTexts();
+  assert.ok(names.includes("raw") && !names.includes("zero"), names.join(" | "));
+  const before = await canvasHash("c-error");
+  const raw = page.locator("#legend-c-error button.key", { hasText: /^raw$/ });
+  await raw.click();
+  await page.waitForFunction(() => document.querySelector("#legend-c-error button.key[aria-pressed=false]"));
+  assert.notEqual(await canvasHash("c-error"), before);
+  await raw.click();
+  await page.waitForFunction(() => !document.querySelector("#legend-c-error button.key[aria-pressed=false]"));
+});
+
 for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyrodometry"]], ["calibration", ["c-cal-before", "c-cal-after"]], ["allan", ["c-allan"]], ["report", []]]) {
   test(`the ${view} view draws`, async () => {
     await page.locator(`#tabs button[data-view="${view}"]`).click();

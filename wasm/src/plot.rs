@@ -43,6 +43,8 @@ struct Spec {
     cursor_x: Option<f64>,
     /// Device pixel ratio (fonts and lines scale with it).
     dpr: f64,
+    /// Draw the legend inside the plot (default); a page with its own legend turns it off.
+    legend: bool,
 }
 
 // The spec is read with Reflect rather than serde: typed arrays copy straight into Vec<f64>
@@ -115,6 +117,7 @@ impl Spec {
             shade,
             cursor_x: number(v, "cursor_x"),
             dpr: number(v, "dpr").unwrap_or(1.0),
+            legend: prop(v, "legend").as_bool().unwrap_or(true),
         })
     }
 }
@@ -320,13 +323,15 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
             chart.draw_series(LineSeries::new(vec![(tx(c), cy0), (tx(c), cy1)], RGBColor(120, 120, 120)))?;
         }
     }
-    chart
-        .configure_series_labels()
-        .label_font(font)
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(200, 200, 200))
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()?;
+    if spec.legend {
+        chart
+            .configure_series_labels()
+            .label_font(font)
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(200, 200, 200))
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()?;
+    }
     let (xr, yr) = chart.plotting_area().get_pixel_range();
     Ok(Layout { left: xr.start, right: xr.end, top: yr.start, bottom: yr.end, x_min: x0, x_max: x1, y_min: y0, y_max: y1 })
 }
