@@ -267,8 +267,19 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
             format!("{v:.3}").trim_end_matches('0').trim_end_matches('.').to_string()
         }
     };
+    // A log axis is linear in log10: asking for about one label per decade puts the
+    // labels on whole decades (1, 10, 100) instead of 0.316, 3.162, ...
+    let labels = |log: bool, a: f64, b: f64, linear: usize| {
+        if log {
+            ((b.floor() - a.ceil()).max(0.0) as usize + 1).clamp(2, 12)
+        } else {
+            linear
+        }
+    };
     chart
         .configure_mesh()
+        .x_labels(labels(spec.log_x, cx0, cx1, 10))
+        .y_labels(labels(spec.log_y, cy0, cy1, 10))
         .x_desc(&spec.x_label)
         .y_desc(&spec.y_label)
         .label_style(font.clone())
