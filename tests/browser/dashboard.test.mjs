@@ -379,7 +379,18 @@ test("at phone width the log list stacks above the views and the charts take the
     assert.ok(chart.y > aside.y + aside.height - 1, "charts below the log list");
     // The smoothed mode is shown, labelled non-causal.
     assert.match(await page.locator("#m-e-smoothed").innerText(), /^\d+\.\d\d$/);
+    // every control is on the screen
+    for (const sel of ["#p-i_c_dps", "#p-i_c_dps-value", "#p-bias_s-value", "#reset", "#export-trace", "#export-json", "#tabs button[data-view=report]"]) {
+      const b = await box(sel);
+      assert.ok(b && b.x >= 0 && b.x + b.width <= 391, `${sel} inside 390 px: ${JSON.stringify(b)}`);
+    }
     await page.screenshot({ path: join(ARTIFACTS, "phone.png"), fullPage: true });
+    // a tablet (820 px) stacks too
+    await page.setViewportSize({ width: 820, height: 1000 });
+    await page.waitForTimeout(200);
+    const a2 = await box("#logs-panel");
+    const c2 = await box("#c-heading");
+    assert.ok(c2.y > a2.y + a2.height - 1 && c2.width > 760, `stacked at 820 px: chart ${JSON.stringify(c2)}`);
   } finally {
     await page.setViewportSize({ width: 1400, height: 1000 });
   }
