@@ -8,7 +8,7 @@ import { loadFiles, loadSamples } from "./loading.js";
 import { buildParams, syncParams, logFor } from "./controls.js";
 import { attachTimeInteraction, download, pngOf } from "./charts.js";
 import { render, scheduleRender, showError } from "./render.js";
-import { runTune } from "./views/report.js";
+import { runTune, reportExports } from "./views/report.js";
 
 // ---------- start ----------
 async function main() {
@@ -56,6 +56,7 @@ async function main() {
     download(fileName("hdr.json"), JSON.stringify(out, null, 2), "application/json");
   });
   $("tune").addEventListener("click", runTune);
+  reportExports(download);
   $("file-input").addEventListener("change", (ev) => {
     const files = [...ev.target.files];
     ev.target.value = ""; // the same file can be opened again

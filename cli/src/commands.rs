@@ -160,7 +160,7 @@ pub fn calibrate(log: &Path, set: &[String], json: bool) -> Result<(), Failure> 
 }
 
 /// `report --compare`: every method side by side, HDR tuned on `tune_on` when given.
-pub fn compare(files: &[PathBuf], set: &[String], json: bool, tune_on: &[PathBuf], input: Input) -> Result<(), Failure> {
+pub fn compare(files: &[PathBuf], set: &[String], json: bool, csv: bool, tune_on: &[PathBuf], input: Input) -> Result<(), Failure> {
     let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
     let tuned = if tune_on.is_empty() {
         None
@@ -171,14 +171,28 @@ pub fn compare(files: &[PathBuf], set: &[String], json: bool, tune_on: &[PathBuf
     };
     let logs = read_logs(files, input, params.bias_s)?;
     let c = gyrodrift::compare::compare(&named(&logs), &params, tuned).map_err(|e| Failure(e.to_string()))?;
+    if csv {
+        return write_stdout(&c.to_csv().map_err(|e| Failure(e.to_string()))?);
+    }
     emit(json, &c, || c.to_markdown())
 }
 
 /// The paper's Table II over the drives.
-pub fn report(files: &[PathBuf], set: &[String], resample: bool, json: bool, markdown: bool, input: Input) -> Result<(), Failure> {
+pub fn report(
+    files: &[PathBuf],
+    set: &[String],
+    resample: bool,
+    json: bool,
+    markdown: bool,
+    csv: bool,
+    input: Input,
+) -> Result<(), Failure> {
     let opts = hdr::HdrOptions { resample, ..settings(set)? };
     let logs = read_logs(files, input, opts.bias_s)?;
     let report = gyrodrift::report::Report::build(&named(&logs), &opts).map_err(|e| Failure(e.to_string()))?;
+    if csv {
+        return write_stdout(&report.to_csv().map_err(|e| Failure(e.to_string()))?);
+    }
     emit(json, &report, || if markdown { report.to_markdown() } else { report.to_text() })
 }
 

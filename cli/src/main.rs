@@ -91,10 +91,13 @@ enum Cmd {
         set: Vec<String>,
         #[arg(long)]
         no_resample: bool,
-        #[arg(long, conflicts_with = "markdown")]
+        #[arg(long, conflicts_with_all = ["markdown", "csv"])]
         json: bool,
-        #[arg(long)]
+        #[arg(long, conflicts_with = "csv")]
         markdown: bool,
+        /// The table as CSV (one row per drive, then the average or mean row).
+        #[arg(long)]
+        csv: bool,
         /// Every method side by side (raw, HDR, pipeline, peers) instead of Table II, as
         /// Markdown (or --json); the pipeline always runs on the 1 Hz blocks.
         #[arg(long, conflicts_with = "no_resample")]
@@ -328,8 +331,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Cmd::Pipeline { log, set, json } => c::pipeline(&log, &set, json, input),
         Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json, input),
         Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json),
-        Cmd::Report { files, set, json, compare: true, tune_on, .. } => c::compare(&files, &set, json, &tune_on, input),
-        Cmd::Report { files, set, no_resample, json, markdown, .. } => c::report(&files, &set, !no_resample, json, markdown, input),
+        Cmd::Report { files, set, json, csv, compare: true, tune_on, .. } => c::compare(&files, &set, json, csv, &tune_on, input),
+        Cmd::Report { files, set, no_resample, json, markdown, csv, .. } => {
+            c::report(&files, &set, !no_resample, json, markdown, csv, input)
+        }
         Cmd::Tune { train, test, json, markdown } => c::tune(&train, &test, json, markdown, input),
         Cmd::Simulate { kind, scenario, minutes, seed, name, out } => {
             let kind = match kind {

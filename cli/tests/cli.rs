@@ -438,3 +438,24 @@ fn a_log_check_finds_an_error_in_is_refused_unless_ignored() {
     assert!(forced.status.success());
     assert!(String::from_utf8_lossy(&forced.stderr).contains("check: error [gyro_sign]"));
 }
+
+/// `report --csv` and `report --compare --csv`: a header, one row per drive, the average.
+#[test]
+fn report_and_compare_as_csv() {
+    let p = write("csv-drive.csv", &drive_csv());
+    let out = run(&["report", p.to_str().unwrap(), "--csv"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 3, "{text}");
+    assert!(
+        lines[0].starts_with("name,duration_min,E_psi_raw_deg")
+            && lines[1].starts_with("test drive,")
+            && lines[2].starts_with("average of 1,"),
+        "{text}"
+    );
+    let out = run(&["report", "--compare", p.to_str().unwrap(), "--csv"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("name,duration_min,raw,hdr_table_iii,hdr_tuned,pipeline") && text.lines().count() == 3, "{text}");
+    assert_eq!(run(&["report", p.to_str().unwrap(), "--csv", "--json"]).status.code(), Some(2));
+}

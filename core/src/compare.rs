@@ -91,6 +91,16 @@ impl Compare {
     }
 
     /// A Markdown table of NE_psi (deg/min); the best method per drive in bold.
+    /// Every drive's NE_psi per method as CSV (names quoted as needed), then the mean row.
+    pub fn to_csv(&self) -> crate::Result<String> {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        let fail = |e: &dyn std::fmt::Display| crate::Error::data(format!("CSV: {e}"));
+        for r in self.rows.iter().chain(std::iter::once(&self.mean)) {
+            w.serialize(r).map_err(|e| fail(&e))?;
+        }
+        String::from_utf8(w.into_inner().map_err(|e| fail(&e))?).map_err(|e| fail(&e))
+    }
+
     pub fn to_markdown(&self) -> String {
         let mut s = String::new();
         let tuned = self.tuned_params.is_some();

@@ -123,6 +123,24 @@ impl Report {
     }
 
     /// The table as aligned plain text with units.
+    /// The table as CSV (names quoted as needed): one row per drive, then the average.
+    pub fn to_csv(&self) -> Result<String> {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        let avg = ReportRow {
+            name: format!("average of {}", self.rows.len()),
+            duration_min: self.total_duration_min,
+            E_psi_raw_deg: self.mean_E_psi_raw_deg,
+            NE_psi_raw_deg_per_min: self.mean_NE_psi_raw_deg_per_min,
+            E_psi_hdr_deg: self.mean_E_psi_hdr_deg,
+            NE_psi_hdr_deg_per_min: self.mean_NE_psi_hdr_deg_per_min,
+            improvement: self.mean_improvement,
+        };
+        for r in self.rows.iter().chain(std::iter::once(&avg)) {
+            w.serialize(r).map_err(|e| Error::data(format!("CSV: {e}")))?;
+        }
+        String::from_utf8(w.into_inner().map_err(|e| Error::data(format!("CSV: {e}")))?).map_err(|e| Error::data(format!("CSV: {e}")))
+    }
+
     pub fn to_text(&self) -> String {
         // Column width from the names, capped: `{:<w$}` panics for widths over 65 535, and a
         // longer name is only padded less.
@@ -183,6 +201,16 @@ mod tests {
         let md = r.to_markdown();
         assert!(md.contains("| d0 | 10.0 |") && md.contains("9.2x (sigma = 7.73)"), "{md}");
         assert!(Report::from_rows(vec![]).is_err());
+    }
+
+    #[test]
+    fn csv_has_a_header_quotes_names_and_ends_with_the_average() {
+        let r = Report::from_rows(vec![row("City, 1", 4.0), row("B", 6.0)]).unwrap();
+        let csv = r.to_csv().unwrap();
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines[0], "name,duration_min,E_psi_raw_deg,NE_psi_raw_deg_per_min,E_psi_hdr_deg,NE_psi_hdr_deg_per_min,improvement");
+        assert_eq!(lines[1], "\"City, 1\",10.0,8.0,0.8,2.0,0.2,4.0");
+        assert_eq!(lines[3], "average of 2,20.0,10.0,1.0,2.0,0.2,5.0");
     }
 }
 

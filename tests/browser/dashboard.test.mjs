@@ -341,6 +341,21 @@ test("legends sit outside the data and hide a series on click; guide lines are n
   await page.waitForFunction(() => !document.querySelector("#legend-c-error button.key[aria-pressed=false]"));
 });
 
+test("the Report tables export as CSV and Markdown, with the CLI's numbers", async () => {
+  await page.locator("#tabs button[data-view=report]").click();
+  await page.waitForSelector("#report-table table");
+  const [csv] = await Promise.all([page.waitForEvent("download"), page.locator("#export-report-csv").click()]);
+  assert.equal(csv.suggestedFilename(), "gyrodrift-table-ii.csv");
+  const text = readFileSync(await csv.path(), "utf8");
+  assert.match(text.split("\n")[0], /^name,duration_min,E_psi_raw_deg/);
+  const city = text.split("\n").find((l) => l.startsWith("City 1,"));
+  const native = JSON.parse(cli("hdr", join(SAMPLES, "train", "city-1.csv"), "--json"));
+  assert.ok(city && city.includes(String(native.E_psi_hdr_deg)), city);
+  const [md] = await Promise.all([page.waitForEvent("download"), page.locator("#export-compare-md").click()]);
+  assert.match(readFileSync(await md.path(), "utf8"), /\| Drive \| Duration \(min\) \| raw \| HDR Table III \|/);
+  await page.locator("#tabs button[data-view=hdr]").click();
+});
+
 for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyrodometry"]], ["calibration", ["c-cal-before", "c-cal-after"]], ["allan", ["c-allan"]], ["report", []]]) {
   test(`the ${view} view draws`, async () => {
     await page.locator(`#tabs button[data-view="${view}"]`).click();

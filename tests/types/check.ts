@@ -1,5 +1,5 @@
 // Compiled with `tsc --noEmit`: the package's types describe options and results (no `any`).
-import { checkOptions, version, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, pipeline, runPipeline, compare, checkLog } from "gyrodrift";
+import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, pipeline, runPipeline, compare, checkLog } from "gyrodrift";
 import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, PipelineResult, PipelineRun, Compare, CheckReport, CheckFinding, GapSplit } from "gyrodrift";
 
 const log: Log = Log.parse("time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1,0\n");
@@ -50,8 +50,9 @@ const gap: number = chk.gaps_s[0]?.[1] ?? 0;
 // @ts-expect-error: a finding's code is one of the named checks
 const badCode: CheckFinding["code"] = "colour";
 const ver: string = version();
+const tables: string = compareTable([log], {}, "csv") + reportCsv([log], {});
 const why: string | undefined = checkOptions("hdr", { i_c_dps: -1 });
 const split: GapSplit = log.splitAtGaps(undefined);
 const part: Log | undefined = split.parts[0];
 const gapLine: number = split.gaps[0]?.line ?? 0;
-export { e, h, psi, st, rep, t, tcv, trec, sim, c0, rows, pe, stops, smoothed, ps, cm, badRecipe, chk, fix, gap, badCode, split, part, gapLine, why, ver };
+export { e, h, psi, st, rep, t, tcv, trec, sim, c0, rows, pe, stops, smoothed, ps, cm, badRecipe, chk, fix, gap, badCode, split, part, gapLine, why, ver, tables };

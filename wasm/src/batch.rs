@@ -179,6 +179,15 @@ pub fn report_markdown(
     Ok(build_report(&logs, options)?.to_markdown())
 }
 
+/// The report as CSV (one row per drive, then the average).
+#[wasm_bindgen(js_name = reportCsv)]
+pub fn report_csv(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+) -> JsResult<String> {
+    build_report(&logs, options)?.to_csv().map_err(err)
+}
+
 /// Tunes the five HDR parameters on `train` and reports Table III vs tuned on both sets.
 /// `progress(fraction)`, if given, is called as the search goes (e.g. from a Web Worker).
 #[wasm_bindgen(unchecked_return_type = "TuneReport")]
@@ -320,8 +329,28 @@ pub fn compare(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
     #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue,
 ) -> JsResult<JsValue> {
+    to_js(&build_compare(&logs, options)?)
+}
+
+fn build_compare(logs: &JsValue, options: JsValue) -> JsResult<gyrodrift::compare::Compare> {
     let p: gyrodrift::pipeline::PipelineParams = self::options("pipeline", options)?;
-    let logs = Log::from_array(&logs, "logs")?;
+    let logs = Log::from_array(logs, "logs")?;
     let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), l.as_ref())).collect();
-    to_js(&gyrodrift::compare::compare(&named, &p, None).map_err(err)?)
+    gyrodrift::compare::compare(&named, &p, None).map_err(err)
+}
+
+/// The comparison as a table: "markdown" (the CLI's `report --compare`) or "csv".
+#[wasm_bindgen(js_name = compareTable)]
+pub fn compare_table(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "\"markdown\" | \"csv\"")] format: JsValue,
+) -> JsResult<String> {
+    let format = js_string(&format, "compareTable(format)")?;
+    let c = build_compare(&logs, options)?;
+    match format.as_str() {
+        "markdown" => Ok(c.to_markdown()),
+        "csv" => c.to_csv().map_err(err),
+        other => Err(err(format!("compareTable: format \"{other}\" is not markdown or csv"))),
+    }
 }

@@ -6,8 +6,33 @@ import { chart, timeRange } from "../charts.js";
 import { showError, render } from "../render.js";
 import { inWorker } from "../loading.js";
 
+/** The loaded drives the Report view tabulates. */
+export function reportDrives() {
+  return state.entries.filter((e) => !e.error && e.kind === "drive").map((e) => e.log);
+}
+
+/** The Report tables as files: Table II and the comparison, CSV or Markdown, from core. */
+export function reportExports(download) {
+  const pipe = () => ({ bias_s: hdrOptions().bias_s ?? null });
+  const files = {
+    "export-report-csv": ["gyrodrift-table-ii.csv", "text/csv", () => gd.reportCsv(reportDrives(), hdrOptions())],
+    "export-report-md": ["gyrodrift-table-ii.md", "text/markdown", () => gd.reportMarkdown(reportDrives(), hdrOptions())],
+    "export-compare-csv": ["gyrodrift-methods.csv", "text/csv", () => gd.compareTable(reportDrives(), pipe(), "csv")],
+    "export-compare-md": ["gyrodrift-methods.md", "text/markdown", () => gd.compareTable(reportDrives(), pipe(), "markdown")],
+  };
+  for (const [id, [name, type, make]] of Object.entries(files)) {
+    $(id).addEventListener("click", () => {
+      try {
+        download(name, make(), type);
+      } catch (e) {
+        showError(e.message);
+      }
+    });
+  }
+}
+
 export function renderReport() {
-  const drives = state.entries.filter((e) => !e.error && e.kind === "drive").map((e) => e.log);
+  const drives = reportDrives();
   if (!drives.length) return showError("Load drive logs for the report.");
   const rep = gd.report(drives, hdrOptions());
   $("report-table").replaceChildren(reportTable(rep));
