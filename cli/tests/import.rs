@@ -261,9 +261,21 @@ fn bad_recipes_and_files_exit_2_naming_what_is_wrong() {
     let mut swapped = lines.clone();
     swapped.swap(5, 6);
     std::fs::write(d.join("imu.csv"), swapped.join("\n")).unwrap();
+    // By default a row a little late is put in time order, and the summary says so ...
     let o = run(&["import", "--recipe", s(&d.join("r.toml")), "--out", s(&d.join("o.csv"))]);
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("imu.csv: line 7, column time") && err.contains("does not increase"), "{err}");
+    assert!(o.status.success() && err.contains("1 late rows put in time order"), "{err}");
+    // ... and with backward = "error" it names the line.
+    let strict = base.replacen(
+        "time = { column = \"time\", format = \"iso8601\" }",
+        "time = { column = \"time\", format = \"iso8601\", backward = \"error\" }",
+        1,
+    );
+    std::fs::write(d.join("r.toml"), strict).unwrap();
+    let o = run(&["import", "--recipe", s(&d.join("r.toml")), "--out", s(&d.join("o.csv"))]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("imu.csv: line 7, column time") && err.contains("goes back"), "{err}");
+    std::fs::write(d.join("r.toml"), &base).unwrap();
     std::fs::write(d.join("imu.csv"), "").unwrap();
     let o = run(&["import", "--recipe", s(&d.join("r.toml")), "--out", s(&d.join("o.csv"))]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("empty file"), "{}", String::from_utf8_lossy(&o.stderr));
