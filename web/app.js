@@ -16,6 +16,22 @@ async function main() {
   state.params = defaults();
   state.gyro = { thres_rate_dps: gd.defaults("gyrodometry").thres_rate_dps };
   const wantLog = readUrl();
+  setupParams();
+  setupTabs();
+  setupExports();
+  setupFiles();
+  // The first-use panel is open until it has been closed once (remembered in this browser).
+  const intro = $("first-use");
+  intro.open = localStorage.getItem("gyrodrift.intro") !== "closed";
+  intro.addEventListener("toggle", () => localStorage.setItem("gyrodrift.intro", intro.open ? "open" : "closed"));
+  await loadSamples();
+  applyLog(wantLog);
+  render();
+  setupRouting();
+}
+
+/** The HDR and Gyrodometry parameter forms; core checks every value typed. */
+function setupParams() {
   buildParams($("hdr-params"), PARAMS, (k) => state.params[k] ?? (k === "bias_s" ? gd.defaultBiasS() : 0), (k, v) => { state.params[k] = v; }, (form) => {
     const row = document.createElement("div");
     row.className = "param";
@@ -31,9 +47,13 @@ async function main() {
     form.append(row, reset);
   }, (k, v) => gd.checkOptions("hdr", { ...hdrOptions(), [k]: v }) ?? null);
   buildParams($("gyro-params"), GYRO_PARAMS, (k) => state.gyro[k], (k, v) => { state.gyro[k] = v; }, null, (k, v) => gd.checkOptions("gyrodometry", { ...state.gyro, [k]: v }) ?? null);
+}
+
+/** The view tabs (a tablist: arrow keys move between them; roving tabindex set in render)
+ * and the time charts' zoom and cursor. */
+function setupTabs() {
   const tabs = [...document.querySelectorAll("#tabs button")];
   for (const b of tabs) b.addEventListener("click", () => { state.view = b.dataset.view; state.zoom = null; render(); });
-  // Tabs as a tablist: arrow keys move between them (roving tabindex set in render).
   $("tabs").addEventListener("keydown", (ev) => {
     const i = tabs.findIndex((b) => b.dataset.view === state.view);
     const j = { ArrowRight: i + 1, ArrowLeft: i - 1, Home: 0, End: tabs.length - 1 }[ev.key];
@@ -44,11 +64,15 @@ async function main() {
     b.focus();
   });
   for (const id of ["c-heading", "c-error", "c-rate", "c-gyrodometry"]) attachTimeInteraction(id);
-  // File names from the log and the chart (City 1-heading.png).
+  window.addEventListener("resize", scheduleRender);
+}
+
+/** Downloads: charts as PNG, the heading trace, a result JSON that reproduces, the Report's
+ * tables; files named by log and chart (City 1-heading.png). */
+function setupExports() {
   const fileName = (suffix) => `${(logFor(state.view)?.name || "gyrodrift").replace(/[^\w.() -]+/g, "_")}-${suffix}`;
   for (const b of document.querySelectorAll("button.png")) b.addEventListener("click", () => download(fileName(`${b.dataset.canvas.replace(/^c-/, "")}.png`), pngOf(b.dataset.canvas)));
   $("export-trace").addEventListener("click", () => { const e = logFor("hdr"); if (e) download(fileName("heading.csv"), gd.hdrTraceCsv(e.log, hdrOptions()), "text/csv"); });
-  // A result JSON that reproduces: the log, the settings, the version, then the numbers.
   $("export-json").addEventListener("click", () => {
     const e = logFor("hdr");
     if (!e) return;
@@ -57,6 +81,10 @@ async function main() {
   });
   $("tune").addEventListener("click", runTune);
   reportExports(download);
+}
+
+/** Opening and dropping files. */
+function setupFiles() {
   $("file-input").addEventListener("change", (ev) => {
     const files = [...ev.target.files];
     ev.target.value = ""; // the same file can be opened again
@@ -65,16 +93,10 @@ async function main() {
   document.addEventListener("dragover", (ev) => { ev.preventDefault(); document.body.classList.add("dragging"); });
   document.addEventListener("dragleave", () => document.body.classList.remove("dragging"));
   document.addEventListener("drop", (ev) => { ev.preventDefault(); document.body.classList.remove("dragging"); loadFiles([...ev.dataTransfer.files]); });
-  window.addEventListener("resize", scheduleRender);
+}
 
-  // The first-use panel is open until it has been closed once (remembered in this browser).
-  const intro = $("first-use");
-  intro.open = localStorage.getItem("gyrodrift.intro") !== "closed";
-  intro.addEventListener("toggle", () => localStorage.setItem("gyrodrift.intro", intro.open ? "open" : "closed"));
-  await loadSamples();
-  applyLog(wantLog);
-  render();
-  // A link pasted into this tab, or Back and Forward: apply the state it names.
+/** A link pasted into this tab, or Back and Forward: apply the state it names. */
+function setupRouting() {
   const follow = () => {
     if (location.hash === urlHash()) return;
     const log = readUrl();
