@@ -91,14 +91,18 @@ impl Compare {
     }
 
     /// A Markdown table of NE_psi (deg/min); the best method per drive in bold.
-    /// Every drive's NE_psi per method as CSV (names quoted as needed), then the mean row.
+    /// Every drive's NE_psi per method as CSV (names quoted as needed), then the mean row;
+    /// `hdr_tuned` is empty when nothing was tuned.
     pub fn to_csv(&self) -> crate::Result<String> {
-        let mut w = csv::Writer::from_writer(Vec::new());
-        let fail = |e: &dyn std::fmt::Display| crate::Error::data(format!("CSV: {e}"));
+        let mut s = String::from("name,duration_min,raw,hdr_table_iii,hdr_tuned,pipeline,pipeline_smoothed,fusion_offset,zaru\n");
         for r in self.rows.iter().chain(std::iter::once(&self.mean)) {
-            w.serialize(r).map_err(|e| fail(&e))?;
+            let line = crate::report::csv_line(&r.name, &[r.duration_min, r.raw, r.hdr_table_iii]);
+            let tuned = r.hdr_tuned.map(|v| format!("{v:?}")).unwrap_or_default();
+            let rest = crate::report::csv_line("", &[r.pipeline, r.pipeline_smoothed, r.fusion_offset, r.zaru]);
+            s += &format!("{},{tuned}{}", line.trim_end(), rest.trim_end());
+            s.push('\n');
         }
-        String::from_utf8(w.into_inner().map_err(|e| fail(&e))?).map_err(|e| fail(&e))
+        Ok(s)
     }
 
     pub fn to_markdown(&self) -> String {
