@@ -72,7 +72,8 @@ fn read_logs(paths: &[PathBuf], input: Input, bias_s: Option<f64>) -> Result<Vec
 
 /// The gap policy on one log; the split is said on stderr.
 fn split(path: &Path, drive: DriveLog, gaps: GapPolicy, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
-    let s = gyrodrift::log::gaps::split_at_gaps(&drive, gaps, drive.bias_s(bias_s)).map_err(|e| fail(path, e))?;
+    let bias_s = drive.bias_s(bias_s);
+    let s = gyrodrift::log::gaps::split_at_gaps(drive, gaps, bias_s).map_err(|e| fail(path, e))?;
     if let Some(line) = s.summary() {
         eprintln!("{}: {line}", path.display());
     }
@@ -83,7 +84,7 @@ fn split(path: &Path, drive: DriveLog, gaps: GapPolicy, bias_s: Option<f64>) -> 
             gyrodrift::log::gaps::MIN_PART_S
         )));
     }
-    Ok(if s.gaps.is_empty() { vec![drive] } else { s.parts })
+    Ok(s.parts)
 }
 
 /// Logs named by their `# name:` or file stem, as core's batch functions take them.
@@ -172,7 +173,7 @@ pub fn compare(files: &[PathBuf], set: &[String], json: bool, csv: bool, tune_on
     let logs = read_logs(files, input, params.bias_s)?;
     let c = gyrodrift::compare::compare(&named(&logs), &params, tuned).map_err(|e| Failure(e.to_string()))?;
     if csv {
-        return write_stdout(&c.to_csv().map_err(|e| Failure(e.to_string()))?);
+        return write_stdout(&c.to_csv());
     }
     emit(json, &c, || c.to_markdown())
 }
@@ -191,7 +192,7 @@ pub fn report(
     let logs = read_logs(files, input, opts.bias_s)?;
     let report = gyrodrift::report::Report::build(&named(&logs), &opts).map_err(|e| Failure(e.to_string()))?;
     if csv {
-        return write_stdout(&report.to_csv().map_err(|e| Failure(e.to_string()))?);
+        return write_stdout(&report.to_csv());
     }
     emit(json, &report, || if markdown { report.to_markdown() } else { report.to_text() })
 }

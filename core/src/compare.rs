@@ -93,16 +93,23 @@ impl Compare {
     /// A Markdown table of NE_psi (deg/min); the best method per drive in bold.
     /// Every drive's NE_psi per method as CSV (names quoted as needed), then the mean row;
     /// `hdr_tuned` is empty when nothing was tuned.
-    pub fn to_csv(&self) -> crate::Result<String> {
+    pub fn to_csv(&self) -> String {
         let mut s = String::from("name,duration_min,raw,hdr_table_iii,hdr_tuned,pipeline,pipeline_smoothed,fusion_offset,zaru\n");
+        let num = |v: f64| format!("{v:?}");
         for r in self.rows.iter().chain(std::iter::once(&self.mean)) {
-            let line = crate::report::csv_line(&r.name, &[r.duration_min, r.raw, r.hdr_table_iii]);
-            let tuned = r.hdr_tuned.map(|v| format!("{v:?}")).unwrap_or_default();
-            let rest = crate::report::csv_line("", &[r.pipeline, r.pipeline_smoothed, r.fusion_offset, r.zaru]);
-            s += &format!("{},{tuned}{}", line.trim_end(), rest.trim_end());
-            s.push('\n');
+            let cells = [
+                num(r.duration_min),
+                num(r.raw),
+                num(r.hdr_table_iii),
+                r.hdr_tuned.map(num).unwrap_or_default(),
+                num(r.pipeline),
+                num(r.pipeline_smoothed),
+                num(r.fusion_offset),
+                num(r.zaru),
+            ];
+            s += &crate::report::csv_line(&r.name, cells);
         }
-        Ok(s)
+        s
     }
 
     pub fn to_markdown(&self) -> String {

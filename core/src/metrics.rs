@@ -170,6 +170,20 @@ pub fn improvement(e_raw_deg: f64, e_method_deg: f64) -> f64 {
     e_raw_deg / e_method_deg
 }
 
+/// The q-quantile by nearest rank (index floor(n q)), NaN for no values.
+pub fn quantile(values: &[f64], q: f64) -> f64 {
+    quantile_mut(&mut values.to_vec(), q)
+}
+
+/// As `quantile`, reordering `values` in place instead of copying them.
+pub fn quantile_mut(values: &mut [f64], q: f64) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    let i = ((values.len() as f64 * q) as usize).min(values.len() - 1);
+    *values.select_nth_unstable_by(i, f64::total_cmp).1
+}
+
 /// Mean and sample standard deviation (n - 1), as in the paper's average rows.
 pub fn mean_std(values: &[f64]) -> (f64, f64) {
     let n = values.len();

@@ -21,7 +21,7 @@ fuzz_target!(|data: &[u8]| {
     files.insert("p.csv".to_string(), table);
     if let Ok((log, _)) = gyrodrift::import::import(&recipe, &mut files) {
         let _ = gyrodrift::check::check(&log);
-        let _ = gyrodrift::log::gaps::split_at_gaps(&log, Default::default(), 1.0);
+        let _ = gyrodrift::log::gaps::split_at_gaps(log.clone(), Default::default(), 1.0);
         let _ = gyrodrift::hdr::run(&log, &Default::default());
         let _ = gyrodrift::pipeline::run(&log, &Default::default());
         let _ = gyrodrift::compare::compare(&[("fuzz".into(), &log)], &Default::default(), None);

@@ -185,7 +185,7 @@ pub fn report_csv(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
     #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
 ) -> JsResult<String> {
-    build_report(&logs, options)?.to_csv().map_err(err)
+    Ok(build_report(&logs, options)?.to_csv())
 }
 
 /// Tunes the five HDR parameters on `train` and reports Table III vs tuned on both sets.
@@ -229,18 +229,41 @@ pub fn check_log(log: &Log) -> JsResult<JsValue> {
     to_js(&gyrodrift::check::check(&log.log))
 }
 
+/// Runs `$body` with `$T` the settings type of the method named `$method`, or gives the
+/// unknown-method error: the one list of methods with settings.
+macro_rules! with_settings {
+    ($what:literal, $method:expr, |$T:ident| $body:expr) => {
+        match $method {
+            "hdr" => {
+                type $T = HdrOptions;
+                $body
+            }
+            "pipeline" => {
+                type $T = gyrodrift::pipeline::PipelineParams;
+                $body
+            }
+            "gyrodometry" => {
+                type $T = gyrodometry::GyrodometryOptions;
+                $body
+            }
+            "calibration" => {
+                type $T = calibration::CalibrationOptions;
+                $body
+            }
+            "tune" => {
+                type $T = tune::TuneOptions;
+                $body
+            }
+            other => Err(err(format!(concat!($what, ": unknown method \"{}\" (hdr, pipeline, gyrodometry, calibration, tune)"), other))),
+        }
+    };
+}
+
 /// The default settings of a method, as core has them: "hdr", "pipeline", "gyrodometry",
 /// "calibration" or "tune"; `bias_s` (null) falls back to the log's or `defaultBiasS`.
 #[wasm_bindgen(unchecked_return_type = "any")]
 pub fn defaults(#[wasm_bindgen(unchecked_param_type = "string")] method: JsValue) -> JsResult<JsValue> {
-    match js_string(&method, "defaults(method)")?.as_str() {
-        "hdr" => to_js(&HdrOptions::default()),
-        "pipeline" => to_js(&gyrodrift::pipeline::PipelineParams::default()),
-        "gyrodometry" => to_js(&gyrodometry::GyrodometryOptions::default()),
-        "calibration" => to_js(&calibration::CalibrationOptions::default()),
-        "tune" => to_js(&tune::TuneOptions::default()),
-        other => Err(err(format!("defaults: unknown method \"{other}\" (hdr, pipeline, gyrodometry, calibration, tune)"))),
-    }
+    with_settings!("defaults", js_string(&method, "defaults(method)")?.as_str(), |T| to_js(&T::default()))
 }
 
 /// Checks settings for a method ("hdr", "pipeline", "gyrodometry", "calibration", "tune")
@@ -252,15 +275,9 @@ pub fn check_options(
     #[wasm_bindgen(unchecked_param_type = "object")] settings: JsValue,
 ) -> JsResult<Option<String>> {
     let method = js_string(&method, "checkOptions(method)")?;
-    let checked = match method.as_str() {
-        "hdr" => options::<HdrOptions>("hdr", settings.clone()).map(|_| ()),
-        "pipeline" => options::<gyrodrift::pipeline::PipelineParams>("pipeline", settings.clone()).map(|_| ()),
-        "gyrodometry" => options::<gyrodometry::GyrodometryOptions>("gyrodometry", settings.clone()).map(|_| ()),
-        "calibration" => options::<calibration::CalibrationOptions>("calibration", settings.clone()).map(|_| ()),
-        "tune" => options::<tune::TuneOptions>("tune", settings.clone()).map(|_| ()),
-        other => return Err(err(format!("checkOptions: unknown method \"{other}\" (hdr, pipeline, gyrodometry, calibration, tune)"))),
-    };
-    Ok(checked.err().map(|e| e.dyn_into::<js_sys::Error>().map(|e| String::from(e.message())).unwrap_or_else(|v| format!("{v:?}"))))
+    // An unknown method throws; a bad setting is the answer.
+    let refused: Option<JsValue> = with_settings!("checkOptions", method.as_str(), |T| Ok(options::<T>(&method, settings).err()))?;
+    Ok(refused.map(|e| e.dyn_into::<js_sys::Error>().map(|e| String::from(e.message())).unwrap_or_else(|v| format!("{v:?}"))))
 }
 
 /// The package's version (the core's), for exports that say what made them.
@@ -350,7 +367,7 @@ pub fn compare_table(
     let c = build_compare(&logs, options)?;
     match format.as_str() {
         "markdown" => Ok(c.to_markdown()),
-        "csv" => c.to_csv().map_err(err),
+        "csv" => Ok(c.to_csv()),
         other => Err(err(format!("compareTable: format \"{other}\" is not markdown or csv"))),
     }
 }

@@ -192,7 +192,7 @@ impl Log {
         if bias_s.is_some_and(|b| !b.is_finite()) {
             return Err(type_err("Log.splitAtGaps(bias_s): expected a finite number of seconds"));
         }
-        let s = gyrodrift::log::gaps::split_at_gaps(&self.log, Default::default(), self.log.bias_s(bias_s)).map_err(err)?;
+        let s = gyrodrift::log::gaps::split_at_gaps((*self.log).clone(), Default::default(), self.log.bias_s(bias_s)).map_err(err)?;
         let parts = Array::new();
         for p in s.parts.iter().cloned() {
             parts.push(&JsValue::from(Log::new(p)));

@@ -69,9 +69,7 @@ pub fn gap_threshold_s(time_s: &[f64]) -> f64 {
     if steps.is_empty() {
         return GAP_MIN_S;
     }
-    let mid = steps.len() / 2;
-    let (_, median, _) = steps.select_nth_unstable_by(mid, f64::total_cmp);
-    (GAP_STEPS * *median).max(GAP_MIN_S)
+    (GAP_STEPS * crate::metrics::quantile_mut(&mut steps, 0.5)).max(GAP_MIN_S)
 }
 
 /// The gaps of a log.
@@ -85,11 +83,12 @@ pub fn find_gaps(log: &DriveLog) -> Vec<Gap> {
 }
 
 /// Applies the policy. `bias_s` is the static-bias window the command would use: the first
-/// part's lead-in gives the bias removed from the later parts' gyro.
-pub fn split_at_gaps(log: &DriveLog, policy: GapPolicy, bias_s: f64) -> Result<Split> {
-    let gaps = find_gaps(log);
+/// part's lead-in gives the bias removed from the later parts' gyro. A log without gaps is
+/// its own one part (moved, not copied).
+pub fn split_at_gaps(log: DriveLog, policy: GapPolicy, bias_s: f64) -> Result<Split> {
+    let gaps = find_gaps(&log);
     if gaps.is_empty() {
-        return Ok(Split { parts: vec![log.clone()], gaps, dropped: Vec::new() });
+        return Ok(Split { parts: vec![log], gaps, dropped: Vec::new() });
     }
     if policy == GapPolicy::Error {
         let g = gaps[0];
@@ -118,7 +117,7 @@ pub fn split_at_gaps(log: &DriveLog, policy: GapPolicy, bias_s: f64) -> Result<S
             dropped.push((t[a], span));
             continue;
         }
-        parts.push(part(log, a, b, if k == 0 { None } else { Some(eps0) }));
+        parts.push(part(&log, a, b, if k == 0 { None } else { Some(eps0) }));
     }
     let n = parts.len();
     let base = log.meta.name.clone().unwrap_or_else(|| "log".into());
@@ -158,7 +157,7 @@ mod tests {
 
     #[test]
     fn no_gap_keeps_the_log_whole() {
-        let s = split_at_gaps(&drive(0.0), GapPolicy::Split, 20.0).unwrap();
+        let s = split_at_gaps(drive(0.0), GapPolicy::Split, 20.0).unwrap();
         assert_eq!((s.parts.len(), s.gaps.len()), (1, 0));
         assert_eq!(s.parts[0], drive(0.0));
         assert!(s.summary().is_none());
@@ -166,7 +165,7 @@ mod tests {
 
     #[test]
     fn a_gap_splits_into_two_drives_and_the_second_loses_the_first_ones_bias() {
-        let s = split_at_gaps(&drive(60.0), GapPolicy::Split, 20.0).unwrap();
+        let s = split_at_gaps(drive(60.0), GapPolicy::Split, 20.0).unwrap();
         // the step 100 -> 161 s is 61 s; the threshold is max(20 x 1 s, 5 s) = 20 s
         assert_eq!(s.gaps, vec![Gap { at_s: 100.0, length_s: 61.0, line: 103 }]);
         assert_eq!(s.parts.len(), 2);
@@ -186,7 +185,7 @@ mod tests {
     fn short_parts_are_dropped_and_counted() {
         let mut log = drive(60.0);
         log.retain_rows(|t| !(170.0..=200.0).contains(&t)); // parts 0..100 s, 161..169 s, 201..259 s
-        let s = split_at_gaps(&log, GapPolicy::Split, 20.0).unwrap();
+        let s = split_at_gaps(log, GapPolicy::Split, 20.0).unwrap();
         assert_eq!(s.gaps.len(), 2);
         assert_eq!(s.parts.len(), 2);
         assert_eq!(s.dropped, vec![(161.0, 8.0)]);
@@ -194,7 +193,7 @@ mod tests {
 
     #[test]
     fn the_error_policy_names_the_line() {
-        let e = split_at_gaps(&drive(60.0), GapPolicy::Error, 20.0).unwrap_err().to_string();
+        let e = split_at_gaps(drive(60.0), GapPolicy::Error, 20.0).unwrap_err().to_string();
         assert!(e.contains("line 103") && e.contains("61.0 s"), "{e}");
     }
 }

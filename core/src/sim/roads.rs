@@ -5,6 +5,7 @@
 
 use crate::error::{Error, Result};
 use crate::log::{Column, DriveLog};
+use crate::metrics::{mean_std, quantile, quantile_mut};
 use crate::preprocess::blocks_1hz;
 use serde::Serialize;
 
@@ -44,7 +45,7 @@ impl RoadSamples {
             rate_p75_dps: quantile(&self.abs_rate_dps, 0.75),
             rate_p90_dps: quantile(&self.abs_rate_dps, 0.9),
             below_theta_w: below,
-            straight_run_mean_s: mean(&self.straight_runs_s),
+            straight_run_mean_s: mean_std(&self.straight_runs_s).0,
             straight_run_p90_s: quantile(&self.straight_runs_s, 0.9),
             slow_rate_p50_dps: quantile(&self.slow_rate_dps, 0.5),
             slow_rate_p90_dps: quantile(&self.slow_rate_dps, 0.9),
@@ -221,26 +222,6 @@ impl RoadComparison {
         );
         out
     }
-}
-
-fn mean(v: &[f64]) -> f64 {
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.iter().sum::<f64>() / v.len() as f64
-}
-
-/// The q-quantile (nearest rank), NaN for no values.
-pub fn quantile(v: &[f64], q: f64) -> f64 {
-    quantile_mut(&mut v.to_vec(), q)
-}
-
-fn quantile_mut(v: &mut [f64], q: f64) -> f64 {
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    let i = ((v.len() as f64 * q) as usize).min(v.len() - 1);
-    *v.select_nth_unstable_by(i, f64::total_cmp).1
 }
 
 /// The two-sample Kolmogorov-Smirnov statistic: the largest gap between the two empirical
