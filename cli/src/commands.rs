@@ -1,7 +1,7 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
 use crate::{expand_recipes, fail, import_recipe, output, print_json, read_log, settings, write_stdout, Failure};
-use gyrodrift::log::gaps::GapPolicy;
+use gyrodrift::log::accept::{accept, InputPolicy};
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
 use std::path::{Path, PathBuf};
 
@@ -26,37 +26,20 @@ fn write_log(log: &DriveLog, out: Option<&Path>) -> Result<(), Failure> {
 
 /// How the commands take their input logs: the gap policy, and whether a log `check` finds
 /// an error in (a unit or sign mistake) is refused (the default) or run anyway.
-#[derive(Clone, Copy)]
-pub struct Input {
-    pub gaps: GapPolicy,
-    pub ignore_check: bool,
-}
+pub type Input = InputPolicy;
 
-/// Reads a log and prints what `check` finds wrong with it (a line each) to stderr; an error
-/// (ms time, radian heading, rad/s or clockwise gyro) refuses the log, since every figure
-/// from it would be absurd, unless `--ignore-check`. Then applies the gap policy: the parts
-/// to score, each a drive of its own, named by `# name:` or the file stem.
+/// Reads a log and takes it as core's `accept` does: what `check` finds is printed to
+/// stderr (a line each), a log with a check error is refused unless `--ignore-check`, and
+/// the gap policy gives the parts to score, each a drive of its own, named by `# name:` or
+/// the file stem; the split is said on stderr.
 fn read_checked(path: &Path, input: Input, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
-    let mut drive = read_log(path)?;
-    let mut refused = None;
-    for f in gyrodrift::check::check(&drive).findings.iter().filter(|f| f.severity != gyrodrift::check::Severity::Info) {
-        if f.code == "gap" {
-            continue; // said once below, with what the policy did
-        }
-        let fix = f.fix.as_deref().map(|x| format!("; fix: {x}")).unwrap_or_default();
-        let line = format!("{}: check: {} [{}]: {}{fix}", path.display(), f.severity.name(), f.code, f.message);
-        if f.severity == gyrodrift::check::Severity::Error && !input.ignore_check {
-            refused.get_or_insert(line);
-        } else {
-            eprintln!("{line}");
-        }
-    }
-    if let Some(line) = refused {
-        return Err(Failure(format!("{line} (refused: its results would be absurd; --ignore-check runs it anyway)")));
-    }
+    let drive = read_log(path)?;
     let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    drive.meta.name.get_or_insert(stem);
-    split(path, drive, input.gaps, bias_s)
+    let a = accept(drive, &stem, input, bias_s).map_err(|e| fail(path, e))?;
+    for line in a.warnings.iter().chain(&a.split) {
+        eprintln!("{}: {line}", path.display());
+    }
+    Ok(a.parts)
 }
 
 /// Reads many logs (checked and split as `read_checked`), with their names.
@@ -68,23 +51,6 @@ fn read_logs(paths: &[PathBuf], input: Input, bias_s: Option<f64>) -> Result<Vec
         }
     }
     Ok(out)
-}
-
-/// The gap policy on one log; the split is said on stderr.
-fn split(path: &Path, drive: DriveLog, gaps: GapPolicy, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
-    let bias_s = drive.bias_s(bias_s);
-    let s = gyrodrift::log::gaps::split_at_gaps(drive, gaps, bias_s).map_err(|e| fail(path, e))?;
-    if let Some(line) = s.summary() {
-        eprintln!("{}: {line}", path.display());
-    }
-    if s.parts.is_empty() {
-        return Err(Failure(format!(
-            "{}: every part between its gaps is shorter than {} s",
-            path.display(),
-            gyrodrift::log::gaps::MIN_PART_S
-        )));
-    }
-    Ok(s.parts)
 }
 
 /// Logs named by their `# name:` or file stem, as core's batch functions take them.

@@ -1,9 +1,11 @@
 //! `gyrodrift`: the command-line front of the gyrodrift core. It reads files, parses
 //! options, calls core and prints; every number comes from core.
 
+mod batch;
 mod commands;
 mod oom;
 mod output;
+mod parquet_out;
 
 #[global_allocator]
 static ALLOC: oom::Graceful = oom::Graceful;
@@ -84,8 +86,19 @@ enum Cmd {
     },
     /// The HDR paper's Table II for any set of drives.
     Report {
-        #[arg(required = true)]
+        #[arg(required_unless_present = "dir", conflicts_with = "dir")]
         files: Vec<PathBuf>,
+        /// Every *.csv log under this folder (recursive), in parallel: each drive a row with
+        /// every method's E_psi and NE_psi (or its error; the rest go on), the fleet's Table II
+        /// printed. --set takes the pipeline's settings here.
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["markdown", "csv", "compare", "no_resample"])]
+        dir: Option<PathBuf>,
+        /// With --dir: threads (0 = one per core).
+        #[arg(long, default_value_t = 0, requires = "dir")]
+        jobs: usize,
+        /// With --dir: write the per-drive rows to this .parquet, .csv or .json file.
+        #[arg(long, value_name = "FILE", requires = "dir")]
+        out: Option<PathBuf>,
         /// Parameter: i_c, tau, theta_w, c1, c2, bias_s.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
@@ -331,6 +344,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Cmd::Pipeline { log, set, json } => c::pipeline(&log, &set, json, input),
         Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json, input),
         Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json),
+        Cmd::Report { dir: Some(dir), jobs, out, set, json, .. } => {
+            let opts = gyrodrift::fleet::FleetOptions { input, pipeline: settings(&set)? };
+            batch::run(&dir, jobs, out.as_deref(), &opts, json)
+        }
         Cmd::Report { files, set, json, csv, compare: true, tune_on, .. } => c::compare(&files, &set, json, csv, &tune_on, input),
         Cmd::Report { files, set, no_resample, json, markdown, csv, .. } => {
             c::report(&files, &set, !no_resample, json, markdown, csv, input)

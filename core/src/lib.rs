@@ -29,6 +29,7 @@ pub mod compare;
 pub mod decimate;
 pub mod error;
 pub mod eval;
+pub mod fleet;
 pub mod gyrodometry;
 pub mod hdr;
 pub mod import;

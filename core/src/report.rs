@@ -168,13 +168,21 @@ impl Report {
     }
 }
 
-/// One CSV line: the name (quoted when it holds a comma, quote or line break), then the
-/// cells as given.
+/// One CSV field: quoted when it holds a comma, quote or line break.
+pub fn csv_field(cell: &str) -> String {
+    if cell.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", cell.replace('"', "\"\""))
+    } else {
+        cell.to_string()
+    }
+}
+
+/// One CSV line: the name, then the cells, each quoted as needed.
 pub fn csv_line(name: &str, cells: impl IntoIterator<Item = String>) -> String {
-    let mut s = if name.contains([',', '"', '\n', '\r']) { format!("\"{}\"", name.replace('"', "\"\"")) } else { name.to_string() };
+    let mut s = csv_field(name);
     for c in cells {
         s.push(',');
-        s += &c;
+        s += &csv_field(&c);
     }
     s.push('\n');
     s

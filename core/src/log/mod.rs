@@ -360,6 +360,7 @@ pub enum LogKind {
     Static,
 }
 
+pub mod accept;
 pub mod gaps;
 mod parse;
 pub use parse::{parse_log, parse_log_progress, parse_log_str, parse_log_with};

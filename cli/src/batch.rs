@@ -1,0 +1,93 @@
+//! `report --dir DIR`: every `*.csv` log under a folder (recursive), scored in parallel
+//! (rayon, `--jobs N`) with a progress bar on a terminal. Each drive is a row of core's
+//! `fleet` (a file that fails is a row with its error; the rest go on); the rows go to
+//! `--out` (Parquet, CSV or JSON by extension), the fleet's Table II to stdout.
+
+use crate::{print_json, write_stdout, Failure};
+use gyrodrift::fleet::{self, DriveRow, FleetOptions};
+use rayon::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// Every `*.csv` file under `dir`, sorted, links followed; unreadable entries are errors.
+pub fn collect_logs(dir: &Path) -> Result<Vec<PathBuf>, Failure> {
+    if !dir.is_dir() {
+        return Err(Failure(format!("{}: not a folder", dir.display())));
+    }
+    let mut files = Vec::new();
+    for entry in walkdir::WalkDir::new(dir).follow_links(true) {
+        let e = entry.map_err(|e| Failure(format!("{}: {e}", dir.display())))?;
+        let is_csv = e.path().extension().is_some_and(|x| x.eq_ignore_ascii_case("csv"));
+        if e.file_type().is_file() && is_csv {
+            files.push(e.into_path());
+        }
+    }
+    files.sort();
+    if files.is_empty() {
+        return Err(Failure(format!("{}: no *.csv logs in this folder or below", dir.display())));
+    }
+    Ok(files)
+}
+
+/// One file's rows: opened and parsed here, scored by core.
+fn score_file(path: &Path, opts: &FleetOptions) -> Vec<DriveRow> {
+    let label = path.display().to_string();
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    match std::fs::File::open(path) {
+        Ok(f) => fleet::score_reader(&label, &stem, std::io::BufReader::new(f), opts),
+        Err(e) => vec![DriveRow::failed(&label, format!("cannot open: {e}"))],
+    }
+}
+
+/// Scores the files on `jobs` threads (0 = one per core), in file order.
+pub fn score_files(files: &[PathBuf], jobs: usize, opts: &FleetOptions) -> Result<Vec<DriveRow>, Failure> {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build().map_err(|e| Failure(format!("--jobs {jobs}: {e}")))?;
+    let bar = indicatif::ProgressBar::new(files.len() as u64).with_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} logs, {elapsed} elapsed, about {eta} left")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let rows: Vec<Vec<DriveRow>> = pool.install(|| {
+        files
+            .par_iter()
+            .map(|p| {
+                let r = score_file(p, opts);
+                bar.inc(1);
+                r
+            })
+            .collect()
+    });
+    bar.finish_and_clear();
+    Ok(rows.into_iter().flatten().collect())
+}
+
+/// Writes the rows by the file's extension: .parquet, .csv or .json.
+fn write_rows(out: &Path, rows: &[DriveRow]) -> Result<(), Failure> {
+    let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    let create = || std::fs::File::create(out).map_err(|e| Failure(format!("{}: cannot create: {e}", out.display())));
+    let written = match ext.as_str() {
+        "parquet" => crate::parquet_out::write(create()?, rows).map_err(|e| e.to_string()),
+        "csv" => std::fs::write(out, fleet::rows_to_csv(rows)).map_err(|e| e.to_string()),
+        "json" => serde_json::to_writer(std::io::BufWriter::new(create()?), rows).map_err(|e| e.to_string()),
+        _ => return Err(Failure(format!("{}: --out takes a .parquet, .csv or .json file", out.display()))),
+    };
+    written.map_err(|e| Failure(format!("{}: cannot write: {e}", out.display())))
+}
+
+/// `report --dir`: scores every log under `dir`; prints the summary (Markdown or JSON) and
+/// each error row's message on stderr; writes the rows to `out`. Files that failed are rows,
+/// not a failed command (exit 0): a fleet job keeps what it could score.
+pub fn run(dir: &Path, jobs: usize, out: Option<&Path>, opts: &FleetOptions, json: bool) -> Result<(), Failure> {
+    let files = collect_logs(dir)?;
+    let rows = score_files(&files, jobs, opts)?;
+    if let Some(out) = out {
+        write_rows(out, &rows)?;
+    }
+    for r in rows.iter().filter(|r| r.error.is_some()) {
+        eprintln!("{}: {}", r.file, r.error.as_deref().unwrap_or_default());
+    }
+    let summary = fleet::summarize(&rows);
+    if json {
+        print_json(&summary)
+    } else {
+        write_stdout(&summary.to_markdown())
+    }
+}

@@ -1,0 +1,78 @@
+//! `report --dir`: a folder of logs scored in parallel; a bad file is a row with its error
+//! while the rest are scored; the rows go to Parquet, CSV or JSON.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+/// A folder of logs of its own per test (tests run in parallel).
+fn fleet_dir(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("day2")).unwrap();
+    let samples = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs");
+    std::fs::copy(samples.join("train/city-1.csv"), dir.join("city-1.csv")).unwrap();
+    std::fs::copy(samples.join("test/highway-3.csv"), dir.join("day2/highway-3.csv")).unwrap();
+    std::fs::write(dir.join("day2/broken.csv"), "time_s,gyro_dps,ref_heading_deg\n0,0.1,0\n1,abc,0\n").unwrap();
+    std::fs::write(dir.join("notes.txt"), "not a log").unwrap();
+    dir
+}
+
+fn report_dir(dir: &PathBuf, extra: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_gyrodrift")).arg("report").arg("--dir").arg(dir).args(extra).output().unwrap()
+}
+
+#[test]
+fn a_folder_is_scored_with_a_bad_file_as_an_error_row() {
+    let dir = fleet_dir("fleet-a");
+    let csv = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fleet-rows.csv");
+    let o = report_dir(&dir, &["--jobs", "2", "--out", csv.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(stdout.starts_with("3 files, 2 drives scored"), "{stdout}");
+    assert!(stdout.contains("| HDR Table III | 2 |"), "{stdout}");
+    assert!(stderr.contains("broken.csv: line 3, column gyro_dps"), "{stderr}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 4, "{text}");
+    // Sorted by path: city-1, day2/broken, day2/highway-3.
+    assert!(lines[1].contains("city-1.csv,1,1,City 1,"), "{}", lines[1]);
+    assert!(
+        lines[2].contains("broken.csv") && lines[2].ends_with("\"line 3, column gyro_dps: \"\"abc\"\" is not a number\""),
+        "{}",
+        lines[2]
+    );
+    assert!(lines[3].contains("Highway 3"), "{}", lines[3]);
+}
+
+#[test]
+fn one_job_and_two_give_the_same_rows_as_json_and_parquet() {
+    let dir = fleet_dir("fleet-b");
+    let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let (a, b) = (tmp.join("fleet-1.json"), tmp.join("fleet-2.json"));
+    assert!(report_dir(&dir, &["--jobs", "1", "--out", a.to_str().unwrap()]).status.success());
+    assert!(report_dir(&dir, &["--jobs", "2", "--out", b.to_str().unwrap()]).status.success());
+    let rows: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&a).unwrap()).unwrap();
+    assert_eq!(rows, serde_json::from_str::<serde_json::Value>(&std::fs::read_to_string(&b).unwrap()).unwrap());
+    assert_eq!(rows.as_array().unwrap().len(), 3);
+    assert!(rows[0]["ne_psi_hdr_deg_per_min"].as_f64().unwrap() > 0.0);
+    assert!(rows[1]["ne_psi_hdr_deg_per_min"].is_null());
+    let pq = tmp.join("fleet.parquet");
+    assert!(report_dir(&dir, &["--out", pq.to_str().unwrap()]).status.success());
+    assert_eq!(&std::fs::read(&pq).unwrap()[..4], b"PAR1");
+}
+
+#[test]
+fn bad_batch_arguments_exit_2() {
+    let dir = fleet_dir("fleet-c");
+    let o = report_dir(&dir, &["--out", "/tmp/rows.xlsx"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--out takes a .parquet, .csv or .json file"));
+    let empty = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fleet-empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    let o = report_dir(&empty, &[]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no *.csv logs"));
+    let o = report_dir(&dir.join("city-1.csv"), &[]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("not a folder"));
+}

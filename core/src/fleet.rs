@@ -1,0 +1,289 @@
+//! Fleet batches: one flat row per drive (every method's E_psi and NE_psi, or the error that
+//! stopped it), and the paper's Table II over a fleet. The CLI's `report --dir`, the Python
+//! package and its Dask job all make their rows here, so a drive scores the same whichever
+//! front ran it. A drive that fails is a row with its message, never a failed batch.
+
+use crate::error::Result;
+use crate::eval::{col, standard_methods, MethodScore, Prepared};
+use crate::log::accept::{accept, InputPolicy};
+use crate::log::DriveLog;
+use crate::metrics::quantile;
+use crate::pipeline::PipelineParams;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write;
+use std::io::Read;
+
+/// What a batch does with each log: the input policy (gaps, check errors) and the pipeline's
+/// settings (the other methods run with their defaults: Table-III HDR, Fusion's offset, ZARU).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct FleetOptions {
+    #[serde(default)]
+    pub input: InputPolicy,
+    #[serde(default)]
+    pub pipeline: PipelineParams,
+}
+
+/// The methods of a fleet row, in column order: (column stem, label).
+pub const METHODS: [(&str, &str); 6] = [
+    ("raw", "raw"),
+    ("hdr", "HDR Table III"),
+    ("fusion_offset", "Fusion offset"),
+    ("zaru", "ZARU"),
+    ("pipeline", "pipeline"),
+    ("pipeline_smoothed", "smoothed (offline)"),
+];
+
+/// One drive, or one part of a drive split at a gap, or a file that could not be scored.
+/// Flat, so it maps to one Parquet or DataFrame row; scores are None on an error row.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DriveRow {
+    /// The file (or drive key) the row came from.
+    pub file: String,
+    /// 1-based part of a log split at gaps; 1 without gaps.
+    pub part: u32,
+    pub parts: u32,
+    /// `# name:` or the file stem, with "(part i of n)" for a split log.
+    pub name: String,
+    pub rows: u64,
+    pub duration_min: Option<f64>,
+    /// What the still flags came from: speed, odometry, gyro or none.
+    pub still_source: Option<String>,
+    /// Static bias over the lead-in, deg/s.
+    pub static_bias_dps: Option<f64>,
+    pub e_psi_raw_deg: Option<f64>,
+    pub ne_psi_raw_deg_per_min: Option<f64>,
+    pub e_psi_hdr_deg: Option<f64>,
+    pub ne_psi_hdr_deg_per_min: Option<f64>,
+    pub e_psi_fusion_offset_deg: Option<f64>,
+    pub ne_psi_fusion_offset_deg_per_min: Option<f64>,
+    pub e_psi_zaru_deg: Option<f64>,
+    pub ne_psi_zaru_deg_per_min: Option<f64>,
+    pub e_psi_pipeline_deg: Option<f64>,
+    pub ne_psi_pipeline_deg_per_min: Option<f64>,
+    pub e_psi_pipeline_smoothed_deg: Option<f64>,
+    pub ne_psi_pipeline_smoothed_deg_per_min: Option<f64>,
+    /// The check's warnings and what splitting did, "; "-separated (empty when none).
+    pub warnings: String,
+    /// Why this file or part has no scores.
+    pub error: Option<String>,
+}
+
+impl DriveRow {
+    /// A row that says why `file` has no scores.
+    pub fn failed(file: &str, message: impl Into<String>) -> DriveRow {
+        DriveRow {
+            file: file.to_string(),
+            part: 1,
+            parts: 1,
+            name: file.to_string(),
+            rows: 0,
+            duration_min: None,
+            still_source: None,
+            static_bias_dps: None,
+            e_psi_raw_deg: None,
+            ne_psi_raw_deg_per_min: None,
+            e_psi_hdr_deg: None,
+            ne_psi_hdr_deg_per_min: None,
+            e_psi_fusion_offset_deg: None,
+            ne_psi_fusion_offset_deg_per_min: None,
+            e_psi_zaru_deg: None,
+            ne_psi_zaru_deg_per_min: None,
+            e_psi_pipeline_deg: None,
+            ne_psi_pipeline_deg_per_min: None,
+            e_psi_pipeline_smoothed_deg: None,
+            ne_psi_pipeline_smoothed_deg_per_min: None,
+            warnings: String::new(),
+            error: Some(message.into()),
+        }
+    }
+
+    /// (E_psi, NE_psi) of method `i` of [`METHODS`].
+    pub fn score(&self, i: usize) -> (Option<f64>, Option<f64>) {
+        match i {
+            0 => (self.e_psi_raw_deg, self.ne_psi_raw_deg_per_min),
+            1 => (self.e_psi_hdr_deg, self.ne_psi_hdr_deg_per_min),
+            2 => (self.e_psi_fusion_offset_deg, self.ne_psi_fusion_offset_deg_per_min),
+            3 => (self.e_psi_zaru_deg, self.ne_psi_zaru_deg_per_min),
+            4 => (self.e_psi_pipeline_deg, self.ne_psi_pipeline_deg_per_min),
+            5 => (self.e_psi_pipeline_smoothed_deg, self.ne_psi_pipeline_smoothed_deg_per_min),
+            _ => (None, None),
+        }
+    }
+
+    fn set_scores(&mut self, s: &[MethodScore]) {
+        let get = |c: usize| (Some(s[c].e_psi_deg), Some(s[c].ne_psi_deg_per_min));
+        (self.e_psi_raw_deg, self.ne_psi_raw_deg_per_min) = get(col::RAW);
+        (self.e_psi_hdr_deg, self.ne_psi_hdr_deg_per_min) = get(col::HDR_TABLE_III);
+        (self.e_psi_fusion_offset_deg, self.ne_psi_fusion_offset_deg_per_min) = get(col::FUSION_OFFSET);
+        (self.e_psi_zaru_deg, self.ne_psi_zaru_deg_per_min) = get(col::ZARU);
+        (self.e_psi_pipeline_deg, self.ne_psi_pipeline_deg_per_min) = get(col::PIPELINE);
+        (self.e_psi_pipeline_smoothed_deg, self.ne_psi_pipeline_smoothed_deg_per_min) = get(col::SMOOTHED);
+    }
+}
+
+/// Scores one part: the log prepared once, every method on it.
+fn score_part(row: &mut DriveRow, part: &DriveLog, params: &PipelineParams) -> Result<()> {
+    let prep = Prepared::new(part, params.bias_s, &params.still)?;
+    row.duration_min = Some(prep.duration_min);
+    row.static_bias_dps = Some(prep.eps0_dps);
+    row.still_source = serde_json::to_value(prep.source).ok().and_then(|v| v.as_str().map(str::to_string));
+    let scores = prep.score_all(&standard_methods(params, None))?;
+    row.set_scores(&scores);
+    Ok(())
+}
+
+/// Every part of a parsed log as rows (`file` labels them; `stem` names a log without
+/// `# name:`). A log the input policy refuses is one error row; a part that fails is an error
+/// row beside the parts that scored.
+pub fn score_log(file: &str, stem: &str, log: DriveLog, opts: &FleetOptions) -> Vec<DriveRow> {
+    if let Err(e) = opts.pipeline.validate() {
+        return vec![DriveRow::failed(file, e.to_string())];
+    }
+    let accepted = match accept(log, stem, opts.input, opts.pipeline.bias_s) {
+        Ok(a) => a,
+        Err(e) => return vec![DriveRow::failed(file, e.to_string())],
+    };
+    let warnings = accepted.warnings.iter().chain(&accepted.split).cloned().collect::<Vec<_>>().join("; ");
+    let n = accepted.parts.len() as u32;
+    let mut rows = Vec::with_capacity(accepted.parts.len());
+    for (i, part) in accepted.parts.iter().enumerate() {
+        let mut row = DriveRow::failed(file, "");
+        row.error = None;
+        row.part = i as u32 + 1;
+        row.parts = n;
+        row.name = part.meta.name.clone().unwrap_or_else(|| stem.to_string());
+        row.rows = part.len() as u64;
+        row.warnings = warnings.clone();
+        if let Err(e) = score_part(&mut row, part, &opts.pipeline) {
+            row.error = Some(e.to_string());
+        }
+        rows.push(row);
+    }
+    rows
+}
+
+/// Parses a v1 log from `reader` and scores it; a parse error is one error row naming the
+/// line and column.
+pub fn score_reader<R: Read>(file: &str, stem: &str, reader: R, opts: &FleetOptions) -> Vec<DriveRow> {
+    match crate::log::parse_log(reader) {
+        Ok(log) => score_log(file, stem, log, opts),
+        Err(e) => vec![DriveRow::failed(file, e.to_string())],
+    }
+}
+
+/// One method over the fleet.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MethodSummary {
+    pub method: String,
+    /// Drives (parts) scored.
+    pub drives: usize,
+    pub mean_e_psi_deg: f64,
+    pub mean_ne_psi_deg_per_min: f64,
+    pub median_ne_psi_deg_per_min: f64,
+    pub p90_ne_psi_deg_per_min: f64,
+    /// Drives on which this method's NE_psi is below raw integration's.
+    pub better_than_raw: usize,
+}
+
+/// The paper's Table II over a fleet: every method's mean and spread of E_psi and NE_psi.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FleetSummary {
+    pub files: usize,
+    /// Rows scored (a split log gives one per part).
+    pub scored: usize,
+    /// Rows with an error.
+    pub errors: usize,
+    pub hours: f64,
+    pub methods: Vec<MethodSummary>,
+}
+
+/// Summarises rows; methods are compared on the rows every method scored.
+pub fn summarize(rows: &[DriveRow]) -> FleetSummary {
+    let scored: Vec<&DriveRow> = rows.iter().filter(|r| r.error.is_none() && r.ne_psi_raw_deg_per_min.is_some()).collect();
+    let mut files: Vec<&str> = rows.iter().map(|r| r.file.as_str()).collect();
+    files.sort_unstable();
+    files.dedup();
+    let mean = |v: &[f64]| if v.is_empty() { f64::NAN } else { v.iter().sum::<f64>() / v.len() as f64 };
+    let methods = METHODS
+        .iter()
+        .enumerate()
+        .map(|(i, (_, label))| {
+            let (e, ne): (Vec<f64>, Vec<f64>) = scored.iter().filter_map(|r| Some((r.score(i).0?, r.score(i).1?))).unzip();
+            let better =
+                scored.iter().filter(|r| matches!((r.score(i).1, r.ne_psi_raw_deg_per_min), (Some(m), Some(raw)) if m < raw)).count();
+            MethodSummary {
+                method: label.to_string(),
+                drives: ne.len(),
+                mean_e_psi_deg: mean(&e),
+                mean_ne_psi_deg_per_min: mean(&ne),
+                median_ne_psi_deg_per_min: quantile(&ne, 0.5),
+                p90_ne_psi_deg_per_min: quantile(&ne, 0.9),
+                better_than_raw: better,
+            }
+        })
+        .collect();
+    FleetSummary {
+        files: files.len(),
+        scored: scored.len(),
+        errors: rows.iter().filter(|r| r.error.is_some()).count(),
+        hours: scored.iter().filter_map(|r| r.duration_min).sum::<f64>() / 60.0,
+        methods,
+    }
+}
+
+impl FleetSummary {
+    /// A Markdown table with a line above it saying what was scored.
+    pub fn to_markdown(&self) -> String {
+        let mut s = format!(
+            "{} files, {} drives scored ({:.1} h), {} errors\n\n| method | drives | mean E_psi (deg) | mean NE_psi (deg/min) | median NE_psi | p90 NE_psi | better than raw |\n|---|---:|---:|---:|---:|---:|---:|\n",
+            self.files, self.scored, self.hours, self.errors
+        );
+        for m in &self.methods {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {:.3} | {:.4} | {:.4} | {:.4} | {} |",
+                m.method,
+                m.drives,
+                m.mean_e_psi_deg,
+                m.mean_ne_psi_deg_per_min,
+                m.median_ne_psi_deg_per_min,
+                m.p90_ne_psi_deg_per_min,
+                m.better_than_raw
+            );
+        }
+        s
+    }
+}
+
+/// The rows as CSV, one header row with the field names of [`DriveRow`]; an empty cell for
+/// None.
+pub fn rows_to_csv(rows: &[DriveRow]) -> String {
+    let mut s = String::from(CSV_HEADER);
+    s.push('\n');
+    let num = |v: Option<f64>| v.map(|x| format!("{x:?}")).unwrap_or_default();
+    for r in rows {
+        let mut cells = vec![r.part.to_string(), r.parts.to_string(), r.name.clone(), r.rows.to_string()];
+        cells.push(num(r.duration_min));
+        cells.push(r.still_source.clone().unwrap_or_default());
+        cells.push(num(r.static_bias_dps));
+        for i in 0..METHODS.len() {
+            let (e, ne) = r.score(i);
+            cells.push(num(e));
+            cells.push(num(ne));
+        }
+        cells.push(r.warnings.clone());
+        cells.push(r.error.clone().unwrap_or_default());
+        s.push_str(&crate::report::csv_line(&r.file, cells));
+    }
+    s
+}
+
+/// The header of [`rows_to_csv`]: the field names of [`DriveRow`] in order.
+pub const CSV_HEADER: &str = "file,part,parts,name,rows,duration_min,still_source,static_bias_dps,\
+e_psi_raw_deg,ne_psi_raw_deg_per_min,e_psi_hdr_deg,ne_psi_hdr_deg_per_min,\
+e_psi_fusion_offset_deg,ne_psi_fusion_offset_deg_per_min,e_psi_zaru_deg,ne_psi_zaru_deg_per_min,\
+e_psi_pipeline_deg,ne_psi_pipeline_deg_per_min,e_psi_pipeline_smoothed_deg,ne_psi_pipeline_smoothed_deg_per_min,\
+warnings,error";
+
+#[cfg(test)]
+mod tests;

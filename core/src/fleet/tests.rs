@@ -1,0 +1,109 @@
+use super::*;
+use crate::compare::compare_row;
+
+fn city() -> (String, DriveLog) {
+    let p = concat!(env!("CARGO_MANIFEST_DIR"), "/../sample-logs/train/city-1.csv");
+    (p.to_string(), crate::log::parse_log(std::fs::File::open(p).unwrap()).unwrap())
+}
+
+#[test]
+fn a_drive_row_holds_the_comparisons_scores() {
+    let (p, log) = city();
+    let opts = FleetOptions::default();
+    let want = compare_row("city-1", &log, &opts.pipeline, None).unwrap();
+    let rows = score_log(&p, "city-1", log, &opts);
+    assert_eq!(rows.len(), 1);
+    let r = &rows[0];
+    assert_eq!(r.error, None);
+    assert_eq!((r.part, r.parts, r.name.as_str()), (1, 1, "City 1"));
+    assert_eq!(r.ne_psi_raw_deg_per_min, Some(want.raw));
+    assert_eq!(r.ne_psi_hdr_deg_per_min, Some(want.hdr_table_iii));
+    assert_eq!(r.ne_psi_pipeline_deg_per_min, Some(want.pipeline));
+    assert_eq!(r.ne_psi_pipeline_smoothed_deg_per_min, Some(want.pipeline_smoothed));
+    assert_eq!(r.ne_psi_fusion_offset_deg_per_min, Some(want.fusion_offset));
+    assert_eq!(r.ne_psi_zaru_deg_per_min, Some(want.zaru));
+    assert_eq!(r.still_source.as_deref(), Some("speed"));
+    // NE_psi is E_psi per minute of the drive.
+    let (e, ne) = r.score(1);
+    assert!((e.unwrap() / r.duration_min.unwrap() - ne.unwrap()).abs() < 1e-9);
+}
+
+#[test]
+fn a_bad_file_is_a_row_with_its_line_and_column() {
+    let text = "time_s,gyro_dps,heading_ref_deg\n0,0.1,0\n1,abc,0\n";
+    let rows = score_reader("bad.csv", "bad", text.as_bytes(), &FleetOptions::default());
+    assert_eq!(rows.len(), 1);
+    let e = rows[0].error.as_deref().unwrap();
+    assert!(e.contains("line 3") && e.contains("gyro_dps"), "{e}");
+    assert_eq!(rows[0].ne_psi_raw_deg_per_min, None);
+}
+
+#[test]
+fn a_log_with_a_gap_gives_a_row_per_part() {
+    let (p, mut log) = city();
+    log.retain_rows(|t| !(300.0..360.0).contains(&t));
+    let rows = score_log(&p, "city-1", log, &FleetOptions::default());
+    assert_eq!(rows.len(), 2);
+    assert_eq!((rows[1].part, rows[1].parts), (2, 2));
+    assert!(rows[0].warnings.contains("split at 1 gap"), "{}", rows[0].warnings);
+    assert!(rows.iter().all(|r| r.error.is_none() && r.ne_psi_hdr_deg_per_min.is_some()));
+}
+
+#[test]
+fn the_summary_averages_scored_rows_and_counts_errors() {
+    let row = |file: &str, raw: f64, hdr: f64| {
+        let mut r = DriveRow::failed(file, "");
+        r.error = None;
+        r.duration_min = Some(30.0);
+        for i in 0..METHODS.len() {
+            let v = if i == 1 { hdr } else { raw };
+            r.set_scores_for_test(i, v * 30.0, v);
+        }
+        r
+    };
+    let rows = vec![row("a", 1.0, 0.5), row("b", 3.0, 0.1), DriveRow::failed("c", "line 2: bad")];
+    let s = summarize(&rows);
+    assert_eq!((s.files, s.scored, s.errors), (3, 2, 1));
+    assert!((s.hours - 1.0).abs() < 1e-12);
+    let hdr = &s.methods[1];
+    assert!((hdr.mean_ne_psi_deg_per_min - 0.3).abs() < 1e-12);
+    assert!((hdr.mean_e_psi_deg - 9.0).abs() < 1e-12);
+    assert_eq!(hdr.better_than_raw, 2);
+    assert_eq!(s.methods[0].better_than_raw, 0);
+    assert!(s.to_markdown().contains("| HDR Table III | 2 | 9.000 | 0.3000 |"), "{}", s.to_markdown());
+}
+
+#[test]
+fn csv_rows_have_the_header_and_quote_messages() {
+    let rows = vec![DriveRow::failed("a,b.csv", "line 3, column gyro_dps: \"x\" is not a number")];
+    let csv = rows_to_csv(&rows);
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some(CSV_HEADER));
+    let line = lines.next().unwrap();
+    assert!(line.starts_with("\"a,b.csv\",1,1,\"a,b.csv\",0,,,"), "{line}");
+    assert!(line.ends_with(",\"line 3, column gyro_dps: \"\"x\"\" is not a number\""), "{line}");
+    assert_eq!(CSV_HEADER.split(',').count(), 22);
+    // The header names are the JSON keys, in the struct's order.
+    let json = serde_json::to_value(&rows[0]).unwrap();
+    let keys: Vec<&str> = json.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+    let mut header: Vec<&str> = CSV_HEADER.split(',').collect();
+    header.sort_unstable();
+    let mut sorted = keys.clone();
+    sorted.sort_unstable();
+    assert_eq!(sorted, header);
+}
+
+impl DriveRow {
+    fn set_scores_for_test(&mut self, i: usize, e: f64, ne: f64) {
+        let slot = match i {
+            0 => (&mut self.e_psi_raw_deg, &mut self.ne_psi_raw_deg_per_min),
+            1 => (&mut self.e_psi_hdr_deg, &mut self.ne_psi_hdr_deg_per_min),
+            2 => (&mut self.e_psi_fusion_offset_deg, &mut self.ne_psi_fusion_offset_deg_per_min),
+            3 => (&mut self.e_psi_zaru_deg, &mut self.ne_psi_zaru_deg_per_min),
+            4 => (&mut self.e_psi_pipeline_deg, &mut self.ne_psi_pipeline_deg_per_min),
+            _ => (&mut self.e_psi_pipeline_smoothed_deg, &mut self.ne_psi_pipeline_smoothed_deg_per_min),
+        };
+        *slot.0 = Some(e);
+        *slot.1 = Some(ne);
+    }
+}

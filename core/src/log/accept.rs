@@ -1,0 +1,97 @@
+//! How every front takes a log before scoring it: what `check` finds is said (warnings),
+//! a log with an error finding (ms time, radian heading, rad/s or clockwise gyro) is refused
+//! unless asked to run it anyway, since every figure from it would be absurd, and the gap
+//! policy splits it into parts scored as drives of their own. One place, so the CLI, the
+//! fleet batch and the Python package refuse and split the same logs.
+
+use super::gaps::{split_at_gaps, GapPolicy, MIN_PART_S};
+use super::DriveLog;
+use crate::check::{check, Severity};
+use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
+
+/// What to do with a log that has gaps, and whether a check error refuses it.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct InputPolicy {
+    pub gaps: GapPolicy,
+    /// Run a log even when `check` finds an error in it.
+    pub ignore_check: bool,
+}
+
+/// A log taken: its parts (one without gaps), the check's warnings and what splitting did.
+#[derive(Debug, Clone)]
+pub struct Accepted {
+    pub parts: Vec<DriveLog>,
+    /// One line per finding that is not informational ("warning [code]: message; fix: ...").
+    /// Gap findings are not repeated here: `split` says what the policy did with them.
+    pub warnings: Vec<String>,
+    /// What splitting at gaps did, or None without gaps.
+    pub split: Option<String>,
+}
+
+/// Checks, refuses or splits `log` (named `name` when it has no `# name:`). `bias_s` is the
+/// static-bias window the method will use (the later parts get the first part's bias removed).
+pub fn accept(mut log: DriveLog, name: &str, policy: InputPolicy, bias_s: Option<f64>) -> Result<Accepted> {
+    let mut warnings = Vec::new();
+    for f in check(&log).findings.iter().filter(|f| f.severity != Severity::Info && f.code != "gap") {
+        let fix = f.fix.as_deref().map(|x| format!("; fix: {x}")).unwrap_or_default();
+        let line = format!("check: {} [{}]: {}{fix}", f.severity.name(), f.code, f.message);
+        if f.severity == Severity::Error && !policy.ignore_check {
+            return Err(Error::data(format!("{line} (refused: its results would be absurd; --ignore-check runs it anyway)")));
+        }
+        warnings.push(line);
+    }
+    log.meta.name.get_or_insert_with(|| name.to_string());
+    let bias_s = log.bias_s(bias_s);
+    let s = split_at_gaps(log, policy.gaps, bias_s)?;
+    if s.parts.is_empty() {
+        return Err(Error::data(format!("every part between its gaps is shorter than {MIN_PART_S} s")));
+    }
+    let split = s.summary();
+    Ok(Accepted { parts: s.parts, warnings, split })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::log::parse_log_str;
+
+    fn drive(rows: impl Iterator<Item = (f64, f64)>) -> DriveLog {
+        let mut s = String::from("time_s,gyro_dps,heading_ref_deg\n");
+        for (t, h) in rows {
+            s.push_str(&format!("{t},0.1,{h}\n"));
+        }
+        parse_log_str(&s).unwrap()
+    }
+
+    #[test]
+    fn a_clean_log_is_one_part_named_by_the_caller() {
+        let a = accept(drive((0..200).map(|i| (i as f64, 0.0))), "stem", InputPolicy::default(), None).unwrap();
+        assert_eq!(a.parts.len(), 1);
+        assert_eq!(a.parts[0].meta.name.as_deref(), Some("stem"));
+        assert!(a.split.is_none());
+    }
+
+    #[test]
+    fn a_gap_splits_or_refuses() {
+        let rows = (0..100).map(|i| (i as f64, 0.0)).chain((0..100).map(|i| (300.0 + i as f64, 0.0)));
+        let log = drive(rows);
+        let a = accept(log.clone(), "g", InputPolicy::default(), None).unwrap();
+        assert_eq!(a.parts.len(), 2);
+        assert!(a.split.unwrap().contains("split at 1 gap"));
+        let e = accept(log, "g", InputPolicy { gaps: GapPolicy::Error, ignore_check: false }, None).unwrap_err();
+        assert!(e.to_string().contains("gap of 201.0 s"), "{e}");
+    }
+
+    #[test]
+    fn a_check_error_refuses_unless_ignored() {
+        let p = concat!(env!("CARGO_MANIFEST_DIR"), "/../sample-logs/train/city-1.csv");
+        let mut log = crate::log::parse_log(std::fs::File::open(p).unwrap()).unwrap();
+        // A clockwise gyro: every rate negated.
+        log.column_mut(crate::log::Column::GyroDps).unwrap().iter_mut().for_each(|v| *v = -*v);
+        let e = accept(log.clone(), "cw", InputPolicy::default(), None).unwrap_err();
+        assert!(e.to_string().contains("[gyro_sign]") && e.to_string().contains("refused"), "{e}");
+        let a = accept(log, "cw", InputPolicy { ignore_check: true, ..Default::default() }, None).unwrap();
+        assert!(a.warnings.iter().any(|w| w.starts_with("check: error [gyro_sign]")), "{:?}", a.warnings);
+    }
+}
