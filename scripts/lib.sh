@@ -56,6 +56,29 @@ ensure_chromium() {
   fi
 }
 
+# A project-local virtual environment (tools/venv, ignored by git) with what the Python
+# package needs to build (maturin) and to be tested (numpy, pandas, pyarrow, dask, pytest).
+ensure_python() {
+  local venv="$TOOLS/venv"
+  if [ ! -x "$venv/bin/python" ]; then
+    say "creating the Python virtual environment tools/venv"
+    python3 -m venv "$venv"
+  fi
+  if [ ! -f "$venv/.stamp" ] || [ python/requirements-test.txt -nt "$venv/.stamp" ]; then
+    say "installing the Python build and test packages (python/requirements-test.txt)"
+    "$venv/bin/pip" install -q --disable-pip-version-check -r python/requirements-test.txt
+    touch "$venv/.stamp"
+  fi
+}
+
+# The Python package: an abi3 wheel by maturin into target/wheels, installed into tools/venv.
+build_python() {
+  say "building the Python wheel (python/, maturin)"
+  rm -f target/wheels/gyrodrift-*.whl
+  "$TOOLS/venv/bin/maturin" build --release -m python/Cargo.toml -o target/wheels -q
+  "$TOOLS/venv/bin/pip" install -q --disable-pip-version-check --force-reinstall --no-deps target/wheels/gyrodrift-*.whl
+}
+
 # The npm package in web/pkg: ES module for browsers, CommonJS build for Node, types.
 build_wasm() {
   say "building the wasm package into web/pkg"

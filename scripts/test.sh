@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Command 2 of the README: installs whatever the tests need (wasm target, wasm-bindgen CLI,
-# node tools, Debian's chromium), builds, checks format and lints, and runs every test: native (unit, property,
+# node tools, Debian's chromium, a Python venv in tools/venv), builds, checks format and lints, and runs every test: native (unit, property,
 # integration, CLI), wasm under Node (wasm-bindgen-test), the npm package under Node, the
-# TypeScript types, and the dashboard in headless Chromium. Exits non-zero if any failed.
+# TypeScript types, the Python package (pytest, with the Dask fleet job), and the dashboard
+# in headless Chromium. Exits non-zero if any failed.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 ensure_wasm_target
@@ -10,8 +11,10 @@ ensure_lint_tools
 ensure_node_tools
 ensure_wasm_bindgen
 ensure_chromium
+ensure_python
 build_cli
 build_wasm
+build_python
 
 passed=0
 failed=0
@@ -35,6 +38,7 @@ suite "wasm tests under Node (wasm-bindgen-test)" \
   cargo test -p gyrodrift-wasm --target wasm32-unknown-unknown --tests --no-fail-fast
 suite "npm package and Node example (node --test)" node --test tests/node/
 suite "TypeScript types (tsc --noEmit)" tsc -p tests/types
+suite "Python package and Dask fleet job (pytest)" "$TOOLS/venv/bin/python" -m pytest -q -p no:logging python/tests
 if [ -d tests/browser ]; then
   suite "dashboard in headless Chromium (playwright-core)" node --test --test-concurrency=1 tests/browser/
 fi

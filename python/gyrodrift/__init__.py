@@ -1,0 +1,45 @@
+"""gyrodrift: a usable heading from a cheap yaw-rate gyro.
+
+The Rust core of the CLI and the wasm package, for Python: HDR, Gyrodometry, gyro
+calibration, Allan deviation, the recommended drift-reduction pipeline, comparison and
+tuning, the recipe import and the simulator. Results are dicts with the CLI's ``--json``
+keys; series are float64 numpy arrays; bad input raises ValueError naming the file, line
+and column. ``gyrodrift.fleet`` runs a folder of drives on Dask.
+"""
+
+from ._core import (  # noqa: F401  (the public API)
+    COLUMNS,
+    GyrodometryEstimator,
+    HdrEstimator,
+    Log,
+    allan,
+    calibrate,
+    check,
+    compare,
+    defaults,
+    error_row,
+    gyrodometry,
+    hdr,
+    import_log,
+    oadev,
+    pipeline,
+    read_log,
+    report,
+    row_columns,
+    run_gyrodometry,
+    run_hdr,
+    run_pipeline,
+    score_file,
+    score_files,
+    score_log,
+    simulate,
+    static_bias,
+    summarize,
+    summary_markdown,
+    table,
+    tune,
+    version,
+)
+from .frames import from_pandas, rows_to_pandas, to_pandas  # noqa: F401
+
+__version__ = version()

@@ -1,0 +1,173 @@
+"""Fleet batches on Dask distributed: one task per drive (or per chunk of small drives),
+every method's E_psi and NE_psi per drive written to Parquet, the fleet's Table II printed.
+
+    python -m gyrodrift.fleet INPUT --out results.parquet [--scheduler tcp://host:8786]
+
+INPUT is a folder of CSV v1 logs (recursive), a glob of them, or a Parquet dataset with one
+drive per file or per hive partition (``drive=KEY/part-0.parquet``) whose columns are named
+as in CSV v1. Without ``--scheduler`` a LocalCluster starts on this machine; with one, the
+same code runs on a real cluster (the workers need this package installed). A drive that
+fails is a row with its ``error``; the job goes on.
+
+The scoring is core's (``score_files``, ``score_log``): nothing is computed here but the
+plumbing. ``score_frame`` is the per-drive function for engines that hand over a pandas
+DataFrame per group (Spark's ``applyInPandas``, Dask's ``groupby().apply``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import glob
+import json
+import os
+import sys
+from typing import Any, Dict, List, Mapping, Optional, Sequence
+
+from ._core import error_row, score_files, score_log, summary_markdown
+from .frames import from_pandas, rows_to_pandas
+
+#: Small CSV drives are grouped so that a task reads about this many bytes.
+CHUNK_BYTES = 64 * 1024 * 1024
+
+
+def score_frame(df: Any, key: Optional[str] = None, options: Optional[Mapping[str, Any]] = None, key_column: str = "drive") -> Any:
+    """One drive's rows (a pandas DataFrame with CSV v1 columns) to its fleet rows
+    (a DataFrame with ``gyrodrift.row_columns()``). ``key`` labels the rows (default: the
+    frame's ``key_column`` value). A drive that fails is a row with its error."""
+    return rows_to_pandas(_frame_rows(df, key, options, key_column))
+
+
+def _frame_rows(df: Any, key: Optional[str], options: Optional[Mapping[str, Any]], key_column: str = "drive") -> List[dict]:
+    if key is None:
+        key = str(df[key_column].iloc[0]) if key_column in df.columns and len(df) else "drive"
+    df = df.sort_values("time_s", kind="stable") if "time_s" in df.columns else df
+    try:
+        log = from_pandas(df, {"name": key})
+    except Exception as e:  # a bad column is the drive's error row, as for a bad file
+        return [error_row(key, str(e))]
+    return score_log(log, key, options)
+
+
+def _score_paths(paths: Sequence[str], options: Optional[Mapping[str, Any]]) -> List[dict]:
+    return score_files(list(paths), 1, options)
+
+
+def _score_parquet(path: str, key: str, options: Optional[Mapping[str, Any]]) -> List[dict]:
+    import pyarrow.parquet as pq
+
+    try:
+        df = pq.read_table(path).to_pandas()
+    except Exception as e:
+        return [error_row(key, f"{path}: {e}")]
+    return _frame_rows(df, key, options)
+
+
+def find_inputs(spec: str) -> Dict[str, List[Any]]:
+    """What INPUT names: ``{"csv": [paths]}`` or ``{"parquet": [(path, key)]}``."""
+    if os.path.isdir(spec):
+        hive = sorted(d for d in os.listdir(spec) if "=" in d and os.path.isdir(os.path.join(spec, d)))
+        if hive:
+            return {"parquet": [(os.path.join(spec, d), d.split("=", 1)[1]) for d in hive]}
+        pq_files = sorted(glob.glob(os.path.join(spec, "**", "*.parquet"), recursive=True))
+        if pq_files:
+            return {"parquet": [(p, os.path.splitext(os.path.relpath(p, spec))[0]) for p in pq_files]}
+        csv = sorted(glob.glob(os.path.join(spec, "**", "*.csv"), recursive=True))
+        if not csv:
+            raise ValueError(f"{spec}: no *.csv logs or *.parquet drives in this folder or below")
+        return {"csv": csv}
+    matched = sorted(glob.glob(spec, recursive=True))
+    if not matched:
+        raise ValueError(f"{spec}: no file matches")
+    if all(m.endswith(".parquet") for m in matched):
+        return {"parquet": [(m, os.path.splitext(os.path.basename(m))[0]) for m in matched]}
+    return {"csv": matched}
+
+
+def chunks(paths: Sequence[str], chunk_bytes: int = CHUNK_BYTES) -> List[List[str]]:
+    """Paths grouped so that each group reads about ``chunk_bytes`` (a big file alone)."""
+    out: List[List[str]] = []
+    cur: List[str] = []
+    size = 0
+    for p in paths:
+        n = os.path.getsize(p) if os.path.exists(p) else 0
+        if cur and size + n > chunk_bytes:
+            out.append(cur)
+            cur, size = [], 0
+        cur.append(p)
+        size += n
+    if cur:
+        out.append(cur)
+    return out
+
+
+def run(
+    spec: str,
+    out: Optional[str] = None,
+    scheduler: Optional[str] = None,
+    workers: int = 2,
+    options: Optional[Mapping[str, Any]] = None,
+    progress: bool = True,
+    chunk_bytes: int = CHUNK_BYTES,
+) -> Any:
+    """Scores every drive of ``spec`` on Dask; returns the rows as a DataFrame (and writes
+    them to ``out`` as Parquet when given)."""
+    from dask.distributed import Client, LocalCluster, wait
+    from dask.distributed import progress as dask_progress
+
+    inputs = find_inputs(spec)
+    cluster = None
+    if scheduler:
+        client = Client(scheduler)
+    else:
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        client = Client(cluster)
+    try:
+        opts = dict(options) if options else None
+        if "csv" in inputs:
+            groups = chunks(inputs["csv"], chunk_bytes)
+            futures = client.map(_score_paths, groups, options=opts, pure=False)
+        else:
+            paths, keys = zip(*inputs["parquet"])
+            futures = client.map(_score_parquet, list(paths), list(keys), options=opts, pure=False)
+        if progress and sys.stderr.isatty():
+            dask_progress(futures)
+        wait(futures)
+        results = client.gather(futures)
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    rows = rows_to_pandas([r for task in results for r in task])
+    if out:
+        rows.to_parquet(out, index=False)
+    return rows
+
+
+def summary(rows: Any) -> str:
+    """The fleet's Table II (core's) of a rows DataFrame, as Markdown."""
+    records = json.loads(rows.to_json(orient="records"))
+    return summary_markdown(records)
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m gyrodrift.fleet", description=__doc__.split("\n\n")[0])
+    ap.add_argument("input", help="folder of CSV logs, a glob, or a Parquet dataset (a drive per file or per drive=KEY partition)")
+    ap.add_argument("--out", help="write the per-drive rows to this Parquet file")
+    ap.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster here)")
+    ap.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes (default 2)")
+    ap.add_argument("--options", help='fleet options as JSON, e.g. \'{"input": {"gaps": "error"}, "pipeline": {"min_still_s": 3}}\'')
+    args = ap.parse_args(argv)
+    try:
+        options = json.loads(args.options) if args.options else None
+        rows = run(args.input, args.out, args.scheduler, args.workers, options)
+    except (ValueError, OSError) as e:
+        print(f"gyrodrift.fleet: {e}", file=sys.stderr)
+        return 2
+    for _, r in rows[rows["error"].notna()].iterrows():
+        print(f"{r['file']}: {r['error']}", file=sys.stderr)
+    print(summary(rows))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

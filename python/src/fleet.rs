@@ -1,0 +1,115 @@
+//! Fleet rows (core's `fleet`): one dict per drive or part, with every method's E_psi and
+//! NE_psi or the error that stopped it, and the fleet's Table II. The GIL is released while
+//! core works, so a Dask worker's threads score drives in parallel.
+
+use crate::log::PyLog;
+use crate::{from_py, result_dict, value_err};
+use gyrodrift::fleet::{self, DriveRow, FleetOptions};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use rayon::prelude::*;
+use std::path::{Path, PathBuf};
+
+fn options(obj: Option<&Bound<'_, PyAny>>) -> PyResult<FleetOptions> {
+    let v = match obj {
+        Some(o) => from_py("options", o)?,
+        None => serde_json::Value::Null,
+    };
+    if v.is_null() {
+        return Ok(FleetOptions::default());
+    }
+    let opts: FleetOptions = serde_json::from_value(v).map_err(|e| value_err(format!("options: {e}")))?;
+    opts.pipeline.validate().map_err(|e| value_err(format!("options.pipeline: {e}")))?;
+    Ok(opts)
+}
+
+fn rows_list<'py>(py: Python<'py>, rows: &[DriveRow]) -> PyResult<Bound<'py, PyList>> {
+    PyList::new(py, rows.iter().map(|r| result_dict(py, r)).collect::<PyResult<Vec<_>>>()?)
+}
+
+fn score_path(path: &Path, opts: &FleetOptions) -> Vec<DriveRow> {
+    let label = path.display().to_string();
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    match std::fs::File::open(path) {
+        Ok(f) => fleet::score_reader(&label, &stem, std::io::BufReader::new(f), opts),
+        Err(e) => vec![DriveRow::failed(&label, format!("cannot open: {e}"))],
+    }
+}
+
+/// Every part of one log file as row dicts; a file that cannot be read or scored is one row
+/// with its `error` (never an exception).
+#[pyfunction]
+#[pyo3(signature = (path, options=None))]
+fn score_file<'py>(py: Python<'py>, path: PathBuf, options: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyList>> {
+    let opts = self::options(options)?;
+    let rows = py.detach(|| score_path(&path, &opts));
+    rows_list(py, &rows)
+}
+
+/// Many files on `jobs` threads (0 = one per core), rows in file order.
+#[pyfunction]
+#[pyo3(signature = (paths, jobs=0, options=None))]
+fn score_files<'py>(
+    py: Python<'py>,
+    paths: Vec<PathBuf>,
+    jobs: usize,
+    options: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let opts = self::options(options)?;
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build().map_err(value_err)?;
+    let rows: Vec<DriveRow> = py.detach(|| pool.install(|| paths.par_iter().flat_map_iter(|p| score_path(p, &opts)).collect()));
+    rows_list(py, &rows)
+}
+
+/// A parsed log's rows; `file` labels them (default: the log's name).
+#[pyfunction]
+#[pyo3(signature = (log, file=None, options=None))]
+fn score_log<'py>(py: Python<'py>, log: &PyLog, file: Option<String>, options: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyList>> {
+    let opts = self::options(options)?;
+    let name = log.log.meta.name.clone().unwrap_or_else(|| "log".into());
+    let file = file.unwrap_or_else(|| name.clone());
+    let rows = py.detach(|| fleet::score_log(&file, &name, (*log.log).clone(), &opts));
+    rows_list(py, &rows)
+}
+
+/// Rows (dicts as the scorers return them) back to core's rows.
+fn rows_from(rows: &Bound<'_, PyAny>) -> PyResult<Vec<DriveRow>> {
+    let v = from_py("rows", rows)?;
+    serde_json::from_value(v).map_err(|e| value_err(format!("rows: {e}")))
+}
+
+/// The paper's Table II over fleet rows: per method the drives, mean E_psi and NE_psi,
+/// median and p90 NE_psi, drives better than raw; with the files, errors and hours.
+#[pyfunction]
+fn summarize<'py>(py: Python<'py>, rows: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+    result_dict(py, &fleet::summarize(&rows_from(rows)?))
+}
+
+/// The summary as a Markdown table.
+#[pyfunction]
+fn summary_markdown(rows: &Bound<'_, PyAny>) -> PyResult<String> {
+    Ok(fleet::summarize(&rows_from(rows)?).to_markdown())
+}
+
+/// The row of a drive that could not be scored: `file` and why (e.g. a Parquet partition
+/// that cannot be read), so engines outside core report failures in the same shape.
+#[pyfunction]
+fn error_row<'py>(py: Python<'py>, file: &str, message: &str) -> PyResult<Bound<'py, PyDict>> {
+    result_dict(py, &DriveRow::failed(file, message))
+}
+
+/// The column names of a fleet row, in order (the CLI's `report --dir --out` columns).
+#[pyfunction]
+fn row_columns() -> Vec<&'static str> {
+    fleet::CSV_HEADER.split(',').collect()
+}
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(score_file, m)?)?;
+    m.add_function(wrap_pyfunction!(score_files, m)?)?;
+    m.add_function(wrap_pyfunction!(score_log, m)?)?;
+    m.add_function(wrap_pyfunction!(summarize, m)?)?;
+    m.add_function(wrap_pyfunction!(summary_markdown, m)?)?;
+    m.add_function(wrap_pyfunction!(error_row, m)?)?;
+    m.add_function(wrap_pyfunction!(row_columns, m)?)
+}

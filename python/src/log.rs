@@ -1,0 +1,173 @@
+//! `Log`: a parsed drive log (CSV v1), read from a file or text, or made from numpy columns.
+
+use crate::{array, from_py, result_dict, value_err, values};
+use gyrodrift::{Column, DriveLog};
+use numpy::PyReadonlyArray1;
+use pyo3::exceptions::{PyKeyError, PyOSError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use std::sync::Arc;
+
+/// A parsed drive log. Pass it to every method as often as needed; it is never changed.
+#[pyclass(name = "Log", module = "gyrodrift", frozen)]
+pub struct PyLog {
+    pub(crate) log: Arc<DriveLog>,
+}
+
+impl PyLog {
+    pub(crate) fn new(log: DriveLog) -> PyLog {
+        PyLog { log: Arc::new(log) }
+    }
+
+    /// The logs of a Python list with their names (`# name:` or "log i").
+    pub(crate) fn named(logs: &[PyRef<'_, PyLog>]) -> Vec<(String, Arc<DriveLog>)> {
+        logs.iter()
+            .enumerate()
+            .map(|(i, l)| (l.log.meta.name.clone().filter(|n| !n.is_empty()).unwrap_or_else(|| format!("log {}", i + 1)), l.log.clone()))
+            .collect()
+    }
+}
+
+/// Metadata from a dict: `name`, `bias_s`, `wheelbase_m`, `description`; any other key is
+/// kept as text, as an unknown `# key: value` line is.
+fn meta_of(v: serde_json::Value) -> PyResult<gyrodrift::LogMeta> {
+    let serde_json::Value::Object(mut o) = v else {
+        return Err(value_err("meta: expected a dict"));
+    };
+    let mut other = serde_json::Map::new();
+    for k in o.keys().cloned().collect::<Vec<_>>() {
+        if !matches!(k.as_str(), "name" | "bias_s" | "wheelbase_m" | "description") {
+            let x = o.remove(&k).unwrap_or_default();
+            other.insert(k, serde_json::Value::String(x.as_str().map_or_else(|| x.to_string(), str::to_string)));
+        }
+    }
+    o.insert("other".into(), serde_json::Value::Object(other));
+    let meta: gyrodrift::LogMeta = serde_json::from_value(serde_json::Value::Object(o)).map_err(|e| value_err(format!("meta: {e}")))?;
+    for (k, v) in meta.name.iter().map(|n| ("name", n)).chain(meta.other.iter().map(|(k, v)| (k.as_str(), v))) {
+        gyrodrift::log::check_meta_text(k, v).map_err(value_err)?;
+    }
+    Ok(meta)
+}
+
+/// Reads a log file; an unreadable file is an OSError, a bad cell a ValueError naming the
+/// file, line and column.
+pub(crate) fn read_path(path: &str) -> PyResult<DriveLog> {
+    let f = std::fs::File::open(path).map_err(|e| PyOSError::new_err(format!("{path}: cannot open: {e}")))?;
+    gyrodrift::parse_log(std::io::BufReader::new(f)).map_err(|e| value_err(format!("{path}: {e}")))
+}
+
+#[pymethods]
+impl PyLog {
+    /// Reads a CSV v1 log file.
+    #[staticmethod]
+    fn read(py: Python<'_>, path: std::path::PathBuf) -> PyResult<PyLog> {
+        let p = path.display().to_string();
+        py.detach(|| read_path(&p)).map(PyLog::new)
+    }
+
+    /// Parses CSV v1 text.
+    #[staticmethod]
+    fn parse(py: Python<'_>, text: &str) -> PyResult<PyLog> {
+        py.detach(|| gyrodrift::parse_log_str(text)).map(PyLog::new).map_err(value_err)
+    }
+
+    /// A log from float64 columns named as in CSV v1 (`time_s`, `gyro_dps`, ...; NaN = empty
+    /// cell) and optional metadata (`name`, `bias_s`, `wheelbase_m`, ...), checked as the
+    /// parser checks a file.
+    #[staticmethod]
+    #[pyo3(signature = (columns, meta=None))]
+    fn from_columns(columns: &Bound<'_, PyDict>, meta: Option<&Bound<'_, PyAny>>) -> PyResult<PyLog> {
+        let meta = match meta {
+            Some(m) => meta_of(from_py("meta", m)?)?,
+            None => Default::default(),
+        };
+        let mut cols = Vec::new();
+        for (k, v) in columns.iter() {
+            let name: String = k.extract()?;
+            let c = Column::from_name(&name).ok_or_else(|| PyKeyError::new_err(format!("unknown column {name}")))?;
+            let a: PyReadonlyArray1<'_, f64> = v.extract().map_err(|_| value_err(format!("{name}: expected a 1-d float64 array")))?;
+            cols.push((c, values(&a, &name)?));
+        }
+        let n = cols.first().map_or(0, |(_, v)| v.len());
+        let lines = (2..n as u64 + 2).collect();
+        DriveLog::from_columns(meta, lines, cols).map(PyLog::new).map_err(value_err)
+    }
+
+    /// `# name:` (None when the file has none).
+    #[getter]
+    fn name(&self) -> Option<String> {
+        self.log.meta.name.clone()
+    }
+
+    /// "drive", "robot", "turntable" or "static", from the columns.
+    #[getter]
+    fn kind(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        crate::to_py(py, &serde_json::to_value(self.log.kind()).map_err(value_err)?)
+    }
+
+    /// Last minus first time, minutes.
+    #[getter]
+    fn duration_min(&self) -> f64 {
+        self.log.duration_min()
+    }
+
+    fn __len__(&self) -> usize {
+        self.log.len()
+    }
+
+    fn __repr__(&self) -> String {
+        let name = self.log.meta.name.as_deref().unwrap_or("unnamed");
+        format!("<gyrodrift.Log {name:?}: {} rows, {:.1} min>", self.log.len(), self.log.duration_min())
+    }
+
+    /// The `# key: value` metadata as a dict.
+    fn meta<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        result_dict(py, &self.log.meta)
+    }
+
+    /// The names of the known columns present, in CSV v1 order.
+    fn column_names(&self) -> Vec<&'static str> {
+        self.log.present_columns().iter().map(|c| c.name()).collect()
+    }
+
+    /// One column as a float64 array (NaN = empty cell).
+    fn column(&self, py: Python<'_>, name: &str) -> PyResult<Py<PyAny>> {
+        let c = Column::from_name(name).ok_or_else(|| PyKeyError::new_err(format!("unknown column {name}")))?;
+        let v = self.log.column(c).ok_or_else(|| PyKeyError::new_err(format!("{name}: not in this log")))?;
+        Ok(array(py, v.to_vec()))
+    }
+
+    /// Every present column as a dict of float64 arrays.
+    fn columns<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (c, v) in self.log.columns() {
+            d.set_item(c.name(), array(py, v.to_vec()))?;
+        }
+        Ok(d)
+    }
+
+    /// The log as CSV v1 text.
+    fn to_csv(&self) -> PyResult<String> {
+        let mut buf = Vec::new();
+        self.log.write_csv(&mut buf).map_err(value_err)?;
+        String::from_utf8(buf).map_err(value_err)
+    }
+
+    /// The log split at its gaps in time (as the CLI's `--gaps split`): a list of logs, the
+    /// parts scored as drives of their own (this log alone when it has no gap).
+    #[pyo3(signature = (bias_s=None))]
+    fn split_at_gaps<'py>(&self, py: Python<'py>, bias_s: Option<f64>) -> PyResult<Bound<'py, PyList>> {
+        let s = gyrodrift::log::gaps::split_at_gaps((*self.log).clone(), Default::default(), self.log.bias_s(bias_s)).map_err(value_err)?;
+        PyList::new(py, s.parts.into_iter().map(PyLog::new))
+    }
+}
+
+/// What a log looks like before any method runs (the CLI's `check`): findings with fixes.
+#[pyfunction]
+fn check<'py>(py: Python<'py>, log: &PyLog) -> PyResult<Bound<'py, PyDict>> {
+    result_dict(py, &gyrodrift::check::check(&log.log))
+}
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(check, m)?)
+}

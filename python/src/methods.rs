@@ -1,0 +1,349 @@
+//! Every method on logs: the result dicts carry the CLI's `--json` keys; the `run_*`
+//! variants add the per-sample series as float64 arrays for plotting.
+
+use crate::log::{read_path, PyLog};
+use crate::{array, flags, from_py, result_dict, series, settings, value_err};
+use gyrodrift as g;
+use gyrodrift::hdr::HdrOptions;
+use gyrodrift::pipeline::PipelineParams;
+use gyrodrift::DriveLog;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+
+/// `{result, error, ...}` of a run: the Result keys, or None and why there are none.
+fn run_dict<'py, T: serde::Serialize>(py: Python<'py>, r: &gyrodrift::Result<T>) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    match r {
+        Ok(v) => {
+            d.set_item("result", result_dict(py, v)?)?;
+            d.set_item("error", py.None())?;
+        }
+        Err(e) => {
+            d.set_item("result", py.None())?;
+            d.set_item("error", e.to_string())?;
+        }
+    }
+    Ok(d)
+}
+
+/// Heuristic Drift Reduction (methods.md, Table III defaults): the Result keys. Raises
+/// ValueError when the log has no usable reference heading.
+#[pyfunction]
+#[pyo3(signature = (log, settings=None))]
+fn hdr<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    let opts: HdrOptions = crate::settings("hdr", settings)?;
+    let r = py.detach(|| g::hdr::run(&log.log, &opts).and_then(|r| r.result)).map_err(value_err)?;
+    result_dict(py, &r)
+}
+
+/// HDR with its per-sample series: `{result, error, eps0_dps, trace}`; the trace's arrays
+/// are float64 (turn_switch as 1.0/0.0).
+#[pyfunction]
+#[pyo3(signature = (log, settings=None))]
+fn run_hdr<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    let opts: HdrOptions = crate::settings("hdr", settings)?;
+    let run = py.detach(|| g::hdr::run(&log.log, &opts)).map_err(value_err)?;
+    let d = run_dict(py, &run.result)?;
+    d.set_item("eps0_dps", run.eps0_dps)?;
+    let drift = run.trace.drift_estimate_dps();
+    let t = run.trace;
+    let trace = series(
+        py,
+        vec![
+            ("time_s", t.time_s),
+            ("heading_raw_deg", t.heading_raw_deg),
+            ("heading_hdr_deg", t.heading_hdr_deg),
+            ("rate_raw_dps", t.rate_raw_dps),
+            ("rate_corrected_dps", t.rate_corrected_dps),
+            ("i_dps", t.i_dps),
+            ("drift_estimate_dps", drift),
+            ("turn_switch", flags(&t.turn_switch)),
+            ("attenuation", t.attenuation),
+        ],
+    )?;
+    d.set_item("trace", trace)?;
+    Ok(d)
+}
+
+/// The recommended drift-reduction pipeline (beyond the paper) with raw, Table-III HDR and
+/// two peers: the pipeline Result keys.
+#[pyfunction]
+#[pyo3(signature = (log, settings=None))]
+fn pipeline<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    let p: PipelineParams = crate::settings("pipeline", settings)?;
+    let r = py.detach(|| gyrodrift::pipeline::run(&log.log, &p).and_then(|r| r.result)).map_err(value_err)?;
+    result_dict(py, &r)
+}
+
+/// The pipeline with its per-block series: `{result, error, still_source, trace}`.
+#[pyfunction]
+#[pyo3(signature = (log, settings=None))]
+fn run_pipeline<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    let p: PipelineParams = crate::settings("pipeline", settings)?;
+    let run = py.detach(|| gyrodrift::pipeline::run(&log.log, &p)).map_err(value_err)?;
+    let d = run_dict(py, &run.result)?;
+    d.set_item("still_source", crate::to_py(py, &serde_json::to_value(run.still_source).map_err(value_err)?)?)?;
+    let t = run.trace;
+    let trace = series(
+        py,
+        vec![
+            ("time_s", t.time_s),
+            ("heading_deg", t.heading_deg),
+            ("heading_smoothed_deg", t.heading_smoothed_deg),
+            ("bias_dps", t.bias_dps),
+            ("bias_sigma_dps", t.bias_sigma_dps),
+            ("bias_smoothed_dps", t.bias_smoothed_dps),
+            ("stop", flags(&t.stop)),
+        ],
+    )?;
+    d.set_item("trace", trace)?;
+    Ok(d)
+}
+
+/// Gyrodometry on a robot log with wheel travel: the Result keys.
+#[pyfunction]
+#[pyo3(signature = (log, settings=None))]
+fn gyrodometry<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    let o: g::gyrodometry::GyrodometryOptions = crate::settings("gyrodometry", settings)?;
+    let r = py.detach(|| g::gyrodometry::run(&log.log, &o).and_then(|r| r.result)).map_err(value_err)?;
+    result_dict(py, &r)
+}
+
+/// Gyrodometry with its per-row series: `{result, error, eps0_dps, trace}`.
+#[pyfunction]
+#[pyo3(signature = (log, settings=None))]
+fn run_gyrodometry<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    let o: g::gyrodometry::GyrodometryOptions = crate::settings("gyrodometry", settings)?;
+    let run = py.detach(|| g::gyrodometry::run(&log.log, &o)).map_err(value_err)?;
+    let d = run_dict(py, &run.result)?;
+    d.set_item("eps0_dps", run.eps0_dps)?;
+    let t = run.trace;
+    let trace = series(
+        py,
+        vec![
+            ("time_s", t.time_s),
+            ("heading_odo_deg", t.heading_odo_deg),
+            ("heading_gyro_deg", t.heading_gyro_deg),
+            ("heading_gyrodometry_deg", t.heading_gyrodometry_deg),
+            ("used_gyro", flags(&t.used_gyro)),
+        ],
+    )?;
+    d.set_item("trace", trace)?;
+    Ok(d)
+}
+
+/// Fits the rate x temperature error model to a turntable session: the Result keys.
+#[pyfunction]
+#[pyo3(signature = (log, settings=None))]
+fn calibrate<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    let o: g::calibration::CalibrationOptions = crate::settings("calibration", settings)?;
+    let run = py.detach(|| g::calibration::run(&log.log, &o)).map_err(value_err)?;
+    result_dict(py, &run.result)
+}
+
+/// Overlapping Allan deviation of the gyro column: the Result keys, `tau_s` and `adev_dps`
+/// as float64 arrays.
+#[pyfunction]
+fn allan<'py>(py: Python<'py>, log: &PyLog) -> PyResult<Bound<'py, PyDict>> {
+    let r = py.detach(|| g::allan::run(&log.log)).map_err(value_err)?;
+    let d = result_dict(py, &r)?;
+    d.set_item("tau_s", array(py, r.tau_s.clone()))?;
+    d.set_item("adev_dps", array(py, r.adev_dps.clone()))?;
+    Ok(d)
+}
+
+/// allantools' convention: `(taus, adevs)` of the overlapping Allan deviation of the gyro
+/// column (deg/s), as `allantools.oadev(rate, rate=fs, data_type="freq", taus=...)[:2]`.
+#[pyfunction]
+fn oadev<'py>(py: Python<'py>, log: &PyLog) -> PyResult<Bound<'py, PyTuple>> {
+    let r = py.detach(|| g::allan::run(&log.log)).map_err(value_err)?;
+    PyTuple::new(py, [array(py, r.tau_s), array(py, r.adev_dps)])
+}
+
+fn logs_of(logs: &[PyRef<'_, PyLog>]) -> Vec<(String, std::sync::Arc<DriveLog>)> {
+    PyLog::named(logs)
+}
+
+fn borrowed(v: &[(String, std::sync::Arc<DriveLog>)]) -> Vec<(String, &DriveLog)> {
+    v.iter().map(|(n, l)| (n.clone(), l.as_ref())).collect()
+}
+
+/// The HDR paper's Table II over logs (named by `# name:`): the CLI's `report --json`.
+#[pyfunction]
+#[pyo3(signature = (logs, settings=None))]
+fn report<'py>(py: Python<'py>, logs: Vec<PyRef<'py, PyLog>>, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    let opts: HdrOptions = crate::settings("hdr", settings)?;
+    let named = logs_of(&logs);
+    let r = py.detach(|| gyrodrift::report::Report::build(&borrowed(&named), &opts)).map_err(value_err)?;
+    result_dict(py, &r)
+}
+
+/// Every method side by side (NE_psi per drive): the CLI's `report --compare --json`.
+#[pyfunction]
+#[pyo3(signature = (logs, settings=None))]
+fn compare<'py>(py: Python<'py>, logs: Vec<PyRef<'py, PyLog>>, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    let p: PipelineParams = crate::settings("pipeline", settings)?;
+    let named = logs_of(&logs);
+    let c = py.detach(|| gyrodrift::compare::compare(&borrowed(&named), &p, None)).map_err(value_err)?;
+    result_dict(py, &c)
+}
+
+/// Table II ("report") or the comparison ("compare") as "markdown", "csv" or "text".
+#[pyfunction]
+#[pyo3(signature = (logs, table="report", format="markdown", settings=None))]
+fn table<'py>(
+    py: Python<'py>,
+    logs: Vec<PyRef<'py, PyLog>>,
+    table: &str,
+    format: &str,
+    settings: Option<&Bound<'py, PyAny>>,
+) -> PyResult<String> {
+    let named = logs_of(&logs);
+    let drives = borrowed(&named);
+    match table {
+        "report" => {
+            let opts: HdrOptions = crate::settings("hdr", settings)?;
+            let r = py.detach(|| gyrodrift::report::Report::build(&drives, &opts)).map_err(value_err)?;
+            match format {
+                "markdown" => Ok(r.to_markdown()),
+                "csv" => Ok(r.to_csv()),
+                "text" => Ok(r.to_text()),
+                f => Err(PyValueError::new_err(format!("format {f:?}: expected markdown, csv or text"))),
+            }
+        }
+        "compare" => {
+            let p: PipelineParams = crate::settings("pipeline", settings)?;
+            let c = py.detach(|| gyrodrift::compare::compare(&drives, &p, None)).map_err(value_err)?;
+            match format {
+                "markdown" => Ok(c.to_markdown()),
+                "csv" => Ok(c.to_csv()),
+                f => Err(PyValueError::new_err(format!("format {f:?}: expected markdown or csv for the comparison"))),
+            }
+        }
+        t => Err(PyValueError::new_err(format!("table {t:?}: expected report or compare"))),
+    }
+}
+
+/// Tunes HDR's five parameters on `train` (leave-one-drive-out cross-validated, refusing
+/// parameters that do not generalise) and scores Table III against them on both sets.
+#[pyfunction]
+#[pyo3(signature = (train, test=Vec::new(), settings=None))]
+fn tune<'py>(
+    py: Python<'py>,
+    train: Vec<PyRef<'py, PyLog>>,
+    test: Vec<PyRef<'py, PyLog>>,
+    settings: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let opts: g::tune::TuneOptions = crate::settings("tune", settings)?;
+    let (train, test) = (logs_of(&train), logs_of(&test));
+    let rep = py
+        .detach(|| {
+            let hdr_opts = HdrOptions::default();
+            let tr = g::tune::prepare_all(&borrowed(&train), &hdr_opts)?;
+            let te = g::tune::prepare_all(&borrowed(&test), &hdr_opts)?;
+            g::tune::tune_and_report(&tr, &te, &opts)
+        })
+        .map_err(value_err)?;
+    result_dict(py, &rep)
+}
+
+/// Simulates a log with known truth, as `gyrodrift simulate` (same seed, same log):
+/// `simulate({"kind": "drive", "scenario": "city", "minutes": 20, "seed": 1})`.
+#[pyfunction]
+#[pyo3(signature = (request=None))]
+fn simulate(py: Python<'_>, request: Option<&Bound<'_, PyAny>>) -> PyResult<PyLog> {
+    let req: g::sim::SimRequest = settings("simulate", request)?;
+    py.detach(|| g::sim::simulate(&req)).map(PyLog::new).map_err(value_err)
+}
+
+/// Imports recorded files by a recipe (a dict, or the path of a TOML or JSON recipe);
+/// files are read from `data_dir` (default: the recipe's folder, or the working folder for
+/// a dict). Returns `(log, summary)`.
+#[pyfunction]
+#[pyo3(signature = (recipe, data_dir=None))]
+fn import_log<'py>(
+    py: Python<'py>,
+    recipe: &Bound<'py, PyAny>,
+    data_dir: Option<std::path::PathBuf>,
+) -> PyResult<(PyLog, Bound<'py, PyDict>)> {
+    let (parsed, root): (gyrodrift::import::Recipe, std::path::PathBuf) = if let Ok(path) = recipe.extract::<std::path::PathBuf>() {
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| pyo3::exceptions::PyOSError::new_err(format!("{}: cannot read: {e}", path.display())))?;
+        let r = if path.extension().is_some_and(|e| e == "json") {
+            serde_json::from_str(&text).map_err(|e| value_err(format!("{}: {e}", path.display())))?
+        } else {
+            toml::from_str(&text).map_err(|e| value_err(format!("{}: {e}", path.display())))?
+        };
+        (r, data_dir.unwrap_or_else(|| path.parent().map(|p| p.to_path_buf()).unwrap_or_default()))
+    } else {
+        let r = serde_json::from_value(from_py("recipe", recipe)?).map_err(|e| value_err(format!("recipe: {e}")))?;
+        (r, data_dir.unwrap_or_default())
+    };
+    let (log, summary) = py
+        .detach(|| {
+            let mut files = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
+                let p = std::path::Path::new(name);
+                if p.is_absolute() || p.components().any(|c| matches!(c, std::path::Component::ParentDir)) {
+                    return Err(gyrodrift::Error::File(format!("{name}: refused: a recipe's files are named relative to data_dir")));
+                }
+                let path = root.join(p);
+                std::fs::File::open(&path)
+                    .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn std::io::Read>)
+                    .map_err(|e| gyrodrift::Error::File(format!("{}: cannot open: {e}", path.display())))
+            };
+            gyrodrift::import::import(&parsed, &mut files)
+        })
+        .map_err(value_err)?;
+    Ok((PyLog::new(log), result_dict(py, &summary)?))
+}
+
+/// The default settings of a method: "hdr", "pipeline", "gyrodometry", "calibration", "tune".
+#[pyfunction]
+fn defaults<'py>(py: Python<'py>, method: &str) -> PyResult<Bound<'py, PyDict>> {
+    match method {
+        "hdr" => result_dict(py, &HdrOptions::default()),
+        "pipeline" => result_dict(py, &PipelineParams::default()),
+        "gyrodometry" => result_dict(py, &g::gyrodometry::GyrodometryOptions::default()),
+        "calibration" => result_dict(py, &g::calibration::CalibrationOptions::default()),
+        "tune" => result_dict(py, &g::tune::TuneOptions::default()),
+        m => Err(PyValueError::new_err(format!("unknown method {m:?} (hdr, pipeline, gyrodometry, calibration, tune)"))),
+    }
+}
+
+/// Static bias eps0 (Eq. 2) of a log over its first `bias_s` seconds (the log's, or 20 s).
+#[pyfunction]
+#[pyo3(signature = (log, bias_s=None))]
+fn static_bias(log: &PyLog, bias_s: Option<f64>) -> PyResult<f64> {
+    let gyro = log.log.require(gyrodrift::Column::GyroDps, "needed for the static bias").map_err(value_err)?;
+    gyrodrift::preprocess::static_bias_dps(log.log.time_s(), gyro, log.log.bias_s(bias_s)).map_err(value_err)
+}
+
+/// Reads a log file (the same as `Log.read`).
+#[pyfunction]
+fn read_log(py: Python<'_>, path: std::path::PathBuf) -> PyResult<PyLog> {
+    let p = path.display().to_string();
+    py.detach(|| read_path(&p)).map(PyLog::new)
+}
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(hdr, m)?)?;
+    m.add_function(wrap_pyfunction!(run_hdr, m)?)?;
+    m.add_function(wrap_pyfunction!(pipeline, m)?)?;
+    m.add_function(wrap_pyfunction!(run_pipeline, m)?)?;
+    m.add_function(wrap_pyfunction!(gyrodometry, m)?)?;
+    m.add_function(wrap_pyfunction!(run_gyrodometry, m)?)?;
+    m.add_function(wrap_pyfunction!(calibrate, m)?)?;
+    m.add_function(wrap_pyfunction!(allan, m)?)?;
+    m.add_function(wrap_pyfunction!(oadev, m)?)?;
+    m.add_function(wrap_pyfunction!(report, m)?)?;
+    m.add_function(wrap_pyfunction!(compare, m)?)?;
+    m.add_function(wrap_pyfunction!(table, m)?)?;
+    m.add_function(wrap_pyfunction!(tune, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(import_log, m)?)?;
+    m.add_function(wrap_pyfunction!(defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(static_bias, m)?)?;
+    m.add_function(wrap_pyfunction!(read_log, m)?)?;
+    Ok(())
+}

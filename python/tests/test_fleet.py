@@ -1,0 +1,102 @@
+"""Fleet rows from Python equal the CLI's `report --dir`; the Dask job (LocalCluster, 2
+workers) gives the same rows from a folder of CSV logs and from a Parquet dataset; a bad
+drive is a row with its error."""
+
+import json
+import shutil
+
+import numpy as np
+import pandas as pd
+import pyarrow.parquet as pq
+import pytest
+
+import gyrodrift as g
+from gyrodrift import fleet
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory, samples):
+    d = tmp_path_factory.mktemp("fleet")
+    (d / "day2").mkdir()
+    for p in sorted((samples / "train").glob("*.csv"))[:3]:
+        shutil.copy(p, d / p.name)
+    shutil.copy(samples / "test" / "highway-3.csv", d / "day2" / "highway-3.csv")
+    (d / "day2" / "broken.csv").write_text("time_s,gyro_dps,ref_heading_deg\n0,0.1,0\n1,abc,0\n")
+    return d
+
+
+def by_file(rows):
+    return sorted(rows, key=lambda r: (r["file"], r["part"]))
+
+
+def test_rows_equal_the_cli_batch(cli, folder, tmp_path):
+    out = tmp_path / "rows.json"
+    cli("report", "--dir", str(folder), "--out", str(out))
+    want = json.loads(out.read_text())
+    files = sorted(str(p) for p in folder.rglob("*.csv"))
+    got = g.score_files(files, jobs=2)
+    assert by_file(got) == by_file(want)
+    bad = [r for r in got if r["error"]]
+    assert len(bad) == 1 and "line 3, column gyro_dps" in bad[0]["error"] and bad[0]["ne_psi_hdr_deg_per_min"] is None
+    assert g.score_file(files[0]) == [r for r in got if r["file"] == files[0]]
+    s = g.summarize(got)
+    assert (s["files"], s["scored"], s["errors"]) == (5, 4, 1)
+    assert g.summary_markdown(got).startswith("5 files, 4 drives scored")
+
+
+def test_the_cli_parquet_reads_in_pyarrow_with_the_json_values(cli, folder, tmp_path):
+    cli("report", "--dir", str(folder), "--out", str(tmp_path / "rows.parquet"))
+    cli("report", "--dir", str(folder), "--out", str(tmp_path / "rows.json"))
+    table = pq.read_table(tmp_path / "rows.parquet")
+    assert table.column_names == g.row_columns()
+    df = table.to_pandas()
+    want = pd.DataFrame(json.loads((tmp_path / "rows.json").read_text()), columns=g.row_columns())
+    pd.testing.assert_frame_equal(df, want, check_dtype=False)
+
+
+def test_dask_on_a_folder_gives_the_rows_and_the_parquet(folder, tmp_path):
+    out = tmp_path / "fleet.parquet"
+    rows = fleet.run(str(folder), str(out), workers=2, chunk_bytes=1_500_000)
+    want = g.rows_to_pandas(g.score_files(sorted(str(p) for p in folder.rglob("*.csv"))))
+    key = ["file", "part"]
+    # Text columns may come back as object or str dtype after the concat; the values are equal.
+    pd.testing.assert_frame_equal(rows.sort_values(key).reset_index(drop=True), want.sort_values(key).reset_index(drop=True), check_dtype=False)
+    assert pq.read_table(out).num_rows == len(rows) == 5
+    assert "HDR Table III | 4 |" in fleet.summary(rows)
+
+
+def test_dask_on_a_parquet_dataset_partitioned_by_drive(samples, tmp_path):
+    logs = {p.stem: g.read_log(str(p)) for p in sorted((samples / "train").glob("*.csv"))[:2]}
+    frames = []
+    for key, log in logs.items():
+        df = g.to_pandas(log)
+        df["drive"] = key
+        frames.append(df)
+    data = tmp_path / "drives"
+    pd.concat(frames).to_parquet(data, partition_cols=["drive"], index=False)
+    rows = fleet.run(str(data), workers=2)
+    assert sorted(rows["file"]) == sorted(logs)
+    for key, log in logs.items():
+        r = rows[rows["file"] == key].iloc[0]
+        want = g.score_log(g.from_pandas(g.to_pandas(log), {"name": key}), key)[0]
+        assert r["ne_psi_pipeline_deg_per_min"] == pytest.approx(want["ne_psi_pipeline_deg_per_min"], rel=1e-12)
+        assert r["error"] is None or (isinstance(r["error"], float) and np.isnan(r["error"]))
+
+
+def test_score_frame_as_spark_applyinpandas_would_call_it(samples):
+    log = g.read_log(str(samples / "train" / "city-1.csv"))
+    df = g.to_pandas(log).sample(frac=1.0, random_state=1)  # any row order
+    df["drive"] = "city-1"
+    out = fleet.score_frame(df)
+    assert list(out.columns) == g.row_columns() and len(out) == 1
+    assert out["ne_psi_hdr_deg_per_min"][0] == pytest.approx(g.hdr(log)["NE_psi_hdr_deg_per_min"], rel=1e-9)
+    bad = fleet.score_frame(pd.DataFrame({"drive": ["x"], "time_s": [0.0], "gyro_dps": [np.inf]}))
+    assert bad["error"][0]
+
+
+def test_the_command_line(folder, tmp_path, capsys):
+    assert fleet.main([str(folder), "--out", str(tmp_path / "r.parquet"), "--workers", "1"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out.startswith("5 files, 4 drives scored") and "broken.csv: line 3" in captured.err
+    assert fleet.main([str(tmp_path / "nothing-here" / "*.csv")]) == 2
+    assert "no file matches" in capsys.readouterr().err

@@ -1,0 +1,177 @@
+"""Every method through Python equals the CLI's --json; arrays are float64 numpy; errors
+are Python exceptions naming file, line and column."""
+
+import math
+
+import numpy as np
+import pytest
+
+import gyrodrift as g
+
+
+def close(a, b):
+    """Same keys and values (floats to 1e-12 relative: the same core, the same numbers)."""
+    if isinstance(a, dict):
+        assert set(a) == set(b), (sorted(a), sorted(b))
+        for k in a:
+            close(a[k], b[k])
+    elif isinstance(a, list):
+        assert len(a) == len(b)
+        for x, y in zip(a, b):
+            close(x, y)
+    elif isinstance(a, float) or isinstance(b, float):
+        assert a == pytest.approx(b, rel=1e-12, abs=1e-12)
+    else:
+        assert a == b
+
+
+def test_hdr_pipeline_report_equal_the_cli(cli, samples):
+    city = str(samples / "train" / "city-1.csv")
+    log = g.read_log(city)
+    assert len(log) == 11641 and log.name == "City 1" and log.kind == "drive"
+    close(g.hdr(log), cli("hdr", city, "--json"))
+    close(g.hdr(log, {"tau_s": 1.0}), cli("hdr", city, "--set", "tau=1.0", "--json"))
+    close(g.pipeline(log), cli("pipeline", city, "--json"))
+    logs = [g.read_log(str(p)) for p in sorted((samples / "train").glob("*.csv"))]
+    files = [str(p) for p in sorted((samples / "train").glob("*.csv"))]
+    close(g.report(logs), cli("report", *files, "--json"))
+    close(g.compare(logs), cli("report", "--compare", *files, "--json"))
+    assert g.table(logs, "report", "markdown") == cli("report", "--markdown", *files)
+    assert g.table(logs, "compare", "csv") == cli("report", "--compare", "--csv", *files)
+
+
+def test_robot_turntable_and_static_methods_equal_the_cli(cli, samples):
+    square = str(samples / "robot" / "square.csv")
+    close(g.gyrodometry(g.read_log(square)), cli("gyrodometry", square, "--json"))
+    session = str(samples / "turntable" / "session.csv")
+    close(g.calibrate(g.read_log(session)), cli("calibrate", session, "--json"))
+    static = str(samples / "static" / "static-2h.csv")
+    a = g.allan(g.read_log(static))
+    want = cli("allan", static, "--json")
+    close({k: v for k, v in a.items() if k not in ("tau_s", "adev_dps")}, {k: v for k, v in want.items() if k not in ("tau_s", "adev_dps")})
+    assert isinstance(a["tau_s"], np.ndarray) and a["tau_s"].dtype == np.float64
+    np.testing.assert_allclose(a["adev_dps"], want["adev_dps"], rtol=1e-12)
+    taus, adev = g.oadev(g.read_log(static))
+    np.testing.assert_array_equal(taus, a["tau_s"])
+    np.testing.assert_array_equal(adev, a["adev_dps"])
+
+
+def test_tune_and_check_equal_the_cli(cli, samples):
+    files = [str(p) for p in sorted((samples / "train").glob("*.csv"))]
+    close(g.tune([g.read_log(f) for f in files]), cli("tune", "--train", *files, "--json"))
+    close(g.check(g.read_log(files[0])), cli("check", files[0], "--json"))
+
+
+def test_runs_give_float64_series_of_one_length(samples):
+    log = g.read_log(str(samples / "train" / "city-1.csv"))
+    run = g.run_hdr(log)
+    assert run["error"] is None and run["result"]["improvement"] > 1
+    lengths = {len(v) for v in run["trace"].values()}
+    assert len(lengths) == 1 and all(v.dtype == np.float64 for v in run["trace"].values())
+    p = g.run_pipeline(log)
+    assert p["still_source"] == "speed" and len({len(v) for v in p["trace"].values()}) == 1
+    r = g.run_gyrodometry(g.read_log(str(samples / "robot" / "square.csv")))
+    assert set(r["trace"]) == {"time_s", "heading_odo_deg", "heading_gyro_deg", "heading_gyrodometry_deg", "used_gyro"}
+
+
+def test_a_log_without_reference_runs_but_has_no_result(samples):
+    run = g.run_hdr(g.read_log(str(samples / "static" / "static-2h.csv")))
+    assert run["result"] is None and "ref_heading_deg" in run["error"]
+    with pytest.raises(ValueError, match="ref_heading_deg"):
+        g.hdr(g.read_log(str(samples / "static" / "static-2h.csv")))
+
+
+def test_pandas_round_trip_scores_the_same(samples):
+    log = g.read_log(str(samples / "train" / "city-1.csv"))
+    df = g.to_pandas(log)
+    assert list(df.columns) == log.column_names() and len(df) == len(log)
+    df["unrelated"] = "x"  # ignored
+    back = g.from_pandas(df, {"name": "City 1", "bias_s": 20})
+    assert back.name == "City 1"
+    assert g.hdr(back) == g.hdr(log)
+    np.testing.assert_array_equal(back.column("gyro_dps"), log.column("gyro_dps"))
+
+
+def test_streaming_hdr_equals_the_batch_on_rows(samples):
+    log = g.read_log(str(samples / "train" / "city-1.csv"))
+    eps0 = g.static_bias(log)
+    run = g.run_hdr(log, {"resample": False})
+    t, w = log.column("time_s"), log.column("gyro_dps")
+    est = g.HdrEstimator(None, eps0)
+    psi = est.update_many(t, w)
+    # The batch heading is shifted to the first reference value: the same up to a constant.
+    d = run["trace"]["heading_hdr_deg"] - psi
+    assert np.ptp(d) < 1e-9
+    one = g.HdrEstimator(None, eps0)
+    assert [one.update(a, b) for a, b in zip(t[:50], w[:50])] == pytest.approx(list(psi[:50]), abs=1e-12)
+    assert one.state()["heading_deg"] == one.heading_deg
+    with pytest.raises(ValueError, match="not after the previous"):
+        one.update(t[10], 0.0)
+    gy = g.GyrodometryEstimator(0.5, 0.5)
+    assert math.isfinite(gy.update(0.0, 0.0, 0.0, 0.0)) and gy.state() is not None
+
+
+def test_simulate_equals_the_cli(cli):
+    log = g.simulate({"kind": "drive", "scenario": "city", "minutes": 3, "seed": 7})
+    assert log.to_csv() == cli("simulate", "drive", "--scenario", "city", "--minutes", "3", "--seed", "7")
+
+
+def test_bad_input_raises_with_file_line_and_column(tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("time_s,gyro_dps,ref_heading_deg\n0,0.1,0\n1,abc,0\n")
+    with pytest.raises(ValueError, match=r"bad\.csv: line 3, column gyro_dps"):
+        g.read_log(str(bad))
+    with pytest.raises(OSError, match="cannot open"):
+        g.read_log(str(tmp_path / "missing.csv"))
+    with pytest.raises(ValueError, match="line 3"):
+        g.Log.parse("time_s,gyro_dps\n0,1\n0,nan\n")
+    log = g.Log.parse("time_s,gyro_dps,ref_heading_deg\n" + "".join(f"{i},0.1,0\n" for i in range(100)))
+    with pytest.raises(ValueError, match="tau"):
+        g.hdr(log, {"tau_s": -1})
+    with pytest.raises(ValueError, match="unknown field"):
+        g.hdr(log, {"tua_s": 1})
+    with pytest.raises(ValueError, match="finite"):
+        g.hdr(log, {"tau_s": float("nan")})
+    with pytest.raises(TypeError):
+        g.hdr(log, {"tau_s": object()})
+    with pytest.raises(KeyError):
+        g.Log.from_columns({"time_z": np.zeros(3)})
+    with pytest.raises(ValueError, match="float64"):
+        g.Log.from_columns({"time_s": np.zeros(3, dtype=np.int32)})
+    with pytest.raises(ValueError):
+        g.Log.from_columns({"time_s": np.array([0.0, 1.0, 0.5]), "gyro_dps": np.zeros(3)})
+
+
+@pytest.mark.skipif(not (__import__("conftest").SHARED / "comma2k19-example").exists(), reason="../shared/real-logs not beside the repo")
+def test_import_by_recipe_equals_the_cli(cli, samples, tmp_path):
+    from conftest import SHARED
+
+    recipe = str(samples / "recipes" / "comma2k19-example.toml")
+    log, summary = g.import_log(recipe, str(SHARED))
+    out = tmp_path / "c.csv"
+    cli("import", "--recipe", recipe, "--data", str(SHARED), "--out", str(out))
+    assert log.to_csv() == out.read_text()
+    assert summary["n_rows"] == len(log)
+    with pytest.raises(ValueError, match="refused"):
+        import tomllib
+
+        bad = tomllib.loads(open(recipe).read())
+        bad["table"][0]["file"] = "../../etc/passwd"
+        g.import_log(bad, str(SHARED))
+
+
+def test_the_type_stubs_name_exactly_what_the_module_has():
+    import ast
+    import pathlib
+
+    import gyrodrift._core as core
+
+    stub = ast.parse((pathlib.Path(g.__file__).parent / "_core.pyi").read_text())
+    top = {n.name for n in stub.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    top |= {t.target.id for t in stub.body if isinstance(t, ast.AnnAssign)}
+    public = {n for n in dir(core) if not n.startswith("_")}
+    assert top == public
+    for cls in (n for n in stub.body if isinstance(n, ast.ClassDef)):
+        methods = {m.name for m in cls.body if isinstance(m, ast.FunctionDef) and not m.name.startswith("__")}
+        have = {n for n in dir(getattr(core, cls.name)) if not n.startswith("_")}
+        assert methods == have, cls.name
