@@ -37,6 +37,22 @@ enum GapsArg {
     Error,
 }
 
+/// A folder of logs scored as a fleet batch (`report --dir`, `compare --dir`).
+#[derive(clap::Args)]
+struct BatchArgs {
+    /// Every *.csv log under this folder (recursive), in parallel: each drive a row with
+    /// every method's E_psi and NE_psi (or its error; the rest go on), the fleet's Table II
+    /// printed. --set takes the pipeline's settings here.
+    #[arg(long, value_name = "DIR")]
+    dir: Option<PathBuf>,
+    /// With --dir: threads (0 = one per core).
+    #[arg(long, default_value_t = 0, requires = "dir")]
+    jobs: usize,
+    /// With --dir: write the per-drive rows to this .parquet, .csv or .json file.
+    #[arg(long, value_name = "FILE", requires = "dir")]
+    out: Option<PathBuf>,
+}
+
 #[derive(Subcommand)]
 enum Cmd {
     /// Heuristic Drift Reduction on a drive log, scored against its reference heading.
@@ -88,28 +104,19 @@ enum Cmd {
     Report {
         #[arg(required_unless_present = "dir", conflicts_with = "dir")]
         files: Vec<PathBuf>,
-        /// Every *.csv log under this folder (recursive), in parallel: each drive a row with
-        /// every method's E_psi and NE_psi (or its error; the rest go on), the fleet's Table II
-        /// printed. --set takes the pipeline's settings here.
-        #[arg(long, value_name = "DIR", conflicts_with_all = ["markdown", "csv", "compare", "no_resample"])]
-        dir: Option<PathBuf>,
-        /// With --dir: threads (0 = one per core).
-        #[arg(long, default_value_t = 0, requires = "dir")]
-        jobs: usize,
-        /// With --dir: write the per-drive rows to this .parquet, .csv or .json file.
-        #[arg(long, value_name = "FILE", requires = "dir")]
-        out: Option<PathBuf>,
+        #[command(flatten)]
+        batch: BatchArgs,
         /// Parameter: i_c, tau, theta_w, c1, c2, bias_s.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
-        #[arg(long)]
+        #[arg(long, conflicts_with = "dir")]
         no_resample: bool,
         #[arg(long, conflicts_with_all = ["markdown", "csv"])]
         json: bool,
-        #[arg(long, conflicts_with = "csv")]
+        #[arg(long, conflicts_with_all = ["csv", "dir"])]
         markdown: bool,
         /// The table as CSV (one row per drive, then the average or mean row).
-        #[arg(long)]
+        #[arg(long, conflicts_with = "dir")]
         csv: bool,
         /// Every method side by side (raw, HDR, pipeline, peers) instead of Table II, as
         /// Markdown (or --json); the pipeline always runs on the 1 Hz blocks.
@@ -117,6 +124,24 @@ enum Cmd {
         compare: bool,
         /// With --compare: tune HDR on these training drives for a "HDR tuned" column.
         #[arg(long, num_args = 1.., requires = "compare")]
+        tune_on: Vec<PathBuf>,
+    },
+    /// Every method side by side (raw, HDR, pipeline, peers): `report --compare`; with --dir,
+    /// the fleet batch over a folder.
+    Compare {
+        #[arg(required_unless_present = "dir", conflicts_with = "dir")]
+        files: Vec<PathBuf>,
+        #[command(flatten)]
+        batch: BatchArgs,
+        /// Setting of the pipeline (min_still_s, road_gate_dps, ...).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(long, conflicts_with = "csv")]
+        json: bool,
+        #[arg(long, conflicts_with = "dir")]
+        csv: bool,
+        /// Tune HDR on these training drives for a "HDR tuned" column.
+        #[arg(long, num_args = 1.., conflicts_with = "dir")]
         tune_on: Vec<PathBuf>,
     },
     /// The robustness battery: recorded and simulated drives with gyro error classes added;
@@ -344,10 +369,12 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Cmd::Pipeline { log, set, json } => c::pipeline(&log, &set, json, input),
         Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json, input),
         Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json),
-        Cmd::Report { dir: Some(dir), jobs, out, set, json, .. } => {
+        Cmd::Report { batch: BatchArgs { dir: Some(dir), jobs, out }, set, json, .. }
+        | Cmd::Compare { batch: BatchArgs { dir: Some(dir), jobs, out }, set, json, .. } => {
             let opts = gyrodrift::fleet::FleetOptions { input, pipeline: settings(&set)? };
             batch::run(&dir, jobs, out.as_deref(), &opts, json)
         }
+        Cmd::Compare { files, set, json, csv, tune_on, .. } => c::compare(&files, &set, json, csv, &tune_on, input),
         Cmd::Report { files, set, json, csv, compare: true, tune_on, .. } => c::compare(&files, &set, json, csv, &tune_on, input),
         Cmd::Report { files, set, no_resample, json, markdown, csv, .. } => {
             c::report(&files, &set, !no_resample, json, markdown, csv, input)

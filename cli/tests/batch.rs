@@ -76,3 +76,21 @@ fn bad_batch_arguments_exit_2() {
     let o = report_dir(&dir.join("city-1.csv"), &[]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("not a folder"));
 }
+
+#[test]
+fn compare_over_a_folder_is_the_same_batch_and_table_options_do_not_mix_with_it() {
+    let dir = fleet_dir("fleet-d");
+    let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let (a, b) = (tmp.join("fleet-d-compare.json"), tmp.join("fleet-d-report.json"));
+    let run = |cmd: &str, out: &PathBuf| {
+        Command::new(env!("CARGO_BIN_EXE_gyrodrift")).args([cmd, "--dir"]).arg(&dir).arg("--out").arg(out).output().unwrap()
+    };
+    assert!(run("compare", &a).status.success());
+    assert!(run("report", &b).status.success());
+    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+    for extra in [["report", "--markdown"], ["report", "--csv"], ["compare", "--csv"], ["report", "--no-resample"]] {
+        let o = Command::new(env!("CARGO_BIN_EXE_gyrodrift")).arg(extra[0]).arg("--dir").arg(&dir).arg(extra[1]).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{extra:?}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains("cannot be used with"), "{extra:?}");
+    }
+}

@@ -7,7 +7,7 @@ keys; series are float64 numpy arrays; bad input raises ValueError naming the fi
 and column. ``gyrodrift.fleet`` runs a folder of drives on Dask.
 """
 
-from ._core import (  # noqa: F401  (the public API)
+from ._core import (
     COLUMNS,
     GyrodometryEstimator,
     HdrEstimator,
@@ -40,6 +40,43 @@ from ._core import (  # noqa: F401  (the public API)
     tune,
     version,
 )
-from .frames import from_pandas, rows_to_pandas, to_pandas  # noqa: F401
+from .frames import from_pandas, rows_to_pandas, to_pandas
 
 __version__ = version()
+
+__all__ = [
+    "COLUMNS",
+    "GyrodometryEstimator",
+    "HdrEstimator",
+    "Log",
+    "allan",
+    "calibrate",
+    "check",
+    "compare",
+    "defaults",
+    "error_row",
+    "from_pandas",
+    "gyrodometry",
+    "hdr",
+    "import_log",
+    "oadev",
+    "pipeline",
+    "read_log",
+    "report",
+    "row_columns",
+    "rows_to_pandas",
+    "run_gyrodometry",
+    "run_hdr",
+    "run_pipeline",
+    "score_file",
+    "score_files",
+    "score_log",
+    "simulate",
+    "static_bias",
+    "summarize",
+    "summary_markdown",
+    "table",
+    "to_pandas",
+    "tune",
+    "version",
+]

@@ -22,6 +22,12 @@ def folder(tmp_path_factory, samples):
         shutil.copy(p, d / p.name)
     shutil.copy(samples / "test" / "highway-3.csv", d / "day2" / "highway-3.csv")
     (d / "day2" / "broken.csv").write_text("time_s,gyro_dps,ref_heading_deg\n0,0.1,0\n1,abc,0\n")
+    # 15 more short simulated drives: 20 files, one of them broken.
+    scenarios = ["city", "suburbs", "rural", "highway", "downtown"]
+    for seed in range(15):
+        log = g.simulate({"kind": "drive", "scenario": scenarios[seed % 5], "minutes": 2, "seed": 100 + seed})
+        (d / "sim").mkdir(exist_ok=True)
+        (d / "sim" / f"sim-{seed:02}.csv").write_text(log.to_csv())
     return d
 
 
@@ -40,8 +46,8 @@ def test_rows_equal_the_cli_batch(cli, folder, tmp_path):
     assert len(bad) == 1 and "line 3, column gyro_dps" in bad[0]["error"] and bad[0]["ne_psi_hdr_deg_per_min"] is None
     assert g.score_file(files[0]) == [r for r in got if r["file"] == files[0]]
     s = g.summarize(got)
-    assert (s["files"], s["scored"], s["errors"]) == (5, 4, 1)
-    assert g.summary_markdown(got).startswith("5 files, 4 drives scored")
+    assert (s["files"], s["scored"], s["errors"]) == (20, 19, 1)
+    assert g.summary_markdown(got).startswith("20 files, 19 drives scored")
 
 
 def test_the_cli_parquet_reads_in_pyarrow_with_the_json_values(cli, folder, tmp_path):
@@ -61,8 +67,8 @@ def test_dask_on_a_folder_gives_the_rows_and_the_parquet(folder, tmp_path):
     key = ["file", "part"]
     # Text columns may come back as object or str dtype after the concat; the values are equal.
     pd.testing.assert_frame_equal(rows.sort_values(key).reset_index(drop=True), want.sort_values(key).reset_index(drop=True), check_dtype=False)
-    assert pq.read_table(out).num_rows == len(rows) == 5
-    assert "HDR Table III | 4 |" in fleet.summary(rows)
+    assert pq.read_table(out).num_rows == len(rows) == 20
+    assert "HDR Table III | 19 |" in fleet.summary(rows)
 
 
 def test_dask_on_a_parquet_dataset_partitioned_by_drive(samples, tmp_path):
@@ -97,6 +103,6 @@ def test_score_frame_as_spark_applyinpandas_would_call_it(samples):
 def test_the_command_line(folder, tmp_path, capsys):
     assert fleet.main([str(folder), "--out", str(tmp_path / "r.parquet"), "--workers", "1"]) == 0
     captured = capsys.readouterr()
-    assert captured.out.startswith("5 files, 4 drives scored") and "broken.csv: line 3" in captured.err
+    assert captured.out.startswith("20 files, 19 drives scored") and "broken.csv: line 3" in captured.err
     assert fleet.main([str(tmp_path / "nothing-here" / "*.csv")]) == 2
     assert "no file matches" in capsys.readouterr().err

@@ -171,6 +171,7 @@ def test_the_type_stubs_name_exactly_what_the_module_has():
     top |= {t.target.id for t in stub.body if isinstance(t, ast.AnnAssign)}
     public = {n for n in dir(core) if not n.startswith("_")}
     assert top == public
+    assert public <= set(g.__all__), public - set(g.__all__)
     for cls in (n for n in stub.body if isinstance(n, ast.ClassDef)):
         methods = {m.name for m in cls.body if isinstance(m, ast.FunctionDef) and not m.name.startswith("__")}
         have = {n for n in dir(getattr(core, cls.name)) if not n.startswith("_")}

@@ -1,0 +1,74 @@
+"""The same numbers bit for bit from the three fronts on every sample log: the Python
+package, the CLI's --json and the wasm package under Node (all three run core)."""
+
+import json
+import shutil
+import subprocess
+
+import pytest
+
+import gyrodrift as g
+from conftest import ROOT, SAMPLES
+
+WASM = ROOT / "web" / "pkg" / "node" / "gyrodrift.js"
+
+# Each sample's methods: (wasm/python function, CLI command).
+CASES = [
+    ("train/city-1.csv", ["hdr", "pipeline"]),
+    ("train/highway-1.csv", ["hdr", "pipeline"]),
+    ("test/rural-3.csv", ["hdr", "pipeline"]),
+    ("robot/square.csv", ["gyrodometry", "hdr"]),
+    ("turntable/session.csv", ["calibrate"]),
+    ("static/static-2h.csv", ["allan"]),
+]
+
+NODE = """
+const g = require(process.argv[1]);
+const fs = require("fs");
+const cases = JSON.parse(process.argv[2]);
+const out = {};
+const plain = (v) => JSON.parse(JSON.stringify(v, (_k, x) => (ArrayBuffer.isView(x) ? Array.from(x) : x)));
+for (const [file, methods] of cases) {
+  const log = g.Log.parse(fs.readFileSync(file, "utf8"));
+  for (const m of methods) {
+    const r = m === "allan" ? g.allan(log) : g[m](log, {});
+    // Extras the wasm package adds for its plots (not Result keys).
+    if (m === "allan") delete r.arw_line_dps;
+    if (m === "calibrate") delete r.sets;
+    out[file + ":" + m] = plain(r);
+  }
+}
+process.stdout.write(JSON.stringify(out));
+"""
+
+PY = {"hdr": g.hdr, "pipeline": g.pipeline, "gyrodometry": g.gyrodometry, "calibrate": g.calibrate, "allan": g.allan}
+
+
+def exact(a, b, where):
+    """Equal bit for bit: the same keys, the same floats (NaN equal to NaN)."""
+    if hasattr(a, "tolist"):
+        a = a.tolist()
+    if hasattr(b, "tolist"):
+        b = b.tolist()
+    if isinstance(a, dict):
+        assert set(a) == set(b), (where, sorted(a), sorted(b))
+        for k in a:
+            exact(a[k], b[k], f"{where}.{k}")
+    elif isinstance(a, list):
+        assert len(a) == len(b), where
+        for i, (x, y) in enumerate(zip(a, b)):
+            exact(x, y, f"{where}[{i}]")
+    else:
+        assert a == b or (a != a and b != b), (where, a, b)
+
+
+@pytest.mark.skipif(shutil.which("node") is None or not WASM.exists(), reason="the wasm package (web/pkg) is built by scripts/test.sh")
+def test_python_cli_and_wasm_agree_bit_for_bit(cli):
+    cases = [(str(SAMPLES / f), ms) for f, ms in CASES]
+    wasm = json.loads(subprocess.run(["node", "-e", NODE, str(WASM), json.dumps(cases)], capture_output=True, text=True, check=True).stdout)
+    for path, methods in cases:
+        log = g.read_log(path)
+        for m in methods:
+            py = PY[m](log)
+            exact(py, cli(m, path, "--json"), f"{path}:{m} python vs CLI")
+            exact(py, wasm[f"{path}:{m}"], f"{path}:{m} python vs wasm")
