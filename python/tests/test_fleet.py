@@ -51,7 +51,7 @@ def test_rows_equal_the_cli_batch(cli, folder, tmp_path):
 
 
 def test_the_cli_parquet_reads_in_pyarrow_with_the_json_values(cli, folder, tmp_path):
-    cli("report", "--dir", str(folder), "--out", str(tmp_path / "rows.parquet"))
+    cli("compare", "--dir", str(folder), "--out", str(tmp_path / "rows.parquet"))
     cli("report", "--dir", str(folder), "--out", str(tmp_path / "rows.json"))
     table = pq.read_table(tmp_path / "rows.parquet")
     assert table.column_names == g.row_columns()

@@ -72,3 +72,23 @@ def test_python_cli_and_wasm_agree_bit_for_bit(cli):
             py = PY[m](log)
             exact(py, cli(m, path, "--json"), f"{path}:{m} python vs CLI")
             exact(py, wasm[f"{path}:{m}"], f"{path}:{m} python vs wasm")
+
+
+def test_the_wheel_in_a_clean_virtual_environment(cli, tmp_path):
+    """pip install of the built wheel alone (numpy comes as its one dependency), then
+    `import gyrodrift`: the CLI's numbers, bit for bit."""
+    import sys
+    import venv
+
+    wheels = sorted((ROOT / "target" / "wheels").glob("gyrodrift-*.whl"))
+    assert wheels, "build the wheel first (scripts/test.sh)"
+    env = tmp_path / "venv"
+    venv.create(env, with_pip=True)
+    py = env / "bin" / "python"
+    subprocess.run([str(py), "-m", "pip", "install", "-q", "--disable-pip-version-check", str(wheels[-1])], check=True)
+    city = str(SAMPLES / "train" / "city-1.csv")
+    code = "import json, sys, gyrodrift as g; l = g.read_log(sys.argv[1]); print(json.dumps({'hdr': g.hdr(l), 'pipeline': g.pipeline(l)}))"
+    out = json.loads(subprocess.run([str(py), "-c", code, city], capture_output=True, text=True, check=True).stdout)
+    exact(out["hdr"], cli("hdr", city, "--json"), "clean venv hdr")
+    exact(out["pipeline"], cli("pipeline", city, "--json"), "clean venv pipeline")
+    assert sys.prefix != str(env)
