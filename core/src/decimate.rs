@@ -59,6 +59,39 @@ pub fn min_max(x: &[f64], y: &[f64], x0: f64, x1: f64, columns: usize) -> (Vec<f
     (ox, oy)
 }
 
+/// Reduces a path (x, y) to the points at least `min_step` (same unit) from the last kept
+/// point, plus the last one: no point of the path is farther than `min_step` from the drawn
+/// polyline's vertices, so at a scale where `min_step` is under a pixel it draws the same. NaN
+/// points are skipped.
+pub fn path(x: &[f64], y: &[f64], min_step: f64) -> (Vec<f64>, Vec<f64>) {
+    let n = x.len().min(y.len());
+    let (mut ox, mut oy) = (Vec::new(), Vec::new());
+    let step2 = if min_step > 0.0 { min_step * min_step } else { 0.0 };
+    let mut last = None;
+    for i in 0..n {
+        let (px, py) = (x[i], y[i]);
+        if px.is_nan() || py.is_nan() {
+            continue;
+        }
+        let keep = match ox.last().zip(oy.last()) {
+            None => true,
+            Some((&lx, &ly)) => (px - lx) * (px - lx) + (py - ly) * (py - ly) >= step2,
+        };
+        if keep {
+            ox.push(px);
+            oy.push(py);
+            last = None;
+        } else {
+            last = Some((px, py));
+        }
+    }
+    if let Some((px, py)) = last {
+        ox.push(px);
+        oy.push(py);
+    }
+    (ox, oy)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -83,5 +116,23 @@ mod tests {
         assert_eq!(dx, vec![2.0, 3.0]); // sample 1 (edge) is NaN and skipped
         assert_eq!(dy, vec![3.0, 4.0]);
         assert!(min_max(&x, &y, 2.0, 1.0, 10).0.is_empty());
+    }
+
+    #[test]
+    fn a_path_keeps_points_a_step_apart_and_its_end() {
+        let x: Vec<f64> = (0..=10).map(|i| i as f64 * 0.1).collect();
+        let y = vec![0.0; 11];
+        let (px, py) = path(&x, &y, 0.25);
+        // Kept: 0, 0.3 (0.2 < 0.25), 0.6, 0.9, then the last point 1.0.
+        let want = [0.0, 0.3, 0.6, 0.9, 1.0];
+        assert_eq!(px.len(), want.len(), "{px:?}");
+        for (a, b) in px.iter().zip(want) {
+            assert!((a - b).abs() < 1e-12, "{px:?}");
+        }
+        assert!(py.iter().all(|&v| v == 0.0));
+        // A step of 0 keeps everything; NaN points are skipped; empty stays empty.
+        assert_eq!(path(&x, &y, 0.0).0.len(), 11);
+        assert_eq!(path(&[0.0, f64::NAN, 2.0], &[0.0, 0.0, 0.0], 1.0).0, vec![0.0, 2.0]);
+        assert!(path(&[], &[], 1.0).0.is_empty());
     }
 }

@@ -13,13 +13,42 @@ pub struct Path {
     pub y_m: Vec<f64>,
 }
 
-/// Heading of a trace at time t (held at the ends).
-fn heading_at(time_s: &[f64], psi_deg: &[f64], t: f64) -> f64 {
+impl Path {
+    /// The path for drawing `columns` pixels across its larger extent: points under half a
+    /// pixel from the last kept one dropped (`decimate::path`). A path that still has more
+    /// than `max_points` (a long drive winding over the same pixels many times) is reduced
+    /// with a proportionally larger step, so drawing stays bounded.
+    pub fn for_drawing(&self, columns: usize, max_points: usize) -> Path {
+        let ext = |v: &[f64]| {
+            let (lo, hi) = v.iter().filter(|x| x.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| (l.min(x), h.max(x)));
+            if hi > lo {
+                hi - lo
+            } else {
+                0.0
+            }
+        };
+        let mut step = ext(&self.x_m).max(ext(&self.y_m)) / (2.0 * columns.max(1) as f64);
+        loop {
+            let (x_m, y_m) = crate::decimate::path(&self.x_m, &self.y_m, step);
+            if x_m.len() <= max_points.max(2) || !(step > 0.0) {
+                return Path { x_m, y_m };
+            }
+            step *= 1.5 * x_m.len() as f64 / max_points.max(2) as f64;
+        }
+    }
+}
+
+/// Heading of a trace at time t (held at the ends), looked up from `*j`, the index of the
+/// last trace sample at or before the previous (earlier) t: rows come in time order, so the
+/// index only moves forward (one pass over the trace, not a search per row).
+fn heading_at(time_s: &[f64], psi_deg: &[f64], t: f64, j: &mut usize) -> f64 {
     if t <= time_s[0] {
         return psi_deg[0];
     }
-    let j = time_s.partition_point(|&v| v <= t).saturating_sub(1);
-    interp_at(time_s, psi_deg, j, t)
+    while *j + 1 < time_s.len() && time_s[*j + 1] <= t {
+        *j += 1;
+    }
+    interp_at(time_s, psi_deg, *j, t)
 }
 
 /// Integrates the log's speed along a heading trace: x += v dt cos(psi), y += v dt sin(psi),
@@ -32,12 +61,13 @@ pub fn dead_reckon(log: &DriveLog, time_s: &[f64], psi_deg: &[f64]) -> Result<Pa
     let mut p = Path::default();
     let (mut x, mut y) = (0.0, 0.0);
     let mut last_t: Option<f64> = None;
+    let mut j = 0;
     for (&t, &v) in log.time_s().iter().zip(speed) {
         if v.is_nan() {
             continue;
         }
         if let Some(t0) = last_t {
-            let h = heading_at(time_s, psi_deg, t).to_radians();
+            let h = heading_at(time_s, psi_deg, t, &mut j).to_radians();
             x += v * (t - t0) * libm::cos(h);
             y += v * (t - t0) * libm::sin(h);
         }
@@ -70,5 +100,23 @@ mod tests {
         let p = dead_reckon(&log, &t, &psi).unwrap();
         let (x, y) = (*p.x_m.last().unwrap(), *p.y_m.last().unwrap());
         assert!((x - 10.0).abs() < 1e-6 && (y - 10.0).abs() < 1e-6, "{x} {y}");
+    }
+
+    #[test]
+    fn a_long_path_is_drawn_from_a_few_points_each_under_half_a_pixel_from_the_next() {
+        // 100 000 points around a circle of radius 100 m: extent 200 m, 1000 columns, so
+        // points 0.1 m apart are kept: about 628 m / 0.1 m of them.
+        let n = 100_000;
+        let a = |i: usize| i as f64 / n as f64 * std::f64::consts::TAU;
+        let p = Path { x_m: (0..=n).map(|i| 100.0 * a(i).cos()).collect(), y_m: (0..=n).map(|i| 100.0 * a(i).sin()).collect() };
+        let d = p.for_drawing(1000, usize::MAX);
+        assert!((6000..6400).contains(&d.x_m.len()), "{}", d.x_m.len());
+        assert_eq!((d.x_m.last(), d.y_m.last()), (p.x_m.last(), p.y_m.last()));
+        let gaps = d.x_m.windows(2).zip(d.y_m.windows(2)).map(|(x, y)| (x[1] - x[0]).hypot(y[1] - y[0]));
+        assert!(gaps.clone().take(d.x_m.len() - 2).all(|g| (0.1..0.1 + 2.0 * std::f64::consts::PI * 100.0 / n as f64 + 1e-9).contains(&g)));
+        // Capped: a coarser step until at most 1000 points remain.
+        let c = p.for_drawing(1000, 1000);
+        assert!((100..=1000).contains(&c.x_m.len()), "{}", c.x_m.len());
+        assert_eq!((c.x_m.last(), c.y_m.last()), (p.x_m.last(), p.y_m.last()));
     }
 }

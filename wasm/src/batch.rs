@@ -70,14 +70,22 @@ pub fn run_hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] o
     Ok(out.into())
 }
 
+/// Resolution the Track view's paths are reduced to (pixels across the larger extent), and
+/// the most points a path keeps (a 60 h drive's path is coarser than half a pixel).
+const TRACK_COLUMNS: usize = 4000;
+const TRACK_MAX_POINTS: usize = 50_000;
+
 /// Dead-reckoned paths (m) of a drive with speed: along the raw, HDR and reference headings.
-/// `{ raw: {x_m, y_m}, hdr: {...}, reference: {...} | null }` as Float64Array.
+/// `{ raw: {x_m, y_m}, hdr: {...}, reference: {...} | null }` as Float64Array, reduced for
+/// drawing to points at least 1/8000 of the path's extent apart, at most 50 000 per path
+/// (core's `Path::for_drawing`).
 #[wasm_bindgen(unchecked_return_type = "Tracks")]
 pub fn track(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
     let opts: HdrOptions = self::options("track", options)?;
     let run = hdr::run(&log.log, &opts).map_err(err)?;
     let t = &run.trace;
     let path = |p: gyrodrift::track::Path| -> JsResult<JsValue> {
+        let p = p.for_drawing(TRACK_COLUMNS, TRACK_MAX_POINTS);
         let o = Object::new();
         set(&o, "x_m", &f64s(&p.x_m))?;
         set(&o, "y_m", &f64s(&p.y_m))?;
