@@ -71,6 +71,11 @@ pub struct DriveRow {
 impl DriveRow {
     /// A row that says why `file` has no scores.
     pub fn failed(file: &str, message: impl Into<String>) -> DriveRow {
+        DriveRow { error: Some(message.into()), ..DriveRow::blank(file) }
+    }
+
+    /// A row of `file` with nothing in it yet.
+    fn blank(file: &str) -> DriveRow {
         DriveRow {
             file: file.to_string(),
             part: 1,
@@ -93,7 +98,7 @@ impl DriveRow {
             e_psi_pipeline_smoothed_deg: None,
             ne_psi_pipeline_smoothed_deg_per_min: None,
             warnings: String::new(),
-            error: Some(message.into()),
+            error: None,
         }
     }
 
@@ -147,8 +152,7 @@ pub fn score_log(file: &str, stem: &str, log: DriveLog, opts: &FleetOptions) -> 
     let n = accepted.parts.len() as u32;
     let mut rows = Vec::with_capacity(accepted.parts.len());
     for (i, part) in accepted.parts.iter().enumerate() {
-        let mut row = DriveRow::failed(file, "");
-        row.error = None;
+        let mut row = DriveRow::blank(file);
         row.part = i as u32 + 1;
         row.parts = n;
         row.name = part.meta.name.clone().unwrap_or_else(|| stem.to_string());

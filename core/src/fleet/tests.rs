@@ -52,8 +52,7 @@ fn a_log_with_a_gap_gives_a_row_per_part() {
 #[test]
 fn the_summary_averages_scored_rows_and_counts_errors() {
     let row = |file: &str, raw: f64, hdr: f64| {
-        let mut r = DriveRow::failed(file, "");
-        r.error = None;
+        let mut r = DriveRow::blank(file);
         r.duration_min = Some(30.0);
         for i in 0..METHODS.len() {
             let v = if i == 1 { hdr } else { raw };
