@@ -28,14 +28,9 @@ pub fn collect_logs(dir: &Path) -> Result<Vec<PathBuf>, Failure> {
     Ok(files)
 }
 
-/// One file's rows: opened and parsed here, scored by core.
+/// One file's rows: opened here, read and scored by core.
 fn score_file(path: &Path, opts: &FleetOptions) -> Vec<DriveRow> {
-    let label = path.display().to_string();
-    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    match std::fs::File::open(path) {
-        Ok(f) => fleet::score_reader(&label, &stem, std::io::BufReader::new(f), opts),
-        Err(e) => vec![DriveRow::failed(&label, format!("cannot open: {e}"))],
-    }
+    fleet::score_opened(path, std::fs::File::open(path).map(std::io::BufReader::new), opts)
 }
 
 /// Scores the files on `jobs` threads (0 = one per core), in file order.

@@ -16,11 +16,17 @@ use std::io::Read;
 /// What a batch does with each log: the input policy (gaps, check errors) and the pipeline's
 /// settings (the other methods run with their defaults: Table-III HDR, Fusion's offset, ZARU).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct FleetOptions {
-    #[serde(default)]
     pub input: InputPolicy,
-    #[serde(default)]
     pub pipeline: PipelineParams,
+}
+
+impl crate::options::Settings for FleetOptions {
+    /// The pipeline's settings (the input policy has no ranges).
+    fn validate(&self) -> Result<()> {
+        self.pipeline.validate()
+    }
 }
 
 /// The methods of a fleet row, in column order: (column stem, label).
@@ -164,6 +170,18 @@ pub fn score_log(file: &str, stem: &str, log: DriveLog, opts: &FleetOptions) -> 
         rows.push(row);
     }
     rows
+}
+
+/// A log file's rows, the front having opened it (core reads, it does not open files): the
+/// rows are labelled by the path, a log without `# name:` is named by the file's stem, and a
+/// file that could not be opened is one error row.
+pub fn score_opened<R: Read>(path: &std::path::Path, opened: std::io::Result<R>, opts: &FleetOptions) -> Vec<DriveRow> {
+    let label = path.display().to_string();
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    match opened {
+        Ok(r) => score_reader(&label, &stem, r, opts),
+        Err(e) => vec![DriveRow::failed(&label, format!("cannot open: {e}"))],
+    }
 }
 
 /// Parses a v1 log from `reader` and scores it; a parse error is one error row naming the

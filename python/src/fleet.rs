@@ -11,16 +11,7 @@ use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
 fn options(obj: Option<&Bound<'_, PyAny>>) -> PyResult<FleetOptions> {
-    let v = match obj {
-        Some(o) => from_py("options", o)?,
-        None => serde_json::Value::Null,
-    };
-    if v.is_null() {
-        return Ok(FleetOptions::default());
-    }
-    let opts: FleetOptions = serde_json::from_value(v).map_err(|e| value_err(format!("options: {e}")))?;
-    opts.pipeline.validate().map_err(|e| value_err(format!("options.pipeline: {e}")))?;
-    Ok(opts)
+    crate::settings("options", obj)
 }
 
 fn rows_list<'py>(py: Python<'py>, rows: &[DriveRow]) -> PyResult<Bound<'py, PyList>> {
@@ -28,12 +19,7 @@ fn rows_list<'py>(py: Python<'py>, rows: &[DriveRow]) -> PyResult<Bound<'py, PyL
 }
 
 fn score_path(path: &Path, opts: &FleetOptions) -> Vec<DriveRow> {
-    let label = path.display().to_string();
-    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    match std::fs::File::open(path) {
-        Ok(f) => fleet::score_reader(&label, &stem, std::io::BufReader::new(f), opts),
-        Err(e) => vec![DriveRow::failed(&label, format!("cannot open: {e}"))],
-    }
+    fleet::score_opened(path, std::fs::File::open(path).map(std::io::BufReader::new), opts)
 }
 
 /// Every part of one log file as row dicts; a file that cannot be read or scored is one row

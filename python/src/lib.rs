@@ -46,18 +46,10 @@ pub(crate) fn to_py(py: Python<'_>, v: &Value) -> PyResult<Py<PyAny>> {
     })
 }
 
-/// Any serializable core result as a Python dict (the CLI's `--json` keys).
+/// Any serializable core result (a struct) as a Python dict (the CLI's `--json` keys).
 pub(crate) fn result_dict<'py, T: serde::Serialize>(py: Python<'py>, r: &T) -> PyResult<Bound<'py, PyDict>> {
     let v = serde_json::to_value(r).map_err(value_err)?;
-    let obj = to_py(py, &v)?.into_bound(py);
-    Ok(match obj.cast_into::<PyDict>() {
-        Ok(d) => d,
-        Err(_) => {
-            let d = PyDict::new(py);
-            d.set_item("value", to_py(py, &v)?)?;
-            d
-        }
-    })
+    to_py(py, &v)?.into_bound(py).cast_into::<PyDict>().map_err(|_| value_err("a result that is not an object"))
 }
 
 /// A Python object (dict of settings, a recipe) as a serde value; numbers must be finite.

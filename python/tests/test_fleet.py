@@ -106,3 +106,13 @@ def test_the_command_line(folder, tmp_path, capsys):
     assert captured.out.startswith("20 files, 19 drives scored") and "broken.csv: line 3" in captured.err
     assert fleet.main([str(tmp_path / "nothing-here" / "*.csv")]) == 2
     assert "no file matches" in capsys.readouterr().err
+
+
+def test_options_as_the_command_line_documents_them(folder):
+    # A log with a gap is refused under {"input": {"gaps": "error"}}; a misspelled key is refused.
+    rows = g.score_files([str(p) for p in sorted(folder.rglob("city-1.csv"))], options={"input": {"gaps": "error"}})
+    assert rows[0]["error"] is None
+    with pytest.raises(ValueError, match="unknown field"):
+        g.score_files([], options={"pipelin": {}})
+    with pytest.raises(ValueError, match="min_still_s"):
+        g.score_log(g.read_log(str(next(folder.rglob("city-1.csv")))), options={"pipeline": {"min_still_s": -1}})

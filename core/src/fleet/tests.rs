@@ -106,3 +106,23 @@ impl DriveRow {
         *slot.1 = Some(ne);
     }
 }
+
+#[test]
+fn an_opened_file_is_named_by_its_stem_and_one_that_failed_to_open_is_an_error_row() {
+    let p = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../sample-logs/robot/square.csv"));
+    let rows = score_opened(p, std::fs::File::open(p), &FleetOptions::default());
+    assert_eq!(rows[0].file, p.display().to_string());
+    let missing = std::path::Path::new("/nonexistent/drive-7.csv");
+    let rows = score_opened(missing, std::fs::File::open(missing), &FleetOptions::default());
+    assert!(rows[0].error.as_deref().unwrap().starts_with("cannot open: "), "{:?}", rows[0].error);
+    assert_eq!(rows[0].file, "/nonexistent/drive-7.csv");
+}
+
+#[test]
+fn fleet_options_refuse_a_misspelled_field_and_a_bad_setting() {
+    use crate::options::from_json;
+    assert!(from_json::<FleetOptions>(serde_json::json!({"pipelin": {}})).unwrap_err().to_string().contains("unknown field"));
+    assert!(from_json::<FleetOptions>(serde_json::json!({"pipeline": {"min_still_s": -1}})).is_err());
+    let o: FleetOptions = from_json(serde_json::json!({"input": {"gaps": "error"}})).unwrap();
+    assert_eq!(o.input.gaps, crate::log::gaps::GapPolicy::Error);
+}

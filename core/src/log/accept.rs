@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 
 /// What to do with a log that has gaps, and whether a check error refuses it.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct InputPolicy {
     pub gaps: GapPolicy,
     /// Run a log even when `check` finds an error in it.
