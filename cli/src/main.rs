@@ -203,10 +203,20 @@ enum Cmd {
         #[arg(long, default_value = "sample-logs")]
         out: PathBuf,
     },
-    /// Import a recorded log in any format into a v1 drive log, by a recipe (TOML or JSON).
+    /// Import a recorded log in any format into a v1 drive log: by a recipe (TOML or JSON),
+    /// or, given the logger's files, by the preset detected from their names and headers
+    /// (SensorLog, Sensor Logger, phyphox, comma2k19, PX4 ulog2csv, ROS CSV).
+    #[command(group(clap::ArgGroup::new("input").required(true).args(["files", "recipe"])))]
     Import {
+        /// The logger's files (without --recipe): a preset is detected from them.
+        #[arg(conflicts_with_all = ["recipe", "data", "allow_outside"])]
+        files: Vec<PathBuf>,
         #[arg(long)]
-        recipe: PathBuf,
+        recipe: Option<PathBuf>,
+        /// With FILES: print the detected recipe as TOML (to save, edit and re-use with
+        /// --recipe) instead of importing.
+        #[arg(long, requires = "files")]
+        print_recipe: bool,
         /// Folder the recipe's `file` paths are relative to (default: the recipe's folder).
         #[arg(long)]
         data: Option<PathBuf>,
@@ -398,7 +408,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
             };
             c::battery(&recipes, data.as_deref(), split, minutes, cases, &set, json)
         }
-        Cmd::Import { recipe, data, allow_outside, out, json } => c::import(&recipe, data.as_deref(), allow_outside, out.as_deref(), json),
+        Cmd::Import { files, recipe, print_recipe, data, allow_outside, out, json } => match recipe {
+            Some(recipe) => c::import(&recipe, data.as_deref(), allow_outside, out.as_deref(), json),
+            None => c::import_detected(&files, print_recipe, out.as_deref(), json),
+        },
         Cmd::Allan { log, json } => c::allan(&log, json),
         Cmd::Check { log, json } => c::check(&log, json),
         Cmd::Roads { recipes, data, json } => c::roads(&recipes, data.as_deref(), json),

@@ -317,3 +317,48 @@ fn recipe_files_are_confined_to_the_data_folder() {
     assert_eq!(o.status.code(), Some(2), "read on request, then a cell error");
     assert!(String::from_utf8_lossy(&o.stderr).contains("line 2, column t"));
 }
+
+fn wild(name: &str) -> Vec<String> {
+    let d = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/wild").join(name);
+    let mut v: Vec<String> = std::fs::read_dir(d).unwrap().map(|e| e.unwrap().path().display().to_string()).collect();
+    v.sort();
+    v
+}
+
+/// Without --recipe: the preset is detected and named; its recipe printed as TOML imports
+/// the same log through --recipe; files that fit no preset get the closest one's gap.
+#[test]
+fn import_without_recipe_detects_says_and_prints_a_reusable_recipe() {
+    let d = dir("detect");
+    let files = wild("sensor-logger");
+    let mut args = vec!["import"];
+    args.extend(files.iter().map(String::as_str));
+    let direct = d.join("direct.csv");
+    let o = run(&[args.as_slice(), &["--out", s(&direct)]].concat());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("detected preset sensor-logger") && err.contains("not used: Accelerometer.csv, Metadata.csv"), "{err}");
+    let o = run(&[args.as_slice(), &["--print-recipe"]].concat());
+    assert!(o.status.success());
+    let recipe = d.join("r.toml");
+    std::fs::write(&recipe, &o.stdout).unwrap();
+    let folder = PathBuf::from(&files[0]).parent().unwrap().to_path_buf();
+    let via = d.join("via.csv");
+    let o = run(&["import", "--recipe", s(&recipe), "--data", s(&folder), "--out", s(&via)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(parse(&direct).time_s(), parse(&via).time_s());
+    assert_eq!(parse(&direct).columns().len(), parse(&via).columns().len());
+
+    // A file no preset reads: an error with the closest preset and the missing column.
+    let odd = d.join("Gyroscope.csv");
+    std::fs::write(&odd, "time,seconds_elapsed,x,y\n0,0,1,2\n").unwrap();
+    let o = run(&["import", s(&odd)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    assert!(err.contains("closest preset is sensor-logger") && err.contains("lacks the column z"), "{err}");
+    // Neither files nor a recipe, or both: a usage error naming the arguments.
+    for o in [run(&["import"]), run(&["import", s(&odd), "--recipe", s(&recipe)])] {
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && err.contains("Usage") && err.contains("--recipe"), "{err}");
+    }
+}

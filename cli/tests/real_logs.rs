@@ -178,3 +178,49 @@ fn pipeline_runs_on_every_real_drive_and_holds_on_the_good_gyros() {
     }
     assert!(beats_raw >= 6, "pipeline beats raw on {beats_raw} of 10 real drives");
 }
+
+/// `gyrodrift import FILE...` without a recipe: the presets detect the Pixel 6a layout and
+/// the comma2k19 CSVs, and give the shipped recipes' logs (the Pixel preset's gravity window
+/// is 10 s instead of its recipe's 30: the up vectors differ by 0.6 deg, the gyro a little).
+#[test]
+fn presets_detect_the_recorded_layouts_and_match_their_recipes() {
+    let Some(data) = real_logs() else { return };
+    let cases = [
+        (
+            "pixel6a-20230809_163741",
+            "sensor-logger-1s",
+            vec!["pixel6a-drives/20230809_163741/imu.csv", "pixel6a-drives/20230809_163741/gps.csv"],
+        ),
+        (
+            "comma2k19-example",
+            "comma2k19",
+            vec!["comma2k19-example/imu.csv", "comma2k19-example/can.csv", "comma2k19-example/live_gnss_ublox.csv"],
+        ),
+    ];
+    for (recipe, preset, files) in cases {
+        let want = import(&data, recipe);
+        let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("preset-{preset}.csv"));
+        let o = Command::new(env!("CARGO_BIN_EXE_gyrodrift"))
+            .arg("import")
+            .args(files.iter().map(|f| data.join(f)))
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{recipe}: {err}");
+        assert!(err.contains(&format!("detected preset {preset} ")), "{err}");
+        let got = gyrodrift::parse_log(std::fs::File::open(&out).unwrap()).unwrap();
+        assert_eq!(got.time_s(), want.log.time_s(), "{recipe}: rows");
+        let c = gyrodrift::log::Column::RefHeadingDeg;
+        let same = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x.is_nan() && y.is_nan()) || (x - y).abs() < 1e-9);
+        assert!(same(got.column(c).unwrap(), want.log.column(c).unwrap()), "{recipe}: reference");
+        let g = gyrodrift::log::Column::GyroDps;
+        let (a, b) = (got.column(g).unwrap(), want.log.column(g).unwrap());
+        let pairs: Vec<(f64, f64)> = a.iter().zip(b).filter(|(x, y)| x.is_finite() && y.is_finite()).map(|(x, y)| (*x, *y)).collect();
+        let n = pairs.len() as f64;
+        let mean_abs = pairs.iter().map(|(x, y)| (x - y).abs()).sum::<f64>() / n;
+        let mean = pairs.iter().map(|(x, y)| x - y).sum::<f64>() / n;
+        assert!(mean_abs < 0.01 && mean.abs() < 0.002, "{recipe}: gyro differs by {mean_abs} deg/s on average, mean {mean}");
+    }
+}

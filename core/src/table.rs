@@ -11,6 +11,8 @@ use std::io::{BufRead, BufReader, Read};
 pub enum Split {
     /// Comma-separated (the `csv` crate: quotes allowed).
     Csv,
+    /// Separated by this ASCII byte (`;`, tab, `|`), quotes allowed.
+    Delimited(u8),
     /// Runs of spaces or tabs.
     Whitespace,
 }
@@ -114,7 +116,8 @@ pub fn read_rows(
     let rest = std::io::Cursor::new(first).chain(reader);
     match split {
         Split::Whitespace => whitespace_rows(rest, before, byte, row),
-        Split::Csv => csv_rows(rest, before, byte, row),
+        Split::Csv => csv_rows(rest, b',', before, byte, row),
+        Split::Delimited(d) => csv_rows(rest, d, before, byte, row),
     }
 }
 
@@ -138,10 +141,15 @@ fn whitespace_rows(mut reader: impl BufRead, before: u64, byte0: u64, row: &mut 
 }
 
 /// CSV rows through the `csv` crate, `before` lines and `byte0` bytes already consumed.
-fn csv_rows(reader: impl Read, before: u64, byte0: u64, row: &mut dyn FnMut(Row) -> Result<()>) -> Result<()> {
+fn csv_rows(reader: impl Read, delimiter: u8, before: u64, byte0: u64, row: &mut dyn FnMut(Row) -> Result<()>) -> Result<()> {
     // Lines end at '\n' only (a '\r' before it is trimmed with the last field): the csv crate's
     // CRLF terminator reports the line of the record after a CRLF one short.
-    let mut rdr = csv::ReaderBuilder::new().has_headers(false).flexible(true).terminator(csv::Terminator::Any(b'\n')).from_reader(reader);
+    let mut rdr = csv::ReaderBuilder::new()
+        .delimiter(delimiter)
+        .has_headers(false)
+        .flexible(true)
+        .terminator(csv::Terminator::Any(b'\n'))
+        .from_reader(reader);
     let mut rec = csv::StringRecord::new();
     loop {
         if !rdr.read_record(&mut rec).map_err(|e| csv_error(e, before))? {

@@ -10,13 +10,17 @@
 //! (the CLI reads TOML, the wasm package takes a JS object), so core knows no file system.
 
 mod geo;
+mod presets;
 mod recipe;
+mod sniff;
 mod table;
 mod time;
 mod units;
 
 pub use geo::*;
+pub use presets::{detect, presets, Detection};
 pub use recipe::*;
+pub use sniff::{sniff, Sniffed, SNIFF_BYTES};
 pub use time::*;
 pub use units::parse_iso8601;
 
@@ -152,17 +156,21 @@ fn wanted_columns(recipe: &Recipe) -> Result<BTreeMap<String, BTreeSet<String>>>
         set.extend(cols.iter().map(|c| (*c).clone()));
         Ok(())
     };
-    let rate_cols = |r: &RateSpec| -> Vec<String> {
-        let mut v: Vec<String> = r.column.iter().cloned().collect();
-        v.extend(r.axes.iter().flatten().cloned());
-        v.extend(r.gravity.iter().flat_map(|g| g.axes.iter().cloned()));
-        v
+    // A rate's own columns, and its gravity axes (in the gravity's table when it has one).
+    let mut want_rate = |r: &RateSpec, field: &str| -> Result<()> {
+        let mut v: Vec<&String> = r.column.iter().collect();
+        v.extend(r.axes.iter().flatten());
+        if let Some(g) = &r.gravity {
+            match &g.table {
+                Some(t) => want(t, &g.axes.iter().collect::<Vec<_>>(), &format!("{field}.gravity"))?,
+                None => v.extend(g.axes.iter()),
+            }
+        }
+        want(&r.table, &v, field)
     };
-    let rc = rate_cols(&recipe.yaw_rate);
-    want(&recipe.yaw_rate.table, &rc.iter().collect::<Vec<_>>(), "yaw_rate")?;
+    want_rate(&recipe.yaw_rate, "yaw_rate")?;
     if let Some(a) = &recipe.align {
-        let c = rate_cols(&a.rate);
-        want(&a.rate.table, &c.iter().collect::<Vec<_>>(), "align.rate")?;
+        want_rate(&a.rate, "align.rate")?;
     }
     if let Some(p) = &recipe.positions {
         want(&p.table, &p.columns.iter().collect::<Vec<_>>(), "positions")?;

@@ -57,6 +57,12 @@ impl Recipe {
                 }
                 _ => {}
             }
+            if !matches!(t.delimiter, ',' | ';' | '\t' | '|') {
+                return Err(recipe_err(&at("delimiter"), format!("{:?} is not one of \",\" \";\" \"\\t\" \"|\"", t.delimiter)));
+            }
+            if t.decimal_comma && t.delimiter == ',' {
+                return Err(recipe_err(&at("decimal_comma"), "needs a delimiter other than \",\""));
+            }
             if !(t.time.max_backward_s.is_finite() && (0.0..=3600.0).contains(&t.time.max_backward_s)) {
                 return Err(recipe_err(&at("time.max_backward_s"), format!("{} is not a time in [0, 3600] s", t.time.max_backward_s)));
             }
@@ -85,12 +91,23 @@ pub struct TableSpec {
     pub skip_lines: usize,
     /// Column names of a file without a header row (the header is then not read).
     pub columns: Option<Vec<String>>,
+    /// Field separator of a `csv` table: `,` (default), `;`, tab or `|`.
+    #[serde(default = "default_delimiter")]
+    pub delimiter: char,
+    /// Numbers written with a decimal comma (`0,25`), as European spreadsheets and phyphox's
+    /// "semicolon, decimal comma" export do.
+    #[serde(default)]
+    pub decimal_comma: bool,
     /// Keep only the rows whose first field equals this (e.g. `odom3`, `$VNYMR`).
     pub record: Option<String>,
     pub time: TimeSpec,
     /// Added to this table's times, seconds (a known clock offset).
     #[serde(default)]
     pub offset_s: f64,
+}
+
+pub(super) fn default_delimiter() -> char {
+    ','
 }
 
 /// How a table is split into fields.
@@ -159,8 +176,10 @@ pub(super) fn one() -> f64 {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GravitySpec {
-    /// Accelerometer x, y, z columns in the gyro's table and frame.
+    /// Accelerometer x, y, z columns in the gyro's frame ...
     pub axes: Vec<String>,
+    /// ... of this table (default: the gyro's; a phone logger writes gravity to its own file).
+    pub table: Option<String>,
     /// Per-axis factors for the accelerometer, as `signs` for the gyro.
     pub signs: Option<Vec<f64>>,
     #[serde(default = "default_gravity_s")]

@@ -21,12 +21,13 @@ impl Table {
 }
 
 /// A number cell: empty or "nan" = missing (NaN); anything else must be a finite number.
-fn cell(fields: &[&str], j: usize, name: &str, line: u64) -> Result<f64> {
+fn cell(fields: &[&str], j: usize, name: &str, line: u64, comma: bool) -> Result<f64> {
     let text = fields.get(j).copied().unwrap_or("");
     if text.is_empty() || text.eq_ignore_ascii_case("nan") {
         return Ok(f64::NAN);
     }
-    match text.parse::<f64>() {
+    let parsed = if comma { text.replacen(',', ".", 1).parse::<f64>() } else { text.parse::<f64>() };
+    match parsed {
         Ok(v) if v.is_finite() => Ok(v),
         _ => Err(Error::Cell { line, column: name.to_string(), message: format!("\"{text}\" is not a number") }),
     }
@@ -39,7 +40,7 @@ fn row_time(spec: &TableSpec, scale: f64, time_idx: Option<usize>, time_name: &s
         (Some(p), _) => Ok(row_n as f64 * p),
         (None, Some(j)) => {
             let v = match spec.time.format {
-                TimeFormat::Seconds => cell(fields, j, time_name, line)? * scale,
+                TimeFormat::Seconds => cell(fields, j, time_name, line, spec.decimal_comma)? * scale,
                 TimeFormat::Iso8601 => {
                     let text = fields.get(j).copied().unwrap_or("");
                     parse_iso8601(text).ok_or_else(|| Error::Cell {
@@ -112,14 +113,18 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
         check_step(&spec.time, time, t.time_s.last().copied(), latest, line, &time_name)?;
         latest = latest.max(time);
         for (k, (name, j)) in idx.iter().enumerate() {
-            cols[k].push(cell(fields, *j, name, line)?);
+            cols[k].push(cell(fields, *j, name, line, spec.decimal_comma)?);
         }
         t.time_s.push(time);
         t.line.push(line);
         row_n += 1;
         Ok(())
     };
-    let split = if spec.format == TableFormat::Whitespace { Split::Whitespace } else { Split::Csv };
+    let split = match spec.format {
+        TableFormat::Whitespace => Split::Whitespace,
+        _ if spec.delimiter == ',' => Split::Csv,
+        _ => Split::Delimited(spec.delimiter as u8),
+    };
     let nmea = spec.format == TableFormat::Nmea;
     let mut each = |r: Row| -> Result<()> {
         if !nmea {
@@ -186,12 +191,18 @@ pub(super) fn yaw_rate(spec: &RateSpec, tables: &BTreeMap<String, Table>, field:
             };
             let gs = signs(&spec.signs, &format!("{field}.signs"))?;
             let acs = signs(&g.signs, &format!("{field}.gravity.signs"))?;
-            let acc: Vec<&[f64]> = g.axes.iter().map(|a| t.col(a, &format!("{field}.gravity"))).collect::<Result<_>>()?;
-            let t0 = t.time_s[0];
+            let gt = match &g.table {
+                Some(id) => {
+                    tables.get(id).ok_or_else(|| recipe_err(&format!("{field}.gravity.table"), format!("no table with id \"{id}\"")))?
+                }
+                None => t,
+            };
+            let acc: Vec<&[f64]> = g.axes.iter().map(|a| gt.col(a, &format!("{field}.gravity"))).collect::<Result<_>>()?;
+            let t0 = gt.time_s[0];
             let mut m = [0.0; 3];
             let mut n = 0usize;
-            for i in 0..t.time_s.len() {
-                if t.time_s[i] - t0 >= g.first_s {
+            for i in 0..gt.time_s.len() {
+                if gt.time_s[i] - t0 >= g.first_s {
                     break;
                 }
                 let a = [acc[0][i] * acs[0], acc[1][i] * acs[1], acc[2][i] * acs[2]];
@@ -206,7 +217,7 @@ pub(super) fn yaw_rate(spec: &RateSpec, tables: &BTreeMap<String, Table>, field:
             if n == 0 || norm == 0.0 {
                 return Err(Error::data(format!(
                     "{}: no accelerometer values in the first {} s to find the up direction",
-                    t.file, g.first_s
+                    gt.file, g.first_s
                 )));
             }
             let up = [m[0] / norm, m[1] / norm, m[2] / norm];

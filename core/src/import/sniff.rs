@@ -1,0 +1,142 @@
+//! What the first bytes of a raw file say about its table: the separator, a decimal comma,
+//! the lines before the header, and the header's column names. Detection of a logger's
+//! preset works from this alone, so a caller passes only the head of each file.
+
+use super::*;
+
+/// Bytes of a file's head that detection reads (the caller may pass more; the rest is ignored).
+pub const SNIFF_BYTES: usize = 64 * 1024;
+
+/// One file's dialect and header.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sniffed {
+    /// The file's name as the caller knows it (a recipe's `file`).
+    pub name: String,
+    pub delimiter: char,
+    pub decimal_comma: bool,
+    /// Lines before the header (comments, `sep=,`).
+    pub skip_lines: usize,
+    /// Column names, trimmed, quotes removed.
+    pub header: Vec<String>,
+}
+
+impl Sniffed {
+    /// The file name without folders and extension, lower case (`Gyroscope.csv` -> `gyroscope`).
+    pub fn stem(&self) -> String {
+        let base = self.name.rsplit(['/', '\\']).next().unwrap_or(&self.name);
+        let stem = base.rsplit_once('.').map_or(base, |(s, _)| s);
+        stem.to_ascii_lowercase()
+    }
+
+    /// The first header column matching `pattern`: a name, `*suffix` (ends with), or several
+    /// such alternatives separated by `|`.
+    pub fn find(&self, pattern: &str) -> Option<&str> {
+        pattern.split('|').find_map(|p| match p.strip_prefix('*') {
+            Some(suffix) => self.header.iter().find(|h| h.ends_with(suffix)).map(String::as_str),
+            None => self.header.iter().find(|h| *h == p).map(String::as_str),
+        })
+    }
+}
+
+/// Reads the head of a file: an error names the file when it is not a text table.
+pub fn sniff(name: &str, head: &[u8]) -> Result<Sniffed> {
+    let head = &head[..head.len().min(SNIFF_BYTES)];
+    let at = |m: &str| Error::File(format!("{name}: {m}"));
+    if head.iter().take(4096).any(|&b| b == 0) {
+        return Err(at("a binary file (NUL bytes), not a text table"));
+    }
+    let text = match std::str::from_utf8(head) {
+        Ok(t) => t,
+        // The head may end inside a character; anything earlier is an encoding error.
+        Err(e) if e.error_len().is_none() => std::str::from_utf8(&head[..e.valid_up_to()]).unwrap_or(""),
+        Err(e) => return Err(at(&format!("not UTF-8 text (byte {})", e.valid_up_to() + 1))),
+    };
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut lines = text.split('\n').map(|l| l.trim_end_matches('\r'));
+    let mut skip_lines = 0;
+    let header_line = loop {
+        match lines.next() {
+            None => return Err(at("no header row (the file is empty or only comments)")),
+            Some(l) if l.trim().is_empty() || l.starts_with('#') || l.starts_with("sep=") => skip_lines += 1,
+            Some(l) => break l,
+        }
+    };
+    let delimiter = [',', ';', '\t', '|'].into_iter().max_by_key(|&d| (count_outside_quotes(header_line, d), d == ',')).unwrap_or(',');
+    let delimiter = if count_outside_quotes(header_line, delimiter) == 0 { ',' } else { delimiter };
+    let header = split_line(header_line, delimiter);
+    if header.iter().all(|h| h.is_empty()) {
+        return Err(at("the header row is empty"));
+    }
+    // A decimal comma: a field like "0,25" in the first rows of a table not separated by commas.
+    let decimal_comma = delimiter != ',' && lines.take(20).any(|l| split_line(l, delimiter).iter().any(|f| is_comma_number(f)));
+    Ok(Sniffed { name: name.to_string(), delimiter, decimal_comma, skip_lines, header })
+}
+
+fn count_outside_quotes(line: &str, d: char) -> usize {
+    let mut quoted = false;
+    line.chars()
+        .filter(|&c| {
+            if c == '"' {
+                quoted = !quoted;
+            }
+            c == d && !quoted
+        })
+        .count()
+}
+
+/// Fields of one line (quotes removed, trimmed); the head's last line may be cut, which is fine.
+fn split_line(line: &str, d: char) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut cur = String::new();
+    let mut quoted = false;
+    for c in line.chars() {
+        match c {
+            '"' => quoted = !quoted,
+            c if c == d && !quoted => out.push(std::mem::take(&mut cur).trim().to_string()),
+            c => cur.push(c),
+        }
+    }
+    out.push(cur.trim().to_string());
+    out
+}
+
+fn is_comma_number(f: &str) -> bool {
+    let f = f.strip_prefix('-').unwrap_or(f);
+    let Some((a, b)) = f.split_once(',') else { return false };
+    let b = b.split(['e', 'E']).next().unwrap_or("");
+    !a.is_empty() && !b.is_empty() && a.bytes().all(|c| c.is_ascii_digit()) && b.bytes().all(|c| c.is_ascii_digit())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dialects() {
+        let s = sniff("a/Gyro.CSV", b"\xEF\xBB\xBF\"Time (s)\";\"Gyroscope z (rad/s)\"\r\n0,01;-1,5E-3\r\n").unwrap();
+        assert_eq!((s.delimiter, s.decimal_comma, s.skip_lines), (';', true, 0));
+        assert_eq!(s.header, ["Time (s)", "Gyroscope z (rad/s)"]);
+        assert_eq!(s.stem(), "gyro");
+        let s = sniff("x.tsv", b"# made by a logger\nsep=\t\nt\tw\n1.5\t2\n").unwrap();
+        assert_eq!((s.delimiter, s.decimal_comma, s.skip_lines), ('\t', false, 2));
+        let s = sniff("x.csv", b"time,\"a,b\",c\n1,2,3\n").unwrap();
+        assert_eq!((s.delimiter, s.header.len()), (',', 3));
+        assert_eq!(s.find("*,b|c"), Some("a,b"));
+        assert_eq!(s.find("q|c"), Some("c"));
+        // A single column has no separator: comma.
+        assert_eq!(sniff("x.csv", b"gyro\n1\n").unwrap().delimiter, ',');
+    }
+
+    #[test]
+    fn refusals_name_the_file() {
+        for (bytes, why) in
+            [(&b"\x00\x01\x02"[..], "binary"), (b"", "no header"), (b"# only\n\n", "no header"), (b"a,\xFF\xFEb\n1,2\n", "UTF-8")]
+        {
+            let e = sniff("f.csv", bytes).unwrap_err().to_string();
+            assert!(e.contains("f.csv") && e.contains(why), "{e}");
+        }
+        // A head cut inside a character is not an error.
+        let cut = "t,w (°)\n1,2\n".as_bytes();
+        assert!(sniff("f.csv", &cut[..6]).is_ok());
+    }
+}
