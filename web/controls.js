@@ -1,6 +1,7 @@
 // The log list, the selection, and the parameter forms.
 import { $, fmt, state, VIEW_KIND } from "./state.js";
 import { render, scheduleRender } from "./render.js";
+import { download } from "./charts.js";
 
 // ---------- list and selection ----------
 export function renderList() {
@@ -35,6 +36,22 @@ export function renderList() {
         badge.textContent = `⚠ check: ${e.findings.map((f) => f.code).join(", ")}`;
         badge.title = e.findings.map((f) => `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}`).join("\n");
         li.append(badge);
+      }
+      if (e.imported) {
+        const imp = document.createElement("div");
+        imp.className = "check imported";
+        const u = e.imported.used.map(([role, f]) => `${role} = ${f}`).join(", ");
+        imp.textContent = `⇢ imported: ${e.imported.title}`;
+        imp.title = `${u}${e.imported.ignored.length ? `; not used: ${e.imported.ignored.join(", ")}` : ""}`;
+        const save = document.createElement("button");
+        save.type = "button";
+        save.className = "link";
+        save.textContent = "recipe";
+        save.title = "Save the recipe (JSON): drop it with the files again, or gyrodrift import --recipe";
+        save.setAttribute("aria-label", `Save the import recipe of ${e.name}`);
+        save.addEventListener("click", () => download(`${e.name}.recipe.json`, JSON.stringify(e.imported.recipe, null, 2), "application/json"));
+        imp.append(" ", save);
+        li.append(imp);
       }
       if (e.note) {
         const note = document.createElement("div");

@@ -97,9 +97,74 @@ export function addParsed(name, make) {
   }
 }
 
-export async function loadFiles(files) {
-  let last = null;
+/** Raw logger exports: the preset detected from all of them (or a dropped recipe .json),
+ * imported (in the worker when large) and added as one log; an error entry otherwise. */
+async function importRaw(files, recipe) {
+  const label = files.map((f) => f.name).join(", ");
+  $("status").textContent = `importing ${label}…`;
+  const bytes = {};
+  let total = 0;
   for (const f of files) {
+    bytes[f.name] = new Uint8Array(await f.arrayBuffer());
+    total += f.size;
+  }
+  let res;
+  if (total > WORKER_BYTES && window.Worker) {
+    const bar = $("progress");
+    bar.hidden = false;
+    bar.removeAttribute("value"); // no progress from inside an import: indeterminate
+    res = await inWorker({ type: "import", files: bytes, recipe }, Object.values(bytes).map((b) => b.buffer), () => {});
+    bar.hidden = true;
+  } else {
+    res = importHere(bytes, recipe);
+  }
+  const before = state.entries.length;
+  const entry = addParsed(label, () => {
+    if (res.error) throw new Error(res.error);
+    const log = res.log || gd.Log.fromColumns(res.data);
+    if (!log.name || log.name === "log") log.name = files[0].name;
+    return log;
+  });
+  // This import's entries (a log split at gaps is several) carry how they were imported.
+  if (!entry.error) for (const e of state.entries.slice(before)) e.imported = res.detection;
+  return entry;
+}
+
+/** Detection (unless a recipe is given) and import on this thread: {log, detection} or {error}. */
+export function importHere(bytes, recipe) {
+  try {
+    const d = recipe ? { preset: "recipe", title: "your recipe", recipe, used: [], ignored: [] } : gd.detectImport(bytes);
+    const { log, summary } = gd.importLog(d.recipe, bytes);
+    return { log, detection: { ...d, summary } };
+  } catch (e) {
+    return { error: e.message };
+  }
+}
+
+export async function loadFiles(files) {
+  // Drive logs v1 open as they are; other files are raw exports, imported together by the
+  // preset they fit (a recipe .json dropped with them is used instead of detection).
+  const logs = [];
+  const raw = [];
+  let recipe = null;
+  for (const f of files) {
+    if (/\.json$/i.test(f.name)) {
+      try {
+        recipe = JSON.parse(await f.text());
+      } catch (e) {
+        state.entries.push({ name: f.name, file: f.name, log: null, error: `${f.name}: not a recipe: ${e.message}`, kind: null, headline: "" });
+      }
+      continue;
+    }
+    const head = new Uint8Array(await f.slice(0, 65536).arrayBuffer());
+    (gd.isDriveLog(f.name, head) ? logs : raw).push(f);
+  }
+  let last = null;
+  if (raw.length) {
+    const e = await importRaw(raw, recipe);
+    if (!e.error) last = e;
+  }
+  for (const f of logs) {
     $("status").textContent = `reading ${f.name}…`;
     const buffer = await f.arrayBuffer();
     let e;

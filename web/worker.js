@@ -1,8 +1,9 @@
 // Work off the main thread with the same wasm package, so the page never freezes:
 // - parse: a large log, with progress; the columns go back transferred, not copied, and
 //   the page rebuilds the Log from them;
+// - import: raw logger files by their detected preset (or a given recipe);
 // - tune: the HDR parameters over the drives' columns, with progress.
-import init, { Log, tune } from "./pkg/gyrodrift.js";
+import init, { Log, tune, detectImport, importLog } from "./pkg/gyrodrift.js";
 
 const ready = init();
 
@@ -29,6 +30,17 @@ self.onmessage = async (ev) => {
       const report = tune(logs, undefined, ev.data.options || {}, progressReporter(id));
       for (const l of logs) l.free();
       self.postMessage({ id, data: report });
+      return;
+    }
+    if (type === "import") {
+      const d = ev.data.recipe
+        ? { preset: "recipe", title: "your recipe", recipe: ev.data.recipe, used: [], ignored: [] }
+        : detectImport(ev.data.files);
+      const { log, summary } = importLog(d.recipe, ev.data.files);
+      const data = log.toColumns();
+      log.free();
+      const transfer = [data.line.buffer, ...Object.values(data.columns).map((a) => a.buffer)];
+      self.postMessage({ id, data, detection: { ...d, summary } }, transfer);
       return;
     }
     const log = Log.fromBytesWithProgress(new Uint8Array(ev.data.buffer), progressReporter(id));

@@ -5,7 +5,7 @@
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
-import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from "node:fs";
+import { mkdirSync, mkdtempSync, readFileSync, readdirSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { chromium } from "playwright-core";
@@ -264,6 +264,74 @@ test("a large log is parsed in a Web Worker and gives the CLI's numbers", async 
   const native = JSON.parse(cli("hdr", big, "--json"));
   assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
   assert.equal(await page.locator("#progress").isVisible(), false);
+});
+
+const WILD = join(ROOT, "sample-logs", "wild");
+const wildFiles = (d) => readdirSync(join(WILD, d)).sort().map((f) => join(WILD, d, f));
+
+/** The CLI's HDR result on the same raw files, imported by the detected preset. */
+function cliOnRaw(files) {
+  const out = join(mkdtempSync(join(tmpdir(), "gd-raw-")), "imported.csv");
+  cli("import", ...files, "--out", out);
+  return JSON.parse(cli("hdr", out, "--json"));
+}
+
+for (const [dir, name] of [["sensorlog", "SensorLog.csv (SensorLog)"], ["sensor-logger", "Gyroscope.csv (Sensor Logger)"], ["phyphox", "Gyroscope.csv (phyphox, CSV export)"]]) {
+  test(`a ${dir} export opens by drop alone (detected preset) with the CLI's numbers`, async () => {
+    const files = wildFiles(dir);
+    await page.locator("#file-input").setInputFiles(files);
+    await page.waitForFunction((n) => document.querySelector("#logs li.selected")?.innerText.includes(n), name);
+    const li = page.locator("#logs li.selected");
+    assert.match(await li.innerText(), /imported:/);
+    const native = cliOnRaw(files);
+    assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+    assert.equal(await page.locator("#m-improvement").innerText(), native.improvement.toFixed(2));
+  });
+}
+
+test("the import recipe saves as JSON and, dropped with the files, imports the same log; no fit is a clear error", async () => {
+  const files = wildFiles("px4");
+  await page.locator("#file-input").setInputFiles(files);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("PX4"));
+  const e1 = await page.locator("#m-e-hdr").innerText();
+  const [dl] = await Promise.all([page.waitForEvent("download"), page.locator("#logs li.selected button.link").click()]);
+  const recipe = join(mkdtempSync(join(tmpdir(), "gd-recipe-")), "px4.json");
+  await dl.saveAs(recipe);
+  assert.equal(JSON.parse(readFileSync(recipe, "utf8")).yaw_rate.table, "imu");
+  const n = await page.locator("#logs li").count();
+  await page.locator("#file-input").setInputFiles([...files, recipe]);
+  await page.waitForFunction((k) => document.querySelectorAll("#logs li").length === k + 1, n);
+  assert.match(await page.locator("#logs li.selected").innerText(), /your recipe/);
+  assert.equal(await page.locator("#m-e-hdr").innerText(), e1);
+  await page.screenshot({ path: join(ARTIFACTS, "imported.png") });
+  const odd = join(mkdtempSync(join(tmpdir(), "gd-odd-")), "Gyroscope.csv");
+  writeFileSync(odd, "time,seconds_elapsed,x,y\n0,0,1,2\n");
+  await page.locator("#file-input").setInputFiles([odd]);
+  await page.waitForFunction(() => [...document.querySelectorAll("#logs li.bad")].some((l) => l.innerText.includes("closest preset")));
+  assert.match(await page.locator("#logs li.bad").last().innerText(), /Gyroscope\.csv: closest preset is sensor-logger .* lacks the column z/);
+  assert.equal(await page.locator("#logs li:not(.bad)").count() >= n, true);
+});
+
+test("a large raw export is imported in the Web Worker with the CLI's numbers", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-bigraw-"));
+  // Sensor Logger's layout: 20 min of a 100 Hz gyro with a 0.2 deg/s bias and a slow turn.
+  const rows = ["time,seconds_elapsed,z,y,x"];
+  for (let i = 0; i < 120000; i++) {
+    const t = i / 100;
+    const w = ((0.2 + (t > 600 && t < 690 ? 1 : 0)) * Math.PI) / 180;
+    rows.push(`${1763892000000000000 + i * 10000000},${t.toFixed(2)},${w.toFixed(7)},0.0001,-0.0002`);
+  }
+  const gyro = join(dir, "Gyroscope.csv");
+  writeFileSync(gyro, rows.join("\n") + "\n");
+  await page.locator("#file-input").setInputFiles([gyro]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Gyroscope.csv (Sensor Logger)"), null, { timeout: 60000 });
+  assert.equal(await page.locator("#progress").isVisible(), false);
+  const out = join(dir, "imported.csv");
+  cli("import", gyro, "--out", out);
+  const native = JSON.parse(cli("allan", out, "--json"));
+  const text = await page.locator("#logs li.selected").innerText();
+  assert.match(text, /static · 20\.0 min/);
+  assert.ok(text.includes(`ARW ${native.arw_deg_per_sqrt_h.toFixed(2)} deg/√h`), text);
 });
 
 test("the Track view has equal metres per pixel across and up", async () => {

@@ -194,3 +194,25 @@ test("checkOptions gives core's reason for a bad setting, or nothing for a good 
   assert.match(gd.checkOptions("hdr", { ofset: 1 }), /unknown field/);
   assert.throws(() => gd.checkOptions("nope", {}), /unknown method/);
 });
+
+test("detectImport picks the logger's preset from raw files; importLog on its recipe gives the CLI's log", () => {
+  const dir = join(ROOT, "sample-logs", "wild", "sensor-logger");
+  const names = readdirSync(dir).sort();
+  const files = Object.fromEntries(names.map((f) => [f, readFileSync(join(dir, f))]));
+  const d = gd.detectImport(files);
+  assert.equal(d.preset, "sensor-logger");
+  assert.deepEqual(d.used, [["gyro", "Gyroscope.csv"], ["gravity", "Gravity.csv"], ["location", "Location.csv"]]);
+  assert.deepEqual(d.ignored, ["Accelerometer.csv", "Metadata.csv"]);
+  const { log } = gd.importLog(d.recipe, files);
+  const out = join(mkdtempSync(join(tmpdir(), "gd-detect-")), "imported.csv");
+  cli("import", ...names.map((f) => join(dir, f)), "--out", out);
+  const native = gd.Log.parse(readFileSync(out, "utf8"));
+  assert.deepEqual(Array.from(log.column("gyro_dps")), Array.from(native.column("gyro_dps")));
+  assert.equal(gd.isDriveLog("city-1.csv", readFileSync(join(SAMPLES, "train", "city-1.csv"))), true);
+  assert.equal(gd.isDriveLog("Gyroscope.csv", files["Gyroscope.csv"]), false);
+  // Errors are Errors naming the file, never a trap.
+  assert.throws(() => gd.detectImport(5), TypeError);
+  assert.throws(() => gd.detectImport({ "x.bin": new Uint8Array([0, 1, 2]) }), /x\.bin: a binary file/);
+  assert.throws(() => gd.detectImport({ "a.csv": new TextEncoder().encode("alpha;beta\n1;2\n") }), /no logger preset .* a\.csv \(header: alpha, beta\)/);
+  assert.throws(() => gd.detectImport({}), /no files/);
+});

@@ -1,6 +1,6 @@
 // Compiled with `tsc --noEmit`: the package's types describe options and results (no `any`).
-import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, pipeline, runPipeline, compare, checkLog } from "gyrodrift";
-import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, PipelineResult, PipelineRun, Compare, CheckReport, CheckFinding, GapSplit } from "gyrodrift";
+import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, isDriveLog, pipeline, runPipeline, compare, checkLog } from "gyrodrift";
+import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, PipelineResult, PipelineRun, Compare, CheckReport, CheckFinding, GapSplit } from "gyrodrift";
 
 const log: Log = Log.parse("time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1,0\n");
 const opts: HdrOptions = { i_c_dps: 0.0422, tau_s: 0.75, resample: true };
@@ -28,6 +28,11 @@ const recipe: Recipe = {
   heading: { source: "column", table: "imu", column: "yaw", unit: "deg", positive: "ccw" },
 };
 const imp: ImportResult = importLog(recipe, { "imu.csv": new Uint8Array(0) });
+const det: Detection = detectImport({ "Gyroscope.csv": new Uint8Array(0) });
+const detected: ImportResult = importLog(det.recipe, {});
+const roles: [string, string][] = det.used;
+const isLog: boolean = isDriveLog("a.csv", new Uint8Array(0));
+void detected; void roles; void isLog;
 const rows: number = imp.log.rowCount + imp.summary.n_reference;
 const pr: PipelineResult = pipeline(log, { road_gate_dps: 0.5, still: { still_speed_mps: 0.3 } });
 const pe: number = pr.E_psi_pipeline_deg + pr.NE_psi_pipeline_deg_per_min + pr.improvement_pipeline;

@@ -3,7 +3,9 @@
 use crate::convert::*;
 use crate::log::Log;
 use crate::JsResult;
+use gyrodrift::import;
 use js_sys::{Object, Reflect, Uint8Array};
+use std::collections::BTreeMap;
 use wasm_bindgen::prelude::*;
 
 /// Imports recorded files by a recipe (the same object as the CLI's TOML/JSON recipe):
@@ -16,18 +18,47 @@ pub fn import_log(
 ) -> JsResult<JsValue> {
     // Through JSON, so unknown (misspelled) fields are refused as the CLI refuses them.
     let recipe: gyrodrift::import::Recipe = serde_json::from_value(js_json("recipe", &recipe)?).map_err(|e| err(format!("recipe: {e}")))?;
+    let mut map = files_map(&files)?;
+    let (log, summary) = gyrodrift::import::import(&recipe, &mut map).map_err(err)?;
+    let out = Object::new();
+    set(&out, "log", &JsValue::from(Log::new(log)))?;
+    set(&out, "summary", &to_js(&summary)?)?;
+    Ok(out.into())
+}
+
+/// `files` as name -> bytes.
+fn files_map(files: &JsValue) -> JsResult<BTreeMap<String, Vec<u8>>> {
     let obj: &Object =
         files.dyn_ref().filter(|_| files.is_object()).ok_or_else(|| type_err("files: expected an object of name -> Uint8Array"))?;
-    let mut map = std::collections::BTreeMap::new();
+    let mut map = BTreeMap::new();
     for key in Object::keys(obj).iter() {
         let name = key.as_string().unwrap_or_default();
         let v = Reflect::get(obj, &key)?;
         let bytes: &Uint8Array = v.dyn_ref().ok_or_else(|| err(format!("files[\"{name}\"]: expected a Uint8Array")))?;
         map.insert(name, bytes.to_vec());
     }
-    let (log, summary) = gyrodrift::import::import(&recipe, &mut map).map_err(err)?;
+    Ok(map)
+}
+
+/// Which logger wrote these raw files (by their names and headers): `{ preset, title,
+/// recipe, used: [[role, file]], ignored }`, the recipe ready for `importLog`. Throws an
+/// Error naming the closest preset and the column it lacked when none fits.
+#[wasm_bindgen(js_name = detectImport, unchecked_return_type = "Detection")]
+pub fn detect_import(#[wasm_bindgen(unchecked_param_type = "Record<string, Uint8Array>")] files: JsValue) -> JsResult<JsValue> {
+    let map = files_map(&files)?;
+    let sniffed = map.iter().map(|(n, b)| import::sniff(n, b)).collect::<gyrodrift::Result<Vec<_>>>().map_err(err)?;
+    let d = import::detect(&sniffed).map_err(err)?;
     let out = Object::new();
-    set(&out, "log", &JsValue::from(Log::new(log)))?;
-    set(&out, "summary", &to_js(&summary)?)?;
+    set(&out, "preset", &d.preset.into())?;
+    set(&out, "title", &d.title.into())?;
+    set(&out, "recipe", &to_js(&d.recipe_json)?)?;
+    set(&out, "used", &to_js(&d.used)?)?;
+    set(&out, "ignored", &to_js(&d.ignored)?)?;
     Ok(out.into())
+}
+
+/// Whether a file (its first bytes suffice) is a drive log v1 already, not a raw export.
+#[wasm_bindgen(js_name = isDriveLog)]
+pub fn is_drive_log(name: &str, head: &[u8]) -> bool {
+    import::sniff(name, head).is_ok_and(|s| s.is_drive_log())
 }

@@ -365,7 +365,7 @@ export interface RateSpec {
   column?: string;
   axes?: [string, string, string];
   signs?: [number, number, number];
-  gravity?: { axes: [string, string, string]; signs?: [number, number, number]; first_s?: number };
+  gravity?: { axes: [string, string, string]; table?: string; signs?: [number, number, number]; first_s?: number };
   unit: "deg/s" | "rad/s" | "mrad/s" | "deg/h" | "counts";
   scale?: number;
   offset?: number;
@@ -375,6 +375,9 @@ export interface TableSpec {
   id: string;
   file: string;
   format?: "csv" | "whitespace" | "nmea";
+  /** Separator of a csv table (default ","), and numbers written with a decimal comma. */
+  delimiter?: "," | ";" | "\t" | "|";
+  decimal_comma?: boolean;
   skip_lines?: number;
   columns?: string[];
   record?: string;
@@ -416,6 +419,17 @@ export interface ImportSummary {
   /** What the time policies did, over all tables. */
   time_fixes: { merged_duplicates: number; dropped_duplicates: number; sorted_backward: number; dropped_backward: number };
 }
+/** What `detectImport` found: the logger's preset and its recipe, ready for `importLog`. */
+export interface Detection {
+  preset: string;
+  title: string;
+  recipe: Recipe;
+  /** [role, file name] of each file the recipe reads. */
+  used: [string, string][];
+  /** Files no part of the preset took. */
+  ignored: string[];
+}
+
 export interface ImportResult {
   log: Log;
   summary: ImportSummary;

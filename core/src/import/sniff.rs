@@ -28,6 +28,12 @@ impl Sniffed {
         stem.to_ascii_lowercase()
     }
 
+    /// A drive log v1 already (its header after the `#` lines has `time_s` and `gyro_dps`):
+    /// it opens as it is, no import needed.
+    pub fn is_drive_log(&self) -> bool {
+        self.delimiter == ',' && self.find("time_s").is_some() && self.find("gyro_dps").is_some()
+    }
+
     /// The first header column matching `pattern`: a name, `*suffix` (ends with), or several
     /// such alternatives separated by `|`.
     pub fn find(&self, pattern: &str) -> Option<&str> {
@@ -125,6 +131,8 @@ mod tests {
         assert_eq!(s.find("q|c"), Some("c"));
         // A single column has no separator: comma.
         assert_eq!(sniff("x.csv", b"gyro\n1\n").unwrap().delimiter, ',');
+        assert!(sniff("d.csv", b"# name: x\ntime_s,gyro_dps\n0,1\n").unwrap().is_drive_log());
+        assert!(!s.is_drive_log());
     }
 
     #[test]
