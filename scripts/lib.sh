@@ -79,19 +79,27 @@ build_python() {
   "$TOOLS/venv/bin/pip" install -q --disable-pip-version-check --force-reinstall --no-deps target/wheels/gyrodrift-*.whl
 }
 
-# The npm package in web/pkg: ES module for browsers, CommonJS build for Node, types.
+# One wasm build through wasm-bindgen and wasm-opt: $1 cargo feature flags, $2 target
+# (web|nodejs), $3 output folder, $4 module name.
+wasm_part() {
+  # shellcheck disable=SC2086
+  cargo build --profile wasm-release --target wasm32-unknown-unknown -p gyrodrift-wasm $1
+  wasm-bindgen --target "$2" --weak-refs --out-dir "$3" --out-name "$4" target/wasm32-unknown-unknown/wasm-release/gyrodrift_wasm.wasm
+  wasm-opt -Oz --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
+    --enable-mutable-globals --enable-multivalue --enable-reference-types "$3/$4_bg.wasm" -o "$3/$4_bg.wasm"
+}
+
+# The npm package in web/pkg: ES modules for browsers, CommonJS build for Node, types.
 build_wasm() {
-  say "building the wasm package into web/pkg"
-  cargo build --profile wasm-release --target wasm32-unknown-unknown -p gyrodrift-wasm
-  local wasm="target/wasm32-unknown-unknown/wasm-release/gyrodrift_wasm.wasm"
+  say "building the wasm package into web/pkg (core, plot, full, node)"
   rm -rf web/pkg
-  wasm-bindgen --target web --weak-refs --out-dir web/pkg --out-name gyrodrift "$wasm"
-  wasm-bindgen --target nodejs --weak-refs --out-dir web/pkg/node --out-name gyrodrift "$wasm"
-  local f
-  for f in web/pkg/gyrodrift_bg.wasm web/pkg/node/gyrodrift_bg.wasm; do
-    wasm-opt -Oz --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
-      --enable-mutable-globals --enable-multivalue --enable-reference-types "$f" -o "$f"
-  done
+  # The browser's main module: logs, methods, metrics, estimators (<= 200 KB gzipped);
+  # charts and the rest (import, tuning, simulation) load as their own modules.
+  wasm_part "--no-default-features --features core" web web/pkg gyrodrift
+  wasm_part "--no-default-features --features plot" web web/pkg/plot gyrodrift_plot
+  # Everything: the Web Worker's module (import, tuning, parsing with progress) and Node's.
+  wasm_part "" web web/pkg/full gyrodrift
+  wasm_part "" nodejs web/pkg/node gyrodrift
   cp wasm/npm/package.json wasm/npm/README.md web/pkg/
   printf '{ "type": "commonjs" }\n' > web/pkg/node/package.json
   # The tests and the Node example import the package by its name, as users do.

@@ -3,6 +3,7 @@
 // state.js (settings, URL), loading.js (files, worker), controls.js (list, forms),
 // charts.js (canvases, zoom), render.js (the active view), views/*.js (one per view).
 import init, * as gd from "./pkg/gyrodrift.js";
+import initPlot from "./pkg/plot/gyrodrift_plot.js";
 import { $, state, defaults, readUrl, urlHash, hdrOptions, PARAMS, GYRO_PARAMS, VIEW_KIND } from "./state.js";
 import { loadFiles, loadSamples } from "./loading.js";
 import { buildParams, syncParams, logFor } from "./controls.js";
@@ -12,7 +13,8 @@ import { runTune, reportExports } from "./views/report.js";
 
 // ---------- start ----------
 async function main() {
-  await init();
+  // The methods' module and the charts' module (the worker loads the whole package itself).
+  await Promise.all([init(), initPlot()]);
   state.params = defaults();
   state.gyro = { thres_rate_dps: gd.defaults("gyrodometry").thres_rate_dps };
   const wantLog = readUrl();

@@ -1,5 +1,5 @@
 // Charts: canvases drawn by the wasm package, and zoom, pan and cursor on the time charts.
-import * as gd from "./pkg/gyrodrift.js";
+import * as plot from "./pkg/plot/gyrodrift_plot.js";
 import { $, state } from "./state.js";
 import { scheduleRender } from "./render.js";
 
@@ -55,7 +55,7 @@ export function chart(id, spec) {
   const shown = { ...spec, series: (spec.series || []).filter((s) => !hidden.has(s.name)), legend: false, dpr };
   if (spec.shade && hidden.has(spec.shade.label)) delete shown.shade;
   state.specs[id] = shown;
-  const L = (state.layouts[id] = gd.drawChart(c, shown));
+  const L = (state.layouts[id] = plot.drawChart(c, shown));
   c.dataset.drawn = String(Number(c.dataset.drawn || 0) + 1);
   // A text alternative for screen readers: what the chart shows and over which ranges.
   const r = (v) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
@@ -131,9 +131,9 @@ export function attachTimeInteraction(id) {
 /** The chart as a PNG data URL, its legend drawn in (the page's legend is outside it). */
 export function pngOf(id) {
   const c = $(id);
-  if (state.specs[id]) gd.drawChart(c, { ...state.specs[id], legend: true });
+  if (state.specs[id]) plot.drawChart(c, { ...state.specs[id], legend: true });
   const url = c.toDataURL("image/png");
-  if (state.specs[id]) gd.drawChart(c, state.specs[id]);
+  if (state.specs[id]) plot.drawChart(c, state.specs[id]);
   return url;
 }
 

@@ -98,7 +98,7 @@ export function addParsed(name, make) {
 }
 
 /** Raw logger exports: the preset detected from all of them (or a dropped recipe .json),
- * imported (in the worker when large) and added as one log; an error entry otherwise. */
+ * imported in the worker and added as one log; an error entry otherwise. */
 async function importRaw(files, recipe) {
   const label = files.map((f) => f.name).join(", ");
   $("status").textContent = `importing ${label}…`;
@@ -108,37 +108,25 @@ async function importRaw(files, recipe) {
     bytes[f.name] = new Uint8Array(await f.arrayBuffer());
     total += f.size;
   }
-  let res;
-  if (total > WORKER_BYTES && window.Worker) {
+  // In the worker always: it holds the whole package (the page's module has no import).
+  let res = { error: "this browser has no Web Workers: import with gyrodrift import" };
+  if (window.Worker) {
     const bar = $("progress");
-    bar.hidden = false;
+    bar.hidden = total < WORKER_BYTES;
     bar.removeAttribute("value"); // no progress from inside an import: indeterminate
     res = await inWorker({ type: "import", files: bytes, recipe }, Object.values(bytes).map((b) => b.buffer), () => {});
     bar.hidden = true;
-  } else {
-    res = importHere(bytes, recipe);
   }
   const before = state.entries.length;
   const entry = addParsed(label, () => {
     if (res.error) throw new Error(res.error);
-    const log = res.log || gd.Log.fromColumns(res.data);
+    const log = gd.Log.fromColumns(res.data);
     if (!log.name || log.name === "log") log.name = files[0].name;
     return log;
   });
   // This import's entries (a log split at gaps is several) carry how they were imported.
   if (!entry.error) for (const e of state.entries.slice(before)) e.imported = res.detection;
   return entry;
-}
-
-/** Detection (unless a recipe is given) and import on this thread: {log, detection} or {error}. */
-export function importHere(bytes, recipe) {
-  try {
-    const d = recipe ? { preset: "recipe", title: "your recipe", recipe, used: [], ignored: [] } : gd.detectImport(bytes);
-    const { log, summary } = gd.importLog(d.recipe, bytes);
-    return { log, detection: { ...d, summary } };
-  } catch (e) {
-    return { error: e.message };
-  }
 }
 
 export async function loadFiles(files) {

@@ -1,9 +1,10 @@
-// Work off the main thread with the same wasm package, so the page never freezes:
+// Work off the main thread with the whole wasm package (pkg/full: the page's own module has
+// no import, tuning or simulation), so the page never freezes:
 // - parse: a large log, with progress; the columns go back transferred, not copied, and
 //   the page rebuilds the Log from them;
 // - import: raw logger files by their detected preset (or a given recipe);
 // - tune: the HDR parameters over the drives' columns, with progress.
-import init, { Log, tune, detectImport, importLog } from "./pkg/gyrodrift.js";
+import init, { Log, tune, detectImport, importLog } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 

@@ -198,6 +198,7 @@ pub fn report_csv(
 
 /// Tunes the five HDR parameters on `train` and reports Table III vs tuned on both sets.
 /// `progress(fraction)`, if given, is called as the search goes (e.g. from a Web Worker).
+#[cfg(feature = "tune")]
 #[wasm_bindgen(unchecked_return_type = "TuneReport")]
 pub fn tune(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] train: JsValue,
@@ -224,6 +225,7 @@ pub fn tune(
 
 /// Simulates a log with known truth (the CLI's `simulate`); the same seed gives the same
 /// log as the native CLI.
+#[cfg(feature = "sim")]
 #[wasm_bindgen]
 pub fn simulate(#[wasm_bindgen(unchecked_param_type = "SimRequest")] request: JsValue) -> JsResult<Log> {
     let req: sim::SimRequest = self::options("simulate", request)?;
@@ -378,4 +380,16 @@ pub fn compare_table(
         "csv" => Ok(c.to_csv()),
         other => Err(err(format!("compareTable: format \"{other}\" is not markdown or csv"))),
     }
+}
+
+/// The value of a series at time t, linearly interpolated (core's rule), NaN outside.
+#[wasm_bindgen(js_name = valueAt)]
+pub fn value_at(x: &[f64], y: &[f64], t: f64) -> f64 {
+    gyrodrift::metrics::value_at(x, y, t)
+}
+
+/// Whether a file (its first bytes suffice) is a drive log v1 already, not a raw export.
+#[wasm_bindgen(js_name = isDriveLog)]
+pub fn is_drive_log(name: &str, head: &[u8]) -> bool {
+    gyrodrift::import::sniff(name, head).is_ok_and(|s| s.is_drive_log())
 }

@@ -56,9 +56,3 @@ pub fn detect_import(#[wasm_bindgen(unchecked_param_type = "Record<string, Uint8
     set(&out, "ignored", &to_js(&d.ignored)?)?;
     Ok(out.into())
 }
-
-/// Whether a file (its first bytes suffice) is a drive log v1 already, not a raw export.
-#[wasm_bindgen(js_name = isDriveLog)]
-pub fn is_drive_log(name: &str, head: &[u8]) -> bool {
-    import::sniff(name, head).is_ok_and(|s| s.is_drive_log())
-}

@@ -4,19 +4,32 @@
 //! every fallible call returns `Result`. One file per concern: conversions, the log
 //! registry, batch methods, streaming estimators, import, plotting, TypeScript types.
 
+// A build with only some features (scripts/lib.sh builds the parts) leaves helpers unused.
+#![cfg_attr(not(all(feature = "core", feature = "import", feature = "plot", feature = "tune", feature = "sim")), allow(dead_code, unused_imports))]
+
 use wasm_bindgen::prelude::*;
 
+
+#[cfg(feature = "core")]
 mod batch;
 mod convert;
+#[cfg(feature = "import")]
 mod import;
+#[cfg(feature = "core")]
 mod log;
+#[cfg(feature = "plot")]
 mod plot;
+#[cfg(feature = "core")]
 mod streaming;
 mod types;
 
+#[cfg(feature = "core")]
 pub use batch::*;
+#[cfg(feature = "import")]
 pub use import::*;
+#[cfg(feature = "core")]
 pub use log::Log;
+#[cfg(feature = "core")]
 pub use streaming::*;
 
 type JsResult<T> = Result<T, JsValue>;

@@ -346,9 +346,3 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
     let (xr, yr) = chart.plotting_area().get_pixel_range();
     Ok(Layout { left: xr.start, right: xr.end, top: yr.start, bottom: yr.end, x_min: x0, x_max: x1, y_min: y0, y_max: y1 })
 }
-
-/// The value of a series at time t, linearly interpolated (core's rule), NaN outside.
-#[wasm_bindgen(js_name = valueAt)]
-pub fn value_at(x: &[f64], y: &[f64], t: f64) -> f64 {
-    gyrodrift::metrics::value_at(x, y, t)
-}
