@@ -5,10 +5,12 @@
 //! registry, batch methods, streaming estimators, import, plotting, TypeScript types.
 
 // A build with only some features (scripts/lib.sh builds the parts) leaves helpers unused.
-#![cfg_attr(not(all(feature = "core", feature = "import", feature = "plot", feature = "tune", feature = "sim")), allow(dead_code, unused_imports))]
+#![cfg_attr(
+    not(all(feature = "core", feature = "import", feature = "plot", feature = "tune", feature = "sim")),
+    allow(dead_code, unused_imports)
+)]
 
 use wasm_bindgen::prelude::*;
-
 
 #[cfg(feature = "core")]
 mod batch;
