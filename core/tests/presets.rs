@@ -132,3 +132,31 @@ fn a_bad_file_in_a_detected_set_names_file_line_and_column() {
     assert!(e.contains("Gyroscope.csv") && e.contains("line 42") && e.contains("Gyroscope x (rad/s)"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn mixed_clocks_and_a_truncated_last_row() {
+    let paths = wild("sensor-logger");
+    let sniffed: Vec<_> = paths.iter().map(|p| sniff(&name(p), &std::fs::read(p).unwrap()).unwrap()).collect();
+    let d = detect(&sniffed).unwrap();
+    let read = |n: &str, cut: usize| -> Vec<u8> {
+        let b = std::fs::read(paths.iter().find(|p| name(p) == n).unwrap()).unwrap();
+        b[..b.len() - cut].to_vec()
+    };
+    // The location on its epoch-ns clock, the gyro on seconds since the start: refused.
+    let mut v = d.recipe_json.clone();
+    for t in v["table"].as_array_mut().unwrap() {
+        if t["id"] == "location" {
+            t["time"] = serde_json::json!({ "column": "time", "unit": "ns" });
+        }
+    }
+    let recipe: gyrodrift::import::Recipe = serde_json::from_value(v).unwrap();
+    let mut files: std::collections::BTreeMap<String, Vec<u8>> =
+        ["Gyroscope.csv", "Gravity.csv", "Location.csv"].iter().map(|n| (n.to_string(), read(n, 0))).collect();
+    let e = import(&recipe, &mut files).unwrap_err().to_string();
+    assert!(e.contains("Location.csv") && e.contains("Gyroscope.csv") && e.contains("different clocks"), "{e}");
+    // A file cut inside its last row (a logger killed mid-write): the rows before it import,
+    // the cut row's missing values stay missing.
+    files.insert("Gyroscope.csv".into(), read("Gyroscope.csv", 25));
+    let (_, s) = import(&d.recipe, &mut files).unwrap();
+    assert_eq!(s.n_gyro, 999);
+}

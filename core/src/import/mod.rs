@@ -62,6 +62,7 @@ pub fn import(recipe: &Recipe, files: &mut dyn Files) -> Result<(DriveLog, Impor
         gyro_t.iter_mut().for_each(|t| *t += lag);
         align_offset = Some(lag);
     }
+    check_clocks(recipe, &tables, &gyro_t)?;
 
     // Reference heading, deg CCW (time, value).
     let mut positions = None;
@@ -205,6 +206,33 @@ fn wanted_columns(recipe: &Recipe) -> Result<BTreeMap<String, BTreeSet<String>>>
         want(&v.table, &[&v.column], "temperature")?;
     }
     Ok(wanted)
+}
+
+/// Tables on another clock than the gyro's (epoch seconds against seconds since boot)
+/// would merge into nonsense: a table whose times do not overlap the gyro's at all is an
+/// error naming both and the fix. The gravity's table only gives a mean: not checked.
+fn check_clocks(recipe: &Recipe, tables: &BTreeMap<String, Table>, gyro_t: &[f64]) -> Result<()> {
+    let (g0, g1) = (gyro_t[0], gyro_t[gyro_t.len() - 1]);
+    let gravity = recipe.yaw_rate.gravity.as_ref().and_then(|g| g.table.as_deref());
+    let align = recipe.align.as_ref().map(|a| a.rate.table.as_str());
+    for (id, t) in tables {
+        if *id == recipe.yaw_rate.table || Some(id.as_str()) == gravity || Some(id.as_str()) == align {
+            continue;
+        }
+        let (a0, a1) = (t.time_s[0], t.time_s[t.time_s.len() - 1]);
+        if a1 < g0 || a0 > g1 {
+            return Err(recipe_err(
+                &format!("table {id} time"),
+                format!(
+                    "{}: its times ({a0:.3} to {a1:.3} s) do not overlap the gyro's in {} ({g0:.3} to {g1:.3} s): \
+                     the two files use different clocks; use the same time column in both, or give one \
+                     `relative = true` or an `offset_s`",
+                    t.file, tables[&recipe.yaw_rate.table].file
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The rows that carry a sample and its time: every row, or (with a slow sensor's own time
