@@ -2,6 +2,7 @@
 import * as gd from "./pkg/gyrodrift.js";
 import { $, fmt, state, hdrOptions, SAMPLES } from "./state.js";
 import { renderList, selectEntry } from "./controls.js";
+import { openMapping } from "./mapping.js";
 
 export function addLog(name, bytes) {
   // a bad file shows its error and changes nothing else
@@ -109,13 +110,21 @@ async function importRaw(files, recipe) {
     total += f.size;
   }
   // In the worker always: it holds the whole package (the page's module has no import).
-  let res = { error: "this browser has no Web Workers: import with gyrodrift import" };
-  if (window.Worker) {
+  // The bytes are copied, not transferred: the mapping panel may import them again.
+  const importer = async (r, title) => {
+    if (!window.Worker) return { error: "this browser has no Web Workers: import with gyrodrift import" };
     const bar = $("progress");
     bar.hidden = total < WORKER_BYTES;
     bar.removeAttribute("value"); // no progress from inside an import: indeterminate
-    res = await inWorker({ type: "import", files: bytes, recipe }, Object.values(bytes).map((b) => b.buffer), () => {});
+    const out = await inWorker({ type: "import", files: bytes, recipe: r, title }, [], () => {});
     bar.hidden = true;
+    return out;
+  };
+  let res = await importer(recipe);
+  if (res.stage === "detect") {
+    // No preset fits: the user maps the columns (cancel keeps the error entry).
+    const mapped = await openMapping(files.map((f) => ({ name: f.name, bytes: bytes[f.name] })), res.error, (r) => importer(r, "your column mapping"));
+    if (mapped) res = { ...mapped.res, detection: { ...mapped.res.detection, recipe: mapped.recipe } };
   }
   const before = state.entries.length;
   const entry = addParsed(label, () => {

@@ -34,9 +34,15 @@ self.onmessage = async (ev) => {
       return;
     }
     if (type === "import") {
-      const d = ev.data.recipe
-        ? { preset: "recipe", title: "your recipe", recipe: ev.data.recipe, used: [], ignored: [] }
-        : detectImport(ev.data.files);
+      let d;
+      try {
+        d = ev.data.recipe
+          ? { preset: "recipe", title: ev.data.title || "your recipe", recipe: ev.data.recipe, used: [], ignored: [] }
+          : detectImport(ev.data.files);
+      } catch (e) {
+        self.postMessage({ id, error: e.message, stage: "detect" });
+        return;
+      }
       const { log, summary } = importLog(d.recipe, ev.data.files);
       const data = log.toColumns();
       log.free();

@@ -399,7 +399,7 @@ export interface Recipe {
   yaw_rate: RateSpec;
   positions?: { table: string; kind: "latlon" | "utm" | "ecef" | "enu"; columns: string[] };
   heading?:
-    | { source: "column"; table: string; column: string; unit: "deg" | "rad"; positive: Sense; speed_column?: string; min_speed_mps?: number; time_column?: string }
+    | { source: "column"; table: string; column: string; unit: "deg" | "rad"; positive: Sense; speed_column?: string; speed_unit?: "m/s" | "km/h" | "mph"; min_speed_mps?: number; time_column?: string }
     | { source: "positions"; min_distance_m?: number; min_speed_mps?: number };
   speed?: { source: "column"; table: string; column: string; unit: "m/s" | "km/h" | "mph"; time_column?: string } | { source: "positions"; window_s?: number };
   odometry?: { table: string; left: string[]; right: string[]; kind: "speed" | "travel"; unit: string; track_m: number };
@@ -418,6 +418,14 @@ export interface ImportSummary {
   start_time_s: number;
   /** What the time policies did, over all tables. */
   time_fixes: { merged_duplicates: number; dropped_duplicates: number; sorted_backward: number; dropped_backward: number };
+}
+/** A raw file's dialect and header, as `sniffFile` reads them. */
+export interface Sniffed {
+  name: string;
+  delimiter: "," | ";" | "\t" | "|";
+  decimal_comma: boolean;
+  skip_lines: number;
+  header: string[];
 }
 /** What `detectImport` found: the logger's preset and its recipe, ready for `importLog`. */
 export interface Detection {

@@ -266,9 +266,10 @@ fn samples_of(t: &Table, time_column: Option<&str>, used_by: &str) -> Result<Vec
 fn reference_heading(recipe: &Recipe, tables: &BTreeMap<String, Table>, positions: Option<&Positions>) -> Result<(Vec<f64>, Vec<f64>)> {
     Ok(match &recipe.heading {
         None => (Vec::new(), Vec::new()),
-        Some(HeadingSpec::Column { table, column, unit, positive, speed_column, min_speed_mps, time_column }) => {
+        Some(HeadingSpec::Column { table, column, unit, positive, speed_column, speed_unit: su, min_speed_mps, time_column }) => {
             let t = &tables[table];
             let k = angle_unit(unit, "heading.unit")? * positive.factor();
+            let ks = speed_unit(su.as_deref().unwrap_or("m/s"), "heading.speed_unit")?;
             let v = t.col(column, "heading")?;
             let s = match speed_column {
                 Some(c) => Some(t.col(c, "heading.speed_column")?),
@@ -276,7 +277,7 @@ fn reference_heading(recipe: &Recipe, tables: &BTreeMap<String, Table>, position
             };
             let (mut ts, mut vs) = (Vec::new(), Vec::new());
             for (i, time) in samples_of(t, time_column.as_deref(), "heading.time_column")? {
-                let moving = s.is_none_or(|s| s[i] >= *min_speed_mps);
+                let moving = s.is_none_or(|s| s[i] * ks >= *min_speed_mps);
                 if v[i].is_finite() && moving {
                     ts.push(time);
                     vs.push(crate::metrics::wrap_diff_deg(v[i] * k));

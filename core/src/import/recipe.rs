@@ -222,8 +222,10 @@ pub enum HeadingSpec {
         /// deg or rad.
         unit: String,
         positive: Sense,
-        /// A speed column of the same table, m/s, gating the heading.
+        /// A speed column of the same table gating the heading, in `speed_unit` (m/s, km/h
+        /// or mph; default m/s).
         speed_column: Option<String>,
+        speed_unit: Option<String>,
         min_speed_mps: f64,
         /// A slow sensor repeated on every fast row (a phone's location in its IMU rows):
         /// the column of the sensor's own time, s. A sample is taken only where it
@@ -254,6 +256,7 @@ pub(super) struct HeadingWire {
     unit: Option<String>,
     positive: Option<Sense>,
     speed_column: Option<String>,
+    speed_unit: Option<String>,
     min_speed_mps: Option<f64>,
     min_distance_m: Option<f64>,
     time_column: Option<String>,
@@ -285,6 +288,7 @@ impl TryFrom<HeadingWire> for HeadingSpec {
                     unit: needed(w.unit, "heading", "unit", "column")?,
                     positive: needed(w.positive, "heading", "positive", "column")?,
                     speed_column: w.speed_column,
+                    speed_unit: w.speed_unit,
                     min_speed_mps: w.min_speed_mps.unwrap_or(0.0),
                     time_column,
                 })
@@ -299,6 +303,7 @@ impl TryFrom<HeadingWire> for HeadingSpec {
                         ("unit", w.unit.is_some()),
                         ("positive", w.positive.is_some()),
                         ("speed_column", w.speed_column.is_some()),
+                        ("speed_unit", w.speed_unit.is_some()),
                         ("time_column", w.time_column.is_some()),
                     ],
                 )?;

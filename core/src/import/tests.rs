@@ -228,3 +228,22 @@ fn a_slow_sensor_in_fast_rows_gives_one_sample_per_own_time_at_that_time() {
     let bad = r#"{"source": "positions", "time_column": "x"}"#;
     assert!(serde_json::from_str::<HeadingSpec>(bad).unwrap_err().to_string().contains("time_column"));
 }
+
+#[test]
+fn the_heading_gate_reads_its_speed_column_in_its_unit() {
+    // 18 km/h = 5 m/s: with speed_unit km/h the rows at 20 km/h pass a 5 m/s gate, those at
+    // 10 km/h do not; read as m/s, all of them would.
+    let csv = "t,w,course,v\n0,0,10,10\n1,0,11,20\n2,0,12,20\n3,0,13,10\n";
+    let mut r = one_table("");
+    r.heading = serde_json::from_value(serde_json::json!({ "source": "column", "table": "a", "column": "course", "unit": "deg",
+        "positive": "cw", "speed_column": "v", "speed_unit": "km/h", "min_speed_mps": 5.0 }))
+    .unwrap();
+    let (log, s) = import(&r, &mut files(csv)).unwrap();
+    assert_eq!(s.n_reference, 2);
+    let refs: Vec<f64> = log.column(Column::RefHeadingDeg).unwrap().iter().copied().filter(|x| x.is_finite()).collect();
+    assert_eq!(refs, [-11.0, -12.0]);
+    r.heading = serde_json::from_value(serde_json::json!({ "source": "column", "table": "a", "column": "course", "unit": "deg",
+        "positive": "cw", "speed_column": "v", "speed_unit": "knots", "min_speed_mps": 5.0 }))
+    .unwrap();
+    assert!(import(&r, &mut files(csv)).unwrap_err().to_string().contains("heading.speed_unit"));
+}

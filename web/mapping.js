@@ -1,0 +1,224 @@
+// The mapping panel: raw files no preset fits. The user says which column is the time, the
+// gyro (one axis, or three projected on gravity), the reference heading (a column or
+// positions) and the speed; a live preview imports with that recipe in the worker and
+// plots the integrated gyro against the reference. The recipe can be saved and re-used.
+import * as gd from "./pkg/gyrodrift.js";
+import * as plot from "./pkg/plot/gyrodrift_plot.js";
+import { $, COLORS } from "./state.js";
+import { download } from "./charts.js";
+
+const TIME_UNITS = ["s", "ms", "us", "ns", "iso8601"];
+const RATE_UNITS = ["deg/s", "rad/s", "mrad/s", "deg/h"];
+const SPEED_UNITS = ["m/s", "km/h", "mph"];
+
+/** The first column (as "file index:column") whose name matches, or "". */
+function guess(files, re, not) {
+  for (const [i, f] of files.entries()) for (const c of f.header) if (re.test(c) && !(not && not.test(c))) return `${i}:${c}`;
+  return "";
+}
+
+function timeUnitOf(name) {
+  if (/iso|date|utc|txt/i.test(name)) return "iso8601";
+  if (/\bns\b|_ns|nanos/i.test(name)) return "ns";
+  if (/\bus\b|_us|µs|micros/i.test(name)) return "us";
+  if (/\bms\b|_ms|millis/i.test(name)) return "ms";
+  return "s";
+}
+
+function select(id, options, value, label) {
+  const s = document.createElement("select");
+  s.id = id;
+  s.setAttribute("aria-label", label);
+  for (const [v, text] of options) s.add(new Option(text, v, false, v === value));
+  return s;
+}
+
+function row(label, ...controls) {
+  const div = document.createElement("div");
+  div.className = "map-row";
+  const l = document.createElement("span");
+  l.textContent = label;
+  div.append(l, ...controls);
+  return div;
+}
+
+/**
+ * Opens the panel for `files` ([{name, bytes}]) with `why` (the detection's error).
+ * `importer(recipe)` imports in the worker: {data, detection} or {error}. Resolves with the
+ * last good import {res, recipe}, or null when cancelled.
+ */
+export function openMapping(files, why, importer) {
+  const sniffed = files.map((f) => gd.sniffFile(f.name, f.bytes.subarray(0, 65536)));
+  const cols = [["", "—"]];
+  sniffed.forEach((s, i) => s.header.forEach((c) => cols.push([`${i}:${c}`, sniffed.length > 1 ? `${s.name} › ${c}` : c])));
+  const dlg = $("mapping");
+  $("mapping-why").textContent = why;
+  const body = $("mapping-fields");
+  body.replaceChildren();
+
+  // Time of each file.
+  const times = sniffed.map((s, i) => {
+    const c = s.header.find((h) => /time|stamp|^t$|^t_|_s$/i.test(h)) || s.header[0];
+    const col = select(`map-time-${i}`, s.header.map((h) => [h, h]), c, `time column of ${s.name}`);
+    const unit = select(`map-time-unit-${i}`, TIME_UNITS.map((u) => [u, u === "iso8601" ? "ISO 8601" : u]), timeUnitOf(c), `time unit of ${s.name}`);
+    col.addEventListener("change", () => (unit.value = timeUnitOf(col.value)));
+    body.append(row(`time of ${s.name}`, col, unit));
+    return { col, unit };
+  });
+
+  // Yaw rate: one axis or three on gravity.
+  const gyroCol = guess(sniffed, /gyro.*z|w_?z\b|yaw.?rate|rate.*z|angular.*z/i) || guess(sniffed, /gyro|rate|yaw/i);
+  const mode = select("map-rate-mode", [["one", "one axis"], ["three", "three axes, projected on gravity"]], "one", "yaw rate from");
+  const rate = select("map-rate", cols, gyroCol, "yaw rate column");
+  const axes = ["x", "y", "z"].map((a) => select(`map-axis-${a}`, cols, guess(sniffed, new RegExp(`gyro.*${a}|w_?${a}\\b|angular.*${a}`, "i")), `gyro ${a} column`));
+  const acc = ["x", "y", "z"].map((a) => select(`map-acc-${a}`, cols, guess(sniffed, new RegExp(`(acc|grav).*${a}|a_?${a}\\b`, "i")), `accelerometer ${a} column`));
+  const rateUnit = select("map-rate-unit", RATE_UNITS.map((u) => [u, u]), /rad/i.test(gyroCol) ? "rad/s" : /deg|dps/i.test(gyroCol) ? "deg/s" : "rad/s", "yaw rate unit");
+  const sense = select("map-rate-sense", [["ccw", "left turn positive (ccw)"], ["cw", "right turn positive (cw)"]], "ccw", "yaw rate sign");
+  const oneRow = row("gyro column", rate);
+  const threeRow = row("gyro x, y, z / accel x, y, z", ...axes, ...acc);
+  body.append(row("yaw rate", mode, rateUnit, sense), oneRow, threeRow);
+
+  // Reference heading.
+  const refCol = guess(sniffed, /course|bearing|heading|direction|cog/i, /accuracy/i);
+  const lat = guess(sniffed, /lat/i);
+  const refMode = select("map-ref-mode", [["none", "none"], ["column", "a heading column"], ["positions", "positions (lat, lon)"]], refCol ? "column" : lat ? "positions" : "none", "reference from");
+  const ref = select("map-ref", cols, refCol, "reference heading column");
+  const refUnit = select("map-ref-unit", [["deg", "deg"], ["rad", "rad"]], /rad/i.test(refCol) ? "rad" : "deg", "reference unit");
+  const refSense = select("map-ref-sense", [["cw", "clockwise from north (GPS course)"], ["ccw", "counter-clockwise"]], "cw", "reference sign");
+  const latSel = select("map-lat", cols, lat, "latitude column");
+  const lonSel = select("map-lon", cols, guess(sniffed, /lon/i), "longitude column");
+  const refRow = row("heading column", ref, refUnit, refSense);
+  const posRow = row("latitude, longitude", latSel, lonSel);
+  body.append(row("reference", refMode), refRow, posRow);
+
+  // Speed and the lead-in.
+  const spCol = guess(sniffed, /speed|velocity|vel_m|v_kmh|\bv\b/i, /accuracy/i);
+  const sp = select("map-speed", cols, spCol, "speed column");
+  const spUnit = select("map-speed-unit", SPEED_UNITS.map((u) => [u, u]), /kmh|km\/h|kph/i.test(spCol) ? "km/h" : /mph/i.test(spCol) ? "mph" : "m/s", "speed unit");
+  const lead = document.createElement("input");
+  Object.assign(lead, { id: "map-lead", type: "number", min: 0, max: 600, step: 1, value: 0 });
+  lead.setAttribute("aria-label", "stationary lead-in, s");
+  body.append(row("speed (optional)", sp, spUnit), row("stationary lead-in, s", lead));
+
+  const show = () => {
+    oneRow.hidden = mode.value !== "one";
+    threeRow.hidden = mode.value !== "three";
+    refRow.hidden = refMode.value !== "column";
+    posRow.hidden = refMode.value !== "positions";
+  };
+
+  /** The recipe the form says, or an error text. */
+  function recipe() {
+    const used = new Set();
+    const at = (v) => {
+      const k = v.indexOf(":");
+      used.add(Number(v.slice(0, k)));
+      return { table: `t${v.slice(0, k)}`, column: v.slice(k + 1) };
+    };
+    const r = { name: `${files[0].name} (mapped)`, description: "imported by a column mapping", bias_s: Number(lead.value) || 0 };
+    if (mode.value === "one") {
+      if (!rate.value) return "choose the gyro column";
+      const g = at(rate.value);
+      r.yaw_rate = { ...g, unit: rateUnit.value, positive: sense.value };
+    } else {
+      if ([...axes, ...acc].some((s) => !s.value)) return "choose three gyro and three accelerometer columns";
+      const g = axes.map((s) => at(s.value));
+      const a = acc.map((s) => at(s.value));
+      if (g.some((x) => x.table !== g[0].table)) return "the three gyro axes must be in one file";
+      r.yaw_rate = { table: g[0].table, axes: g.map((x) => x.column), gravity: { axes: a.map((x) => x.column), table: a[0].table }, unit: rateUnit.value, positive: sense.value };
+    }
+    if (refMode.value === "column" && ref.value) {
+      const h = at(ref.value);
+      r.heading = { source: "column", ...h, unit: refUnit.value, positive: refSense.value };
+      if (sp.value && at(sp.value).table === h.table) Object.assign(r.heading, { speed_column: at(sp.value).column, speed_unit: spUnit.value, min_speed_mps: 5 });
+    } else if (refMode.value === "positions" && latSel.value && lonSel.value) {
+      const p = at(latSel.value);
+      r.positions = { table: p.table, kind: "latlon", columns: [p.column, at(lonSel.value).column] };
+      r.heading = { source: "positions" };
+    }
+    if (sp.value) r.speed = { source: "column", ...at(sp.value), unit: spUnit.value };
+    r.table = [...used].sort().map((i) => {
+      const s = sniffed[i];
+      const t = times[i];
+      const time = t.unit.value === "iso8601" ? { column: t.col.value, format: "iso8601" } : { column: t.col.value, unit: t.unit.value };
+      const spec = { id: `t${i}`, file: s.name, time };
+      if (s.delimiter !== ",") spec.delimiter = s.delimiter;
+      if (s.decimal_comma) spec.decimal_comma = true;
+      if (s.skip_lines) spec.skip_lines = s.skip_lines;
+      return spec;
+    });
+    return r;
+  }
+
+  let last = null;
+  let seq = 0;
+  let timer = 0;
+  async function preview() {
+    show();
+    const r = recipe();
+    const out = $("mapping-preview");
+    last = null;
+    $("mapping-add").disabled = true;
+    $("mapping-save").disabled = typeof r === "string";
+    if (typeof r === "string") {
+      out.textContent = r;
+      out.className = "map-preview bad";
+      return;
+    }
+    const n = ++seq;
+    out.textContent = "importing…";
+    const res = await importer(r);
+    if (n !== seq) return; // a newer choice is on its way
+    if (res.error) {
+      out.textContent = res.error;
+      out.className = "map-preview bad";
+      return;
+    }
+    const s = res.detection.summary;
+    out.className = "map-preview";
+    out.textContent = `${s.n_rows} rows, ${s.n_gyro} gyro samples, ${s.n_reference} reference headings, ${s.duration_min.toFixed(1)} min`;
+    last = { res, recipe: r };
+    $("mapping-add").disabled = false;
+    drawPreview(res.data);
+  }
+  // A change makes the shown preview stale at once: Add waits for the new one.
+  const schedule = () => {
+    clearTimeout(timer);
+    last = null;
+    $("mapping-add").disabled = true;
+    $("mapping-preview").textContent = "updating…";
+    timer = setTimeout(preview, 250);
+  };
+  body.addEventListener("change", schedule);
+  body.addEventListener("input", schedule);
+  $("mapping-save").onclick = () => {
+    const r = recipe();
+    if (typeof r !== "string") download(`${files[0].name}.recipe.json`, JSON.stringify(r, null, 2), "application/json");
+  };
+  $("mapping-cancel").onclick = () => dlg.close();
+  preview();
+  dlg.showModal();
+  return new Promise((resolve) => {
+    $("mapping-add").onclick = () => {
+      resolve(last);
+      dlg.close();
+    };
+    dlg.onclose = () => resolve(null);
+  });
+}
+
+/** Integrated gyro against the reference, from the imported columns. */
+function drawPreview(data) {
+  const c = $("mapping-plot");
+  const log = gd.Log.fromColumns(data);
+  try {
+    const run = gd.runHdr(log, {}); // the lead-in of the mapping (the log's bias_s)
+    const series = [{ name: "gyro, integrated", color: COLORS.raw, x: run.trace.time_s, y: run.trace.heading_raw_deg }];
+    if (run.reference) series.push({ name: "reference", color: COLORS.ref, x: run.reference.time_s, y: run.reference.heading_deg, points: true });
+    plot.drawChart(c, { title: "preview: heading (gyro integrated from the lead-in bias)", x_label: "time (s)", y_label: "heading (deg)", series, legend: true, dpr: window.devicePixelRatio || 1 });
+  } catch (e) {
+    c.getContext("2d").clearRect(0, 0, c.width, c.height);
+  } finally {
+    log.free();
+  }
+}
