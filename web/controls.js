@@ -1,7 +1,7 @@
 // The log list, the selection, and the parameter forms.
 import { $, fmt, state, VIEW_KIND } from "./state.js";
 import { render, scheduleRender } from "./render.js";
-import { download } from "./charts.js";
+import { saveRecipe } from "./loading.js";
 
 // ---------- list and selection ----------
 export function renderList() {
@@ -47,9 +47,9 @@ export function renderList() {
         save.type = "button";
         save.className = "link";
         save.textContent = "recipe";
-        save.title = "Save the recipe (JSON): drop it with the files again, or gyrodrift import --recipe";
+        save.title = "Save the recipe (TOML): drop it with the files again, or gyrodrift import --recipe";
         save.setAttribute("aria-label", `Save the import recipe of ${e.name}`);
-        save.addEventListener("click", () => download(`${e.name}.recipe.json`, JSON.stringify(e.imported.recipe, null, 2), "application/json"));
+        save.addEventListener("click", () => saveRecipe(e.name, e.imported.recipe));
         imp.append(" ", save);
         li.append(imp);
       }

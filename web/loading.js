@@ -3,6 +3,7 @@ import * as gd from "./pkg/gyrodrift.js";
 import { $, fmt, state, hdrOptions, SAMPLES } from "./state.js";
 import { renderList, selectEntry } from "./controls.js";
 import { openMapping } from "./mapping.js";
+import { download } from "./charts.js";
 
 export function addLog(name, bytes) {
   // a bad file shows its error and changes nothing else
@@ -98,7 +99,7 @@ export function addParsed(name, make) {
   }
 }
 
-/** Raw logger exports: the preset detected from all of them (or a dropped recipe .json),
+/** Raw logger exports: the preset detected from all of them (or a dropped recipe, .toml or .json),
  * imported in the worker and added as one log; an error entry otherwise. */
 async function importRaw(files, recipe) {
   const label = files.map((f) => f.name).join(", ");
@@ -138,16 +139,28 @@ async function importRaw(files, recipe) {
   return entry;
 }
 
+/** Saves a recipe as TOML (written by the worker's module), as `gyrodrift import --recipe` reads it. */
+export async function saveRecipe(name, recipe) {
+  const res = await inWorker({ type: "toml-out", recipe }, [], () => {});
+  if (res.error) download(`${name}.recipe.json`, JSON.stringify(recipe, null, 2), "application/json");
+  else download(`${name}.recipe.toml`, res.data, "application/toml");
+}
+
 export async function loadFiles(files) {
   // Drive logs v1 open as they are; other files are raw exports, imported together by the
-  // preset they fit (a recipe .json dropped with them is used instead of detection).
+  // preset they fit (a recipe .toml or .json dropped with them is used instead of detection).
   const logs = [];
   const raw = [];
   let recipe = null;
   for (const f of files) {
-    if (/\.json$/i.test(f.name)) {
+    if (/\.(json|toml)$/i.test(f.name)) {
       try {
-        recipe = JSON.parse(await f.text());
+        if (/\.json$/i.test(f.name)) recipe = JSON.parse(await f.text());
+        else {
+          const res = await inWorker({ type: "toml-in", text: await f.text() }, [], () => {});
+          if (res.error) throw new Error(res.error);
+          recipe = res.data;
+        }
       } catch (e) {
         state.entries.push({ name: f.name, file: f.name, log: null, error: `${f.name}: not a recipe: ${e.message}`, kind: null, headline: "" });
       }

@@ -5,7 +5,7 @@
 import * as gd from "./pkg/gyrodrift.js";
 import * as plot from "./pkg/plot/gyrodrift_plot.js";
 import { $, COLORS } from "./state.js";
-import { download } from "./charts.js";
+import { saveRecipe } from "./loading.js";
 
 const TIME_UNITS = ["s", "ms", "us", "ns", "iso8601"];
 const RATE_UNITS = ["deg/s", "rad/s", "mrad/s", "deg/h"];
@@ -193,7 +193,7 @@ export function openMapping(files, why, importer) {
   body.addEventListener("input", schedule);
   $("mapping-save").onclick = () => {
     const r = recipe();
-    if (typeof r !== "string") download(`${files[0].name}.recipe.json`, JSON.stringify(r, null, 2), "application/json");
+    if (typeof r !== "string") saveRecipe(files[0].name, r);
   };
   $("mapping-cancel").onclick = () => dlg.close();
   preview();

@@ -2,9 +2,10 @@
 // no import, tuning or simulation), so the page never freezes:
 // - parse: a large log, with progress; the columns go back transferred, not copied, and
 //   the page rebuilds the Log from them;
-// - import: raw logger files by their detected preset (or a given recipe);
+// - import: raw logger files by their detected preset (or a given recipe); recipes to and
+//   from TOML;
 // - tune: the HDR parameters over the drives' columns, with progress.
-import init, { Log, tune, detectImport, importLog } from "./pkg/full/gyrodrift.js";
+import init, { Log, tune, detectImport, importLog, recipeToToml, recipeFromToml } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 
@@ -33,6 +34,8 @@ self.onmessage = async (ev) => {
       self.postMessage({ id, data: report });
       return;
     }
+    if (type === "toml-out") return self.postMessage({ id, data: recipeToToml(ev.data.recipe) });
+    if (type === "toml-in") return self.postMessage({ id, data: recipeFromToml(ev.data.text) });
     if (type === "import") {
       let d;
       try {

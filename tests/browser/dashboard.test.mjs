@@ -289,15 +289,16 @@ for (const [dir, name] of [["sensorlog", "SensorLog.csv (SensorLog)"], ["sensor-
   });
 }
 
-test("the import recipe saves as JSON and, dropped with the files, imports the same log; no fit is a clear error", async () => {
+test("the import recipe saves as TOML and, dropped with the files, imports the same log; no fit is a clear error", async () => {
   const files = wildFiles("px4");
   await page.locator("#file-input").setInputFiles(files);
   await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("PX4"));
   const e1 = await page.locator("#m-e-hdr").innerText();
   const [dl] = await Promise.all([page.waitForEvent("download"), page.locator("#logs li.selected button.link").click()]);
-  const recipe = join(mkdtempSync(join(tmpdir(), "gd-recipe-")), "px4.json");
+  assert.match(dl.suggestedFilename(), /\.recipe\.toml$/);
+  const recipe = join(mkdtempSync(join(tmpdir(), "gd-recipe-")), "px4.toml");
   await dl.saveAs(recipe);
-  assert.equal(JSON.parse(readFileSync(recipe, "utf8")).yaw_rate.table, "imu");
+  assert.match(readFileSync(recipe, "utf8"), /\[yaw_rate\][\s\S]*table = "imu"/);
   const n = await page.locator("#logs li").count();
   await page.locator("#file-input").setInputFiles([...files, recipe]);
   await page.waitForFunction((k) => document.querySelectorAll("#logs li").length === k + 1, n);
@@ -354,7 +355,7 @@ test("files no preset fits open the mapping panel: guessed columns, live preview
   await page.waitForFunction(() => /4\.0 min/.test(document.getElementById("mapping-preview").textContent) && !document.getElementById("mapping-add").disabled);
   await page.screenshot({ path: join(ARTIFACTS, "mapping.png") });
   const [dl] = await Promise.all([page.waitForEvent("download"), page.locator("#mapping-save").click()]);
-  const recipe = join(dir, "mine.json");
+  const recipe = join(dir, "mine.toml");
   await dl.saveAs(recipe);
   await page.locator("#mapping-add").click();
   await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("my-logger.csv (mapped)"));
