@@ -256,19 +256,21 @@ pub fn import(recipe: &Path, data: Option<&Path>, allow_outside: bool, out: Opti
 pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>, json: bool) -> Result<(), Failure> {
     use gyrodrift::import;
     let mut by_name: std::collections::BTreeMap<String, PathBuf> = std::collections::BTreeMap::new();
-    let mut sniffed = Vec::new();
+    let mut names = Vec::new();
     for p in paths {
         let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| p.display().to_string());
         if by_name.insert(name.clone(), p.clone()).is_some() {
             return Err(Failure(format!("{}: two files are named {name}; import one recording at a time", p.display())));
         }
-        let mut head = Vec::with_capacity(import::SNIFF_BYTES);
-        let f = std::fs::File::open(p).map_err(|e| Failure(format!("{}: cannot open: {e}", p.display())))?;
-        std::io::Read::read_to_end(&mut std::io::Read::take(f, import::SNIFF_BYTES as u64), &mut head)
-            .map_err(|e| Failure(format!("{}: cannot read: {e}", p.display())))?;
-        sniffed.push(import::sniff(&name, &head).map_err(|e| Failure(e.to_string()))?);
+        names.push(name);
     }
-    let d = import::detect(&sniffed).map_err(|e| Failure(e.to_string()))?;
+    let mut files = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
+        let path = by_name.get(name).ok_or_else(|| gyrodrift::Error::File(format!("{name}: not among the files given")))?;
+        std::fs::File::open(path)
+            .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn std::io::Read>)
+            .map_err(|e| gyrodrift::Error::File(format!("{}: cannot open: {e}", path.display())))
+    };
+    let (d, log, summary) = import::detect_and_import(&names, &mut files).map_err(|e| Failure(e.to_string()))?;
     let parts: Vec<String> = d.used.iter().map(|(role, f)| format!("{role} = {f}")).collect();
     let mut note = format!("detected preset {} ({}): {}", d.preset, d.title, parts.join(", "));
     if !d.ignored.is_empty() {
@@ -279,20 +281,12 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
         let text = toml::to_string(&d.recipe_json).map_err(|e| Failure(format!("recipe as TOML: {e}")))?;
         return write_stdout(&format!("# gyrodrift import --recipe THIS.toml --data FOLDER (preset {})\n{text}", d.preset));
     }
-    let mut files = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
-        let path = by_name.get(name).ok_or_else(|| gyrodrift::Error::File(format!("{name}: not among the files given")))?;
-        std::fs::File::open(path)
-            .map(|f| Box::new(f) as Box<dyn std::io::Read>)
-            .map_err(|e| gyrodrift::Error::File(format!("{}: cannot open: {e}", path.display())))
-    };
-    let (log, summary) = import::import(&d.recipe, &mut files).map_err(|e| Failure(e.to_string()))?;
     if out.is_some() || !json {
         write_log(&log, out)?;
     }
     if json {
-        print_json(
-            &serde_json::json!({ "preset": d.preset, "files": d.used.iter().map(|(r, f)| (r.to_string(), f.clone())).collect::<std::collections::BTreeMap<_, _>>(), "summary": summary }),
-        )
+        let files: std::collections::BTreeMap<String, String> = d.used.iter().map(|(r, f)| (r.to_string(), f.clone())).collect();
+        print_json(&serde_json::json!({ "preset": d.preset, "files": files, "summary": summary }))
     } else {
         eprintln!("{}", output::import_line(Path::new(&d.used[0].1), &summary));
         Ok(())

@@ -298,6 +298,36 @@ fn import_log<'py>(
     Ok((PyLog::new(log), result_dict(py, &summary)?))
 }
 
+/// A logger's raw files (paths) imported by the preset detected from their names and
+/// headers: (log, summary, detection) with detection = {preset, title, recipe, used, ignored}.
+#[pyfunction]
+fn import_files<'py>(py: Python<'py>, paths: Vec<std::path::PathBuf>) -> PyResult<(PyLog, Bound<'py, PyDict>, Bound<'py, PyDict>)> {
+    let mut by_name = std::collections::BTreeMap::new();
+    let mut names = Vec::new();
+    for p in &paths {
+        let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| p.display().to_string());
+        if by_name.insert(name.clone(), p.clone()).is_some() {
+            return Err(value_err(format!("{}: two files are named {name}; import one recording at a time", p.display())));
+        }
+        names.push(name);
+    }
+    let (d, log, summary) = py
+        .detach(|| {
+            let mut files = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
+                let path = by_name.get(name).ok_or_else(|| gyrodrift::Error::File(format!("{name}: not among the files given")))?;
+                std::fs::File::open(path)
+                    .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn std::io::Read>)
+                    .map_err(|e| gyrodrift::Error::File(format!("{}: cannot open: {e}", path.display())))
+            };
+            gyrodrift::import::detect_and_import(&names, &mut files)
+        })
+        .map_err(value_err)?;
+    let used: Vec<(String, String)> = d.used.iter().map(|(r, f)| (r.to_string(), f.clone())).collect();
+    let detection =
+        serde_json::json!({ "preset": d.preset, "title": d.title, "recipe": d.recipe_json, "used": used, "ignored": d.ignored });
+    Ok((PyLog::new(log), result_dict(py, &summary)?, result_dict(py, &detection)?))
+}
+
 /// The default settings of a method: "hdr", "pipeline", "gyrodometry", "calibration", "tune".
 #[pyfunction]
 fn defaults<'py>(py: Python<'py>, method: &str) -> PyResult<Bound<'py, PyDict>> {
@@ -342,6 +372,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tune, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(import_log, m)?)?;
+    m.add_function(wrap_pyfunction!(import_files, m)?)?;
     m.add_function(wrap_pyfunction!(defaults, m)?)?;
     m.add_function(wrap_pyfunction!(static_bias, m)?)?;
     m.add_function(wrap_pyfunction!(read_log, m)?)?;

@@ -160,6 +160,23 @@ def test_import_by_recipe_equals_the_cli(cli, samples, tmp_path):
         g.import_log(bad, str(SHARED))
 
 
+def test_import_files_detects_the_preset_and_equals_the_cli(cli, samples, tmp_path):
+    folder = samples / "wild" / "phyphox"
+    paths = sorted(str(p) for p in folder.iterdir())
+    log, summary, detection = g.import_files(paths)
+    assert detection["preset"] == "phyphox"
+    assert [u[0] for u in detection["used"]] == ["gyro", "acc", "location"]
+    assert detection["recipe"]["table"][0]["delimiter"] == ";"
+    out = tmp_path / "p.csv"
+    cli("import", *paths, "--out", str(out))
+    assert log.to_csv() == out.read_text()
+    assert summary["n_reference"] > 20
+    odd = tmp_path / "odd.csv"
+    odd.write_text("alpha;beta\n1;2\n")
+    with pytest.raises(ValueError, match="no logger preset .*odd.csv"):
+        g.import_files([str(odd)])
+
+
 def test_the_type_stubs_name_exactly_what_the_module_has():
     import ast
     import pathlib

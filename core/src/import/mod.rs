@@ -20,7 +20,7 @@ mod time;
 mod units;
 
 pub use geo::*;
-pub use presets::{detect, presets, Detection};
+pub use presets::{detect, detect_and_import, presets, Detection};
 pub use recipe::*;
 pub use sniff::{sniff, Sniffed, SNIFF_BYTES};
 pub use time::*;

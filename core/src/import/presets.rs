@@ -5,7 +5,9 @@
 
 use super::sniff::Sniffed;
 use super::*;
+use crate::log::DriveLog;
 use serde_json::{json, Value};
+use std::io::Read;
 
 /// One file a preset reads.
 struct Role {
@@ -408,4 +410,19 @@ fn no_fit(files: &[Sniffed]) -> Error {
             header(&files[0])
         ),
     })
+}
+
+/// Detection and import of raw files by name through `files` (each opened once for its
+/// head, then again by the import): what `gyrodrift import FILE...` and the Python
+/// `import_files` do.
+pub fn detect_and_import(names: &[String], files: &mut dyn Files) -> Result<(Detection, DriveLog, ImportSummary)> {
+    let mut sniffed = Vec::with_capacity(names.len());
+    for name in names {
+        let mut head = Vec::new();
+        files.open(name)?.take(super::sniff::SNIFF_BYTES as u64).read_to_end(&mut head).map_err(|e| Error::File(format!("{name}: {e}")))?;
+        sniffed.push(super::sniff::sniff(name, &head)?);
+    }
+    let d = detect(&sniffed)?;
+    let (log, summary) = import(&d.recipe, files)?;
+    Ok((d, log, summary))
 }
