@@ -513,6 +513,31 @@ for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyro
   });
 }
 
+test("axe-core finds no serious or critical accessibility violation in any view", async () => {
+  await page.addScriptTag({ path: join(ROOT, "tests", "node_modules", "axe-core", "axe.min.js") });
+  // The check can fail: a nameless button put in the page is found (then removed).
+  const probe = await page.evaluate(async () => {
+    const b = document.createElement("button");
+    b.id = "axe-probe";
+    document.body.append(b);
+    const v = (await window.axe.run("#axe-probe", { resultTypes: ["violations"] })).violations.map((v) => `${v.id}:${v.impact}`);
+    b.remove();
+    return v;
+  });
+  assert.ok(probe.includes("button-name:critical"), probe.join(" "));
+  const found = [];
+  for (const view of ["hdr", "track", "gyrodometry", "calibration", "allan", "report"]) {
+    await page.locator(`#tabs button[data-view="${view}"]`).click();
+    await page.waitForFunction((v) => !document.getElementById(`view-${v}`).hidden, view);
+    const res = await page.evaluate(async () => (await window.axe.run(document, { resultTypes: ["violations"] })).violations
+      .filter((v) => v.impact === "serious" || v.impact === "critical")
+      .map((v) => `${v.id} (${v.impact}): ${v.nodes.slice(0, 3).map((n) => n.target.join(" ")).join(", ")}`));
+    found.push(...res.map((r) => `${view}: ${r}`));
+  }
+  await page.locator("#tabs button[data-view=hdr]").click();
+  assert.deepEqual(found, []);
+});
+
 test("at phone width the log list stacks above the views and the charts take the width", async () => {
   await page.setViewportSize({ width: 390, height: 900 });
   try {
