@@ -12,7 +12,7 @@ export function sizeCanvas(c) {
 }
 
 /** The chart's legend as buttons above it, outside the data; a click hides or shows the
- * series. Guide lines ("zero") are not listed. */
+ * series (all of that name: a band's two edges are one key). Guide lines ("zero") are not listed. */
 function legend(id, spec, hidden) {
   const c = $(id);
   let box = document.getElementById(`legend-${id}`);
@@ -24,7 +24,7 @@ function legend(id, spec, hidden) {
     box.setAttribute("aria-label", "Series (click to hide or show)");
     c.before(box);
   }
-  const keys = [...(spec.shade?.label ? [{ name: spec.shade.label, color: spec.shade.color, shade: true }] : []), ...(spec.series || [])].filter((s) => s.name && s.name !== "zero");
+  const keys = [...(spec.shade?.label ? [{ name: spec.shade.label, color: spec.shade.color, shade: true }] : []), ...(spec.series || [])].filter((s, i, all) => s.name && s.name !== "zero" && all.findIndex((o) => o.name === s.name) === i);
   const sig = keys.map((k) => `${k.name}:${hidden.has(k.name)}`).join("|");
   if (box.dataset.sig === sig) return;
   box.dataset.sig = sig;
@@ -60,7 +60,9 @@ export function chart(id, spec) {
   // A text alternative for screen readers: what the chart shows and over which ranges.
   const r = (v) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
   const names = (spec.series || []).map((s) => s.name).filter((n) => n && n !== "zero");
-  c.setAttribute("aria-label", `${spec.title}: ${names.join(", ")}; ${spec.x_label || "x"} ${r(L.x_min)} to ${r(L.x_max)}, ${spec.y_label || "y"} ${r(L.y_min)} to ${r(L.y_max)}`);
+  const per = { min: 60, h: 3600 }[L.x_unit] || 1;
+  const xl = L.x_unit ? `${spec.x_label} (${L.x_unit})` : spec.x_label || "x";
+  c.setAttribute("aria-label", `${spec.title}: ${names.join(", ")}; ${xl} ${r(L.x_min / per)} to ${r(L.x_max / per)}, ${spec.y_label || "y"} ${r(L.y_min)} to ${r(L.y_max)}`);
 }
 
 export function timeRange(t) {

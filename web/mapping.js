@@ -215,7 +215,7 @@ function drawPreview(data) {
     const run = gd.runHdr(log, {}); // the lead-in of the mapping (the log's bias_s)
     const series = [{ name: "gyro, integrated", color: COLORS.raw, x: run.trace.time_s, y: run.trace.heading_raw_deg }];
     if (run.reference) series.push({ name: "reference", color: COLORS.ref, x: run.reference.time_s, y: run.reference.heading_deg, points: true });
-    plot.drawChart(c, { title: "preview: heading (gyro integrated from the lead-in bias)", x_label: "time (s)", y_label: "heading (deg)", series, legend: true, dpr: window.devicePixelRatio || 1 });
+    plot.drawChart(c, { title: "preview: heading (gyro integrated from the lead-in bias)", x_label: "time", time_x: true, y_label: "heading (deg)", series, legend: true, dpr: window.devicePixelRatio || 1 });
   } catch (e) {
     c.getContext("2d").clearRect(0, 0, c.width, c.height);
   } finally {

@@ -1,6 +1,6 @@
 //! Human-readable tables with units. Formatting only: every number comes from core.
 
-use gyrodrift::allan::AllanResult;
+use gyrodrift::allan::{AllanConfidence, AllanResult};
 use gyrodrift::calibration::CalibrationRun;
 use gyrodrift::gyrodometry::GyrodometryResult;
 use gyrodrift::hdr::{HdrOptions, HdrResult};
@@ -77,7 +77,7 @@ pub fn calibration_table(path: &Path, run: &CalibrationRun) -> String {
     s
 }
 
-pub fn allan_table(path: &Path, r: &AllanResult) -> String {
+pub fn allan_table(path: &Path, r: &AllanResult, c: &AllanConfidence) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{}: Allan deviation, T0 = {} s", path.display(), trim(r.T0_s));
     let _ = writeln!(s, "  angle random walk   {:.5} deg/sqrt(s) = {:.4} deg/sqrt(h)", r.arw_deg_per_sqrt_s, r.arw_deg_per_sqrt_h);
@@ -88,9 +88,24 @@ pub fn allan_table(path: &Path, r: &AllanResult) -> String {
         r.bias_instability_dph,
         trim(r.tau_at_min_s)
     );
-    let _ = writeln!(s, "  {:>10} {:>14}", "tau (s)", "adev (deg/s)");
-    for (t, a) in r.tau_s.iter().zip(&r.adev_dps) {
-        let _ = writeln!(s, "  {:>10} {a:>14.6}", trim(*t));
+    let _ = writeln!(
+        s,
+        "  68 % band           {:.6} to {:.6} deg/s; the minimum could lie anywhere in tau {} to {} s",
+        c.bias_instability_low_dps,
+        c.bias_instability_high_dps,
+        trim(c.tau_min_range_s[0]),
+        trim(c.tau_min_range_s[1])
+    );
+    let _ = writeln!(
+        s,
+        "  tightest bound      adev {:.6} deg/s at tau = {} s (bias instability {:.6} deg/s)",
+        c.adev_tightest_dps,
+        trim(c.tau_tightest_s),
+        c.adev_tightest_dps / 0.664
+    );
+    let _ = writeln!(s, "  {:>10} {:>14} {:>14} {:>14}", "tau (s)", "adev (deg/s)", "68 % low", "68 % high");
+    for (i, (t, a)) in r.tau_s.iter().zip(&r.adev_dps).enumerate() {
+        let _ = writeln!(s, "  {:>10} {a:>14.6} {:>14.6} {:>14.6}", trim(*t), c.adev_low_dps[i], c.adev_high_dps[i]);
     }
     s
 }

@@ -108,8 +108,8 @@ pub fn arw_line_dps(arw_deg_per_sqrt_s: f64, tau_s: &[f64]) -> Vec<f64> {
     tau_s.iter().map(|t| arw_deg_per_sqrt_s / t.sqrt()).collect()
 }
 
-/// Allan deviation of a log's gyro column (rows with a gyro value).
-pub fn run(log: &DriveLog) -> Result<AllanResult> {
+/// The gyro column's rows with a value, and their mean sample interval T0.
+fn gyro_series(log: &DriveLog) -> Result<(Vec<f64>, f64)> {
     let gyro = log.require(Column::GyroDps, "needed for Allan deviation")?;
     let mut t = Vec::with_capacity(gyro.len());
     let mut y = Vec::with_capacity(gyro.len());
@@ -123,7 +123,89 @@ pub fn run(log: &DriveLog) -> Result<AllanResult> {
         return Err(Error::data(format!("too short for Allan deviation: {} gyro samples (at least 10 are needed)", y.len())));
     }
     let t0 = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    Ok((y, t0))
+}
+
+/// Allan deviation of a log's gyro column (rows with a gyro value).
+pub fn run(log: &DriveLog) -> Result<AllanResult> {
+    let (y, t0) = gyro_series(log)?;
     allan(&y, t0)
+}
+
+/// Allan deviation of a log's gyro column with the confidence of each point.
+pub fn run_with_confidence(log: &DriveLog) -> Result<(AllanResult, AllanConfidence)> {
+    let (y, t0) = gyro_series(log)?;
+    let r = allan(&y, t0)?;
+    let c = confidence(&r, y.len());
+    Ok((r, c))
+}
+
+/// How well each Allan deviation is known (beyond methods.md, which takes the plain
+/// minimum): a one-sigma (about 68 %) band per cluster time, and the cluster times whose
+/// band reaches the minimum's, i.e. where the minimum could as well lie. The last, longest
+/// clusters have few independent averages and wide bands.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AllanConfidence {
+    /// Gyro samples N the deviations were computed from.
+    pub n_samples: usize,
+    /// adev * (1 - e) and adev * (1 + e) with e = relative_error(N, m), per tau.
+    pub adev_low_dps: Vec<f64>,
+    pub adev_high_dps: Vec<f64>,
+    /// The minimum's band, deg/s, and the bias instability's (band / 0.664).
+    pub min_low_dps: f64,
+    pub min_high_dps: f64,
+    pub bias_instability_low_dps: f64,
+    pub bias_instability_high_dps: f64,
+    /// The contiguous cluster times around the minimum whose band reaches below the
+    /// minimum's upper bound, s: the flat bottom of the curve.
+    pub tau_min_range_s: [f64; 2],
+    /// The cluster time whose upper bound is lowest, and its deviation: the point the
+    /// noisy long-tau tail cannot drag down, a conservative place for the minimum.
+    pub tau_tightest_s: f64,
+    pub adev_tightest_dps: f64,
+}
+
+/// Relative one-sigma error of an Allan deviation from N samples at cluster size m,
+/// 1 / sqrt(2 (N / m - 1)) (IEEE Std 952-1997, Annex C; El-Sheimy et al. 2008, Eq. 12).
+/// Conservative for the overlapping estimator, which averages more pairs.
+pub fn relative_error(n: usize, m: usize) -> f64 {
+    let k = n as f64 / m.max(1) as f64;
+    if k > 1.0 {
+        1.0 / (2.0 * (k - 1.0)).sqrt()
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// The confidence of an Allan result computed from `n` samples.
+pub fn confidence(r: &AllanResult, n: usize) -> AllanConfidence {
+    let e: Vec<f64> = r.m.iter().map(|&m| relative_error(n, m).min(1.0)).collect();
+    let low: Vec<f64> = r.adev_dps.iter().zip(&e).map(|(a, e)| a * (1.0 - e)).collect();
+    let high: Vec<f64> = r.adev_dps.iter().zip(&e).map(|(a, e)| a * (1.0 + e)).collect();
+    let imin = r.tau_s.iter().position(|&t| t == r.tau_at_min_s).unwrap_or(0);
+    let (min_low, min_high) = (low.get(imin).copied().unwrap_or(f64::NAN), high.get(imin).copied().unwrap_or(f64::NAN));
+    let reaches = |i: usize| low[i] <= min_high;
+    let (mut a, mut b) = (imin, imin);
+    while a > 0 && reaches(a - 1) {
+        a -= 1;
+    }
+    while b + 1 < low.len() && reaches(b + 1) {
+        b += 1;
+    }
+    let tau = |i: usize| r.tau_s.get(i).copied().unwrap_or(f64::NAN);
+    let tight = high.iter().enumerate().filter(|(_, h)| h.is_finite()).min_by(|a, b| a.1.total_cmp(b.1)).map_or(imin, |(i, _)| i);
+    AllanConfidence {
+        tau_tightest_s: tau(tight),
+        adev_tightest_dps: r.adev_dps.get(tight).copied().unwrap_or(f64::NAN),
+        n_samples: n,
+        adev_low_dps: low,
+        adev_high_dps: high,
+        min_low_dps: min_low,
+        min_high_dps: min_high,
+        bias_instability_low_dps: min_low / 0.664,
+        bias_instability_high_dps: min_high / 0.664,
+        tau_min_range_s: [tau(a), tau(b)],
+    }
 }
 
 #[cfg(test)]
@@ -174,6 +256,44 @@ mod tests {
         assert!((r.arw_deg_per_sqrt_s - 0.1 * 0.1f64.sqrt()).abs() < 0.002, "{}", r.arw_deg_per_sqrt_s);
         assert!((r.arw_deg_per_sqrt_h - r.arw_deg_per_sqrt_s * 60.0).abs() < 1e-12);
         assert!((r.bias_instability_dph - r.bias_instability_dps * 3600.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn relative_error_hand_worked() {
+        // N = 1000, m = 10: N/m = 100 -> 1 / sqrt(198) = 0.0710669
+        assert!((relative_error(1000, 10) - 0.071_066_905).abs() < 1e-8);
+        // m = N / 10 (the grid's last): 1 / sqrt(18) = 0.2357
+        assert!((relative_error(1000, 100) - 0.235_702_26).abs() < 1e-8);
+        assert!(relative_error(10, 10).is_infinite());
+    }
+
+    #[test]
+    fn confidence_marks_the_flat_bottom() {
+        // N = 1000 at T0 = 1 s; the deepest point is the last, noisiest one (m = 100,
+        // e = 0.2357), but m = 30 (e = 0.1260) is only 0.3 % above it: both lie in the
+        // minimum's band; m = 10 lies above it.
+        let r = AllanResult {
+            T0_s: 1.0,
+            m: vec![1, 10, 30, 100],
+            tau_s: vec![1.0, 10.0, 30.0, 100.0],
+            adev_dps: vec![0.1, 0.02, 0.00905, 0.00903],
+            arw_deg_per_sqrt_s: 0.1,
+            arw_deg_per_sqrt_h: 6.0,
+            bias_instability_dps: 0.00903 / 0.664,
+            bias_instability_dph: 0.00903 / 0.664 * 3600.0,
+            tau_at_min_s: 100.0,
+        };
+        let c = confidence(&r, 1000);
+        let e100 = 1.0 / 18f64.sqrt();
+        assert!((c.min_low_dps - 0.00903 * (1.0 - e100)).abs() < 1e-15);
+        assert!((c.min_high_dps - 0.00903 * (1.0 + e100)).abs() < 1e-15);
+        assert!((c.bias_instability_high_dps - c.min_high_dps / 0.664).abs() < 1e-15);
+        // m = 10: low = 0.02 * (1 - 0.0711) = 0.01858 > 0.01116: outside the bottom.
+        assert_eq!(c.tau_min_range_s, [30.0, 100.0]);
+        // Upper bounds: m = 30: 0.00905 * 1.1244 = 0.01018 < m = 100: 0.01116.
+        assert_eq!((c.tau_tightest_s, c.adev_tightest_dps), (30.0, 0.00905));
+        assert_eq!(c.adev_low_dps.len(), 4);
+        assert!(c.adev_low_dps.iter().zip(&c.adev_high_dps).zip(&r.adev_dps).all(|((l, h), a)| l < a && a < h));
     }
 
     #[test]

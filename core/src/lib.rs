@@ -22,6 +22,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod allan;
+pub mod axis;
 pub mod battery;
 pub mod calibration;
 pub mod check;

@@ -138,6 +138,29 @@ test("charts zoom with the keyboard and reset", async () => {
   await page.waitForFunction(() => window.gyrodrift.state.zoom === null);
 });
 
+test("the time axis reads in s, min or h by the span shown", async () => {
+  const unit = () => page.evaluate(() => [window.gyrodrift.state.layouts["c-heading"].x_unit, document.getElementById("c-heading").getAttribute("aria-label")]);
+  const zoom = async (z) => {
+    await page.evaluate((z) => { window.gyrodrift.state.zoom = z; window.gyrodrift.render(); }, z);
+  };
+  try {
+    await zoom(null);
+    let [u, label] = await unit();
+    assert.equal(u, "min", "City 1 (about 20 min) in minutes");
+    assert.match(label, /time \(min\) 0\.\d+ to \d+\.\d/);
+    await zoom([100, 220]);
+    [u, label] = await unit();
+    assert.equal(u, "s");
+    assert.match(label, /time \(s\) 100 to 220/);
+    await zoom([0, 60 * 3600]);
+    [u, label] = await unit();
+    assert.equal(u, "h");
+    assert.match(label, /time \(h\) 0\.00 to 60\.0/);
+  } finally {
+    await zoom(null);
+  }
+});
+
 test("the URL round-trips the parameters and the view", async () => {
   await page.waitForFunction(() => location.hash.includes("i_c_dps=0.01") && location.hash.includes("log=City"));
   const url = page.url();
@@ -439,7 +462,7 @@ test("accessibility: tabs move with arrow keys, buttons have unique names, chart
   assert.equal(new Set(names).size, names.length, names.join(" | "));
   const label = await page.locator("#c-heading").getAttribute("aria-label");
   assert.equal(await page.locator("#c-heading").getAttribute("role"), "img");
-  assert.match(label, /heading: reference \(GPS\), raw, HDR.*time \(s\) [\d.]+ to \d+/);
+  assert.match(label, /heading: reference \(GPS\), raw, HDR.*time \(min\) [\d.]+ to \d+/);
   assert.equal(await page.locator("#view-error").getAttribute("role"), "alert");
 });
 
@@ -512,6 +535,27 @@ for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyro
     await page.screenshot({ path: join(ARTIFACTS, `${view}.png`), fullPage: true });
   });
 }
+
+test("the Allan view marks the minimum with its 68 % band and the flat bottom, with the CLI's numbers", async () => {
+  await page.locator("#logs li", { hasText: "static" }).locator("button.pick").click();
+  await page.locator("#tabs button[data-view=allan]").click();
+  await page.waitForFunction(() => !document.getElementById("view-allan").hidden && document.getElementById("m-bottom"));
+  const text = cli("allan", join(SAMPLES, "static", "static-2h.csv"));
+  const [, lo, hi, a, b] = text.match(/68 % band +([\d.]+) to ([\d.]+) deg\/s; the minimum could lie anywhere in tau ([\d.]+) to ([\d.]+) s/);
+  const tight = text.match(/tightest bound +adev [\d.]+ deg\/s at tau = ([\d.]+) s/)[1];
+  assert.equal(await page.locator("#m-bi-band").innerText(), `${Number(lo).toFixed(5)}–${Number(hi).toFixed(5)}`);
+  assert.equal(await page.locator("#m-bottom").innerText(), `${Number(a).toFixed(1)}–${Number(b).toFixed(1)}`);
+  assert.equal(await page.locator("#m-tight").innerText(), Number(tight).toFixed(1));
+  // On the static sample the plain minimum is the last, noisiest point; the band says so.
+  assert.ok(Number(b) > Number(a) && Number(tight) < Number(b), text);
+  const keys = await page.locator("#legend-c-allan button.key").allInnerTexts();
+  assert.deepEqual(keys.filter((k) => k === "68 % band"), ["68 % band"], keys.join(" | "));
+  assert.ok(keys.includes("minimum ± 68 %") && keys.includes("flat bottom"), keys.join(" | "));
+  assert.ok((await inked("c-allan")) > 3000);
+  await page.screenshot({ path: join(ARTIFACTS, "allan-ci.png") });
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+});
 
 test("axe-core finds no serious or critical accessibility violation in any view", async () => {
   await page.addScriptTag({ path: join(ROOT, "tests", "node_modules", "axe-core", "axe.min.js") });

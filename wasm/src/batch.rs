@@ -149,14 +149,20 @@ pub fn calibrate(log: &Log, #[wasm_bindgen(unchecked_param_type = "CalibrationOp
     Ok(out)
 }
 
-/// Overlapping Allan deviation of the log's gyro column (the Result keys; arrays as Float64Array).
+/// Overlapping Allan deviation of the log's gyro column (the Result keys; arrays as
+/// Float64Array), with each point's 68 % band under `confidence` (beyond methods.md).
 #[wasm_bindgen(unchecked_return_type = "AllanResult")]
 pub fn allan(log: &Log) -> JsResult<JsValue> {
-    let r = allan::run(&log.log).map_err(err)?;
+    let (r, c) = allan::run_with_confidence(&log.log).map_err(err)?;
     let out: JsValue = to_js(&r)?;
     let obj: &Object = out.unchecked_ref();
     set(obj, "tau_s", &f64s(&r.tau_s))?;
     set(obj, "adev_dps", &f64s(&r.adev_dps))?;
+    let conf: JsValue = to_js(&c)?;
+    let cobj: &Object = conf.unchecked_ref();
+    set(cobj, "adev_low_dps", &f64s(&c.adev_low_dps))?;
+    set(cobj, "adev_high_dps", &f64s(&c.adev_high_dps))?;
+    set(obj, "confidence", &conf)?;
     set(obj, "arw_line_dps", &f64s(&allan::arw_line_dps(r.arw_deg_per_sqrt_s, &r.tau_s)))?;
     Ok(out)
 }

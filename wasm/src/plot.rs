@@ -3,7 +3,7 @@
 //! series are reduced by core's min/max decimation to the canvas width before drawing.
 //! Returns the plot area in canvas pixels and its ranges, so the page maps mouse to data.
 
-use gyrodrift::decimate;
+use gyrodrift::{axis, decimate};
 use js_sys::{Array, Float64Array, Object, Reflect};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -38,6 +38,9 @@ struct Spec {
     y_range: Option<[f64; 2]>,
     log_x: bool,
     log_y: bool,
+    /// The x axis is time in seconds: drawn in s, min or h by the span shown (core's
+    /// `axis::time_unit`), labelled "<x_label> (<unit>)".
+    time_x: bool,
     series: Vec<Series>,
     shade: Option<Shade>,
     cursor_x: Option<f64>,
@@ -113,6 +116,7 @@ impl Spec {
             y_range: range(v, "y_range")?,
             log_x: flag(v, "log_x"),
             log_y: flag(v, "log_y"),
+            time_x: flag(v, "time_x"),
             series,
             shade,
             cursor_x: number(v, "cursor_x"),
@@ -132,6 +136,8 @@ struct Layout {
     x_max: f64,
     y_min: f64,
     y_max: f64,
+    /// The time axis's unit ("" when x is not time).
+    x_unit: &'static str,
 }
 
 fn parse_color(s: &str) -> RGBColor {
@@ -177,6 +183,7 @@ pub fn draw_chart(
     ] {
         Reflect::set(&o, &JsValue::from_str(k), &JsValue::from_f64(v))?;
     }
+    Reflect::set(&o, &JsValue::from_str("x_unit"), &JsValue::from_str(layout.x_unit))?;
     Ok(o.into())
 }
 
@@ -242,9 +249,16 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
     let px = |v: f64| (v * dpr).round() as i32;
     let (w, _h) = root.dim_in_pixel();
     let columns = (w as usize).max(1);
-    let tx = |v: f64| if spec.log_x { v.log10() } else { v };
-    let ty = |v: f64| if spec.log_y { v.log10() } else { v };
     let (x0, x1, y0, y1, decimated) = ranges(spec, columns);
+    // A time axis is drawn in its unit, so ticks fall on round minutes or hours.
+    let unit = spec.time_x.then(|| axis::time_unit(x1 - x0));
+    let per = unit.map_or(1.0, |u| u.seconds);
+    let x_desc = match unit {
+        Some(u) => format!("{} ({})", spec.x_label, u.name),
+        None => spec.x_label.clone(),
+    };
+    let tx = |v: f64| if spec.log_x { v.log10() } else { v / per };
+    let ty = |v: f64| if spec.log_y { v.log10() } else { v };
     let (cx0, cx1, cy0, cy1) = (tx(x0), tx(x1), ty(y0), ty(y1));
     let font = ("sans-serif", px(13.0)).into_font();
     let mut chart = ChartBuilder::on(root)
@@ -280,7 +294,7 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
         .configure_mesh()
         .x_labels(labels(spec.log_x, cx0, cx1, 10))
         .y_labels(labels(spec.log_y, cy0, cy1, 10))
-        .x_desc(&spec.x_label)
+        .x_desc(&x_desc)
         .y_desc(&spec.y_label)
         .label_style(font.clone())
         .axis_desc_style(font.clone())
@@ -344,5 +358,15 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
             .draw()?;
     }
     let (xr, yr) = chart.plotting_area().get_pixel_range();
-    Ok(Layout { left: xr.start, right: xr.end, top: yr.start, bottom: yr.end, x_min: x0, x_max: x1, y_min: y0, y_max: y1 })
+    Ok(Layout {
+        left: xr.start,
+        right: xr.end,
+        top: yr.start,
+        bottom: yr.end,
+        x_min: x0,
+        x_max: x1,
+        y_min: y0,
+        y_max: y1,
+        x_unit: unit.map_or("", |u| u.name),
+    })
 }

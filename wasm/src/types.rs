@@ -237,6 +237,24 @@ export interface AllanResult {
   bias_instability_dps: number;
   bias_instability_dph: number;
   tau_at_min_s: number;
+  /** How well each point is known (wasm only, beyond methods.md): core's AllanConfidence. */
+  confidence?: AllanConfidence;
+}
+
+/** A one-sigma (about 68 %) band per cluster time, 1 / sqrt(2 (N/m - 1)) (IEEE 952 Annex C),
+ * and the cluster times whose band reaches the minimum's (the curve's flat bottom). */
+export interface AllanConfidence {
+  n_samples: number;
+  adev_low_dps: Float64Array;
+  adev_high_dps: Float64Array;
+  min_low_dps: number;
+  min_high_dps: number;
+  bias_instability_low_dps: number;
+  bias_instability_high_dps: number;
+  tau_min_range_s: [number, number];
+  /** The cluster time with the lowest upper bound, and its deviation. */
+  tau_tightest_s: number;
+  adev_tightest_dps: number;
 }
 
 export interface ReportRow {
@@ -331,6 +349,10 @@ export interface ChartSpec {
   y_range?: [number, number] | null;
   log_x?: boolean;
   log_y?: boolean;
+  /** x is time in seconds: drawn in s, min or h by the span shown, labelled "x_label (unit)". */
+  time_x?: boolean;
+  /** Draw the legend inside the plot (default true). */
+  legend?: boolean;
   series: { name: string; color: string; x: ArrayLike<number>; y: ArrayLike<number>; width?: number; points?: boolean; path?: boolean }[];
   shade?: { x: ArrayLike<number>; mask: ArrayLike<number>; color: string; label?: string } | null;
   cursor_x?: number | null;
@@ -347,6 +369,8 @@ export interface ChartLayout {
   x_max: number;
   y_min: number;
   y_max: number;
+  /** The time axis's unit ("s", "min", "h"), "" when x is not time. Ranges stay in seconds. */
+  x_unit: string;
 }
 
 /** What to simulate; the same seed gives the same log natively and in wasm. */

@@ -43,10 +43,10 @@ export function renderHdr() {
   series.push({ name: "pipeline", color: COLORS.pipe, x: pipe.trace.time_s, y: pipe.trace.heading_deg, width: 2 });
   series.push({ name: "smoothed (offline)", color: COLORS.smooth, x: pipe.trace.time_s, y: pipe.trace.heading_smoothed_deg, width: 1 });
   const cursor = state.cursor;
-  chart("c-heading", { title: `${e.name}: heading`, x_label: "time (s)", y_label: "heading (deg)", x_range: xr, series, cursor_x: cursor });
+  chart("c-heading", { title: `${e.name}: heading`, x_label: "time", time_x: true, y_label: "heading (deg)", x_range: xr, series, cursor_x: cursor });
   if (run.errors) {
     chart("c-error", {
-      title: "heading error (estimate − reference)", x_label: "time (s)", y_label: "error (deg)", x_range: xr, cursor_x: cursor,
+      title: "heading error (estimate − reference)", x_label: "time", time_x: true, y_label: "error (deg)", x_range: xr, cursor_x: cursor,
       series: [
         { name: "zero", color: COLORS.zero, x: [xr[0], xr[1]], y: [0, 0] },
         { name: "raw", color: COLORS.raw, x: run.errors.time_s, y: run.errors.raw_deg },
@@ -57,7 +57,7 @@ export function renderHdr() {
     });
   }
   chart("c-rate", {
-    title: "corrected rate ω and drift estimate −I (shaded: turn switch on, HDR correcting)", x_label: "time (s)", y_label: "rate (deg/s)",
+    title: "corrected rate ω and drift estimate −I (shaded: turn switch on, HDR correcting)", x_label: "time", time_x: true, y_label: "rate (deg/s)",
     // Around zero, where drift and the turn switch live (turns go off the chart, as in Figs. 3 and 5).
     x_range: xr, y_range: [-(3 * run_theta() + 0.3), 3 * run_theta() + 0.3], cursor_x: cursor,
     shade: { x: t, mask: run.trace.turn_switch, color: "#2e9d5b", label: "turn switch on" },
