@@ -1,5 +1,6 @@
 // Charts: canvases drawn by the wasm package, and zoom, pan and cursor on the time charts.
 import * as plot from "./pkg/plot/gyrodrift_plot.js";
+import * as gd from "./pkg/gyrodrift.js";
 import { $, state } from "./state.js";
 import { scheduleRender } from "./render.js";
 
@@ -53,6 +54,7 @@ export function chart(id, spec) {
   const hidden = (state.hidden[id] ||= new Set());
   legend(id, spec, hidden);
   const shown = { ...spec, series: (spec.series || []).filter((s) => !hidden.has(s.name)), legend: false, dpr };
+  if (state.yzoom[id]) shown.y_range = state.yzoom[id];
   if (spec.shade && hidden.has(spec.shade.label)) delete shown.shade;
   state.specs[id] = shown;
   const L = (state.layouts[id] = plot.drawChart(c, shown));
@@ -70,34 +72,105 @@ export function timeRange(t) {
 }
 
 // ---------- interaction on time charts ----------
+const TIME_UNIT_S = { s: 1, min: 60, h: 3600 };
+
+/** The tooltip at the cursor: the time and every shown series' value there (core's
+ * valueAt, linear between samples), the shaded state, in the chart's colours. */
+function tooltip(id, c, ev) {
+  const spec = state.specs[id], L = state.layouts[id];
+  let tip = c.parentElement.querySelector(".tip");
+  if (!tip) {
+    tip = document.createElement("div");
+    tip.className = "tip";
+    tip.setAttribute("role", "tooltip");
+    c.parentElement.append(tip);
+  }
+  if (!spec || !L || state.cursor == null) return (tip.hidden = true);
+  const t = state.cursor;
+  const per = TIME_UNIT_S[L.x_unit] || 1;
+  const unit = (spec.y_label || "").match(/\(([^)]*)\)\s*$/)?.[1] || "";
+  const rows = [];
+  const seen = new Set();
+  for (const s of spec.series) {
+    if (!s.name || s.name === "zero" || seen.has(s.name)) continue;
+    seen.add(s.name);
+    const v = gd.valueAt(s.x, s.y, t);
+    rows.push(`<tr><td><span class="swatch" style="background:${s.color}"></span>${s.name}</td><td data-series="${s.name}">${Number.isFinite(v) ? v.toFixed(Math.abs(v) >= 100 ? 1 : 3) : "–"}</td><td>${unit}</td></tr>`);
+  }
+  if (spec.shade?.label) {
+    const on = gd.valueAt(spec.shade.x, spec.shade.mask, t) > 0.5;
+    rows.push(`<tr><td colspan="3">${spec.shade.label}: <b>${on ? "yes" : "no"}</b></td></tr>`);
+  }
+  tip.innerHTML = `<b>t = ${(t / per).toFixed(per === 1 ? 1 : 2)} ${L.x_unit || "s"}</b><table>${rows.join("")}</table>`;
+  tip.hidden = false;
+  // Beside the cursor, flipped to its left past the middle so it stays inside the chart.
+  const x = ev.offsetX, w = c.clientWidth;
+  tip.style.top = `${c.offsetTop + Math.max(0, ev.offsetY - 10)}px`;
+  tip.style.left = x < w / 2 ? `${c.offsetLeft + x + 16}px` : "";
+  tip.style.right = x < w / 2 ? "" : `${w - x + 16}px`;
+}
+
+/** The rubber band while dragging: x only for a flat drag (x zoom, shared by the time
+ * charts), a box when the drag is also tall (x and this chart's y). */
+function band(c, box) {
+  let el = c.parentElement.querySelector(".band");
+  if (!el) {
+    el = document.createElement("div");
+    el.className = "band";
+    c.parentElement.append(el);
+  }
+  el.hidden = !box;
+  if (box) Object.assign(el.style, { left: `${c.offsetLeft + box.x0}px`, width: `${box.x1 - box.x0}px`, top: `${c.offsetTop + box.y0}px`, height: `${box.y1 - box.y0}px` });
+}
+const TALL_PX = 16;
+
 export function attachTimeInteraction(id) {
   const c = $(id);
   let drag = null;
+  const scale = () => c.width / c.clientWidth;
   const toX = (ev) => {
     const L = state.layouts[id];
     if (!L) return null;
-    const px = ev.offsetX * (c.width / c.clientWidth);
+    const px = ev.offsetX * scale();
     return L.x_min + ((px - L.left) / (L.right - L.left)) * (L.x_max - L.x_min);
   };
-  c.addEventListener("mousedown", (ev) => { drag = { x: toX(ev), shift: ev.shiftKey, range: state.layouts[id] && [state.layouts[id].x_min, state.layouts[id].x_max] }; });
+  const toY = (offsetY) => {
+    const L = state.layouts[id];
+    return L.y_max - ((offsetY * scale() - L.top) / (L.bottom - L.top)) * (L.y_max - L.y_min);
+  };
+  /** The band in CSS pixels for a drag from d to the event. */
+  const boxOf = (d, ev) => {
+    const L = state.layouts[id], k = scale();
+    const [x0, x1] = [Math.min(d.px, ev.offsetX), Math.max(d.px, ev.offsetX)];
+    const tall = Math.abs(ev.offsetY - d.py) >= TALL_PX;
+    const [y0, y1] = tall ? [Math.min(d.py, ev.offsetY), Math.max(d.py, ev.offsetY)] : [L.top / k, L.bottom / k];
+    return { x0, x1, y0, y1, tall };
+  };
+  c.addEventListener("mousedown", (ev) => {
+    drag = { x: toX(ev), px: ev.offsetX, py: ev.offsetY, shift: ev.shiftKey, range: state.layouts[id] && [state.layouts[id].x_min, state.layouts[id].x_max] };
+  });
   c.addEventListener("mousemove", (ev) => {
     const x = toX(ev);
     if (x == null) return;
     if (drag && drag.shift && drag.range) {
       const d = drag.x - x;
       state.zoom = [drag.range[0] + d, drag.range[1] + d];
-    }
+    } else if (drag && Math.abs(ev.offsetX - drag.px) > 2) band(c, boxOf(drag, ev));
     state.cursor = x;
+    tooltip(id, c, ev);
     scheduleRender();
   });
   window.addEventListener("mouseup", (ev) => {
     if (!drag) return;
     const d = drag;
     drag = null;
+    band(c, null);
     if (d.shift || ev.target !== c) return;
     const x = toX(ev);
-    if (x != null && Math.abs(x - d.x) > 1e-9 && d.range && Math.abs(x - d.x) > (d.range[1] - d.range[0]) / 200) {
+    if (x != null && d.range && Math.abs(x - d.x) > (d.range[1] - d.range[0]) / 200) {
+      const box = boxOf(d, ev);
       state.zoom = [Math.min(x, d.x), Math.max(x, d.x)];
+      if (box.tall) state.yzoom[id] = [toY(box.y1), toY(box.y0)];
       scheduleRender();
     }
   });
@@ -105,12 +178,18 @@ export function attachTimeInteraction(id) {
     const L = state.layouts[id];
     if (!L) return;
     ev.preventDefault();
-    const x = toX(ev);
     const k = ev.deltaY > 0 ? 1.25 : 0.8;
-    state.zoom = [x - (x - L.x_min) * k, x + (L.x_max - x) * k];
+    if (ev.altKey) {
+      // Alt + wheel: this chart's y around the cursor.
+      const y = toY(ev.offsetY);
+      state.yzoom[id] = [y - (y - L.y_min) * k, y + (L.y_max - y) * k];
+    } else {
+      const x = toX(ev);
+      state.zoom = [x - (x - L.x_min) * k, x + (L.x_max - x) * k];
+    }
     scheduleRender();
   }, { passive: false });
-  c.addEventListener("dblclick", () => { state.zoom = null; scheduleRender(); });
+  c.addEventListener("dblclick", () => { state.zoom = null; delete state.yzoom[id]; scheduleRender(); });
   // Keyboard: + / - zoom, arrow keys pan, 0 resets (the canvas is focusable).
   c.tabIndex = 0;
   c.addEventListener("keydown", (ev) => {
@@ -122,12 +201,16 @@ export function attachTimeInteraction(id) {
     if (zoom) state.zoom = [mid - (w * zoom) / 2, mid + (w * zoom) / 2];
     else if (ev.key === "ArrowLeft") state.zoom = [a - w * 0.1, b - w * 0.1];
     else if (ev.key === "ArrowRight") state.zoom = [a + w * 0.1, b + w * 0.1];
-    else if (ev.key === "0") state.zoom = null;
+    else if (ev.key === "0") { state.zoom = null; delete state.yzoom[id]; }
     else return;
     ev.preventDefault();
     scheduleRender();
   });
-  c.addEventListener("mouseleave", () => { state.cursor = null; scheduleRender(); });
+  c.addEventListener("mouseleave", () => {
+    state.cursor = null;
+    tooltip(id, c, null);
+    scheduleRender();
+  });
 }
 
 /** The chart as a PNG data URL, its legend drawn in (the page's legend is outside it). */

@@ -37,6 +37,7 @@ export const state = {
   resample: true,
   gyro: {}, // filled from the package at start
   zoom: null,
+  yzoom: {}, // per chart: a y range the user zoomed to (a tall drag box, Alt + wheel)
   cursor: null,
   layouts: {},
   hidden: {}, // per chart: the series names the user has hidden

@@ -161,6 +161,72 @@ test("the time axis reads in s, min or h by the span shown", async () => {
   }
 });
 
+test("a tooltip at the cursor lists every shown series with core's value there, in any time chart", async () => {
+  await page.locator("#c-error").scrollIntoViewIfNeeded();
+  const box = await page.locator("#c-error").boundingBox();
+  await page.mouse.move(box.x + box.width * 0.6, box.y + box.height * 0.5);
+  const tip = page.locator("#c-error").locator("xpath=..").locator(".tip");
+  await tip.waitFor({ state: "visible" });
+  const check = () => page.evaluate(() => {
+    const { state, gd } = window.gyrodrift;
+    const spec = state.specs["c-error"];
+    const cells = [...document.querySelectorAll("#c-error ~ .tip td[data-series]")].map((td) => [td.dataset.series, td.textContent]);
+    const want = spec.series.filter((s) => s.name !== "zero").map((s) => [s.name, gd.valueAt(s.x, s.y, state.cursor).toFixed(3)]);
+    return { cells, want, head: document.querySelector("#c-error ~ .tip b").textContent };
+  });
+  let r = await check();
+  assert.deepEqual(r.cells.map((c) => c[0]), ["raw", "HDR", "pipeline", "smoothed (offline)"]);
+  assert.deepEqual(r.cells, r.want);
+  assert.match(r.head, /^t = \d+\.\d\d min$/);
+  await page.screenshot({ path: join(ARTIFACTS, "tooltip.png") });
+  // A hidden series leaves the tooltip.
+  await page.locator("#legend-c-error button.key", { hasText: /^raw$/ }).click();
+  await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
+  await page.waitForFunction(() => !document.querySelector("#c-error ~ .tip td[data-series=raw]"));
+  r = await check();
+  assert.deepEqual(r.cells, r.want);
+  await page.locator("#legend-c-error button.key", { hasText: /^raw$/ }).click();
+  // The rate chart also says whether the turn switch is on.
+  await page.locator("#c-rate").scrollIntoViewIfNeeded();
+  const rb = await page.locator("#c-rate").boundingBox();
+  await page.mouse.move(rb.x + rb.width * 0.5, rb.y + rb.height * 0.5);
+  await page.locator("#c-rate ~ .tip").waitFor({ state: "visible" });
+  assert.match(await page.locator("#c-rate ~ .tip").innerText(), /turn switch on: (yes|no)/);
+  await page.mouse.move(0, 0);
+  await page.waitForFunction(() => document.querySelector("#c-rate ~ .tip").hidden);
+});
+
+test("dragging shows a rubber band; a flat drag zooms time, a tall one this chart's y too; double-click resets", async () => {
+  await page.locator("#c-error").scrollIntoViewIfNeeded();
+  const box = await page.locator("#c-error").boundingBox();
+  const y = box.y + box.height * 0.5;
+  await page.mouse.move(box.x + box.width * 0.3, y);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width * 0.5, y + 3, { steps: 4 });
+  const band = page.locator("#c-error ~ .band");
+  await band.waitFor({ state: "visible" });
+  const bb = await band.boundingBox();
+  assert.ok(Math.abs(bb.width - box.width * 0.2) < 3, `band ${bb.width} px for a ${box.width * 0.2} px drag`);
+  assert.ok(bb.height > box.height * 0.6, "a flat drag's band spans the plot's height");
+  await page.mouse.up();
+  await page.waitForFunction(() => window.gyrodrift.state.zoom !== null);
+  assert.equal(await band.isHidden(), true);
+  assert.equal(await page.evaluate(() => window.gyrodrift.state.yzoom["c-error"]), undefined);
+  const before = await page.evaluate(() => ({ ...window.gyrodrift.state.layouts["c-error"] }));
+  // A tall box: the y range follows the box on this chart only.
+  await page.mouse.move(box.x + box.width * 0.4, box.y + box.height * 0.3);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width * 0.6, box.y + box.height * 0.6, { steps: 4 });
+  await page.mouse.up();
+  await page.waitForFunction(() => window.gyrodrift.state.yzoom["c-error"]);
+  const after = await page.evaluate(() => ({ yz: window.gyrodrift.state.yzoom["c-error"], L: window.gyrodrift.state.layouts["c-error"], H: window.gyrodrift.state.layouts["c-heading"] }));
+  assert.ok(after.yz[1] - after.yz[0] < (before.y_max - before.y_min) * 0.5, JSON.stringify(after.yz));
+  assert.deepEqual([after.L.y_min, after.L.y_max], after.yz);
+  assert.ok(after.H.x_max - after.H.x_min < before.x_max - before.x_min, "time zoom shared by the heading chart");
+  await page.locator("#c-error").dblclick();
+  await page.waitForFunction(() => window.gyrodrift.state.zoom === null && !window.gyrodrift.state.yzoom["c-error"]);
+});
+
 test("the URL round-trips the parameters and the view", async () => {
   await page.waitForFunction(() => location.hash.includes("i_c_dps=0.01") && location.hash.includes("log=City"));
   const url = page.url();
