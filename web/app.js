@@ -7,7 +7,7 @@ import initPlot from "./pkg/plot/gyrodrift_plot.js";
 import { $, state, defaults, readUrl, urlHash, hdrOptions, PARAMS, GYRO_PARAMS, VIEW_KIND } from "./state.js";
 import { loadFiles, loadSamples } from "./loading.js";
 import { buildParams, syncParams, logFor } from "./controls.js";
-import { attachTimeInteraction, download, pngOf } from "./charts.js";
+import { attachTimeInteraction, csvOf, download, pngOf, timeChartsCsv } from "./charts.js";
 import { render, scheduleRender, showError } from "./render.js";
 import { runTune, reportExports } from "./views/report.js";
 
@@ -73,8 +73,18 @@ function setupTabs() {
  * tables; files named by log and chart (City 1-heading.png). */
 function setupExports() {
   const fileName = (suffix) => `${(logFor(state.view)?.name || "gyrodrift").replace(/[^\w.() -]+/g, "_")}-${suffix}`;
-  for (const b of document.querySelectorAll("button.png")) b.addEventListener("click", () => download(fileName(`${b.dataset.canvas.replace(/^c-/, "")}.png`), pngOf(b.dataset.canvas)));
-  $("export-trace").addEventListener("click", () => { const e = logFor("hdr"); if (e) download(fileName("heading.csv"), gd.hdrTraceCsv(e.log, hdrOptions()), "text/csv"); });
+  for (const b of document.querySelectorAll("button.png")) {
+    const id = b.dataset.canvas, short = id.replace(/^c-/, "");
+    b.addEventListener("click", () => download(fileName(`${short}.png`), pngOf(id)));
+    // Beside each PNG: the chart's shown series as CSV.
+    const csv = document.createElement("button");
+    Object.assign(csv, { type: "button", className: "csv", textContent: "CSV" });
+    csv.dataset.canvas = id;
+    csv.setAttribute("aria-label", b.getAttribute("aria-label").replace(/ as PNG$/, "").replace(/^Download the /, "Download the series of the ") + " as CSV");
+    csv.addEventListener("click", () => download(fileName(`${short}.csv`), csvOf(id), "text/csv"));
+    b.after(csv);
+  }
+  $("export-trace").addEventListener("click", () => { if (logFor("hdr")) download(fileName("hdr-series.csv"), timeChartsCsv(["c-heading", "c-error", "c-rate"]), "text/csv"); });
   $("export-json").addEventListener("click", () => {
     const e = logFor("hdr");
     if (!e) return;

@@ -213,6 +213,27 @@ export function attachTimeInteraction(id) {
   });
 }
 
+/** Every shown series of a chart as CSV, as plotted (core's export through the plot module). */
+export function csvOf(id) {
+  return state.specs[id] ? plot.chartCsv(state.specs[id]) : "";
+}
+
+/** Every shown series of several time charts in one CSV on their shared time: columns named
+ * "<chart>: <series> (<unit>)". */
+export function timeChartsCsv(ids) {
+  const series = [];
+  let shade = null;
+  for (const id of ids) {
+    const spec = state.specs[id];
+    if (!spec) continue;
+    const unit = (spec.y_label || "").match(/\(([^)]*)\)\s*$/)?.[1];
+    const chartName = id.replace(/^c-/, "");
+    for (const s of spec.series) if (s.name && s.name !== "zero") series.push({ ...s, name: `${chartName}: ${s.name}${unit ? ` (${unit})` : ""}` });
+    if (spec.shade && !shade) shade = { ...spec.shade, label: `${chartName}: ${spec.shade.label}` };
+  }
+  return plot.chartCsv({ x_label: "time", time_x: true, y_label: "", series, shade });
+}
+
 /** The chart as a PNG data URL, its legend drawn in (the page's legend is outside it). */
 export function pngOf(id) {
   const c = $(id);

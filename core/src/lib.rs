@@ -30,6 +30,7 @@ pub mod compare;
 pub mod decimate;
 pub mod error;
 pub mod eval;
+pub mod export;
 pub mod fleet;
 pub mod gyrodometry;
 pub mod hdr;

@@ -516,6 +516,43 @@ test("exports reproduce: the JSON names the log, settings and version; files are
   assert.equal(png.suggestedFilename(), "City 1-heading.png");
 });
 
+test("CSV exports hold every plotted series as drawn: all HDR charts on one time line, and each chart's own", async () => {
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+  await page.locator("#tabs button[data-view=hdr]").click();
+  const [dl] = await Promise.all([page.waitForEvent("download"), page.locator("#export-trace").click()]);
+  assert.equal(dl.suggestedFilename(), "City 1-hdr-series.csv");
+  const lines = readFileSync(await dl.path(), "utf8").trim().split("\n");
+  const head = lines[0].split(",");
+  for (const col of ["time (s)", "heading: reference (GPS) (deg)", "heading: raw (deg)", "heading: HDR (deg)", "heading: pipeline (deg)", "heading: smoothed (offline) (deg)",
+    "error: raw (deg)", "error: HDR (deg)", "error: pipeline (deg)", "rate: ω corrected (deg/s)", "rate: −I drift estimate (deg/s)", "rate: turn switch on (0/1)"]) {
+    assert.ok(head.includes(col), `${col} in ${lines[0]}`);
+  }
+  // The HDR column is the package's trace, sample for sample.
+  const trace = await page.evaluate(() => {
+    const { gd, state } = window.gyrodrift;
+    const e = state.entries.find((x) => x.name === "City 1");
+    const run = gd.runHdr(e.log, { resample: state.resample, ...state.params });
+    return { t: [...run.trace.time_s.slice(0, 50)], hdr: [...run.trace.heading_hdr_deg.slice(0, 50)] };
+  });
+  const ti = head.indexOf("time (s)"), hi = head.indexOf("heading: HDR (deg)");
+  const rows = new Map(lines.slice(1).map((l) => l.split(",")).map((c) => [Number(c[ti]), c[hi]]));
+  for (let k = 0; k < 50; k++) assert.equal(Number(rows.get(trace.t[k])), trace.hdr[k], `t = ${trace.t[k]}`);
+  // Each chart's CSV button: the Allan chart's taus and its band's two edges.
+  await page.locator("#logs li", { hasText: "static" }).locator("button.pick").click();
+  await page.locator("#tabs button[data-view=allan]").click();
+  await page.waitForFunction(() => !document.getElementById("view-allan").hidden);
+  const [a] = await Promise.all([page.waitForEvent("download"), page.locator("button.csv[data-canvas=c-allan]").click()]);
+  assert.equal(a.suggestedFilename(), "Static 2 h-allan.csv");
+  const allan = readFileSync(await a.path(), "utf8").trim().split("\n");
+  assert.match(allan[0], /^τ \(s\),68 % band \(deg\/s\),68 % band 2 \(deg\/s\),Allan deviation \(deg\/s\)/);
+  const taus = await page.evaluate(() => window.gyrodrift.gd.allan(window.gyrodrift.state.entries.find((x) => x.name.startsWith("Static")).log).tau_s.length);
+  assert.equal(allan.length - 1, taus);
+  const names = await page.locator("button.csv").evaluateAll((bs) => bs.map((b) => b.getAttribute("aria-label")));
+  assert.equal(new Set(names).size, names.length);
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+});
+
 test("accessibility: tabs move with arrow keys, buttons have unique names, charts have a text alternative", async () => {
   await page.locator("#tabs button[data-view=hdr]").focus();
   await page.keyboard.press("ArrowRight");

@@ -3,6 +3,7 @@
 //! series are reduced by core's min/max decimation to the canvas width before drawing.
 //! Returns the plot area in canvas pixels and its ranges, so the page maps mouse to data.
 
+use gyrodrift::export::{self, Series as Plotted};
 use gyrodrift::{axis, decimate};
 use js_sys::{Array, Float64Array, Object, Reflect};
 use plotters::coord::Shift;
@@ -185,6 +186,37 @@ pub fn draw_chart(
     }
     Reflect::set(&o, &JsValue::from_str("x_unit"), &JsValue::from_str(layout.x_unit))?;
     Ok(o.into())
+}
+
+/// Every series of a chart spec as CSV, as plotted (core's `export`): over a shared x
+/// (time in seconds, tau) one row per x; a chart of paths (a track) two columns per path.
+/// Columns are named "<series> (<y unit>)"; a shaded mask becomes a 0/1 column.
+#[wasm_bindgen(js_name = chartCsv)]
+pub fn chart_csv(#[wasm_bindgen(unchecked_param_type = "ChartSpec")] spec: JsValue) -> Result<String, JsValue> {
+    let spec = Spec::read(&spec)?;
+    let unit = |label: &str| label.rsplit_once('(').map(|(_, u)| u.trim_end_matches(')').trim().to_string()).unwrap_or_default();
+    let mut names: Vec<String> = Vec::new();
+    let mut seen = std::collections::HashSet::new();
+    let mut kept = Vec::new();
+    for s in spec.series.iter().filter(|s| s.name != "zero") {
+        // Two series of one name (a band's edges) get numbered columns.
+        let name = if seen.insert(s.name.clone()) { s.name.clone() } else { format!("{} {}", s.name, names.len() + 1) };
+        names.push(name);
+        kept.push(s);
+    }
+    if kept.iter().any(|s| s.path) {
+        let series: Vec<Plotted> = kept.iter().zip(&names).map(|(s, n)| Plotted { name: n, x: &s.x, y: &s.y }).collect();
+        return Ok(export::paths_csv(&spec.x_label, &spec.y_label, &series));
+    }
+    let y_unit = unit(&spec.y_label);
+    let columns: Vec<String> = names.iter().map(|n| if y_unit.is_empty() { n.clone() } else { format!("{n} ({y_unit})") }).collect();
+    let mut series: Vec<Plotted> = kept.iter().zip(&columns).map(|(s, n)| Plotted { name: n, x: &s.x, y: &s.y }).collect();
+    let shade_name = spec.shade.as_ref().map(|sh| format!("{} (0/1)", if sh.label.is_empty() { "shaded" } else { &sh.label }));
+    if let (Some(sh), Some(n)) = (&spec.shade, &shade_name) {
+        series.push(Plotted { name: n, x: &sh.x, y: &sh.mask });
+    }
+    let x_name = if spec.time_x { format!("{} (s)", spec.x_label) } else { spec.x_label.clone() };
+    Ok(export::series_csv(&x_name, &series))
 }
 
 /// A series decimated to the pixel columns (or whole, for points and paths).
