@@ -65,7 +65,7 @@ function setupTabs() {
     b.click();
     b.focus();
   });
-  for (const id of ["c-heading", "c-error", "c-rate", "c-gyrodometry"]) attachTimeInteraction(id);
+  for (const id of ["c-heading", "c-error", "c-rate", "c-columns", "c-gyrodometry"]) attachTimeInteraction(id);
   window.addEventListener("resize", scheduleRender);
 }
 
@@ -84,7 +84,7 @@ function setupExports() {
     csv.addEventListener("click", () => download(fileName(`${short}.csv`), csvOf(id), "text/csv"));
     b.after(csv);
   }
-  $("export-trace").addEventListener("click", () => { if (logFor("hdr")) download(fileName("hdr-series.csv"), timeChartsCsv(["c-heading", "c-error", "c-rate"]), "text/csv"); });
+  $("export-trace").addEventListener("click", () => { if (logFor("hdr")) download(fileName("hdr-series.csv"), timeChartsCsv(["c-heading", "c-error", "c-rate", "c-columns"]), "text/csv"); });
   $("export-json").addEventListener("click", () => {
     const e = logFor("hdr");
     if (!e) return;

@@ -29,6 +29,7 @@ export function renderList() {
       b.querySelector(".meta").textContent = `${e.kind} · ${fmt(e.log.durationMin, 1)} min · ${e.headline}`;
       b.addEventListener("click", () => selectEntry(i));
       li.append(b, removeButton(i, `Remove ${e.name}`));
+      if (state.view === "hdr" && e.kind === "drive" && e !== shown) li.append(overlayButton(e));
       if (e.findings?.length) {
         const badge = document.createElement("div");
         const worst = e.findings.some((f) => f.severity === "error") ? "error" : "warning";
@@ -63,6 +64,24 @@ export function renderList() {
     }
     ul.append(li);
   });
+}
+
+/** Overlays a drive on the HDR view's error and column charts (or takes it off). */
+function overlayButton(e) {
+  const b = document.createElement("button");
+  b.type = "button";
+  b.className = "link overlay";
+  const on = state.overlay.has(e.name);
+  b.textContent = on ? "overlaid ✓" : "overlay";
+  b.setAttribute("aria-pressed", String(on));
+  b.setAttribute("aria-label", `Overlay ${e.name} on the HDR charts`);
+  b.addEventListener("click", () => {
+    if (state.overlay.has(e.name)) state.overlay.delete(e.name);
+    else state.overlay.add(e.name);
+    renderList();
+    render();
+  });
+  return b;
 }
 
 function removeButton(i, label) {

@@ -32,7 +32,7 @@ export function render() {
     b.tabIndex = on ? 0 : -1;
   }
   for (const s of document.querySelectorAll(".view")) s.hidden = s.id !== `view-${state.view}`;
-  const listKey = [state.view, state.selected, ...state.entries.map((e) => e.name)].join("|");
+  const listKey = [state.view, state.selected, ...state.entries.map((e) => e.name), ...state.overlay].join("|");
   if (listKey !== lastListKey) {
     renderList();
     lastListKey = listKey;

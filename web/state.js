@@ -37,6 +37,8 @@ export const state = {
   resample: true,
   gyro: {}, // filled from the package at start
   zoom: null,
+  columns: null, // log columns plotted on the time axis (null: the view's default)
+  overlay: new Set(), // names of drive logs overlaid on the HDR charts
   yzoom: {}, // per chart: a y range the user zoomed to (a tall drag box, Alt + wheel)
   cursor: null,
   layouts: {},
@@ -76,6 +78,8 @@ export function readUrl() {
   if (h.has("resample")) state.resample = h.get("resample") !== "0";
   const thres = num("thres_rate_dps");
   if (thres !== null && !gd.checkOptions("gyrodometry", { thres_rate_dps: thres })) state.gyro.thres_rate_dps = thres;
+  if (h.has("cols")) state.columns = h.get("cols").split(",").filter(Boolean);
+  state.overlay = new Set(h.getAll("overlay"));
   const z = (h.get("zoom") || "").split(",").map(Number);
   state.zoom = z.length === 2 && z.every(Number.isFinite) && z[0] < z[1] ? z : null;
   return h.get("log");
@@ -98,6 +102,8 @@ export function urlHash() {
   h.set("resample", state.resample ? "1" : "0");
   h.set("thres_rate_dps", String(state.gyro.thres_rate_dps));
   if (state.zoom) h.set("zoom", state.zoom.map((v) => +v.toFixed(3)).join(","));
+  if (state.columns) h.set("cols", state.columns.join(","));
+  for (const name of state.overlay) h.append("overlay", name);
   return "#" + h.toString();
 }
 

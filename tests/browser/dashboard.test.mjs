@@ -553,6 +553,47 @@ test("CSV exports hold every plotted series as drawn: all HDR charts on one time
   await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
 });
 
+test("any log column plots on the shared time axis; another drive overlays the error and column charts; both in the URL", async () => {
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+  await page.locator("#tabs button[data-view=hdr]").click();
+  const picker = page.locator("#col-picker");
+  const cols = await picker.locator("input").evaluateAll((is) => is.map((i) => [i.value, i.checked]));
+  assert.deepEqual(cols.map((c) => c[0]).sort(), (await page.evaluate(() => window.gyrodrift.state.entries.find((e) => e.name === "City 1").log.columns().filter((c) => c !== "time_s"))).sort());
+  assert.deepEqual(cols.filter((c) => c[1]).map((c) => c[0]), ["speed_mps"], "speed by default");
+  await picker.locator("input[value=temp_c]").check();
+  await page.waitForFunction(() => /temp_c/.test(location.hash) && window.gyrodrift.state.specs["c-columns"].series.some((s) => s.name === "temp_c"));
+  // The plotted temperature is the log's column, and the time axis is the HDR charts'.
+  const same = await page.evaluate(() => {
+    const { state } = window.gyrodrift;
+    const s = state.specs["c-columns"].series.find((x) => x.name === "temp_c");
+    const log = state.entries.find((e) => e.name === "City 1").log;
+    const col = log.column("temp_c");
+    return s.y.length === col.length && s.y.every((v, i) => Object.is(v, col[i])) && state.layouts["c-columns"].x_max === state.layouts["c-heading"].x_max;
+  });
+  assert.ok(same);
+  // Overlay Highway 1: its HDR and pipeline errors join the error chart with the CLI's NE_psi.
+  const hw = page.locator("#logs li", { hasText: "Highway 1" }).locator("button.overlay");
+  assert.equal(await hw.getAttribute("aria-pressed"), "false");
+  await hw.click();
+  await page.waitForFunction(() => window.gyrodrift.state.specs["c-error"].series.some((s) => s.name === "Highway 1: HDR"));
+  const native = JSON.parse(cli("hdr", join(SAMPLES, "train", "highway-1.csv"), "--json"));
+  assert.match(await page.locator('#overlay-metrics .overlay-row[data-log="Highway 1"]').innerText(), new RegExp(`HDR ${native.NE_psi_hdr_deg_per_min.toFixed(3)}`));
+  assert.ok(await page.evaluate(() => window.gyrodrift.state.specs["c-columns"].series.some((s) => s.name === "Highway 1: temp_c")));
+  // Unzoomed, the time axis now spans the longer overlaid drive.
+  assert.ok(await page.evaluate(() => window.gyrodrift.state.layouts["c-error"].x_max >= window.gyrodrift.state.entries.find((e) => e.name === "Highway 1").log.durationMin * 60 - 1));
+  await page.waitForFunction(() => new URLSearchParams(location.hash.slice(1)).getAll("overlay").includes("Highway 1"));
+  assert.equal(await page.locator("#logs li", { hasText: "Highway 1" }).locator("button.overlay").getAttribute("aria-pressed"), "true");
+  await page.screenshot({ path: join(ARTIFACTS, "overlay.png"), fullPage: true });
+  // Reload: the link restores both.
+  await page.reload();
+  await ready();
+  await page.waitForFunction(() => window.gyrodrift.state.specs["c-error"]?.series.some((s) => s.name === "Highway 1: HDR"));
+  assert.equal(await page.locator("#col-picker input[value=temp_c]").isChecked(), true);
+  await page.locator("#logs li", { hasText: "Highway 1" }).locator("button.overlay").click();
+  await picker.locator("input[value=temp_c]").uncheck();
+  await page.waitForFunction(() => !/overlay=/.test(location.hash) && !window.gyrodrift.state.specs["c-error"].series.some((s) => s.name.startsWith("Highway 1")));
+});
+
 test("accessibility: tabs move with arrow keys, buttons have unique names, charts have a text alternative", async () => {
   await page.locator("#tabs button[data-view=hdr]").focus();
   await page.keyboard.press("ArrowRight");
@@ -672,6 +713,10 @@ test("axe-core finds no serious or critical accessibility violation in any view"
     return v;
   });
   assert.ok(probe.includes("button-name:critical"), probe.join(" "));
+  // With a drive overlaid, so its list button and metrics row are checked too.
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#logs li", { hasText: "Highway 1" }).locator("button.overlay").click();
+  await page.waitForSelector("#overlay-metrics .overlay-row");
   const found = [];
   for (const view of ["hdr", "track", "gyrodometry", "calibration", "allan", "report"]) {
     await page.locator(`#tabs button[data-view="${view}"]`).click();
@@ -682,6 +727,7 @@ test("axe-core finds no serious or critical accessibility violation in any view"
     found.push(...res.map((r) => `${view}: ${r}`));
   }
   await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#logs li", { hasText: "Highway 1" }).locator("button.overlay").click();
   assert.deepEqual(found, []);
 });
 

@@ -2,7 +2,7 @@
 import * as gd from "../pkg/gyrodrift.js";
 import { $, fmt, state, hdrOptions, COLORS, PALETTE, METRIC_HELP } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
-import { chart, timeRange } from "../charts.js";
+import { chart } from "../charts.js";
 import { showError, render } from "../render.js";
 
 let lastHdr = null;
@@ -35,7 +35,10 @@ export function renderHdr() {
     m.textContent = run.error;
   }
   const t = run.trace.time_s;
-  const xr = timeRange(t);
+  const overlaid = overlays(e);
+  // Unzoomed, the time axis spans the plotted drive and every overlaid one.
+  const ends = overlaid.map((o) => o.hdr.trace.time_s).filter((x) => x.length).map((x) => x[x.length - 1]);
+  const xr = state.zoom || [t[0], Math.max(t[t.length - 1], ...ends)];
   const series = [];
   if (run.reference) series.push({ name: "reference (GPS)", color: COLORS.ref, x: run.reference.time_s, y: run.reference.heading_deg, width: 3 });
   series.push({ name: "raw", color: COLORS.raw, x: t, y: run.trace.heading_raw_deg, width: 1 });
@@ -53,6 +56,7 @@ export function renderHdr() {
         { name: "HDR", color: COLORS.hdr, x: run.errors.time_s, y: run.errors.hdr_deg, width: 2 },
         ...(pipe.errors ? [{ name: "pipeline", color: COLORS.pipe, x: pipe.errors.time_s, y: pipe.errors.pipeline_deg, width: 2 },
           { name: "smoothed (offline)", color: COLORS.smooth, x: pipe.errors.time_s, y: pipe.errors.smoothed_deg, width: 1 }] : []),
+        ...overlayErrorSeries(overlaid),
       ],
     });
   }
@@ -67,7 +71,78 @@ export function renderHdr() {
       { name: "−I drift estimate", color: COLORS.raw, x: t, y: run.trace.drift_estimate_dps, width: 2 },
     ],
   });
+  renderOverlays(overlaid);
+  renderColumns(e, overlaid, xr, cursor);
   readout();
+}
+
+// ---------- other drives overlaid, log columns ----------
+const overlayRuns = new WeakMap(); // log -> { key, hdr, pipeKey, pipe }
+/** The overlaid drives (not the plotted one) with their HDR and pipeline runs, cached per
+ * log and settings so a slider reruns only what it changes. */
+function overlays(current) {
+  const key = JSON.stringify(hdrOptions());
+  const pipeKey = String(hdrOptions().bias_s ?? "");
+  return state.entries
+    .filter((x) => x !== current && !x.error && x.kind === "drive" && state.overlay.has(x.name))
+    .map((x, i) => {
+      let c = overlayRuns.get(x.log);
+      if (!c) overlayRuns.set(x.log, (c = {}));
+      if (c.key !== key) Object.assign(c, { key, hdr: gd.runHdr(x.log, hdrOptions()) });
+      if (c.pipeKey !== pipeKey) Object.assign(c, { pipeKey, pipe: gd.runPipeline(x.log, { bias_s: hdrOptions().bias_s ?? null }) });
+      return { entry: x, color: PALETTE[(i + 2) % PALETTE.length], hdr: c.hdr, pipe: c.pipe };
+    });
+}
+
+function overlayErrorSeries(overlaid) {
+  return overlaid.flatMap((o) => [
+    ...(o.hdr.errors ? [{ name: `${o.entry.name}: HDR`, color: o.color, x: o.hdr.errors.time_s, y: o.hdr.errors.hdr_deg }] : []),
+    ...(o.pipe.errors ? [{ name: `${o.entry.name}: pipeline`, color: o.color, x: o.pipe.errors.time_s, y: o.pipe.errors.pipeline_deg, width: 2 }] : []),
+  ]);
+}
+
+function renderOverlays(overlaid) {
+  $("overlay-metrics").innerHTML = overlaid
+    .map((o) => `<span class="overlay-row" data-log="${o.entry.name.replace(/"/g, "&quot;")}"><span class="swatch" style="background:${o.color}"></span><b>${o.entry.name}</b>: NE<sub>ψ</sub> raw ${fmt(o.hdr.result?.NE_psi_raw_deg_per_min, 3)} · HDR <b>${fmt(o.hdr.result?.NE_psi_hdr_deg_per_min, 3)}</b> · pipeline <b>${fmt(o.pipe.result?.NE_psi_pipeline_deg_per_min, 3)}</b> deg/min</span>`)
+    .join("");
+}
+
+const columnCache = new WeakMap(); // log -> Map(column -> Float64Array)
+function column(log, name) {
+  let m = columnCache.get(log);
+  if (!m) columnCache.set(log, (m = new Map()));
+  if (!m.has(name)) m.set(name, log.column(name));
+  return m.get(name);
+}
+
+/** Any column of the log (speed, temperature, the raw gyro, ...) on the shared time axis,
+ * chosen with checkboxes; overlaid drives add theirs. */
+function renderColumns(e, overlaid, xr, cursor) {
+  const cols = e.log.columns().filter((c) => c !== "time_s");
+  const chosen = (state.columns || [cols.includes("speed_mps") ? "speed_mps" : "gyro_dps"]).filter((c) => cols.includes(c));
+  const box = $("col-picker");
+  const sig = cols.join(",") + "|" + chosen.join(",");
+  if (box.dataset.sig !== sig) {
+    box.dataset.sig = sig;
+    box.replaceChildren(box.querySelector("legend"), ...cols.map((c) => {
+      const label = document.createElement("label");
+      const input = Object.assign(document.createElement("input"), { type: "checkbox", value: c, checked: chosen.includes(c) });
+      input.addEventListener("change", () => {
+        state.columns = [...box.querySelectorAll("input:checked")].map((i) => i.value);
+        render();
+      });
+      label.append(input, c);
+      return label;
+    }));
+  }
+  const series = [];
+  chosen.forEach((c, k) => {
+    series.push({ name: c, color: PALETTE[k % PALETTE.length], x: column(e.log, "time_s"), y: column(e.log, c) });
+    overlaid.forEach((o, i) => {
+      if (o.entry.log.columns().includes(c)) series.push({ name: `${o.entry.name}: ${c}`, color: PALETTE[(k + 3 + i) % PALETTE.length], width: 2, x: column(o.entry.log, "time_s"), y: column(o.entry.log, c) });
+    });
+  });
+  chart("c-columns", { title: `${e.name}: log columns`, x_label: "time", time_x: true, y_label: "value (unit in the column's name)", x_range: xr, cursor_x: cursor, series });
 }
 
 export function run_theta() {
