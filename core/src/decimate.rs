@@ -59,6 +59,63 @@ pub fn min_max(x: &[f64], y: &[f64], x0: f64, x1: f64, columns: usize) -> (Vec<f
     (ox, oy)
 }
 
+/// The samples to draw of several series sharing one x (a trace's columns): in each of
+/// `columns` pixel columns of [x0, x1], the first and last sample and each series' minimum
+/// and maximum, in order and once; the samples just outside the window are kept so lines run
+/// to the edges. Every series sampled at these indices keeps its extremes per column, and
+/// the series still share their x. When the window holds at most 4 samples per column, every
+/// sample in it is kept.
+pub fn shared_indices(x: &[f64], ys: &[&[f64]], x0: f64, x1: f64, columns: usize) -> Vec<usize> {
+    let n = ys.iter().fold(x.len(), |n, y| n.min(y.len()));
+    if n == 0 || columns == 0 || !(x1 > x0) {
+        return Vec::new();
+    }
+    let start = x[..n].partition_point(|&v| v < x0).saturating_sub(1);
+    let end = (x[..n].partition_point(|&v| v <= x1) + 1).min(n);
+    if end - start <= 4 * columns {
+        return (start..end).collect();
+    }
+    let scale = columns as f64 / (x1 - x0);
+    let mut out = Vec::with_capacity(columns * (2 + 2 * ys.len()));
+    let mut picked = Vec::with_capacity(2 + 2 * ys.len());
+    let mut i = start;
+    while i < end {
+        let col = ((x[i] - x0) * scale).floor();
+        let first = i;
+        while i < end && ((x[i] - x0) * scale).floor() == col {
+            i += 1;
+        }
+        picked.clear();
+        picked.extend([first, i - 1]);
+        for y in ys {
+            let (mut lo, mut hi) = (usize::MAX, usize::MAX);
+            for (k, &v) in y[first..i].iter().enumerate() {
+                if v.is_nan() {
+                    continue;
+                }
+                if lo == usize::MAX || v < y[first + lo] {
+                    lo = k;
+                }
+                if hi == usize::MAX || v > y[first + hi] {
+                    hi = k;
+                }
+            }
+            if lo != usize::MAX {
+                picked.extend([first + lo, first + hi]);
+            }
+        }
+        picked.sort_unstable();
+        picked.dedup();
+        out.extend_from_slice(&picked);
+    }
+    out
+}
+
+/// The values of `y` at `indices`.
+pub fn take(y: &[f64], indices: &[usize]) -> Vec<f64> {
+    indices.iter().map(|&i| y.get(i).copied().unwrap_or(f64::NAN)).collect()
+}
+
 /// Reduces a path (x, y) to the points at least `min_step` (same unit) from the last kept
 /// point, plus the last one: no point of the path is farther than `min_step` from the drawn
 /// polyline's vertices, so at a scale where `min_step` is under a pixel it draws the same. NaN
@@ -116,6 +173,28 @@ mod tests {
         assert_eq!(dx, vec![2.0, 3.0]); // sample 1 (edge) is NaN and skipped
         assert_eq!(dy, vec![3.0, 4.0]);
         assert!(min_max(&x, &y, 2.0, 1.0, 10).0.is_empty());
+    }
+
+    #[test]
+    fn shared_indices_keep_every_series_extremes() {
+        let x: Vec<f64> = (0..1000).map(|i| i as f64).collect();
+        let mut a = vec![0.0; 1000];
+        let mut b = vec![1.0; 1000];
+        a[500] = 7.0;
+        b[503] = -3.0;
+        b[10] = f64::NAN;
+        let idx = shared_indices(&x, &[&a, &b], 0.0, 999.0, 10);
+        assert!(idx.windows(2).all(|w| w[0] < w[1]), "in order, once");
+        assert!(idx.contains(&500) && idx.contains(&503), "{idx:?}");
+        assert!(idx.len() <= 6 * 11);
+        assert_eq!(take(&a, &idx).iter().cloned().fold(f64::MIN, f64::max), 7.0);
+        assert_eq!(take(&b, &idx).iter().cloned().filter(|v| !v.is_nan()).fold(f64::MAX, f64::min), -3.0);
+        // A small window keeps every sample, with one beyond each edge.
+        assert_eq!(shared_indices(&x, &[&a], 10.5, 14.5, 10), vec![10, 11, 12, 13, 14, 15]);
+        assert!(shared_indices(&x, &[&a], 5.0, 1.0, 10).is_empty());
+        let t = take(&a, &[2, 5000]);
+        assert_eq!(t[0], 0.0);
+        assert!(t[1].is_nan(), "an index past the end reads NaN");
     }
 
     #[test]

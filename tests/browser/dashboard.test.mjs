@@ -181,7 +181,9 @@ test("a tooltip at the cursor lists every shown series with core's value there, 
   await page.screenshot({ path: join(ARTIFACTS, "tooltip.png") });
   // A hidden series leaves the tooltip.
   await page.locator("#legend-c-error button.key", { hasText: /^raw$/ }).click();
-  await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
+  await page.locator("#c-error").scrollIntoViewIfNeeded();
+  const box2 = await page.locator("#c-error").boundingBox();
+  await page.mouse.move(box2.x + box2.width * 0.5, box2.y + box2.height * 0.5);
   await page.waitForFunction(() => !document.querySelector("#c-error ~ .tip td[data-series=raw]"));
   r = await check();
   assert.deepEqual(r.cells, r.want);
@@ -538,7 +540,7 @@ test("CSV exports hold every plotted series as drawn: all HDR charts on one time
   const rows = new Map(lines.slice(1).map((l) => l.split(",")).map((c) => [Number(c[ti]), c[hi]]));
   for (let k = 0; k < 50; k++) assert.equal(Number(rows.get(trace.t[k])), trace.hdr[k], `t = ${trace.t[k]}`);
   // Each chart's CSV button: the Allan chart's taus and its band's two edges.
-  await page.locator("#logs li", { hasText: "static" }).locator("button.pick").click();
+  await page.locator("#logs li", { hasText: "Static 2 h" }).locator("button.pick").click();
   await page.locator("#tabs button[data-view=allan]").click();
   await page.waitForFunction(() => !document.getElementById("view-allan").hidden);
   const [a] = await Promise.all([page.waitForEvent("download"), page.locator("button.csv[data-canvas=c-allan]").click()]);
@@ -563,14 +565,22 @@ test("any log column plots on the shared time axis; another drive overlays the e
   await picker.locator("input[value=temp_c]").check();
   await page.waitForFunction(() => /temp_c/.test(location.hash) && window.gyrodrift.state.specs["c-columns"].series.some((s) => s.name === "temp_c"));
   // The plotted temperature is the log's column, and the time axis is the HDR charts'.
+  // Every drawn point is a sample of the column (core keeps, per pixel, the first, last and
+  // extreme samples), the column's extremes are drawn, and the time axis is the HDR charts'.
   const same = await page.evaluate(() => {
     const { state } = window.gyrodrift;
     const s = state.specs["c-columns"].series.find((x) => x.name === "temp_c");
     const log = state.entries.find((e) => e.name === "City 1").log;
-    const col = log.column("temp_c");
-    return s.y.length === col.length && s.y.every((v, i) => Object.is(v, col[i])) && state.layouts["c-columns"].x_max === state.layouts["c-heading"].x_max;
+    const t = log.column("time_s"), col = log.column("temp_c");
+    const at = new Map([...t].map((v, i) => [v, col[i]]));
+    const finite = [...col].filter(Number.isFinite);
+    return {
+      samples: s.x.every((x, i) => Object.is(at.get(x), s.y[i])),
+      extremes: Math.max(...s.y) === Math.max(...finite) && Math.min(...s.y) === Math.min(...finite),
+      axis: state.layouts["c-columns"].x_max === state.layouts["c-heading"].x_max,
+    };
   });
-  assert.ok(same);
+  assert.deepEqual(same, { samples: true, extremes: true, axis: true });
   // Overlay Highway 1: its HDR and pipeline errors join the error chart with the CLI's NE_psi.
   const hw = page.locator("#logs li", { hasText: "Highway 1" }).locator("button.overlay");
   assert.equal(await hw.getAttribute("aria-pressed"), "false");
@@ -584,11 +594,15 @@ test("any log column plots on the shared time axis; another drive overlays the e
   await page.waitForFunction(() => new URLSearchParams(location.hash.slice(1)).getAll("overlay").includes("Highway 1"));
   assert.equal(await page.locator("#logs li", { hasText: "Highway 1" }).locator("button.overlay").getAttribute("aria-pressed"), "true");
   await page.screenshot({ path: join(ARTIFACTS, "overlay.png"), fullPage: true });
-  // Reload: the link restores both.
-  await page.reload();
-  await ready();
-  await page.waitForFunction(() => window.gyrodrift.state.specs["c-error"]?.series.some((s) => s.name === "Highway 1: HDR"));
-  assert.equal(await page.locator("#col-picker input[value=temp_c]").isChecked(), true);
+  // The link restores both in a new tab (this tab keeps the logs later tests use).
+  const tab = await context.newPage();
+  try {
+    await tab.goto(page.url());
+    await tab.waitForFunction(() => document.body.dataset.ready === "1" && window.gyrodrift.state.specs["c-error"]?.series.some((s) => s.name === "Highway 1: HDR"), null, { timeout: 30000 });
+    assert.equal(await tab.locator("#col-picker input[value=temp_c]").isChecked(), true);
+  } finally {
+    await tab.close();
+  }
   await page.locator("#logs li", { hasText: "Highway 1" }).locator("button.overlay").click();
   await picker.locator("input[value=temp_c]").uncheck();
   await page.waitForFunction(() => !/overlay=/.test(location.hash) && !window.gyrodrift.state.specs["c-error"].series.some((s) => s.name.startsWith("Highway 1")));
@@ -681,7 +695,7 @@ for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyro
 }
 
 test("the Allan view marks the minimum with its 68 % band and the flat bottom, with the CLI's numbers", async () => {
-  await page.locator("#logs li", { hasText: "static" }).locator("button.pick").click();
+  await page.locator("#logs li", { hasText: "Static 2 h" }).locator("button.pick").click();
   await page.locator("#tabs button[data-view=allan]").click();
   await page.waitForFunction(() => !document.getElementById("view-allan").hidden && document.getElementById("m-bottom"));
   const text = cli("allan", join(SAMPLES, "static", "static-2h.csv"));

@@ -39,7 +39,16 @@ test("gyrodometry, calibrate and allan equal the native CLI", () => {
   const al = plain(gd.allan(gd.Log.parse(readFileSync(st, "utf8"))));
   assert.ok(al.arw_line_dps.length === al.tau_s.length);
   delete al.arw_line_dps; // the plotting helper; the rest are the Result keys
+  // The confidence (beyond methods.md) matches the CLI's text table.
+  const conf = al.confidence;
+  delete al.confidence;
   assert.deepEqual(al, JSON.parse(cli("allan", st, "--json")));
+  const text = cli("allan", st);
+  const band = text.match(/68 % band +([\d.]+) to ([\d.]+) deg\/s; the minimum could lie anywhere in tau ([\d.]+) to ([\d.]+) s/);
+  assert.equal(conf.bias_instability_low_dps.toFixed(6), band[1]);
+  assert.equal(conf.bias_instability_high_dps.toFixed(6), band[2]);
+  assert.deepEqual(conf.tau_min_range_s, [Number(band[3]), Number(band[4])]);
+  assert.equal(conf.adev_low_dps.length, al.tau_s.length);
 });
 
 test("bad input throws an Error with line and column, and the module keeps working", () => {

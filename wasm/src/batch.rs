@@ -41,32 +41,125 @@ pub fn hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] optio
 /// HDR with its per-sample series (Float64Array) for plotting: `{ result, error, eps0_dps, trace }`;
 /// `result` is null and `error` says why when the log has no usable reference.
 #[wasm_bindgen(js_name = runHdr, unchecked_return_type = "HdrRun")]
-pub fn run_hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
+pub fn run_hdr(
+    log: &Log,
+    #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "ChartView")] view: Option<JsValue>,
+) -> JsResult<JsValue> {
     let opts: HdrOptions = self::options("hdr", options)?;
+    let view = View::read(&view.unwrap_or(JsValue::UNDEFINED))?;
     let run = hdr::run(&log.log, &opts).map_err(err)?;
     let out = run_object(&run.result, run.eps0_dps)?;
     let t = &run.trace;
+    let drift = t.drift_estimate_dps();
+    let switch: Vec<f64> = t.turn_switch.iter().map(|&b| b as u8 as f64).collect();
+    // With a view, every series keeps only the samples that draw the same (metrics are
+    // computed on all of them first).
+    let idx =
+        view.as_ref().map(|v| v.indices(&t.time_s, &[&t.heading_raw_deg, &t.heading_hdr_deg, &t.rate_corrected_dps, &drift, &switch]));
+    let r = |v: &[f64]| reduced(idx.as_deref(), v);
     let trace = object_of(&[
-        ("time_s", f64s(&t.time_s)),
-        ("heading_raw_deg", f64s(&t.heading_raw_deg)),
-        ("heading_hdr_deg", f64s(&t.heading_hdr_deg)),
-        ("rate_raw_dps", f64s(&t.rate_raw_dps)),
-        ("rate_corrected_dps", f64s(&t.rate_corrected_dps)),
-        ("i_dps", f64s(&t.i_dps)),
-        ("drift_estimate_dps", f64s(&t.drift_estimate_dps())),
-        ("turn_switch", bools(&t.turn_switch)),
-        ("attenuation", f64s(&t.attenuation)),
+        ("time_s", r(&t.time_s)),
+        ("heading_raw_deg", r(&t.heading_raw_deg)),
+        ("heading_hdr_deg", r(&t.heading_hdr_deg)),
+        ("rate_raw_dps", r(&t.rate_raw_dps)),
+        ("rate_corrected_dps", r(&t.rate_corrected_dps)),
+        ("i_dps", r(&t.i_dps)),
+        ("drift_estimate_dps", r(&drift)),
+        (
+            "turn_switch",
+            match &idx {
+                Some(i) => bools(&i.iter().map(|&k| t.turn_switch[k]).collect::<Vec<_>>()),
+                None => bools(&t.turn_switch),
+            },
+        ),
+        ("attenuation", r(&t.attenuation)),
     ])?;
     set(&out, "trace", &trace)?;
     let (reference, errors) = match run.errors(&log.log) {
-        Some((r, e)) => (
-            series(&[("time_s", &r.time_s), ("heading_deg", &r.heading_deg)])?.into(),
-            series(&[("time_s", &e.time_s), ("raw_deg", &e.errors_deg[0]), ("hdr_deg", &e.errors_deg[1])])?.into(),
-        ),
+        Some((rf, e)) => {
+            let ri = view.as_ref().map(|v| v.indices(&rf.time_s, &[&rf.heading_deg]));
+            let ei = view.as_ref().map(|v| v.indices(&e.time_s, &[&e.errors_deg[0], &e.errors_deg[1]]));
+            let reference =
+                object_of(&[("time_s", reduced(ri.as_deref(), &rf.time_s)), ("heading_deg", reduced(ri.as_deref(), &rf.heading_deg))])?;
+            let errors = object_of(&[
+                ("time_s", reduced(ei.as_deref(), &e.time_s)),
+                ("raw_deg", reduced(ei.as_deref(), &e.errors_deg[0])),
+                ("hdr_deg", reduced(ei.as_deref(), &e.errors_deg[1])),
+            ])?;
+            (reference.into(), errors.into())
+        }
         None => (JsValue::NULL, JsValue::NULL),
     };
     set(&out, "reference", &reference)?;
     set(&out, "errors", &errors)?;
+    Ok(out.into())
+}
+
+/// What a page draws: a time window (or all) and its width in pixel columns.
+struct View {
+    x_range: Option<[f64; 2]>,
+    columns: usize,
+}
+
+impl View {
+    fn read(v: &JsValue) -> JsResult<Option<View>> {
+        if v.is_undefined() || v.is_null() {
+            return Ok(None);
+        }
+        let columns = js_sys::Reflect::get(v, &"columns".into())?.as_f64().filter(|c| c.is_finite() && *c >= 1.0 && *c <= 100_000.0);
+        let columns = columns.ok_or_else(|| err("view.columns must be a number of pixel columns, 1 to 100000"))? as usize;
+        let r = js_sys::Reflect::get(v, &"x_range".into())?;
+        let x_range = if r.is_undefined() || r.is_null() {
+            None
+        } else {
+            let a = js_sys::Float64Array::new(&r).to_vec();
+            match a[..] {
+                [lo, hi] if lo.is_finite() && hi.is_finite() && hi > lo => Some([lo, hi]),
+                _ => return Err(err("view.x_range must be [from, to] with from < to")),
+            }
+        };
+        Ok(Some(View { x_range, columns }))
+    }
+
+    /// The samples to keep of series sharing `x` (core's `decimate::shared_indices`).
+    fn indices(&self, x: &[f64], ys: &[&[f64]]) -> Vec<usize> {
+        let [x0, x1] = self.x_range.unwrap_or_else(|| [x.first().copied().unwrap_or(0.0), x.last().copied().unwrap_or(0.0)]);
+        if x1.partial_cmp(&x0) != Some(std::cmp::Ordering::Greater) {
+            return (0..x.len()).collect();
+        }
+        gyrodrift::decimate::shared_indices(x, ys, x0, x1, self.columns)
+    }
+}
+
+fn reduced(idx: Option<&[usize]>, v: &[f64]) -> JsValue {
+    match idx {
+        Some(i) => f64s(&gyrodrift::decimate::take(v, i)),
+        None => f64s(v),
+    }
+}
+
+/// Series sharing one x reduced for drawing in a view: `{ x, ys }` holding, per pixel
+/// column, the first and last sample and each series' extremes (core's
+/// `decimate::shared_indices`), so a page re-draws a cached 2 M-sample trace cheaply.
+#[wasm_bindgen(js_name = reduceSeries, unchecked_return_type = "{ x: Float64Array; ys: Float64Array[] }")]
+pub fn reduce_series(
+    x: &[f64],
+    #[wasm_bindgen(unchecked_param_type = "ArrayLike<number>[]")] ys: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "ChartView")] view: JsValue,
+) -> JsResult<JsValue> {
+    let view = View::read(&view)?.ok_or_else(|| err("reduceSeries needs a view { x_range?, columns }"))?;
+    let arr: js_sys::Array = ys.dyn_into().map_err(|_| err("ys must be an array of series"))?;
+    let cols: Vec<Vec<f64>> = arr.iter().map(|y| js_sys::Float64Array::new(&y).to_vec()).collect();
+    let refs: Vec<&[f64]> = cols.iter().map(|c| c.as_slice()).collect();
+    let idx = view.indices(x, &refs);
+    let out = Object::new();
+    set(&out, "x", &reduced(Some(&idx), x))?;
+    let list = js_sys::Array::new();
+    for c in &cols {
+        list.push(&reduced(Some(&idx), c));
+    }
+    set(&out, "ys", &list)?;
     Ok(out.into())
 }
 

@@ -340,6 +340,13 @@ export interface Tracks {
   reference: Path | null;
 }
 
+/** What a page draws: a time window (null: all) and its width in pixel columns. Series
+ * given to a view keep per column the first and last sample and each series' extremes. */
+export interface ChartView {
+  x_range?: [number, number] | null;
+  columns: number;
+}
+
 /** A chart for drawChart: series are decimated to the canvas width in core. */
 export interface ChartSpec {
   title?: string;

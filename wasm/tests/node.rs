@@ -47,7 +47,7 @@ fn hdr_matches_core_bit_for_bit() {
 #[wasm_bindgen_test]
 fn streaming_equals_batch() {
     let log = Log::parse(JsValue::from_str(RURAL)).unwrap();
-    let run = run_hdr(&log, obj(&[("resample", JsValue::FALSE)])).unwrap();
+    let run = run_hdr(&log, obj(&[("resample", JsValue::FALSE)]), None).unwrap();
     let trace = get(&run, "trace");
     let t: Float64Array = get(&trace, "time_s").dyn_into().unwrap();
     let batch: Float64Array = get(&trace, "heading_hdr_deg").dyn_into().unwrap();
@@ -64,6 +64,32 @@ fn streaming_equals_batch() {
     let all = est2.update_many(&t.to_vec(), &raw.to_vec()).unwrap();
     assert_eq!(all.get_index(t.length() - 1).to_bits(), est.heading_deg().to_bits());
     assert!(est.state().unwrap().is_object());
+}
+
+/// A view reduces the series to what a chart draws; the metrics stay those of every sample;
+/// a bad view is an error, not a panic.
+#[wasm_bindgen_test]
+fn a_view_reduces_the_trace_not_the_metrics() {
+    let log = Log::parse(JsValue::from_str(RURAL)).unwrap();
+    let opts = || obj(&[("resample", JsValue::FALSE)]);
+    let full = run_hdr(&log, opts(), None).unwrap();
+    let view = obj(&[("columns", JsValue::from_f64(20.0))]);
+    let small = run_hdr(&log, opts(), Some(view)).unwrap();
+    let len = |run: &JsValue, key: &str| get(&get(run, "trace"), key).dyn_into::<Float64Array>().unwrap().length();
+    assert!(len(&small, "time_s") < len(&full, "time_s") / 4, "{} of {}", len(&small, "time_s"), len(&full, "time_s"));
+    assert_eq!(len(&small, "time_s"), len(&small, "heading_hdr_deg"));
+    let e = |run: &JsValue| num(&get(run, "result"), "E_psi_hdr_deg");
+    assert_eq!(e(&small).to_bits(), e(&full).to_bits());
+    // The reduced heading keeps the full one's extremes.
+    let h = |run: &JsValue| get(&get(run, "trace"), "heading_hdr_deg").dyn_into::<Float64Array>().unwrap().to_vec();
+    let max = |v: Vec<f64>| v.into_iter().fold(f64::MIN, f64::max);
+    assert_eq!(max(h(&small)), max(h(&full)));
+    for bad in [
+        obj(&[("columns", JsValue::from_f64(0.0))]),
+        obj(&[("columns", JsValue::from_f64(10.0)), ("x_range", Array::of2(&JsValue::from_f64(5.0), &JsValue::from_f64(1.0)).into())]),
+    ] {
+        assert!(message(run_hdr(&log, opts(), Some(bad)).err().unwrap()).contains("view."));
+    }
 }
 
 #[wasm_bindgen_test]
@@ -83,7 +109,7 @@ fn bad_input_throws_with_line_and_column_and_module_keeps_working() {
     let noref = Log::parse(JsValue::from_str("time_s,gyro_dps,ref_heading_deg\n0,1,\n1,1,\n")).unwrap();
     let e = hdr(&noref, JsValue::UNDEFINED).err().unwrap();
     assert!(message(e).contains("no valid reference heading"));
-    let run = run_hdr(&noref, JsValue::UNDEFINED).unwrap();
+    let run = run_hdr(&noref, JsValue::UNDEFINED, None).unwrap();
     assert!(get(&run, "result").is_null());
     assert!(get(&run, "error").as_string().unwrap().contains("reference"));
     let e = gyrodometry(&Log::parse(JsValue::from_str(RURAL)).unwrap(), JsValue::UNDEFINED).err().unwrap();

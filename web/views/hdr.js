@@ -10,7 +10,8 @@ let pipeCache = null;
 export function renderHdr() {
   const e = logFor("hdr");
   if (!e) return showError("Load a drive log (with gyro_dps and ref_heading_deg) for the HDR view.");
-  const run = gd.runHdr(e.log, hdrOptions());
+  const v = drawView();
+  const run = gd.runHdr(e.log, hdrOptions(), v);
   // The recommended pipeline beside the paper's method, with the same static-bias window.
   // It depends on the log and bias_s only, so HDR's sliders reuse it.
   const pipeKey = `${e.name}|${hdrOptions().bias_s ?? ""}`;
@@ -35,7 +36,7 @@ export function renderHdr() {
     m.textContent = run.error;
   }
   const t = run.trace.time_s;
-  const overlaid = overlays(e);
+  const overlaid = overlays(e, v);
   // Unzoomed, the time axis spans the plotted drive and every overlaid one.
   const ends = overlaid.map((o) => o.hdr.trace.time_s).filter((x) => x.length).map((x) => x[x.length - 1]);
   const xr = state.zoom || [t[0], Math.max(t[t.length - 1], ...ends)];
@@ -43,8 +44,10 @@ export function renderHdr() {
   if (run.reference) series.push({ name: "reference (GPS)", color: COLORS.ref, x: run.reference.time_s, y: run.reference.heading_deg, width: 3 });
   series.push({ name: "raw", color: COLORS.raw, x: t, y: run.trace.heading_raw_deg, width: 1 });
   series.push({ name: "HDR", color: COLORS.hdr, x: t, y: run.trace.heading_hdr_deg, width: 2 });
-  series.push({ name: "pipeline", color: COLORS.pipe, x: pipe.trace.time_s, y: pipe.trace.heading_deg, width: 2 });
-  series.push({ name: "smoothed (offline)", color: COLORS.smooth, x: pipe.trace.time_s, y: pipe.trace.heading_smoothed_deg, width: 1 });
+  const pt = reduce(pipe.trace.time_s, [pipe.trace.heading_deg, pipe.trace.heading_smoothed_deg], v);
+  series.push({ name: "pipeline", color: COLORS.pipe, x: pt.x, y: pt.ys[0], width: 2 });
+  series.push({ name: "smoothed (offline)", color: COLORS.smooth, x: pt.x, y: pt.ys[1], width: 1 });
+  const pe = pipe.errors && reduce(pipe.errors.time_s, [pipe.errors.pipeline_deg, pipe.errors.smoothed_deg], v);
   const cursor = state.cursor;
   chart("c-heading", { title: `${e.name}: heading`, x_label: "time", time_x: true, y_label: "heading (deg)", x_range: xr, series, cursor_x: cursor });
   if (run.errors) {
@@ -54,9 +57,9 @@ export function renderHdr() {
         { name: "zero", color: COLORS.zero, x: [xr[0], xr[1]], y: [0, 0] },
         { name: "raw", color: COLORS.raw, x: run.errors.time_s, y: run.errors.raw_deg },
         { name: "HDR", color: COLORS.hdr, x: run.errors.time_s, y: run.errors.hdr_deg, width: 2 },
-        ...(pipe.errors ? [{ name: "pipeline", color: COLORS.pipe, x: pipe.errors.time_s, y: pipe.errors.pipeline_deg, width: 2 },
-          { name: "smoothed (offline)", color: COLORS.smooth, x: pipe.errors.time_s, y: pipe.errors.smoothed_deg, width: 1 }] : []),
-        ...overlayErrorSeries(overlaid),
+        ...(pe ? [{ name: "pipeline", color: COLORS.pipe, x: pe.x, y: pe.ys[0], width: 2 },
+          { name: "smoothed (offline)", color: COLORS.smooth, x: pe.x, y: pe.ys[1], width: 1 }] : []),
+        ...overlayErrorSeries(overlaid, v),
       ],
     });
   }
@@ -72,33 +75,54 @@ export function renderHdr() {
     ],
   });
   renderOverlays(overlaid);
-  renderColumns(e, overlaid, xr, cursor);
+  renderColumns(e, overlaid, xr, cursor, v);
   readout();
+}
+
+// ---------- what is drawn: big logs reduced in core to the pixels ----------
+/** The charts' window (null: all) and width in device pixels: series are reduced in core to
+ * the samples that draw the same (first, last, extremes per pixel column). */
+function drawView() {
+  const c = $("c-heading");
+  return { x_range: state.zoom, columns: Math.max(100, Math.round(c.clientWidth * (window.devicePixelRatio || 1))) };
+}
+
+const reduced = new WeakMap(); // first y array -> { key, out }
+/** A cached series group (the pipeline's trace, a log column) reduced for the view, once
+ * per zoom and width, not on every slider step. */
+function reduce(x, ys, v) {
+  const key = JSON.stringify(v);
+  let c = reduced.get(ys[0]);
+  if (!c || c.key !== key || c.x !== x) reduced.set(ys[0], (c = { key, x, out: gd.reduceSeries(x, ys, v) }));
+  return c.out;
 }
 
 // ---------- other drives overlaid, log columns ----------
 const overlayRuns = new WeakMap(); // log -> { key, hdr, pipeKey, pipe }
 /** The overlaid drives (not the plotted one) with their HDR and pipeline runs, cached per
  * log and settings so a slider reruns only what it changes. */
-function overlays(current) {
-  const key = JSON.stringify(hdrOptions());
+function overlays(current, v) {
+  const key = JSON.stringify([hdrOptions(), v]);
   const pipeKey = String(hdrOptions().bias_s ?? "");
   return state.entries
     .filter((x) => x !== current && !x.error && x.kind === "drive" && state.overlay.has(x.name))
     .map((x, i) => {
       let c = overlayRuns.get(x.log);
       if (!c) overlayRuns.set(x.log, (c = {}));
-      if (c.key !== key) Object.assign(c, { key, hdr: gd.runHdr(x.log, hdrOptions()) });
+      if (c.key !== key) Object.assign(c, { key, hdr: gd.runHdr(x.log, hdrOptions(), v) });
       if (c.pipeKey !== pipeKey) Object.assign(c, { pipeKey, pipe: gd.runPipeline(x.log, { bias_s: hdrOptions().bias_s ?? null }) });
       return { entry: x, color: PALETTE[(i + 2) % PALETTE.length], hdr: c.hdr, pipe: c.pipe };
     });
 }
 
-function overlayErrorSeries(overlaid) {
-  return overlaid.flatMap((o) => [
-    ...(o.hdr.errors ? [{ name: `${o.entry.name}: HDR`, color: o.color, x: o.hdr.errors.time_s, y: o.hdr.errors.hdr_deg }] : []),
-    ...(o.pipe.errors ? [{ name: `${o.entry.name}: pipeline`, color: o.color, x: o.pipe.errors.time_s, y: o.pipe.errors.pipeline_deg, width: 2 }] : []),
-  ]);
+function overlayErrorSeries(overlaid, v) {
+  return overlaid.flatMap((o) => {
+    const pe = o.pipe.errors && reduce(o.pipe.errors.time_s, [o.pipe.errors.pipeline_deg], v);
+    return [
+      ...(o.hdr.errors ? [{ name: `${o.entry.name}: HDR`, color: o.color, x: o.hdr.errors.time_s, y: o.hdr.errors.hdr_deg }] : []),
+      ...(pe ? [{ name: `${o.entry.name}: pipeline`, color: o.color, x: pe.x, y: pe.ys[0], width: 2 }] : []),
+    ];
+  });
 }
 
 function renderOverlays(overlaid) {
@@ -117,7 +141,7 @@ function column(log, name) {
 
 /** Any column of the log (speed, temperature, the raw gyro, ...) on the shared time axis,
  * chosen with checkboxes; overlaid drives add theirs. */
-function renderColumns(e, overlaid, xr, cursor) {
+function renderColumns(e, overlaid, xr, cursor, v) {
   const cols = e.log.columns().filter((c) => c !== "time_s");
   const chosen = (state.columns || [cols.includes("speed_mps") ? "speed_mps" : "gyro_dps"]).filter((c) => cols.includes(c));
   const box = $("col-picker");
@@ -137,9 +161,12 @@ function renderColumns(e, overlaid, xr, cursor) {
   }
   const series = [];
   chosen.forEach((c, k) => {
-    series.push({ name: c, color: PALETTE[k % PALETTE.length], x: column(e.log, "time_s"), y: column(e.log, c) });
+    const own = reduce(column(e.log, "time_s"), [column(e.log, c)], v);
+    series.push({ name: c, color: PALETTE[k % PALETTE.length], x: own.x, y: own.ys[0] });
     overlaid.forEach((o, i) => {
-      if (o.entry.log.columns().includes(c)) series.push({ name: `${o.entry.name}: ${c}`, color: PALETTE[(k + 3 + i) % PALETTE.length], width: 2, x: column(o.entry.log, "time_s"), y: column(o.entry.log, c) });
+      if (!o.entry.log.columns().includes(c)) return;
+      const r = reduce(column(o.entry.log, "time_s"), [column(o.entry.log, c)], v);
+      series.push({ name: `${o.entry.name}: ${c}`, color: PALETTE[(k + 3 + i) % PALETTE.length], width: 2, x: r.x, y: r.ys[0] });
     });
   });
   chart("c-columns", { title: `${e.name}: log columns`, x_label: "time", time_x: true, y_label: "value (unit in the column's name)", x_range: xr, cursor_x: cursor, series });
