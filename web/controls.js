@@ -2,6 +2,7 @@
 import { $, fmt, state, VIEW_KIND } from "./state.js";
 import { render, scheduleRender } from "./render.js";
 import { saveRecipe } from "./loading.js";
+import { forget } from "./background.js";
 
 // ---------- list and selection ----------
 export function renderList() {
@@ -98,6 +99,7 @@ function removeButton(i, label) {
 /** Removes a log (its wasm memory freed) or dismisses an error entry. */
 export function removeEntry(i) {
   const [e] = state.entries.splice(i, 1);
+  if (e) forget(e);
   e?.log?.free();
   if (state.selected > i || state.selected >= state.entries.length) state.selected--;
   state.selected = Math.max(0, Math.min(state.selected, state.entries.length - 1));

@@ -184,6 +184,10 @@ export async function loadFiles(files) {
         if (res.error) throw new Error(res.error);
         return gd.Log.fromColumns(res.data);
       });
+      // The worker keeps its copy for the slow work (Track, pipeline) unless the log was
+      // split at a gap (its parts are not the worker's log).
+      if (res.key != null && !e.error && !e.note) e.workerKey = res.key;
+      else if (res.key != null) inWorker({ type: "forget", key: res.key }, [], () => {});
     } else {
       e = addLog(f.name, new Uint8Array(buffer));
     }

@@ -4,10 +4,21 @@
 //   the page rebuilds the Log from them;
 // - import: raw logger files by their detected preset (or a given recipe); recipes to and
 //   from TOML;
-// - tune: the HDR parameters over the drives' columns, with progress.
-import init, { Log, tune, detectImport, importLog, recipeToToml, recipeFromToml } from "./pkg/full/gyrodrift.js";
+// - tune: the HDR parameters over the drives' columns, with progress;
+// - track, pipeline: the slow work on a large log this worker parsed and kept (`key`), so
+//   the page's Track view and pipeline never pause it.
+import init, { Log, tune, detectImport, importLog, recipeToToml, recipeFromToml, track, runPipeline } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
+/** Large logs parsed here, kept for later work on them (freed on "forget"). */
+const kept = new Map();
+
+/** The typed arrays' buffers inside a result, to transfer instead of copy. */
+function buffers(v, out = []) {
+  if (ArrayBuffer.isView(v)) out.push(v.buffer);
+  else if (v && typeof v === "object") for (const x of Object.values(v)) buffers(x, out);
+  return out;
+}
 
 function progressReporter(id) {
   let last = -1;
@@ -34,6 +45,17 @@ self.onmessage = async (ev) => {
       self.postMessage({ id, data: report });
       return;
     }
+    if (type === "track" || type === "pipeline") {
+      const log = kept.get(ev.data.key);
+      if (!log) return self.postMessage({ id, error: "this log is no longer kept in the worker" });
+      const data = type === "track" ? track(log, ev.data.options) : runPipeline(log, ev.data.options);
+      return self.postMessage({ id, data }, buffers(data));
+    }
+    if (type === "forget") {
+      kept.get(ev.data.key)?.free();
+      kept.delete(ev.data.key);
+      return self.postMessage({ id, data: true });
+    }
     if (type === "toml-out") return self.postMessage({ id, data: recipeToToml(ev.data.recipe) });
     if (type === "toml-in") return self.postMessage({ id, data: recipeFromToml(ev.data.text) });
     if (type === "import") {
@@ -55,9 +77,9 @@ self.onmessage = async (ev) => {
     }
     const log = Log.fromBytesWithProgress(new Uint8Array(ev.data.buffer), progressReporter(id));
     const data = log.toColumns();
-    log.free();
+    kept.set(id, log);
     const transfer = [data.line.buffer, ...Object.values(data.columns).map((a) => a.buffer)];
-    self.postMessage({ id, data }, transfer);
+    self.postMessage({ id, data, key: id }, transfer);
   } catch (e) {
     self.postMessage({ id, error: e.message });
   }

@@ -150,13 +150,19 @@ impl ErrorSeries {
     /// `error_series` of each heading; None when the log has no usable reference.
     pub fn of(log: &crate::DriveLog, time_s: &[f64], headings: &[&[f64]]) -> Option<(Reference, ErrorSeries)> {
         let reference = Reference::from_log(log).ok()?;
+        let out = ErrorSeries::against(&reference, time_s, headings);
+        Some((reference, out))
+    }
+
+    /// `error_series` of each heading against a reference taken already.
+    pub fn against(reference: &Reference, time_s: &[f64], headings: &[&[f64]]) -> ErrorSeries {
         let mut out = ErrorSeries::default();
         for psi in headings {
-            let (t, e) = error_series(time_s, psi, &reference);
+            let (t, e) = error_series(time_s, psi, reference);
             out.time_s = t;
             out.errors_deg.push(e);
         }
-        Some((reference, out))
+        out
     }
 }
 

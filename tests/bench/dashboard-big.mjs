@@ -1,8 +1,9 @@
 #!/usr/bin/env node
 // The dashboard on a big log (issue 16, item 9), in headless Chromium: a 60 MB, 2.19 M-row
 // log (Highway 1 repeated with shifted time: 60 h at 10 Hz) opened from disk; then 20 HDR
-// slider moves (median render time: re-run and redraw) and a switch to the Track view (the
-// longest main-thread task while it renders, by the Long Tasks API).
+// slider moves (median render time: re-run and redraw) and a switch to the Track view; the
+// longest main-thread task of each phase by the Long Tasks API (opening includes parsing in
+// the worker and the pipeline, also in the worker, arriving).
 //   node tests/bench/dashboard-big.mjs        (after scripts/test.sh has built web/pkg)
 import { spawn } from "node:child_process";
 import { mkdtempSync, readFileSync, writeFileSync } from "node:fs";
@@ -42,10 +43,19 @@ try {
   page.on("pageerror", (e) => console.error("page error:", e.message));
   await page.goto(`http://127.0.0.1:${PORT}/`);
   await page.waitForFunction(() => document.body.dataset.ready === "1", null, { timeout: 30000 });
+  // The longest main-thread task from here on, by phase (Long Tasks API).
+  await page.evaluate(() => {
+    window.__tasks = [];
+    new PerformanceObserver((l) => l.getEntries().forEach((e) => window.__tasks.push(e.duration))).observe({ type: "longtask", buffered: false });
+  });
+  const longest = () => page.evaluate(() => { const m = Math.max(0, ...window.__tasks); window.__tasks = []; return m; });
   const t0 = Date.now();
   await page.locator("#file-input").setInputFiles([file]);
   await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Big 60 h"), null, { timeout: 120000 });
   const loadS = (Date.now() - t0) / 1000;
+  await page.waitForFunction(() => document.getElementById("m-e-pipeline"), null, { timeout: 120000 });
+  const pipeS = (Date.now() - t0) / 1000;
+  const openLongest = await longest();
   const slider = await page.evaluate(async () => {
     const s = [];
     for (let k = 0; k < 20; k++) {
@@ -58,18 +68,16 @@ try {
     s.sort((a, b) => a - b);
     return { median: s[10], max: s[19] };
   });
-  const track = await page.evaluate(async () => {
-    const tasks = [];
-    const obs = new PerformanceObserver((l) => l.getEntries().forEach((e) => tasks.push(e.duration)));
-    obs.observe({ type: "longtask", buffered: false });
-    document.querySelector('#tabs button[data-view="track"]').click();
-    for (let k = 0; k < 5; k++) await new Promise((r) => requestAnimationFrame(() => setTimeout(r, 50)));
-    obs.disconnect();
-    return { longest: Math.max(0, ...tasks), renderMs: Number(document.body.dataset.renderMs) };
-  });
-  console.log(`${mb.toFixed(1)} MB, ${ROWS} rows: opened and plotted in ${loadS.toFixed(1)} s`);
+  const sliderLongest = await longest();
+  const t1 = Date.now();
+  await page.locator('#tabs button[data-view="track"]').click();
+  // The track is drawn when the worker's paths arrived (or at once, computed on the page).
+  await page.waitForFunction(() => !document.getElementById("track-busy").textContent && Number(document.getElementById("c-track").dataset.drawn || 0) > 0, null, { timeout: 120000 });
+  const track = { longest: await longest(), s: (Date.now() - t1) / 1000 };
+  console.log(`${mb.toFixed(1)} MB, ${ROWS} rows: opened and plotted in ${loadS.toFixed(1)} s, pipeline shown after ${pipeS.toFixed(1)} s; longest main-thread task while opening ${openLongest.toFixed(0)} ms`);
+  console.log(`HDR slider: longest main-thread task ${sliderLongest.toFixed(0)} ms`);
   console.log(`HDR slider -> re-run + redraw: median ${slider.median.toFixed(1)} ms, max ${slider.max.toFixed(1)} ms (goal: median <= 50)`);
-  console.log(`Track view: render ${track.renderMs.toFixed(1)} ms, longest main-thread task ${track.longest.toFixed(0)} ms (goal <= 100)`);
+  console.log(`Track view: drawn after ${track.s.toFixed(1)} s, longest main-thread task ${track.longest.toFixed(0)} ms (goal <= 100)`);
 } finally {
   await context.close();
   server.kill();

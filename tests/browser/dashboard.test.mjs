@@ -220,7 +220,12 @@ test("dragging shows a rubber band; a flat drag zooms time, a tall one this char
   await page.mouse.down();
   await page.mouse.move(box.x + box.width * 0.6, box.y + box.height * 0.6, { steps: 4 });
   await page.mouse.up();
-  await page.waitForFunction(() => window.gyrodrift.state.yzoom["c-error"]);
+  // (drawn on the next frame)
+  await page.waitForFunction(() => {
+    const { state } = window.gyrodrift;
+    const yz = state.yzoom["c-error"];
+    return yz && state.layouts["c-error"].y_min === yz[0] && state.layouts["c-error"].y_max === yz[1];
+  });
   const after = await page.evaluate(() => ({ yz: window.gyrodrift.state.yzoom["c-error"], L: window.gyrodrift.state.layouts["c-error"], H: window.gyrodrift.state.layouts["c-heading"] }));
   assert.ok(after.yz[1] - after.yz[0] < (before.y_max - before.y_min) * 0.5, JSON.stringify(after.yz));
   assert.deepEqual([after.L.y_min, after.L.y_max], after.yz);
@@ -355,6 +360,23 @@ test("a large log is parsed in a Web Worker and gives the CLI's numbers", async 
   const native = JSON.parse(cli("hdr", big, "--json"));
   assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
   assert.equal(await page.locator("#progress").isVisible(), false);
+  // Its pipeline and its Track paths are computed in the worker (the page does not pause)
+  // and equal the CLI's and the page module's own.
+  assert.ok(await page.evaluate(() => window.gyrodrift.state.entries.find((e) => e.name === "Long drive").workerKey != null));
+  await page.waitForSelector("#m-e-pipeline", { timeout: 60000 });
+  const pipe = JSON.parse(cli("pipeline", big, "--json"));
+  assert.equal(await page.locator("#m-e-pipeline").innerText(), pipe.E_psi_pipeline_deg.toFixed(2));
+  await page.locator("#tabs button[data-view=track]").click();
+  await page.waitForFunction(() => !document.getElementById("track-busy").textContent && window.gyrodrift.state.specs["c-track"]?.title.startsWith("Long drive"), null, { timeout: 60000 });
+  const same = await page.evaluate(() => {
+    const { gd, state } = window.gyrodrift;
+    const e = state.entries.find((x) => x.name === "Long drive");
+    const here = gd.track(e.log, { resample: state.resample, ...state.params });
+    const drawn = state.specs["c-track"].series.find((s) => s.name === "HDR");
+    return drawn.x.length === here.hdr.x_m.length && drawn.x.every((v, i) => v === here.hdr.x_m[i]) && drawn.y.every((v, i) => v === here.hdr.y_m[i]);
+  });
+  assert.ok(same, "the worker's HDR path is the page module's");
+  await page.locator("#tabs button[data-view=hdr]").click();
 });
 
 const WILD = join(ROOT, "sample-logs", "wild");

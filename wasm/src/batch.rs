@@ -48,7 +48,8 @@ pub fn run_hdr(
 ) -> JsResult<JsValue> {
     let opts: HdrOptions = self::options("hdr", options)?;
     let view = View::read(&view.unwrap_or(JsValue::UNDEFINED))?;
-    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    let prepared = log.hdr_prepared(&opts).map_err(err)?;
+    let run = hdr::run_prepared(&log.log, &prepared, &opts).map_err(err)?;
     let out = run_object(&run.result, run.eps0_dps)?;
     let t = &run.trace;
     let drift = t.drift_estimate_dps();
@@ -76,7 +77,8 @@ pub fn run_hdr(
         ("attenuation", r(&t.attenuation)),
     ])?;
     set(&out, "trace", &trace)?;
-    let (reference, errors) = match run.errors(&log.log) {
+    let against = prepared.reference.as_ref().ok().and_then(|rf| Some((rf, run.errors_against(rf)?)));
+    let (reference, errors) = match against {
         Some((rf, e)) => {
             let ri = view.as_ref().map(|v| v.indices(&rf.time_s, &[&rf.heading_deg]));
             let ei = view.as_ref().map(|v| v.indices(&e.time_s, &[&e.errors_deg[0], &e.errors_deg[1]]));

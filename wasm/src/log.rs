@@ -21,6 +21,9 @@ pub struct Log {
     id: u32,
     pub(crate) log: Rc<DriveLog>,
     pub(crate) name: String,
+    /// HDR's last preparation of this log (samples, reference), reused while the lead-in
+    /// and blocks stay the same: a slider step re-runs only the method.
+    pub(crate) hdr_prepared: RefCell<Option<Rc<gyrodrift::hdr::Prepared>>>,
 }
 
 impl Drop for Log {
@@ -31,6 +34,16 @@ impl Drop for Log {
 }
 
 impl Log {
+    /// HDR's preparation for these options: the cached one when it fits, else a new one.
+    pub(crate) fn hdr_prepared(&self, opts: &gyrodrift::hdr::HdrOptions) -> gyrodrift::Result<Rc<gyrodrift::hdr::Prepared>> {
+        if let Some(p) = self.hdr_prepared.borrow().as_ref().filter(|p| p.fits(opts)) {
+            return Ok(p.clone());
+        }
+        let p = Rc::new(gyrodrift::hdr::prepare(&self.log, opts)?);
+        *self.hdr_prepared.borrow_mut() = Some(p.clone());
+        Ok(p)
+    }
+
     pub(crate) fn new(log: DriveLog) -> Log {
         let id = NEXT_ID.with(|n| {
             let id = n.get();
@@ -40,7 +53,7 @@ impl Log {
         let log = Rc::new(log);
         LOGS.with(|m| m.borrow_mut().push((id, log.clone())));
         let name = log.meta.name.clone().unwrap_or_default();
-        Log { id, log, name }
+        Log { id, log, name, hdr_prepared: RefCell::new(None) }
     }
 
     /// The logs of a JS array of `Log` objects, with their names, without taking them.

@@ -4,9 +4,23 @@ import { $, fmt, state, hdrOptions, COLORS, PALETTE, METRIC_HELP } from "../stat
 import { logFor, syncParams } from "../controls.js";
 import { chart } from "../charts.js";
 import { showError, render } from "../render.js";
+import { background } from "../background.js";
 
 let lastHdr = null;
 let pipeCache = null;
+const NO_PIPE = { result: null, trace: null, errors: null, pending: true };
+/** The recommended pipeline beside the paper's method, with the same static-bias window.
+ * It depends on the log and bias_s only, so HDR's sliders reuse it; a large log's runs in
+ * the worker (seconds on millions of rows) and shows when it arrives. */
+function pipelineOf(e) {
+  const options = { bias_s: hdrOptions().bias_s ?? null };
+  const bg = background(e, "pipeline", options);
+  if (bg) return bg.data ? { ...bg.data, pending: bg.pending } : NO_PIPE;
+  const key = JSON.stringify(options);
+  if (!pipeCache || pipeCache.key !== key || pipeCache.log !== e.log) pipeCache = { key, log: e.log, run: gd.runPipeline(e.log, options) };
+  return pipeCache.run;
+}
+
 export function renderHdr() {
   const e = logFor("hdr");
   if (!e) return showError("Load a drive log (with gyro_dps and ref_heading_deg) for the HDR view.");
@@ -14,14 +28,11 @@ export function renderHdr() {
   const run = gd.runHdr(e.log, hdrOptions(), v);
   // The recommended pipeline beside the paper's method, with the same static-bias window.
   // It depends on the log and bias_s only, so HDR's sliders reuse it.
-  const pipeKey = `${e.name}|${hdrOptions().bias_s ?? ""}`;
-  if (!pipeCache || pipeCache.key !== pipeKey || pipeCache.log !== e.log) {
-    pipeCache = { key: pipeKey, log: e.log, run: gd.runPipeline(e.log, { bias_s: hdrOptions().bias_s ?? null }) };
-  }
-  const pipe = pipeCache.run;
+  const pipe = pipelineOf(e);
   lastHdr = { entry: e, run, pipe };
   const r = run.result;
   const pr = pipe.result;
+  const busy = pipe.pending ? `<span class="recommended" id="pipe-busy">pipeline (recommended): computing in the background…</span>` : "";
   const m = $("hdr-metrics");
   if (r) {
     m.innerHTML = `<span title="${METRIC_HELP.E_psi}">E<sub>ψ</sub> raw <b id="m-e-raw">${fmt(r.E_psi_raw_deg, 2)}</b> deg</span>
@@ -31,7 +42,7 @@ export function renderHdr() {
       <span title="${METRIC_HELP.improvement}">improvement <b id="m-improvement">${fmt(r.improvement, 2)}</b>×</span>
       <span title="${METRIC_HELP.eps0}">ε<sub>0</sub> <b>${fmt(r.eps0_dps, 4)}</b> deg/s · ${r.n_processed} samples · ${fmt(r.duration_min, 1)} min</span>` +
       (pr ? `<span class="recommended" title="bank of bias Kalman filters: zero-rate updates at stops, HDR's straight-road heuristic around the drive's dominant rate (docs/pipeline.md)">pipeline (recommended): E<sub>ψ</sub> <b id="m-e-pipeline">${fmt(pr.E_psi_pipeline_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_deg_per_min, 3)}</b> deg/min · <b id="m-improvement-pipeline">${fmt(pr.improvement_pipeline, 2)}</b>× · stops ${fmt(pr.stop_s, 0)} s (${pr.still_source})</span>
-      <span class="smoothed" title="forward-backward over the whole log: for recorded logs, not available live">smoothed (offline, non-causal): E<sub>ψ</sub> <b id="m-e-smoothed">${fmt(pr.E_psi_pipeline_smoothed_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_smoothed_deg_per_min, 3)}</b> deg/min</span>` : "");
+      <span class="smoothed" title="forward-backward over the whole log: for recorded logs, not available live">smoothed (offline, non-causal): E<sub>ψ</sub> <b id="m-e-smoothed">${fmt(pr.E_psi_pipeline_smoothed_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_smoothed_deg_per_min, 3)}</b> deg/min</span>` : busy);
   } else {
     m.textContent = run.error;
   }
@@ -44,9 +55,11 @@ export function renderHdr() {
   if (run.reference) series.push({ name: "reference (GPS)", color: COLORS.ref, x: run.reference.time_s, y: run.reference.heading_deg, width: 3 });
   series.push({ name: "raw", color: COLORS.raw, x: t, y: run.trace.heading_raw_deg, width: 1 });
   series.push({ name: "HDR", color: COLORS.hdr, x: t, y: run.trace.heading_hdr_deg, width: 2 });
-  const pt = reduce(pipe.trace.time_s, [pipe.trace.heading_deg, pipe.trace.heading_smoothed_deg], v);
-  series.push({ name: "pipeline", color: COLORS.pipe, x: pt.x, y: pt.ys[0], width: 2 });
-  series.push({ name: "smoothed (offline)", color: COLORS.smooth, x: pt.x, y: pt.ys[1], width: 1 });
+  if (pipe.trace) {
+    const pt = reduce(pipe.trace.time_s, [pipe.trace.heading_deg, pipe.trace.heading_smoothed_deg], v);
+    series.push({ name: "pipeline", color: COLORS.pipe, x: pt.x, y: pt.ys[0], width: 2 });
+    series.push({ name: "smoothed (offline)", color: COLORS.smooth, x: pt.x, y: pt.ys[1], width: 1 });
+  }
   const pe = pipe.errors && reduce(pipe.errors.time_s, [pipe.errors.pipeline_deg, pipe.errors.smoothed_deg], v);
   const cursor = state.cursor;
   chart("c-heading", { title: `${e.name}: heading`, x_label: "time", time_x: true, y_label: "heading (deg)", x_range: xr, series, cursor_x: cursor });
@@ -110,8 +123,9 @@ function overlays(current, v) {
       let c = overlayRuns.get(x.log);
       if (!c) overlayRuns.set(x.log, (c = {}));
       if (c.key !== key) Object.assign(c, { key, hdr: gd.runHdr(x.log, hdrOptions(), v) });
-      if (c.pipeKey !== pipeKey) Object.assign(c, { pipeKey, pipe: gd.runPipeline(x.log, { bias_s: hdrOptions().bias_s ?? null }) });
-      return { entry: x, color: PALETTE[(i + 2) % PALETTE.length], hdr: c.hdr, pipe: c.pipe };
+      const bg = background(x, "pipeline", { bias_s: hdrOptions().bias_s ?? null });
+      if (!bg && c.pipeKey !== pipeKey) Object.assign(c, { pipeKey, pipe: gd.runPipeline(x.log, { bias_s: hdrOptions().bias_s ?? null }) });
+      return { entry: x, color: PALETTE[(i + 2) % PALETTE.length], hdr: c.hdr, pipe: bg ? bg.data || NO_PIPE : c.pipe };
     });
 }
 

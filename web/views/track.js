@@ -4,11 +4,17 @@ import { $, fmt, state, hdrOptions, COLORS, PALETTE } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
 import { chart, timeRange } from "../charts.js";
 import { showError, render } from "../render.js";
+import { background } from "../background.js";
 
 export function renderTrack() {
   const e = logFor("track");
   if (!e) return showError("Load a drive log with speed_mps for the Track view.");
-  const tr = gd.track(e.log, hdrOptions());
+  // A large log's paths come from the worker (the page never pauses); small ones are quick here.
+  const bg = background(e, "track", hdrOptions());
+  $("track-busy").textContent = bg?.pending ? (bg.stale ? "Updating the track in the background…" : "Computing the track of this large log in the background…") : "";
+  if (bg?.error) return showError(bg.error);
+  const tr = bg ? bg.data : gd.track(e.log, hdrOptions());
+  if (!tr) return;
   const series = [];
   if (tr.reference) series.push({ name: "reference heading", color: COLORS.ref, x: tr.reference.x_m, y: tr.reference.y_m, points: false, width: 2 });
   series.push({ name: "raw", color: COLORS.raw, x: tr.raw.x_m, y: tr.raw.y_m, points: false });

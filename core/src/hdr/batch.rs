@@ -2,7 +2,7 @@
 //! keys, and `run` over a log (static bias, 1 Hz blocks, estimator, metrics).
 
 use super::{Hdr, HdrParams};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::log::DriveLog;
 use crate::metrics::{self, Reference};
 use crate::preprocess::{self, Samples};
@@ -168,6 +168,12 @@ impl HdrRun {
         let t = &self.trace;
         self.result.as_ref().ok().and_then(|_| metrics::ErrorSeries::of(log, &t.time_s, &[&t.heading_raw_deg, &t.heading_hdr_deg]))
     }
+
+    /// As [`HdrRun::errors`], against the reference of a preparation (not read again).
+    pub fn errors_against(&self, reference: &Reference) -> Option<metrics::ErrorSeries> {
+        let t = &self.trace;
+        self.result.as_ref().ok().map(|_| metrics::ErrorSeries::against(reference, &t.time_s, &[&t.heading_raw_deg, &t.heading_hdr_deg]))
+    }
 }
 
 /// Runs HDR and the raw baseline over prepared samples (no allocation per sample beyond
@@ -210,10 +216,44 @@ pub fn headings_only(samples: &Samples, params: HdrParams, eps0_dps: f64, out_hd
 /// Parameter and data errors are returned; a missing reference only fails `result`.
 pub fn run(log: &DriveLog, opts: &HdrOptions) -> Result<HdrRun> {
     crate::options::Settings::validate(opts)?;
-    let (eps0, samples) = preprocess::prepare(log, opts.bias_s, opts.resample)?;
+    run_prepared(log, &prepare(log, opts)?, opts)
+}
+
+/// What HDR takes from a log that its parameters do not change: the static bias, the
+/// estimator's samples (1 Hz blocks or as logged) and the reference. A page moving a
+/// slider prepares once per log and lead-in and re-runs only the method.
+#[derive(Debug, Clone)]
+pub struct Prepared {
+    pub bias_s: Option<f64>,
+    pub resample: bool,
+    pub eps0_dps: f64,
+    pub samples: Samples,
+    pub reference: Result<Reference>,
+}
+
+impl Prepared {
+    /// Whether these options need the same preparation (lead-in and blocks).
+    pub fn fits(&self, opts: &HdrOptions) -> bool {
+        self.bias_s == opts.bias_s && self.resample == opts.resample
+    }
+}
+
+/// The preparation of a log for HDR with these options (see [`Prepared`]).
+pub fn prepare(log: &DriveLog, opts: &HdrOptions) -> Result<Prepared> {
+    let (eps0_dps, samples) = preprocess::prepare(log, opts.bias_s, opts.resample)?;
     log.check_span()?;
-    let mut trace = run_samples(&samples, opts.params, eps0)?;
-    let result = Reference::from_log(log).and_then(|reference| {
+    Ok(Prepared { bias_s: opts.bias_s, resample: opts.resample, eps0_dps, samples, reference: Reference::from_log(log) })
+}
+
+/// HDR over a log's preparation: the same run as [`run`] for options the preparation fits.
+pub fn run_prepared(log: &DriveLog, p: &Prepared, opts: &HdrOptions) -> Result<HdrRun> {
+    crate::options::Settings::validate(opts)?;
+    if !p.fits(opts) {
+        return Err(Error::param("bias_s", "the preparation was made for another bias_s or resample"));
+    }
+    let (eps0, samples) = (p.eps0_dps, &p.samples);
+    let mut trace = run_samples(samples, opts.params, eps0)?;
+    let result = p.reference.clone().and_then(|reference| {
         let raw = metrics::score(&trace.time_s, &trace.heading_raw_deg, &reference)?;
         let hdr = metrics::score(&trace.time_s, &trace.heading_hdr_deg, &reference)?;
         trace.heading_raw_deg.iter_mut().for_each(|p| *p += raw.shift_deg);

@@ -189,3 +189,26 @@ mod serde_options {
         assert!(e.to_string().contains("unknown field `taus`"), "{e}");
     }
 }
+
+/// A preparation reused across parameters gives the plain run's numbers bit for bit; one
+/// made for another lead-in is refused.
+#[test]
+fn prepared_runs_equal_plain_runs() {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../sample-logs/train/city-1.csv")).unwrap();
+    let log = crate::parse_log_str(&text).unwrap();
+    let base = HdrOptions::default();
+    let prep = prepare(&log, &base).unwrap();
+    for i_c in [0.0, 0.01, 0.0422, 0.1] {
+        let opts = HdrOptions { params: HdrParams { i_c_dps: i_c, ..base.params }, ..base };
+        let a = run(&log, &opts).unwrap();
+        let b = run_prepared(&log, &prep, &opts).unwrap();
+        assert_eq!(a.result, b.result, "i_c {i_c}");
+        assert_eq!(a.trace.heading_hdr_deg, b.trace.heading_hdr_deg);
+        let (_, e1) = a.errors(&log).unwrap();
+        let e2 = b.errors_against(prep.reference.as_ref().unwrap()).unwrap();
+        assert_eq!(e1.errors_deg, e2.errors_deg);
+    }
+    let other = HdrOptions { bias_s: Some(5.0), ..base };
+    assert!(!prep.fits(&other));
+    assert!(run_prepared(&log, &prep, &other).unwrap_err().to_string().contains("preparation"));
+}
