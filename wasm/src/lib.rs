@@ -2,7 +2,8 @@
 //! plain result objects and Float64Array series out) and errors (every core error becomes a
 //! thrown JS `Error` with the same message the CLI prints). No science here, and no panic:
 //! every fallible call returns `Result`. One file per concern: conversions, the log
-//! registry, batch methods, streaming estimators, import, plotting, TypeScript types.
+//! registry, batch methods, streaming estimators, views for drawing, import, plotting,
+//! TypeScript types.
 
 // A build with only some features (scripts/lib.sh builds the parts) leaves helpers unused.
 #![cfg_attr(
@@ -24,6 +25,8 @@ mod plot;
 #[cfg(feature = "core")]
 mod streaming;
 mod types;
+#[cfg(feature = "core")]
+mod view;
 
 #[cfg(feature = "core")]
 pub use batch::*;
@@ -33,5 +36,7 @@ pub use import::*;
 pub use log::Log;
 #[cfg(feature = "core")]
 pub use streaming::*;
+#[cfg(feature = "core")]
+pub use view::reduce_series;
 
 type JsResult<T> = Result<T, JsValue>;
