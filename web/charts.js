@@ -1,7 +1,7 @@
 // Charts: canvases drawn by the wasm package, and zoom, pan and cursor on the time charts.
 import * as plot from "./pkg/plot/gyrodrift_plot.js";
 import * as gd from "./pkg/gyrodrift.js";
-import { $, state } from "./state.js";
+import { $, esc, state } from "./state.js";
 import { scheduleRender } from "./render.js";
 
 export function sizeCanvas(c) {
@@ -95,13 +95,13 @@ function tooltip(id, c, ev) {
     if (!s.name || s.name === "zero" || seen.has(s.name)) continue;
     seen.add(s.name);
     const v = gd.valueAt(s.x, s.y, t);
-    rows.push(`<tr><td><span class="swatch" style="background:${s.color}"></span>${s.name}</td><td data-series="${s.name}">${Number.isFinite(v) ? v.toFixed(Math.abs(v) >= 100 ? 1 : 3) : "–"}</td><td>${unit}</td></tr>`);
+    rows.push(`<tr><td><span class="swatch" style="background:${esc(s.color)}"></span>${esc(s.name)}</td><td data-series="${esc(s.name)}">${Number.isFinite(v) ? v.toFixed(Math.abs(v) >= 100 ? 1 : 3) : "–"}</td><td>${unit}</td></tr>`);
   }
   if (spec.shade?.label) {
     const on = gd.valueAt(spec.shade.x, spec.shade.mask, t) > 0.5;
-    rows.push(`<tr><td colspan="3">${spec.shade.label}: <b>${on ? "yes" : "no"}</b></td></tr>`);
+    rows.push(`<tr><td colspan="3">${esc(spec.shade.label)}: <b>${on ? "yes" : "no"}</b></td></tr>`);
   }
-  tip.innerHTML = `<b>t = ${(t / per).toFixed(per === 1 ? 1 : 2)} ${L.x_unit || "s"}</b><table>${rows.join("")}</table>`;
+  tip.innerHTML = `<b>t = ${(t / per).toFixed(per === 1 ? 1 : 2)} ${L.x_unit || "s"}</b><table>${rows.join("")}</table>`; // names escaped above
   tip.hidden = false;
   // Beside the cursor, flipped to its left past the middle so it stays inside the chart.
   const x = ev.offsetX, w = c.clientWidth;

@@ -47,6 +47,8 @@ export const state = {
 };
 
 export const $ = (id) => document.getElementById(id);
+/** Text for HTML: a log's name or an error message comes from a file and stays text. */
+export const esc = (v) => String(v).replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#39;" })[c]);
 export const fmt = (v, d = 3) => (Number.isFinite(v) ? v.toFixed(d) : "–");
 
 export function defaults() {

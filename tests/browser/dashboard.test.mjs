@@ -630,6 +630,33 @@ test("any log column plots on the shared time axis; another drive overlays the e
   await page.waitForFunction(() => !/overlay=/.test(location.hash) && !window.gyrodrift.state.specs["c-error"].series.some((s) => s.name.startsWith("Highway 1")));
 });
 
+test("a log's name is text everywhere, never markup (list, overlay row, tooltip)", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-name-"));
+  const evil = '<img src=x onerror="window.__xss=1">';
+  const file = join(dir, "evil.csv");
+  writeFileSync(file, readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").replace(/^# name: .*$/m, `# name: ${evil}`));
+  await page.locator("#file-input").setInputFiles([file]);
+  await page.waitForFunction((n) => window.gyrodrift.state.entries.some((e) => e.name === n), evil);
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#logs li", { hasText: evil }).locator("button.overlay").click();
+  await page.waitForSelector("#overlay-metrics .overlay-row");
+  assert.match(await page.locator("#overlay-metrics").innerText(), /<img src=x onerror/);
+  await page.locator("#c-error").scrollIntoViewIfNeeded();
+  const box = await page.locator("#c-error").boundingBox();
+  await page.mouse.move(box.x + box.width * 0.3, box.y + box.height * 0.5);
+  await page.locator("#c-error ~ .tip").waitFor({ state: "visible" });
+  assert.match(await page.locator("#c-error ~ .tip").innerText(), /<img src=x onerror=.*: HDR/);
+  await page.locator("#logs li", { hasText: evil }).locator("button.overlay").click();
+  await page.locator("#logs li", { hasText: evil }).locator("button.pick").click();
+  await page.waitForTimeout(300);
+  assert.equal(await page.evaluate(() => window.__xss), undefined);
+  assert.equal(await page.locator("#view-hdr img, #view-allan img, #logs img, #overlay-metrics img").count(), 0);
+  await page.locator("#logs li", { hasText: evil }).locator("button.remove").click();
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+});
+
 test("accessibility: tabs move with arrow keys, buttons have unique names, charts have a text alternative", async () => {
   await page.locator("#tabs button[data-view=hdr]").focus();
   await page.keyboard.press("ArrowRight");

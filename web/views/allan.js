@@ -1,7 +1,7 @@
 // The Allan view: the deviation with its 68 % band, the minimum with its band, and the
 // flat bottom where the minimum could as well lie (core's AllanConfidence).
 import * as gd from "../pkg/gyrodrift.js";
-import { $, fmt, COLORS } from "../state.js";
+import { $, esc, fmt, COLORS } from "../state.js";
 import { logFor } from "../controls.js";
 import { chart } from "../charts.js";
 import { showError } from "../render.js";
@@ -12,7 +12,7 @@ export function renderAllan() {
   const r = gd.allan(e.log);
   const c = r.confidence;
   const [a, b] = c.tau_min_range_s;
-  $("allan-metrics").innerHTML = `<span>${e.name}</span><span>ARW <b id="m-arw">${fmt(r.arw_deg_per_sqrt_s, 5)}</b> deg/√s = <b>${fmt(r.arw_deg_per_sqrt_h, 3)}</b> deg/√h</span>
+  $("allan-metrics").innerHTML = `<span>${esc(e.name)}</span><span>ARW <b id="m-arw">${fmt(r.arw_deg_per_sqrt_s, 5)}</b> deg/√s = <b>${fmt(r.arw_deg_per_sqrt_h, 3)}</b> deg/√h</span>
     <span title="methods.md: the plain minimum of the grid / 0.664; the band is one sigma, 1/√(2(N/m − 1)) (IEEE 952 Annex C)">bias instability <b id="m-bi">${fmt(r.bias_instability_dps, 5)}</b> deg/s = <b>${fmt(r.bias_instability_dph, 2)}</b> deg/h at τ = ${fmt(r.tau_at_min_s, 1)} s,
       68 % band <b id="m-bi-band">${fmt(c.bias_instability_low_dps, 5)}–${fmt(c.bias_instability_high_dps, 5)}</b> deg/s</span>
     <span title="the cluster times whose band reaches the minimum's: the minimum could as well lie anywhere here">flat bottom τ <b id="m-bottom">${fmt(a, 1)}–${fmt(b, 1)}</b> s · tightest bound at τ = <b id="m-tight">${fmt(c.tau_tightest_s, 1)}</b> s (${fmt(c.adev_tightest_dps / 0.664, 5)} deg/s)</span>`;

@@ -1,6 +1,6 @@
 // The Gyrodometry view.
 import * as gd from "../pkg/gyrodrift.js";
-import { $, fmt, state, hdrOptions, COLORS, PALETTE } from "../state.js";
+import { $, esc, fmt, state, hdrOptions, COLORS, PALETTE } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
 import { chart, timeRange } from "../charts.js";
 import { showError, render } from "../render.js";
@@ -15,7 +15,7 @@ export function renderGyro() {
        <span>Gyrodometry <b id="m-gyrodometry">${fmt(r.E_psi_gyrodometry_deg, 3)}</b> deg</span>
        <span>final errors <b>${fmt(r.final_err_odo_deg, 2)}</b> / <b>${fmt(r.final_err_gyro_deg, 2)}</b> / <b>${fmt(r.final_err_gyrodometry_deg, 2)}</b> deg</span>
        <span>gyro used in <b>${r.n_gyro_intervals}</b> intervals</span>`
-    : run.error;
+    : esc(run.error);
   const t = run.trace.time_s;
   const xr = timeRange(t);
   const series = [];

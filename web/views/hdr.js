@@ -1,6 +1,6 @@
 // The HDR view: heading, error and rate charts for the paper's method beside the pipeline.
 import * as gd from "../pkg/gyrodrift.js";
-import { $, fmt, state, hdrOptions, COLORS, PALETTE, METRIC_HELP } from "../state.js";
+import { $, esc, fmt, state, hdrOptions, COLORS, PALETTE, METRIC_HELP } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
 import { chart } from "../charts.js";
 import { showError, render } from "../render.js";
@@ -141,7 +141,7 @@ function overlayErrorSeries(overlaid, v) {
 
 function renderOverlays(overlaid) {
   $("overlay-metrics").innerHTML = overlaid
-    .map((o) => `<span class="overlay-row" data-log="${o.entry.name.replace(/"/g, "&quot;")}"><span class="swatch" style="background:${o.color}"></span><b>${o.entry.name}</b>: NE<sub>ψ</sub> raw ${fmt(o.hdr.result?.NE_psi_raw_deg_per_min, 3)} · HDR <b>${fmt(o.hdr.result?.NE_psi_hdr_deg_per_min, 3)}</b> · pipeline <b>${fmt(o.pipe.result?.NE_psi_pipeline_deg_per_min, 3)}</b> deg/min</span>`)
+    .map((o) => `<span class="overlay-row" data-log="${esc(o.entry.name)}"><span class="swatch" style="background:${o.color}"></span><b>${esc(o.entry.name)}</b>: NE<sub>ψ</sub> raw ${fmt(o.hdr.result?.NE_psi_raw_deg_per_min, 3)} · HDR <b>${fmt(o.hdr.result?.NE_psi_hdr_deg_per_min, 3)}</b> · pipeline <b>${fmt(o.pipe.result?.NE_psi_pipeline_deg_per_min, 3)}</b> deg/min</span>`)
     .join("");
 }
 
