@@ -22,6 +22,9 @@ export function headline(entry) {
   return "";
 }
 
+/** Yields to the page (input, drawing) before the next step. */
+const nextTask = () => new Promise((r) => setTimeout(r, 0));
+
 // Files above this size are parsed in a Web Worker with a progress bar; the page stays live.
 const WORKER_BYTES = 4 << 20;
 let worker = null;
@@ -63,11 +66,13 @@ function uniqueName(name) {
   return out;
 }
 
-export function addParsed(name, make) {
+/** Adds a parsed log (split at gaps as the CLI does); `checked` is its check when the
+ * worker ran it already. */
+export function addParsed(name, make, checked = null) {
   try {
     const whole = make();
     const base = uniqueName(whole.name || name.replace(/\.csv$/, ""));
-    const check = gd.checkLog(whole);
+    const check = checked ?? gd.checkLog(whole);
     let parts = [whole];
     let note = null;
     if (check.gaps_s.length) {
@@ -180,10 +185,13 @@ export async function loadFiles(files) {
     let e;
     if (buffer.byteLength > WORKER_BYTES && window.Worker) {
       const res = await parseInWorker(f, buffer);
+      // The log copied in and its first drawing in tasks of their own, so neither holds
+      // the page for the other; the check comes from the worker.
       e = addParsed(f.name, () => {
         if (res.error) throw new Error(res.error);
         return gd.Log.fromColumns(res.data);
-      });
+      }, res.check);
+      await nextTask();
       // The worker keeps its copy for the slow work (Track, pipeline) unless the log was
       // split at a gap (its parts are not the worker's log).
       if (res.key != null && !e.error && !e.note) e.workerKey = res.key;

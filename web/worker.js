@@ -1,13 +1,13 @@
 // Work off the main thread with the whole wasm package (pkg/full: the page's own module has
 // no import, tuning or simulation), so the page never freezes:
-// - parse: a large log, with progress; the columns go back transferred, not copied, and
-//   the page rebuilds the Log from them;
+// - parse: a large log, with progress, and its check; the columns go back transferred, not
+//   copied, and the page rebuilds the Log from them;
 // - import: raw logger files by their detected preset (or a given recipe); recipes to and
 //   from TOML;
 // - tune: the HDR parameters over the drives' columns, with progress;
 // - track, pipeline: the slow work on a large log this worker parsed and kept (`key`), so
 //   the page's Track view and pipeline never pause it.
-import init, { Log, tune, detectImport, importLog, recipeToToml, recipeFromToml, track, runPipeline } from "./pkg/full/gyrodrift.js";
+import init, { Log, tune, detectImport, importLog, recipeToToml, recipeFromToml, track, runPipeline, checkLog } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 /** Large logs parsed here, kept for later work on them (freed on "forget"). */
@@ -77,9 +77,11 @@ self.onmessage = async (ev) => {
     }
     const log = Log.fromBytesWithProgress(new Uint8Array(ev.data.buffer), progressReporter(id));
     const data = log.toColumns();
+    // `gyrodrift check` here too, so the page does not run it on millions of rows.
+    const check = checkLog(log);
     kept.set(id, log);
     const transfer = [data.line.buffer, ...Object.values(data.columns).map((a) => a.buffer)];
-    self.postMessage({ id, data, key: id }, transfer);
+    self.postMessage({ id, data, key: id, check }, transfer);
   } catch (e) {
     self.postMessage({ id, error: e.message });
   }

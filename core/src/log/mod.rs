@@ -322,12 +322,23 @@ impl DriveLog {
                 if v.len() != n {
                     return Err(Error::File(format!("column {} has {} values, time_s has {n}", c.name(), v.len())));
                 }
-                if let Some(i) = v.iter().position(|x| x.is_infinite()) {
-                    return Err(Error::Cell { line: log.line[i], column: c.name().into(), message: "not a finite number".into() });
-                }
-                // the import and a worker's columns meet the parser's physical ranges too
-                for (i, &x) in v.iter().enumerate() {
-                    c.check_physical(x).map_err(|message| Error::Cell { line: log.line[i], column: c.name().into(), message })?;
+                // The import and a worker's columns meet the parser's rules too (finite, in the
+                // physical range). One pass for the extremes; the cells are looked at one by
+                // one only when one is outside, to name it.
+                let (lo, hi) =
+                    v.iter().fold(
+                        (f64::INFINITY, f64::NEG_INFINITY),
+                        |(lo, hi), &x| if x.is_nan() { (lo, hi) } else { (lo.min(x), hi.max(x)) },
+                    );
+                let all_nan = lo > hi;
+                let ok = all_nan || (lo.is_finite() && hi.is_finite() && c.physical_range().is_none_or(|(a, b, _)| a <= lo && hi <= b));
+                if !ok {
+                    if let Some(i) = v.iter().position(|x| x.is_infinite()) {
+                        return Err(Error::Cell { line: log.line[i], column: c.name().into(), message: "not a finite number".into() });
+                    }
+                    for (i, &x) in v.iter().enumerate() {
+                        c.check_physical(x).map_err(|message| Error::Cell { line: log.line[i], column: c.name().into(), message })?;
+                    }
                 }
             }
         }

@@ -120,6 +120,18 @@ fn from_columns_checks_like_the_parser() {
     let bad = DriveLog::from_columns(LogMeta::default(), vec![], vec![(Column::TimeS, vec![0.0, 1.0]), (Column::GyroDps, vec![1.0])]);
     assert!(bad.is_err());
     assert!(DriveLog::from_columns(LogMeta::default(), vec![], vec![(Column::GyroDps, vec![1.0])]).is_err());
+    // An infinite or out-of-range cell is named by its line, a NaN (empty) cell is fine.
+    let t = vec![0.0, 1.0, 2.0];
+    let cols = |c: Column, v: Vec<f64>| vec![(Column::TimeS, t.clone()), (c, v)];
+    let e = DriveLog::from_columns(LogMeta::default(), vec![], cols(Column::GyroDps, vec![1.0, f64::NEG_INFINITY, 2.0])).unwrap_err();
+    assert_eq!(e.to_string(), "line 3, column gyro_dps: not a finite number");
+    let e = DriveLog::from_columns(LogMeta::default(), vec![], cols(Column::TempC, vec![20.0, 21.0, 500.0])).unwrap_err();
+    assert!(e.to_string().starts_with("line 4, column temp_c: 500.0 deg C is outside the physical range"), "{e}");
+    assert!(DriveLog::from_columns(LogMeta::default(), vec![], cols(Column::TempC, vec![f64::NAN; 3])).is_ok());
+    assert!(
+        DriveLog::from_columns(LogMeta::default(), vec![], cols(Column::OdoLeftM, vec![1e12, 0.0, -5.0])).is_ok(),
+        "no range: any finite value"
+    );
 }
 
 #[test]
