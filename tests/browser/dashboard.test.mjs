@@ -234,6 +234,30 @@ test("dragging shows a rubber band; a flat drag zooms time, a tall one this char
   await page.waitForFunction(() => window.gyrodrift.state.zoom === null && !window.gyrodrift.state.yzoom["c-error"]);
 });
 
+test("axis ticks sit at round values: 1, 2 or 5 times a power of ten apart, whole decades on log axes", async () => {
+  const round = (ticks) => {
+    if (ticks.length < 2) return `only ${ticks.length} ticks`;
+    const step = ticks[1] - ticks[0];
+    const mag = 10 ** Math.floor(Math.log10(step) + 1e-9);
+    const m = Math.round(step / mag);
+    if (![1, 2, 5].includes(m) || Math.abs(step / mag - m) > 1e-6) return `step ${step}`;
+    for (const t of ticks) if (Math.abs(t / step - Math.round(t / step)) > 1e-6) return `tick ${t} is not a multiple of ${step}`;
+    for (let i = 1; i < ticks.length; i++) if (Math.abs(ticks[i] - ticks[i - 1] - step) > step * 1e-6) return "uneven";
+    return "ok";
+  };
+  const L = await page.evaluate(() => Object.fromEntries(["c-heading", "c-error", "c-rate"].map((id) => [id, { x: [...window.gyrodrift.state.layouts[id].x_ticks], y: [...window.gyrodrift.state.layouts[id].y_ticks] }])));
+  for (const [id, t] of Object.entries(L)) {
+    assert.equal(round(t.x), "ok", `${id} x ${t.x}`);
+    assert.equal(round(t.y), "ok", `${id} y ${t.y}`);
+    assert.ok(t.x.length >= 3 && t.x.length <= 10 && t.y.length >= 3 && t.y.length <= 10, `${id}: ${t.x.length} x, ${t.y.length} y ticks`);
+  }
+  await page.locator("#tabs button[data-view=allan]").click();
+  await page.waitForFunction(() => !document.getElementById("view-allan").hidden && window.gyrodrift.state.layouts["c-allan"]);
+  const A = await page.evaluate(() => [...window.gyrodrift.state.layouts["c-allan"].x_ticks]);
+  assert.ok(A.length >= 3 && A.every((v) => Math.abs(Math.log10(v) - Math.round(Math.log10(v))) < 1e-9), `Allan tau ticks ${A}`);
+  await page.locator("#tabs button[data-view=hdr]").click();
+});
+
 test("the URL round-trips the parameters and the view", async () => {
   await page.waitForFunction(() => location.hash.includes("i_c_dps=0.01") && location.hash.includes("log=City"));
   const url = page.url();

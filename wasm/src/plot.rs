@@ -6,6 +6,7 @@
 use gyrodrift::export::{self, Series as Plotted};
 use gyrodrift::{axis, decimate};
 use js_sys::{Array, Float64Array, Object, Reflect};
+use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters_canvas::CanvasBackend;
@@ -139,12 +140,53 @@ struct Layout {
     y_max: f64,
     /// The time axis's unit ("" when x is not time).
     x_unit: &'static str,
+    /// Where the ticks are, as labelled (in the time unit; log axes as values, not exponents).
+    x_ticks: Vec<f64>,
+    y_ticks: Vec<f64>,
 }
 
 fn parse_color(s: &str) -> RGBColor {
     let h = s.trim_start_matches('#');
     let v = u32::from_str_radix(h, 16).unwrap_or(0x444444);
     RGBColor((v >> 16) as u8, (v >> 8) as u8, v as u8)
+}
+
+/// A linear f64 axis whose ticks are given (core's round values), not chosen by plotters.
+struct Ticked {
+    range: std::ops::Range<f64>,
+    ticks: Vec<f64>,
+}
+
+impl Ranged for Ticked {
+    type FormatOption = DefaultFormatting;
+    type ValueType = f64;
+    fn map(&self, value: &f64, limit: (i32, i32)) -> i32 {
+        let (a, b) = (self.range.start, self.range.end);
+        let f = if b > a { (value - a) / (b - a) } else { 0.0 };
+        limit.0 + (f * (limit.1 - limit.0) as f64).round() as i32
+    }
+    fn key_points<Hint: KeyPointHint>(&self, hint: Hint) -> Vec<f64> {
+        // Bold lines and labels at the ticks; no light lines between them.
+        if hint.weight().allow_light_points() {
+            Vec::new()
+        } else {
+            self.ticks.clone()
+        }
+    }
+    fn range(&self) -> std::ops::Range<f64> {
+        self.range.clone()
+    }
+}
+
+/// A tick label: at most six decimals, no trailing zeros (0.30000000000000004 -> 0.3).
+fn plain(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_string()
+    } else {
+        s.to_string()
+    }
 }
 
 fn js_err(e: impl std::fmt::Display) -> JsValue {
@@ -185,6 +227,8 @@ pub fn draw_chart(
         Reflect::set(&o, &JsValue::from_str(k), &JsValue::from_f64(v))?;
     }
     Reflect::set(&o, &JsValue::from_str("x_unit"), &JsValue::from_str(layout.x_unit))?;
+    Reflect::set(&o, &JsValue::from_str("x_ticks"), &Float64Array::from(&layout.x_ticks[..]))?;
+    Reflect::set(&o, &JsValue::from_str("y_ticks"), &Float64Array::from(&layout.y_ticks[..]))?;
     Ok(o.into())
 }
 
@@ -293,47 +337,26 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
     let ty = |v: f64| if spec.log_y { v.log10() } else { v };
     let (cx0, cx1, cy0, cy1) = (tx(x0), tx(x1), ty(y0), ty(y1));
     let font = ("sans-serif", px(13.0)).into_font();
+    // Ticks at round values (core's axis): 1-2-5 steps on a linear axis, whole decades on a
+    // log one (drawn linear in log10).
+    let tick = |log: bool, a: f64, b: f64| if log { axis::log_ticks(a, b, 12) } else { axis::ticks(a, b, 10) };
+    let (x_ticks, y_ticks) = (tick(spec.log_x, cx0, cx1), tick(spec.log_y, cy0, cy1));
     let mut chart = ChartBuilder::on(root)
         .caption(&spec.title, ("sans-serif", px(15.0)).into_font())
         .margin(px(8.0))
         .x_label_area_size(px(34.0))
         .y_label_area_size(px(62.0))
-        .build_cartesian_2d(cx0..cx1, cy0..cy1)?;
-    let fmt_x = |v: &f64| {
-        if spec.log_x {
-            format!("{:.3}", 10f64.powf(*v)).trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            format!("{v}")
-        }
-    };
-    let fmt_y = |v: &f64| {
-        if spec.log_y {
-            format!("{:.1e}", 10f64.powf(*v))
-        } else {
-            format!("{v:.3}").trim_end_matches('0').trim_end_matches('.').to_string()
-        }
-    };
-    // A log axis is linear in log10: asking for about one label per decade puts the
-    // labels on whole decades (1, 10, 100) instead of 0.316, 3.162, ...
-    let labels = |log: bool, a: f64, b: f64, linear: usize| {
-        if log {
-            ((b.floor() - a.ceil()).max(0.0) as usize + 1).clamp(2, 12)
-        } else {
-            linear
-        }
-    };
+        .build_cartesian_2d(Ticked { range: cx0..cx1, ticks: x_ticks.clone() }, Ticked { range: cy0..cy1, ticks: y_ticks.clone() })?;
+    let fmt_x = |v: &f64| if spec.log_x { plain(10f64.powf(*v)) } else { plain(*v) };
+    let fmt_y = |v: &f64| if spec.log_y { format!("{:.1e}", 10f64.powf(*v)) } else { plain(*v) };
     chart
         .configure_mesh()
-        .x_labels(labels(spec.log_x, cx0, cx1, 10))
-        .y_labels(labels(spec.log_y, cy0, cy1, 10))
         .x_desc(&x_desc)
         .y_desc(&spec.y_label)
         .label_style(font.clone())
         .axis_desc_style(font.clone())
         .x_label_formatter(&fmt_x)
         .y_label_formatter(&fmt_y)
-        .x_max_light_lines(1)
-        .y_max_light_lines(1)
         .light_line_style(RGBColor(242, 242, 242))
         .draw()?;
     // Shaded intervals where the mask is 1 (turn switch, gyro used, ...); gaps narrower than
@@ -400,5 +423,7 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
         y_min: y0,
         y_max: y1,
         x_unit: unit.map_or("", |u| u.name),
+        x_ticks: x_ticks.iter().map(|&v| if spec.log_x { 10f64.powf(v) } else { v }).collect(),
+        y_ticks: y_ticks.iter().map(|&v| if spec.log_y { 10f64.powf(v) } else { v }).collect(),
     })
 }

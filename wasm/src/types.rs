@@ -378,6 +378,10 @@ export interface ChartLayout {
   y_max: number;
   /** The time axis's unit ("s", "min", "h"), "" when x is not time. Ranges stay in seconds. */
   x_unit: string;
+  /** Where the ticks are, as labelled: round values (1, 2 or 5 times a power of ten apart)
+   * in the axis's unit, whole decades on a log axis. */
+  x_ticks: Float64Array;
+  y_ticks: Float64Array;
 }
 
 /** What to simulate; the same seed gives the same log natively and in wasm. */
