@@ -62,7 +62,7 @@ export function chart(id, spec) {
   // A text alternative for screen readers: what the chart shows and over which ranges.
   const r = (v) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
   const names = (spec.series || []).map((s) => s.name).filter((n) => n && n !== "zero");
-  const per = { min: 60, h: 3600 }[L.x_unit] || 1;
+  const per = L.x_unit_s;
   const xl = L.x_unit ? `${spec.x_label} (${L.x_unit})` : spec.x_label || "x";
   c.setAttribute("aria-label", `${spec.title}: ${names.join(", ")}; ${xl} ${r(L.x_min / per)} to ${r(L.x_max / per)}, ${spec.y_label || "y"} ${r(L.y_min)} to ${r(L.y_max)}`);
 }
@@ -72,8 +72,6 @@ export function timeRange(t) {
 }
 
 // ---------- interaction on time charts ----------
-const TIME_UNIT_S = { s: 1, min: 60, h: 3600 };
-
 /** The tooltip at the cursor: the time and every shown series' value there (core's
  * valueAt, linear between samples), the shaded state, in the chart's colours. */
 function tooltip(id, c, ev) {
@@ -87,7 +85,7 @@ function tooltip(id, c, ev) {
   }
   if (!spec || !L || state.cursor == null) return (tip.hidden = true);
   const t = state.cursor;
-  const per = TIME_UNIT_S[L.x_unit] || 1;
+  const per = L.x_unit_s;
   const unit = (spec.y_label || "").match(/\(([^)]*)\)\s*$/)?.[1] || "";
   const rows = [];
   const seen = new Set();

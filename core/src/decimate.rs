@@ -6,62 +6,13 @@
 /// The samples just outside the window are kept so lines run to the edges. NaN y values
 /// break nothing: they are skipped.
 pub fn min_max(x: &[f64], y: &[f64], x0: f64, x1: f64, columns: usize) -> (Vec<f64>, Vec<f64>) {
-    let n = x.len().min(y.len());
-    let (mut ox, mut oy) = (Vec::new(), Vec::new());
-    if n == 0 || columns == 0 || !(x1 > x0) {
-        return (ox, oy);
-    }
-    let start = x[..n].partition_point(|&v| v < x0).saturating_sub(1);
-    let end = (x[..n].partition_point(|&v| v <= x1) + 1).min(n);
-    if end - start <= 4 * columns {
-        for i in start..end {
-            if !y[i].is_nan() {
-                ox.push(x[i]);
-                oy.push(y[i]);
-            }
-        }
-        return (ox, oy);
-    }
-    let scale = columns as f64 / (x1 - x0);
-    let mut i = start;
-    while i < end {
-        let col = ((x[i] - x0) * scale).floor();
-        let (mut first, mut last, mut lo, mut hi) = (usize::MAX, 0, usize::MAX, usize::MAX);
-        while i < end && ((x[i] - x0) * scale).floor() == col {
-            if !y[i].is_nan() {
-                if first == usize::MAX {
-                    first = i;
-                }
-                last = i;
-                if lo == usize::MAX || y[i] < y[lo] {
-                    lo = i;
-                }
-                if hi == usize::MAX || y[i] > y[hi] {
-                    hi = i;
-                }
-            }
-            i += 1;
-        }
-        if first == usize::MAX {
-            continue;
-        }
-        let mut idx = [first, lo, hi, last];
-        idx.sort_unstable();
-        let mut prev = usize::MAX;
-        for k in idx {
-            if k != prev {
-                ox.push(x[k]);
-                oy.push(y[k]);
-                prev = k;
-            }
-        }
-    }
-    (ox, oy)
+    shared_indices(x, &[y], x0, x1, columns).into_iter().filter(|&i| !y[i].is_nan()).map(|i| (x[i], y[i])).unzip()
 }
 
 /// The samples to draw of several series sharing one x (a trace's columns): in each of
-/// `columns` pixel columns of [x0, x1], the first and last sample and each series' minimum
-/// and maximum, in order and once; the samples just outside the window are kept so lines run
+/// `columns` pixel columns of [x0, x1], the first and last sample where some series has a
+/// value and each series' minimum and maximum, in order and once (a column where every
+/// series is NaN keeps nothing); the samples just outside the window are kept so lines run
 /// to the edges. Every series sampled at these indices keeps its extremes per column, and
 /// the series still share their x. When the window holds at most 4 samples per column, every
 /// sample in it is kept.
@@ -86,7 +37,11 @@ pub fn shared_indices(x: &[f64], ys: &[&[f64]], x0: f64, x1: f64, columns: usize
             i += 1;
         }
         picked.clear();
-        picked.extend([first, i - 1]);
+        let valued = |k: &usize| ys.iter().any(|y| !y[*k].is_nan());
+        match ((first..i).find(valued), (first..i).rev().find(valued)) {
+            (Some(a), Some(b)) => picked.extend([a, b]),
+            _ => continue,
+        }
         for y in ys {
             let (mut lo, mut hi) = (usize::MAX, usize::MAX);
             for (k, &v) in y[first..i].iter().enumerate() {

@@ -138,8 +138,9 @@ struct Layout {
     x_max: f64,
     y_min: f64,
     y_max: f64,
-    /// The time axis's unit ("" when x is not time).
+    /// The time axis's unit ("" when x is not time) and the seconds it holds (1 when not time).
     x_unit: &'static str,
+    x_unit_s: f64,
     /// Where the ticks are, as labelled (in the time unit; log axes as values, not exponents).
     x_ticks: Vec<f64>,
     y_ticks: Vec<f64>,
@@ -223,6 +224,7 @@ pub fn draw_chart(
         ("x_max", layout.x_max),
         ("y_min", layout.y_min),
         ("y_max", layout.y_max),
+        ("x_unit_s", layout.x_unit_s),
     ] {
         Reflect::set(&o, &JsValue::from_str(k), &JsValue::from_f64(v))?;
     }
@@ -423,6 +425,7 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
         y_min: y0,
         y_max: y1,
         x_unit: unit.map_or("", |u| u.name),
+        x_unit_s: per,
         x_ticks: x_ticks.iter().map(|&v| if spec.log_x { 10f64.powf(v) } else { v }).collect(),
         y_ticks: y_ticks.iter().map(|&v| if spec.log_y { 10f64.powf(v) } else { v }).collect(),
     })

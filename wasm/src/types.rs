@@ -378,6 +378,8 @@ export interface ChartLayout {
   y_max: number;
   /** The time axis's unit ("s", "min", "h"), "" when x is not time. Ranges stay in seconds. */
   x_unit: string;
+  /** Seconds in one x_unit (60 for "min"), 1 when x is not time. */
+  x_unit_s: number;
   /** Where the ticks are, as labelled: round values (1, 2 or 5 times a power of ten apart)
    * in the axis's unit, whole decades on a log axis. */
   x_ticks: Float64Array;

@@ -7,7 +7,7 @@ import { showError, render } from "../render.js";
 import { background } from "../background.js";
 
 let lastHdr = null;
-let pipeCache = null;
+const pipeRuns = new WeakMap(); // log -> { key, run }: the pipeline run on the page
 const NO_PIPE = { result: null, trace: null, errors: null, pending: true };
 /** The recommended pipeline beside the paper's method, with the same static-bias window.
  * It depends on the log and bias_s only, so HDR's sliders reuse it; a large log's runs in
@@ -17,8 +17,9 @@ function pipelineOf(e) {
   const bg = background(e, "pipeline", options);
   if (bg) return bg.data ? { ...bg.data, pending: bg.pending } : NO_PIPE;
   const key = JSON.stringify(options);
-  if (!pipeCache || pipeCache.key !== key || pipeCache.log !== e.log) pipeCache = { key, log: e.log, run: gd.runPipeline(e.log, options) };
-  return pipeCache.run;
+  let c = pipeRuns.get(e.log);
+  if (!c || c.key !== key) pipeRuns.set(e.log, (c = { key, run: gd.runPipeline(e.log, options) }));
+  return c.run;
 }
 
 export function renderHdr() {
@@ -111,21 +112,18 @@ function reduce(x, ys, v) {
 }
 
 // ---------- other drives overlaid, log columns ----------
-const overlayRuns = new WeakMap(); // log -> { key, hdr, pipeKey, pipe }
+const overlayRuns = new WeakMap(); // log -> { key, hdr }
 /** The overlaid drives (not the plotted one) with their HDR and pipeline runs, cached per
  * log and settings so a slider reruns only what it changes. */
 function overlays(current, v) {
   const key = JSON.stringify([hdrOptions(), v]);
-  const pipeKey = String(hdrOptions().bias_s ?? "");
   return state.entries
     .filter((x) => x !== current && !x.error && x.kind === "drive" && state.overlay.has(x.name))
     .map((x, i) => {
       let c = overlayRuns.get(x.log);
       if (!c) overlayRuns.set(x.log, (c = {}));
       if (c.key !== key) Object.assign(c, { key, hdr: gd.runHdr(x.log, hdrOptions(), v) });
-      const bg = background(x, "pipeline", { bias_s: hdrOptions().bias_s ?? null });
-      if (!bg && c.pipeKey !== pipeKey) Object.assign(c, { pipeKey, pipe: gd.runPipeline(x.log, { bias_s: hdrOptions().bias_s ?? null }) });
-      return { entry: x, color: PALETTE[(i + 2) % PALETTE.length], hdr: c.hdr, pipe: bg ? bg.data || NO_PIPE : c.pipe };
+      return { entry: x, color: PALETTE[(i + 2) % PALETTE.length], hdr: c.hdr, pipe: pipelineOf(x) };
     });
 }
 
