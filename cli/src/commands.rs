@@ -194,13 +194,16 @@ pub fn samples(out: &Path) -> Result<(), Failure> {
 
 /// The robustness battery on the recipes' drives and the simulated ones.
 /// `roads`: road statistics of the recorded drives against the simulator's (issue 13).
-pub fn roads(recipes: &[PathBuf], data: Option<&Path>, json: bool) -> Result<(), Failure> {
+pub fn roads(recipes: &[PathBuf], data: Option<&Path>, json: bool, plot: Option<&Path>) -> Result<(), Failure> {
     let mut logs = Vec::new();
     for r in expand_recipes(recipes)? {
         let (log, _) = import_recipe(&r, data, false)?;
         logs.push((r.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(), log));
     }
     let c = gyrodrift::sim::roads::compare(&named(&logs)).map_err(|e| Failure(e.to_string()))?;
+    if let Some(p) = plot {
+        crate::roads_plot::draw(&c, p).map_err(Failure)?;
+    }
     emit(json, &c, || c.to_markdown())
 }
 

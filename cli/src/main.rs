@@ -6,6 +6,7 @@ mod commands;
 mod oom;
 mod output;
 mod parquet_out;
+mod roads_plot;
 
 #[global_allocator]
 static ALLOC: oom::Graceful = oom::Graceful;
@@ -239,6 +240,9 @@ enum Cmd {
         data: Option<PathBuf>,
         #[arg(long)]
         json: bool,
+        /// Also draw the recorded and simulated distributions per road class into this SVG
+        #[arg(long)]
+        plot: Option<PathBuf>,
     },
     /// What a log looks like before any method runs: rate, gaps, units and sign against the
     /// reference, bias, outliers; each finding with its fix. Exit 1 when it finds an error.
@@ -414,7 +418,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         },
         Cmd::Allan { log, json } => c::allan(&log, json),
         Cmd::Check { log, json } => c::check(&log, json),
-        Cmd::Roads { recipes, data, json } => c::roads(&recipes, data.as_deref(), json),
+        Cmd::Roads { recipes, data, json, plot } => c::roads(&recipes, data.as_deref(), json, plot.as_deref()),
     }
 }
 

@@ -29,9 +29,10 @@ fn means(set: &str) -> (f64, f64, f64) {
 fn pipeline_beats_raw_on_the_simulated_test_drives() {
     let (raw, smooth, pipe) = means("test");
     assert_eq!(drives("test").len(), 5);
-    // Measured: raw 1.80, pipeline 0.47, smoothed 0.57 deg/min.
-    assert!(pipe < raw / 3.0, "test drives: pipeline {pipe:.4} vs raw {raw:.4} deg/min");
-    assert!(smooth < raw / 2.5, "test drives: smoothed {smooth:.4} vs raw {raw:.4} deg/min");
+    // Measured: raw 1.93, pipeline 0.79, smoothed 0.79 deg/min (1.80, 0.47, 0.57 before the
+    // simulated drivers swayed as the recorded ones do).
+    assert!(pipe < raw / 2.0, "test drives: pipeline {pipe:.4} vs raw {raw:.4} deg/min");
+    assert!(smooth < raw / 2.0, "test drives: smoothed {smooth:.4} vs raw {raw:.4} deg/min");
 }
 
 #[test]

@@ -67,6 +67,8 @@ struct Style {
     p_ramp: f64,
     curve_deg: (f64, f64),
     curve_radius_m: (f64, f64),
+    /// Human sway: the rate sigma of a damped oscillation about the road heading, deg/s
+    /// (2.5x the first guesses, by the recorded roads: docs/simulator.md).
     sway_dps: f64,
     /// Road meander: a Gauss-Markov curvature in distance (sigma, deg/m; correlation
     /// length, m), so roads that look straight still turn slowly, as recorded ones do.
@@ -86,7 +88,7 @@ fn style(s: Scenario) -> Style {
             p_ramp: 0.0,
             curve_deg: (15.0, 45.0),
             curve_radius_m: (80.0, 200.0),
-            sway_dps: 0.2,
+            sway_dps: 0.5,
             meander_deg_per_m: 0.0105,
             meander_len_m: 80.0,
         },
@@ -100,7 +102,7 @@ fn style(s: Scenario) -> Style {
             p_ramp: 0.0,
             curve_deg: (10.0, 20.0),
             curve_radius_m: (60.0, 100.0),
-            sway_dps: 0.2,
+            sway_dps: 0.5,
             meander_deg_per_m: 0.0105,
             meander_len_m: 50.0,
         },
@@ -114,7 +116,7 @@ fn style(s: Scenario) -> Style {
             p_ramp: 0.0,
             curve_deg: (20.0, 90.0),
             curve_radius_m: (40.0, 150.0),
-            sway_dps: 0.15,
+            sway_dps: 0.375,
             meander_deg_per_m: 0.014,
             meander_len_m: 60.0,
         },
@@ -128,7 +130,7 @@ fn style(s: Scenario) -> Style {
             p_ramp: 0.0,
             curve_deg: (10.0, 60.0),
             curve_radius_m: (200.0, 600.0),
-            sway_dps: 0.12,
+            sway_dps: 0.3,
             meander_deg_per_m: 0.0025,
             meander_len_m: 200.0,
         },
@@ -142,7 +144,7 @@ fn style(s: Scenario) -> Style {
             p_ramp: 0.05,
             curve_deg: (5.0, 40.0),
             curve_radius_m: (800.0, 2500.0),
-            sway_dps: 0.08,
+            sway_dps: 0.2,
             meander_deg_per_m: 0.0032,
             meander_len_m: 600.0,
         },

@@ -1,0 +1,251 @@
+//! Recorded roads against simulated ones: per drive, pooled, per road class, and the
+//! two-sample distance of each distribution.
+
+use super::samples::{road_samples, ClassedSamples, RoadClass, RoadSamples, RoadSummary};
+use crate::error::Result;
+use crate::log::{Column, DriveLog};
+use serde::Serialize;
+
+/// Two-sample Kolmogorov-Smirnov distances between two pools, one per distribution.
+#[derive(Debug, Clone, Serialize)]
+pub struct RoadDistance {
+    pub abs_rate: f64,
+    pub straight_runs: f64,
+    pub slow_rate: f64,
+    pub curve_runs: f64,
+    pub curve_deg: f64,
+    pub curve_radius: f64,
+}
+
+impl RoadDistance {
+    pub fn between(a: &RoadSamples, b: &RoadSamples) -> RoadDistance {
+        RoadDistance {
+            abs_rate: ks_distance(&a.abs_rate_dps, &b.abs_rate_dps),
+            straight_runs: ks_distance(&a.straight_runs_s, &b.straight_runs_s),
+            slow_rate: ks_distance(&a.slow_rate_dps, &b.slow_rate_dps),
+            curve_runs: ks_distance(&a.curve_runs_s, &b.curve_runs_s),
+            curve_deg: ks_distance(&a.curve_deg, &b.curve_deg),
+            curve_radius: ks_distance(&a.curve_radius_m, &b.curve_radius_m),
+        }
+    }
+
+    /// The distances in the order of `STATISTICS`.
+    pub fn values(&self) -> [f64; 6] {
+        [self.abs_rate, self.straight_runs, self.slow_rate, self.curve_runs, self.curve_deg, self.curve_radius]
+    }
+}
+
+/// The compared distributions: name, unit, and the samples of a pool.
+pub const STATISTICS: [(&str, &str); 6] = [
+    ("abs yaw rate", "deg/s"),
+    ("straight run", "s"),
+    ("30 s yaw rate", "deg/s"),
+    ("curve length", "s"),
+    ("curve angle", "deg"),
+    ("curve radius", "m"),
+];
+
+/// The samples of statistic `i` of `STATISTICS`.
+pub fn statistic(s: &RoadSamples, i: usize) -> &[f64] {
+    [&s.abs_rate_dps, &s.straight_runs_s, &s.slow_rate_dps, &s.curve_runs_s, &s.curve_deg, &s.curve_radius_m][i]
+}
+
+/// One road class: the recorded and simulated pools' summaries and their distances.
+#[derive(Debug, Clone, Serialize)]
+pub struct ClassComparison {
+    pub class: RoadClass,
+    pub recorded: RoadSummary,
+    pub simulated: RoadSummary,
+    pub distance: RoadDistance,
+}
+
+/// Recorded against simulated roads: per drive, pooled, per class, and the distances.
+#[derive(Debug, Clone, Serialize)]
+pub struct RoadComparison {
+    pub recorded: Vec<(String, RoadSummary)>,
+    pub simulated: Vec<(String, RoadSummary)>,
+    pub recorded_pool: RoadSummary,
+    pub simulated_pool: RoadSummary,
+    pub distance: RoadDistance,
+    pub classes: Vec<ClassComparison>,
+    /// The pooled samples (for plots), not serialised.
+    #[serde(skip)]
+    pub pools: (ClassedSamples, ClassedSamples),
+}
+
+/// The Table II and IV sample drives' roads, simulated with an ideal gyro (the true rate).
+pub fn simulated_samples() -> Result<Vec<(String, ClassedSamples)>> {
+    let mut out = Vec::new();
+    for s in crate::sim::samples::SAMPLE_LOGS.iter().filter(|s| s.kind == crate::sim::SimKind::Drive) {
+        let cfg = crate::sim::drive::DriveConfig {
+            scenario: s.scenario.unwrap_or("city").parse()?,
+            minutes: s.minutes.unwrap_or(20.0),
+            seed: s.seed,
+        };
+        let log = crate::sim::drive::simulate_drive_with(&cfg, &crate::sim::GyroSpec::ideal());
+        out.push((s.name.to_string(), road_samples(&log, 0.0)?));
+    }
+    Ok(out)
+}
+
+/// Compares recorded drives (each with a speed column; ones without are skipped) with the
+/// simulated sample drives.
+pub fn compare(recorded: &[(String, &DriveLog)]) -> Result<RoadComparison> {
+    let mut rec = Vec::new();
+    for (name, log) in recorded {
+        if log.has(Column::SpeedMps) {
+            rec.push((name.clone(), road_samples(log, 0.0).map_err(|e| e.within(name))?));
+        }
+    }
+    let sim = simulated_samples()?;
+    let pool = |v: &[(String, ClassedSamples)]| {
+        let mut p = ClassedSamples::default();
+        v.iter().for_each(|(_, s)| p.extend(s));
+        p
+    };
+    let (rp, sp) = (pool(&rec), pool(&sim));
+    let rows = |v: &[(String, ClassedSamples)]| v.iter().map(|(n, s)| (n.clone(), s.all.summary())).collect();
+    let classes = RoadClass::ALL
+        .iter()
+        .enumerate()
+        .map(|(i, &class)| ClassComparison {
+            class,
+            recorded: rp.class[i].summary(),
+            simulated: sp.class[i].summary(),
+            distance: RoadDistance::between(&rp.class[i], &sp.class[i]),
+        })
+        .collect();
+    Ok(RoadComparison {
+        recorded: rows(&rec),
+        simulated: rows(&sim),
+        recorded_pool: rp.all.summary(),
+        simulated_pool: sp.all.summary(),
+        distance: RoadDistance::between(&rp.all, &sp.all),
+        classes,
+        pools: (rp, sp),
+    })
+}
+
+/// The empirical distribution function of `values` as at most `max_points` steps
+/// `(value, fraction at or below)`, for plotting.
+pub fn cdf_points(values: &[f64], max_points: usize) -> Vec<(f64, f64)> {
+    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    let step = n.div_ceil(max_points.max(1)).max(1);
+    let mut out: Vec<(f64, f64)> = (0..n).step_by(step).map(|i| (v[i], (i + 1) as f64 / n as f64)).collect();
+    if n > 0 && out.last().is_some_and(|p| p.1 < 1.0) {
+        out.push((v[n - 1], 1.0));
+    }
+    out
+}
+
+const SUMMARY_HEAD: &str = "| moving (min) | abs rate p50 | p75 | p90 (deg/s) | below theta_w | straight run mean | p90 (s) | 30 s rate p50 | p90 (deg/s) | curve p50 (s) | curve p50 (deg) | radius p50 (m) |";
+
+fn summary_cells(s: &RoadSummary) -> String {
+    format!(
+        "| {:.1} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1} | {:.0} | {:.3} | {:.3} | {:.0} | {:.0} | {:.0} |",
+        s.moving_min,
+        s.rate_p50_dps,
+        s.rate_p75_dps,
+        s.rate_p90_dps,
+        s.below_theta_w,
+        s.straight_run_mean_s,
+        s.straight_run_p90_s,
+        s.slow_rate_p50_dps,
+        s.slow_rate_p90_dps,
+        s.curve_run_p50_s,
+        s.curve_deg_p50,
+        s.curve_radius_p50_m
+    )
+}
+
+impl RoadComparison {
+    pub fn to_markdown(&self) -> String {
+        let mut out = format!("| drive {SUMMARY_HEAD}\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        let row = |name: &str, s: &RoadSummary| format!("| {name} {}\n", summary_cells(s));
+        for (n, s) in &self.recorded {
+            out += &row(&format!("recorded: {n}"), s);
+        }
+        out += &row("**recorded, pooled**", &self.recorded_pool);
+        for (n, s) in &self.simulated {
+            out += &row(&format!("simulated: {n}"), s);
+        }
+        out += &row("**simulated, pooled**", &self.simulated_pool);
+        out += &format!("\nBy road class (the mean speed of the minute around each block: urban under 14 m/s, highway over 25, rural between):\n\n| class, source {SUMMARY_HEAD}\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        for c in &self.classes {
+            out += &row(&format!("{}, recorded", c.class.name()), &c.recorded);
+            out += &row(&format!("{}, simulated", c.class.name()), &c.simulated);
+        }
+        out +=
+            "\nTwo-sample Kolmogorov-Smirnov distance, recorded against simulated pool (0 = same distribution, 1 = disjoint):\n\n| pool |";
+        for (name, _) in STATISTICS {
+            out += &format!(" {name} |");
+        }
+        out += "\n|---|---:|---:|---:|---:|---:|---:|\n";
+        let dist_row = |name: &str, d: &RoadDistance| {
+            let cells: String = d.values().iter().map(|v| format!(" {v:.3} |")).collect();
+            format!("| {name} |{cells}\n")
+        };
+        out += &dist_row("all moving", &self.distance);
+        for c in &self.classes {
+            out += &dist_row(c.class.name(), &c.distance);
+        }
+        out
+    }
+}
+
+/// The two-sample Kolmogorov-Smirnov statistic: the largest gap between the two empirical
+/// distribution functions (0 = same, 1 = disjoint).
+pub fn ks_distance(a: &[f64], b: &[f64]) -> f64 {
+    if a.is_empty() || b.is_empty() {
+        return f64::NAN;
+    }
+    let (mut a, mut b) = (a.to_vec(), b.to_vec());
+    a.sort_by(f64::total_cmp);
+    b.sort_by(f64::total_cmp);
+    let (mut i, mut j, mut d) = (0usize, 0usize, 0.0f64);
+    while i < a.len() && j < b.len() {
+        let x = a[i].min(b[j]);
+        while i < a.len() && a[i] <= x {
+            i += 1;
+        }
+        while j < b.len() && b[j] <= x {
+            j += 1;
+        }
+        d = d.max((i as f64 / a.len() as f64 - j as f64 / b.len() as f64).abs());
+    }
+    d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ks_distance_hand_worked() {
+        assert_eq!(ks_distance(&[1.0, 2.0, 3.0], &[1.0, 2.0, 3.0]), 0.0);
+        assert_eq!(ks_distance(&[1.0, 2.0], &[3.0, 4.0]), 1.0);
+        // F_a jumps to 1/2 at 1 and to 1 at 3; F_b to 1/2 at 2 and to 1 at 4: largest gap 1/2
+        assert_eq!(ks_distance(&[1.0, 3.0], &[2.0, 4.0]), 0.5);
+        // ties move both functions together
+        assert_eq!(ks_distance(&[1.0, 1.0, 2.0, 2.0], &[1.0, 2.0]), 0.0);
+    }
+
+    #[test]
+    fn cdf_points_hand_worked() {
+        assert_eq!(cdf_points(&[3.0, 1.0, 2.0, f64::NAN], 10), vec![(1.0, 1.0 / 3.0), (2.0, 2.0 / 3.0), (3.0, 1.0)]);
+        // 10 values in at most 4 points: every third, then the last
+        let v: Vec<f64> = (1..=10).map(f64::from).collect();
+        assert_eq!(cdf_points(&v, 4), vec![(1.0, 0.1), (4.0, 0.4), (7.0, 0.7), (10.0, 1.0)]);
+        assert!(cdf_points(&[], 4).is_empty());
+    }
+
+    #[test]
+    fn distance_of_a_pool_with_itself_is_zero() {
+        let s = RoadSamples { abs_rate_dps: vec![0.1, 0.2], straight_runs_s: vec![3.0], curve_deg: vec![90.0], ..Default::default() };
+        let d = RoadDistance::between(&s, &s);
+        assert_eq!(d.values()[..2], [0.0, 0.0]);
+        assert!(d.slow_rate.is_nan(), "no samples: no distance");
+    }
+}

@@ -1,0 +1,261 @@
+//! The road samples of one drive: its moving 1 Hz blocks, classified by speed, and the
+//! distributions measured on them.
+
+use super::{CLASS_WINDOW_S, HIGHWAY_MIN_MPS, MOVING_MPS, STILL_MPS, THETA_W_DPS, URBAN_MAX_MPS};
+use crate::error::{Error, Result};
+use crate::log::{Column, DriveLog};
+use crate::metrics::{mean_std, quantile, quantile_mut};
+use crate::preprocess::blocks_1hz;
+use serde::Serialize;
+
+/// A road class, judged by the mean speed of the minute around a block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RoadClass {
+    Urban,
+    Rural,
+    Highway,
+}
+
+impl RoadClass {
+    pub const ALL: [RoadClass; 3] = [RoadClass::Urban, RoadClass::Rural, RoadClass::Highway];
+
+    pub fn of_speed(mps: f64) -> RoadClass {
+        if mps < URBAN_MAX_MPS {
+            RoadClass::Urban
+        } else if mps > HIGHWAY_MIN_MPS {
+            RoadClass::Highway
+        } else {
+            RoadClass::Rural
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            RoadClass::Urban => "urban",
+            RoadClass::Rural => "rural",
+            RoadClass::Highway => "highway",
+        }
+    }
+}
+
+/// The samples behind the statistics (pooled over drives before comparing).
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct RoadSamples {
+    pub moving_min: f64,
+    /// |yaw rate| of each moving 1 Hz block, bias removed, deg/s.
+    pub abs_rate_dps: Vec<f64>,
+    /// Lengths of runs of consecutive moving blocks below theta_w, s.
+    pub straight_runs_s: Vec<f64>,
+    /// |mean yaw rate| over 30 s windows (every 10 s) of moving blocks all below 3 deg/s:
+    /// the slow curvature of roads that look straight, deg/s.
+    pub slow_rate_dps: Vec<f64>,
+    /// Lengths of runs of consecutive moving blocks at or above theta_w (curves, turns), s.
+    pub curve_runs_s: Vec<f64>,
+    /// |heading change| over each such run, deg.
+    pub curve_deg: Vec<f64>,
+    /// Radius of each such run: mean speed over mean |yaw rate| (in rad/s), m.
+    pub curve_radius_m: Vec<f64>,
+}
+
+/// One row of the comparison table.
+#[derive(Debug, Clone, Serialize)]
+pub struct RoadSummary {
+    pub moving_min: f64,
+    pub rate_p50_dps: f64,
+    pub rate_p75_dps: f64,
+    pub rate_p90_dps: f64,
+    pub below_theta_w: f64,
+    pub straight_run_mean_s: f64,
+    pub straight_run_p90_s: f64,
+    pub slow_rate_p50_dps: f64,
+    pub slow_rate_p90_dps: f64,
+    pub curve_run_p50_s: f64,
+    pub curve_deg_p50: f64,
+    pub curve_radius_p50_m: f64,
+}
+
+impl RoadSamples {
+    pub fn extend(&mut self, other: &RoadSamples) {
+        self.moving_min += other.moving_min;
+        self.abs_rate_dps.extend(&other.abs_rate_dps);
+        self.straight_runs_s.extend(&other.straight_runs_s);
+        self.slow_rate_dps.extend(&other.slow_rate_dps);
+        self.curve_runs_s.extend(&other.curve_runs_s);
+        self.curve_deg.extend(&other.curve_deg);
+        self.curve_radius_m.extend(&other.curve_radius_m);
+    }
+
+    /// The summary figures.
+    pub fn summary(&self) -> RoadSummary {
+        let below = self.abs_rate_dps.iter().filter(|&&x| x < THETA_W_DPS).count() as f64 / self.abs_rate_dps.len().max(1) as f64;
+        RoadSummary {
+            moving_min: self.moving_min,
+            rate_p50_dps: quantile(&self.abs_rate_dps, 0.5),
+            rate_p75_dps: quantile(&self.abs_rate_dps, 0.75),
+            rate_p90_dps: quantile(&self.abs_rate_dps, 0.9),
+            below_theta_w: below,
+            straight_run_mean_s: mean_std(&self.straight_runs_s).0,
+            straight_run_p90_s: quantile(&self.straight_runs_s, 0.9),
+            slow_rate_p50_dps: quantile(&self.slow_rate_dps, 0.5),
+            slow_rate_p90_dps: quantile(&self.slow_rate_dps, 0.9),
+            curve_run_p50_s: quantile(&self.curve_runs_s, 0.5),
+            curve_deg_p50: quantile(&self.curve_deg, 0.5),
+            curve_radius_p50_m: quantile(&self.curve_radius_m, 0.5),
+        }
+    }
+
+    /// Samples of moving blocks `(second, rate deg/s, speed m/s)`; a gap in the seconds ends
+    /// every run and window.
+    fn of_blocks(moving: &[(i64, f64, f64)]) -> RoadSamples {
+        let mut s = RoadSamples {
+            moving_min: moving.len() as f64 / 60.0,
+            abs_rate_dps: moving.iter().map(|m| m.1.abs()).collect(),
+            ..Default::default()
+        };
+        let mut start = 0;
+        for i in 0..moving.len() {
+            let straight = moving[i].1.abs() < THETA_W_DPS;
+            let ends = i + 1 == moving.len() || moving[i + 1].0 != moving[i].0 + 1 || (moving[i + 1].1.abs() < THETA_W_DPS) != straight;
+            if ends {
+                let run = &moving[start..=i];
+                if straight {
+                    s.straight_runs_s.push(run.len() as f64);
+                } else {
+                    let n = run.len() as f64;
+                    let turned: f64 = run.iter().map(|m| m.1).sum();
+                    let mean_rate_rad = run.iter().map(|m| m.1.abs()).sum::<f64>() / n * std::f64::consts::PI / 180.0;
+                    s.curve_runs_s.push(n);
+                    s.curve_deg.push(turned.abs());
+                    s.curve_radius_m.push(run.iter().map(|m| m.2).sum::<f64>() / n / mean_rate_rad);
+                }
+                start = i + 1;
+            }
+        }
+        for i in (0..moving.len().saturating_sub(30)).step_by(10) {
+            let w = &moving[i..i + 30];
+            if w[29].0 - w[0].0 == 29 && w.iter().all(|m| m.1.abs() < 3.0) {
+                s.slow_rate_dps.push((w.iter().map(|m| m.1).sum::<f64>() / 30.0).abs());
+            }
+        }
+        s
+    }
+}
+
+/// A drive's samples: all moving blocks, and those of each road class.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct ClassedSamples {
+    pub all: RoadSamples,
+    /// Urban, rural, highway (the order of `RoadClass::ALL`).
+    pub class: [RoadSamples; 3],
+}
+
+impl ClassedSamples {
+    pub fn extend(&mut self, other: &ClassedSamples) {
+        self.all.extend(&other.all);
+        for (a, b) in self.class.iter_mut().zip(&other.class) {
+            a.extend(b);
+        }
+    }
+}
+
+/// The road samples of a drive log with a speed column. The gyro bias is the median rate of
+/// still blocks (at least 10 of them), else `bias_dps` (0 for a calibrated gyro; a simulated
+/// drive passes its truth by using an ideal gyro).
+pub fn road_samples(log: &DriveLog, bias_dps: f64) -> Result<ClassedSamples> {
+    let gyro = log.require(Column::GyroDps, "road statistics")?;
+    let speed = log.require(Column::SpeedMps, "road statistics (moving or still)")?;
+    let t = log.time_s();
+    let mean = |v: &[f64]| {
+        let (s, n) = v.iter().filter(|x| !x.is_nan()).fold((0.0, 0usize), |(s, n), &x| (s + x, n + 1));
+        (n > 0).then(|| s / n as f64)
+    };
+    let (mut blocks, mut last_v) = (Vec::new(), f64::NAN);
+    for b in blocks_1hz(t) {
+        if let Some(v) = mean(&speed[b.clone()]) {
+            last_v = v;
+        }
+        if let Some(g) = mean(&gyro[b.clone()]) {
+            blocks.push(((t[b.start] - t[0]).floor() as i64, g, last_v));
+        }
+    }
+    let mut still: Vec<f64> = blocks.iter().filter(|b| b.2 < STILL_MPS).map(|b| b.1).collect();
+    let bias = if still.len() >= 10 { quantile_mut(&mut still, 0.5) } else { bias_dps };
+    // each block's class by the mean speed of the blocks within half a window of it
+    let speeds: Vec<f64> = blocks.iter().map(|b| b.2).collect();
+    let half = CLASS_WINDOW_S / 2;
+    let class_of = |i: usize| RoadClass::of_speed(mean(&speeds[i.saturating_sub(half)..(i + half + 1).min(speeds.len())]).unwrap_or(0.0));
+    let moving: Vec<(i64, f64, f64, RoadClass)> =
+        blocks.iter().enumerate().filter(|(_, b)| b.2 > MOVING_MPS).map(|(i, b)| (b.0, b.1 - bias, b.2, class_of(i))).collect();
+    if moving.is_empty() {
+        return Err(Error::data(format!("no block moves faster than {MOVING_MPS} m/s")));
+    }
+    let strip = |c: Option<RoadClass>| -> Vec<(i64, f64, f64)> {
+        moving.iter().filter(|m| c.is_none_or(|c| m.3 == c)).map(|m| (m.0, m.1, m.2)).collect()
+    };
+    Ok(ClassedSamples { all: RoadSamples::of_blocks(&strip(None)), class: RoadClass::ALL.map(|c| RoadSamples::of_blocks(&strip(Some(c)))) })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn samples_of_a_hand_made_drive() {
+        // 20 s still with a 0.5 deg/s bias, then 60 s moving at 10 m/s: 10 s straight, 5 s at
+        // 2 deg/s, 45 s straight
+        let mut log = DriveLog::with_columns(&[Column::GyroDps, Column::SpeedMps]);
+        for i in 0..800 {
+            let t = i as f64 / 10.0;
+            let (v, w) = if t < 20.0 {
+                (0.0, 0.0)
+            } else if (30.0..35.0).contains(&t) {
+                (10.0, 2.0)
+            } else {
+                (10.0, 0.0)
+            };
+            log.push_row(&[(Column::TimeS, t), (Column::GyroDps, w + 0.5), (Column::SpeedMps, v)]);
+        }
+        let c = road_samples(&log, 9.0).unwrap();
+        let s = &c.all;
+        assert_eq!(s.abs_rate_dps.len(), 60);
+        assert_eq!(s.moving_min, 1.0);
+        assert_eq!(s.straight_runs_s, vec![10.0, 45.0]);
+        // the curve: 5 s, 10 deg, radius 10 m/s / (2 deg/s in rad/s) = 286.48 m
+        assert_eq!(s.curve_runs_s, vec![5.0]);
+        assert!((s.curve_deg[0] - 10.0).abs() < 1e-12);
+        assert!((s.curve_radius_m[0] - 10.0 / 2f64.to_radians()).abs() < 1e-9, "{:?}", s.curve_radius_m);
+        let sum = s.summary();
+        assert_eq!(sum.below_theta_w, 55.0 / 60.0);
+        assert_eq!(sum.rate_p90_dps, 0.0); // 5 of 60 blocks turn: under 10 %
+        assert_eq!(quantile(&s.abs_rate_dps, 0.95), 2.0);
+        // windows of 30 s start every 10 s: the first two hold the turn (5 s x 2 deg/s / 30), the third not
+        assert_eq!(s.slow_rate_dps.len(), 3);
+        assert!((s.slow_rate_dps[0] - 10.0 / 30.0).abs() < 1e-12 && s.slow_rate_dps[2] == 0.0, "{:?}", s.slow_rate_dps);
+        // the minute around each moving block averages at most 10 m/s: urban
+        assert_eq!(c.class[0].abs_rate_dps.len(), 60);
+        assert!(c.class[1].abs_rate_dps.is_empty() && c.class[2].abs_rate_dps.is_empty());
+    }
+
+    #[test]
+    fn classes_by_the_speed_of_the_surrounding_minute() {
+        assert_eq!(RoadClass::of_speed(13.9), RoadClass::Urban);
+        assert_eq!(RoadClass::of_speed(20.0), RoadClass::Rural);
+        assert_eq!(RoadClass::of_speed(25.1), RoadClass::Highway);
+        // 200 s at 10 m/s then 200 s at 30 m/s: a block is highway once the minute around it
+        // averages over 25 m/s; runs end at the class boundary
+        let mut log = DriveLog::with_columns(&[Column::GyroDps, Column::SpeedMps]);
+        for i in 0..4000 {
+            let t = i as f64 / 10.0;
+            log.push_row(&[(Column::TimeS, t), (Column::GyroDps, 0.0), (Column::SpeedMps, if t < 200.0 { 10.0 } else { 30.0 })]);
+        }
+        let c = road_samples(&log, 0.0).unwrap();
+        let n: Vec<usize> = c.class.iter().map(|s| s.abs_rate_dps.len()).collect();
+        assert_eq!(n.iter().sum::<usize>(), 400);
+        // the window [i-30, i+30] holds k = i - 169 blocks at 30 m/s; its mean 10 + 20 k/61 is
+        // under 14 for k <= 12 (i <= 181) and over 25 for k >= 46 (i >= 215)
+        assert_eq!(n, vec![182, 33, 185], "{n:?}");
+        assert_eq!(c.all.straight_runs_s, vec![400.0]);
+        assert_eq!(c.class[2].straight_runs_s, vec![185.0]);
+    }
+}
