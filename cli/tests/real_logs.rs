@@ -224,3 +224,35 @@ fn presets_detect_the_recorded_layouts_and_match_their_recipes() {
         assert!(mean_abs < 0.01 && mean.abs() < 0.002, "{recipe}: gyro differs by {mean_abs} deg/s on average, mean {mean}");
     }
 }
+
+/// `gyrodrift roads --plot`: the recorded drives against the simulated ones, per road class,
+/// as JSON and as an SVG with one panel per statistic and class.
+#[test]
+fn roads_compares_per_class_and_plots() {
+    let Some(data) = real_logs() else { return };
+    let svg = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("roads.svg");
+    let o = Command::new(env!("CARGO_BIN_EXE_gyrodrift"))
+        .current_dir(root())
+        .args(["roads", "--data", data.to_str().unwrap(), "--json", "--plot", svg.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let classes = v["classes"].as_array().unwrap();
+    assert_eq!(classes.iter().map(|c| c["class"].as_str().unwrap()).collect::<Vec<_>>(), ["urban", "rural", "highway"]);
+    for c in classes {
+        // every class has recorded and simulated minutes, and each distance is a KS value
+        assert!(c["recorded"]["moving_min"].as_f64().unwrap() > 10.0 && c["simulated"]["moving_min"].as_f64().unwrap() > 10.0, "{c}");
+        for d in c["distance"].as_object().unwrap().values() {
+            assert!((0.0..=1.0).contains(&d.as_f64().unwrap()), "{c}");
+        }
+    }
+    // the pooled recorded minutes are the drives' minutes
+    let sum: f64 = v["recorded"].as_array().unwrap().iter().map(|r| r[1]["moving_min"].as_f64().unwrap()).sum();
+    assert!((sum - v["recorded_pool"]["moving_min"].as_f64().unwrap()).abs() < 1e-9);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        text.starts_with("<svg") && text.contains("highway: curve radius (m), KS") && text.contains("urban: abs yaw rate"),
+        "SVG panels"
+    );
+}
