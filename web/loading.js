@@ -25,6 +25,29 @@ export function headline(entry) {
 /** Yields to the page (input, drawing) before the next step. */
 const nextTask = () => new Promise((r) => setTimeout(r, 0));
 
+/** Rows copied into the page's module per task when a worker hands a big log over. */
+const CHUNK_ROWS = 250_000;
+
+/** A worker's parsed columns as a Log, copied in a chunk per task (core checks each chunk). */
+async function buildInTasks(data) {
+  const names = Object.keys(data.columns);
+  const n = data.columns.time_s ? data.columns.time_s.length : 0;
+  const chunk = (i) => {
+    const cut = (a) => a.subarray(i, Math.min(n, i + CHUNK_ROWS));
+    return { meta: data.meta, line: data.line.length === n ? cut(data.line) : undefined, columns: Object.fromEntries(names.map((k) => [k, cut(data.columns[k])])) };
+  };
+  const b = new gd.LogBuilder(chunk(0), n);
+  try {
+    for (let i = CHUNK_ROWS; i < n; i += CHUNK_ROWS) {
+      await nextTask();
+      b.append(chunk(i));
+    }
+    return b.finish();
+  } finally {
+    b.free();
+  }
+}
+
 // Files above this size are parsed in a Web Worker with a progress bar; the page stays live.
 const WORKER_BYTES = 4 << 20;
 let worker = null;
@@ -185,13 +208,28 @@ export async function loadFiles(files) {
     let e;
     if (buffer.byteLength > WORKER_BYTES && window.Worker) {
       const res = await parseInWorker(f, buffer);
-      // The log copied in and its first drawing in tasks of their own, so neither holds
-      // the page for the other; the check comes from the worker.
+      // The log copied in a chunk per task and its first drawing in a task of its own, so
+      // none holds the page for long; the check comes from the worker.
+      let built;
+      try {
+        built = res.error ? { error: new Error(res.error) } : { log: await buildInTasks(res.data) };
+      } catch (err) {
+        built = { error: err };
+      }
       e = addParsed(f.name, () => {
-        if (res.error) throw new Error(res.error);
-        return gd.Log.fromColumns(res.data);
+        if (built.error) throw built.error;
+        return built.log;
       }, res.check);
       await nextTask();
+      // HDR's preparation (a pass over every row) in a task of its own before the first drawing.
+      if (!e.error && !e.note && e.kind === "drive") {
+        try {
+          gd.prepareHdr(e.log, hdrOptions());
+        } catch {
+          /* the HDR view shows the error when it runs */
+        }
+        await nextTask();
+      }
       // The worker keeps its copy for the slow work (Track, pipeline) unless the log was
       // split at a gap (its parts are not the worker's log).
       if (res.key != null && !e.error && !e.note) e.workerKey = res.key;

@@ -41,14 +41,8 @@ impl HdrEstimator {
         rate_raw_dps: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Py<PyAny>> {
         let (t, w) = (values(&time_s, "time_s")?, values(&rate_raw_dps, "rate_raw_dps")?);
-        let mut out = Vec::with_capacity(t.len());
-        let mut last = self.last;
-        let r = self.inner.update_slice(&t, &w, |o| {
-            out.push(o.heading_deg);
-            last = Some(*o);
-        });
-        self.last = last;
-        r.map_err(value_err)?;
+        let mut out = Vec::new();
+        self.inner.update_slice_headings(&t, &w, &mut out, &mut self.last).map_err(value_err)?;
         Ok(array(py, out))
     }
 

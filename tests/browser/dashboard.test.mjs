@@ -375,12 +375,14 @@ test("a link pasted into the open tab is applied, zoom included, and Back steps 
   await page.locator("#reset").click();
 });
 
-test("a large log is parsed in a Web Worker and gives the CLI's numbers", async () => {
+test("a large log is parsed in a Web Worker, handed to the page in chunks, and gives the CLI's numbers", async () => {
   const dir = mkdtempSync(join(tmpdir(), "gd-big-"));
   const big = join(dir, "long-drive.csv");
-  cli("simulate", "drive", "--scenario", "mixed", "--minutes", "400", "--seed", "77", "--name", "Long drive", "--out", big);
+  cli("simulate", "drive", "--scenario", "mixed", "--minutes", "450", "--seed", "77", "--name", "Long drive", "--out", big);
   await page.locator("#file-input").setInputFiles([big]);
   await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Long drive"), null, { timeout: 60000 });
+  // 270 000 rows: more than one chunk (CHUNK_ROWS in web/loading.js) crosses to the page.
+  assert.ok(await page.evaluate(() => window.gyrodrift.state.entries.find((e) => e.name === "Long drive").log.toColumns().columns.time_s.length > 250000));
   const native = JSON.parse(cli("hdr", big, "--json"));
   assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
   assert.equal(await page.locator("#progress").isVisible(), false);

@@ -248,3 +248,47 @@ test("the browser's core module is <= 200 KB gzipped and gives the whole package
   assert.equal(typeof plot.drawChart, "function");
   assert.equal(plot.hdr, undefined);
 });
+
+test("LogBuilder: a log handed over in chunks equals the whole; a bad chunk is refused whole, naming its line and column", () => {
+  const log = gd.Log.parse(readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8"));
+  const data = log.toColumns();
+  const names = Object.keys(data.columns);
+  const n = data.columns.time_s.length;
+  const chunk = (i, j) => ({ meta: data.meta, line: data.line.subarray(i, j), columns: Object.fromEntries(names.map((k) => [k, data.columns[k].subarray(i, j)])) });
+  const b = new gd.LogBuilder(chunk(0, 1000), n);
+  // time going back: the line of the offending row, nothing of the chunk kept
+  assert.throws(() => b.append(chunk(500, 1500)), (e) => e instanceof Error && /time_s/.test(e.message) && e.message.includes(String(data.line[500])));
+  // a gyro value out of range, named by line and column
+  const bad = chunk(1000, 1100);
+  bad.columns.gyro_dps = bad.columns.gyro_dps.slice();
+  bad.columns.gyro_dps[7] = 1e9;
+  assert.throws(() => b.append(bad), (e) => /gyro_dps/.test(e.message) && e.message.includes(String(data.line[1007])));
+  assert.throws(() => b.append({ columns: { time_s: data.columns.time_s.subarray(1000, 1001) } }), /gyro_dps/);
+  assert.throws(() => b.append({ columns: { time_s: "no" } }), /time_s/);
+  for (let i = 1000; i < n; i += 3000) b.append(chunk(i, Math.min(n, i + 3000)));
+  const built = b.finish();
+  assert.throws(() => b.finish(), /already finished/);
+  b.free();
+  assert.deepEqual(plain(gd.hdr(built, {})), plain(gd.hdr(log, {})));
+  assert.deepEqual(built.toColumns().line, data.line);
+  assert.throws(() => new gd.LogBuilder({ meta: data.meta, columns: { gyro_dps: new Float64Array(1) } }, 0), /time_s/);
+  assert.throws(() => new gd.LogBuilder({ columns: { time_s: new Float64Array([1, 0]) } }, 2), /line 3/);
+  built.free();
+  log.free();
+});
+
+test("Log.reduceColumns gives reduceSeries' points of the log's own columns, without copying them out", () => {
+  const log = gd.Log.parse(readFileSync(join(SAMPLES, "train", "highway-1.csv"), "utf8"));
+  for (const view of [{ columns: 300 }, { columns: 120, x_range: [100, 900] }]) {
+    const got = log.reduceColumns(["speed_mps", "gyro_dps"], view);
+    const want = gd.reduceSeries(log.column("time_s"), [log.column("speed_mps"), log.column("gyro_dps")], view);
+    assert.ok(got.x.length > 0 && got.x.length < log.column("time_s").length, "reduced");
+    assert.deepEqual(got.x, want.x);
+    assert.deepEqual(got.ys, want.ys);
+  }
+  assert.throws(() => log.reduceColumns(["odo_left_m"], { columns: 100 }), /odo_left_m/);
+  assert.throws(() => log.reduceColumns(["nope"], { columns: 100 }), /unknown column nope/);
+  assert.throws(() => log.reduceColumns("speed_mps", { columns: 100 }), TypeError);
+  assert.throws(() => log.reduceColumns(["speed_mps"], {}), /columns/);
+  log.free();
+});

@@ -39,6 +39,14 @@ pub fn hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] optio
     to_js(&run.result.map_err(err)?)
 }
 
+/// Prepares HDR's samples and reference for these options and caches them on the log, so a
+/// page can spend that time (O(rows)) in a task of its own before the first `runHdr`.
+#[wasm_bindgen(js_name = prepareHdr)]
+pub fn prepare_hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<()> {
+    let opts: HdrOptions = self::options("hdr", options)?;
+    log.hdr_prepared(&opts).map(|_| ()).map_err(err)
+}
+
 /// HDR with its per-sample series (Float64Array) for plotting: `{ result, error, eps0_dps, trace }`;
 /// `result` is null and `error` says why when the log has no usable reference.
 #[wasm_bindgen(js_name = runHdr, unchecked_return_type = "HdrRun")]

@@ -20,6 +20,8 @@ mod convert;
 mod import;
 #[cfg(feature = "core")]
 mod log;
+#[cfg(feature = "core")]
+mod log_builder;
 #[cfg(feature = "plot")]
 mod plot;
 #[cfg(feature = "core")]
@@ -34,6 +36,8 @@ pub use batch::*;
 pub use import::*;
 #[cfg(feature = "core")]
 pub use log::Log;
+#[cfg(feature = "core")]
+pub use log_builder::*;
 #[cfg(feature = "core")]
 pub use streaming::*;
 #[cfg(feature = "core")]

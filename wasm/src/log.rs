@@ -128,18 +128,7 @@ impl Log {
     /// A log from `toColumns()` data, checked as the parser checks.
     #[wasm_bindgen(js_name = fromColumns)]
     pub fn from_columns(#[wasm_bindgen(unchecked_param_type = "LogColumns")] data: JsValue) -> JsResult<Log> {
-        let get = |o: &JsValue, k: &str| Reflect::get(o, &JsValue::from_str(k)).unwrap_or(JsValue::UNDEFINED);
-        let meta: gyrodrift::LogMeta = serde_wasm_bindgen::from_value(get(&data, "meta")).unwrap_or_default();
-        let line: Vec<u64> =
-            get(&data, "line").dyn_into::<Float64Array>().map(|a| a.to_vec().into_iter().map(|v| v as u64).collect()).unwrap_or_default();
-        let cols_obj = get(&data, "columns");
-        let mut cols = Vec::new();
-        for c in gyrodrift::Column::ALL {
-            let v = get(&cols_obj, c.name());
-            if let Some(a) = v.dyn_ref::<Float64Array>() {
-                cols.push((c, a.to_vec()));
-            }
-        }
+        let ColumnData { meta, line, cols } = read_columns(&data);
         DriveLog::from_columns(meta, line, cols).map(Log::new).map_err(err)
     }
 
@@ -227,4 +216,28 @@ impl Log {
         self.log.write_csv(&mut buf).map_err(err)?;
         String::from_utf8(buf).map_err(err)
     }
+}
+
+/// `toColumns()` data (or a chunk of it) as core's pieces.
+pub(crate) struct ColumnData {
+    pub meta: gyrodrift::LogMeta,
+    pub line: Vec<u64>,
+    /// The columns present, in core's order.
+    pub cols: Vec<(gyrodrift::Column, Vec<f64>)>,
+}
+
+/// Reads `toColumns()` data (or a chunk of it): meta, lines, the present columns.
+pub(crate) fn read_columns(data: &JsValue) -> ColumnData {
+    let get = |o: &JsValue, k: &str| Reflect::get(o, &JsValue::from_str(k)).unwrap_or(JsValue::UNDEFINED);
+    let meta: gyrodrift::LogMeta = serde_wasm_bindgen::from_value(get(data, "meta")).unwrap_or_default();
+    let line: Vec<u64> =
+        get(data, "line").dyn_into::<Float64Array>().map(|a| a.to_vec().into_iter().map(|v| v as u64).collect()).unwrap_or_default();
+    let cols_obj = get(data, "columns");
+    let mut cols = Vec::new();
+    for c in gyrodrift::Column::ALL {
+        if let Some(a) = get(&cols_obj, c.name()).dyn_ref::<Float64Array>() {
+            cols.push((c, a.to_vec()));
+        }
+    }
+    ColumnData { meta, line, cols }
 }

@@ -35,14 +35,8 @@ impl HdrEstimator {
     /// Many samples at once; returns their headings.
     #[wasm_bindgen(js_name = updateMany)]
     pub fn update_many(&mut self, time_s: &[f64], rate_raw_dps: &[f64]) -> JsResult<Float64Array> {
-        let mut out = Vec::with_capacity(time_s.len());
-        let mut last = self.last;
-        let r = self.inner.update_slice(time_s, rate_raw_dps, |o| {
-            out.push(o.heading_deg);
-            last = Some(*o);
-        });
-        self.last = last;
-        r.map_err(err)?;
+        let mut out = Vec::new();
+        self.inner.update_slice_headings(time_s, rate_raw_dps, &mut out, &mut self.last).map_err(err)?;
         Ok(Float64Array::from(&out[..]))
     }
 

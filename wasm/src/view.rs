@@ -3,6 +3,7 @@
 //! crosses into JavaScript and the plot module as a few thousand points.
 
 use crate::convert::*;
+use crate::log::Log;
 use crate::JsResult;
 use js_sys::Object;
 use wasm_bindgen::prelude::*;
@@ -63,13 +64,40 @@ pub fn reduce_series(
     let arr: js_sys::Array = ys.dyn_into().map_err(|_| err("ys must be an array of series"))?;
     let cols: Vec<Vec<f64>> = arr.iter().map(|y| js_sys::Float64Array::new(&y).to_vec()).collect();
     let refs: Vec<&[f64]> = cols.iter().map(|c| c.as_slice()).collect();
-    let idx = view.indices(x, &refs);
+    reduced_group(&view, x, &refs)
+}
+
+/// `{ x, ys }`: the series kept for the view.
+fn reduced_group(view: &View, x: &[f64], ys: &[&[f64]]) -> JsResult<JsValue> {
+    let idx = view.indices(x, ys);
     let out = Object::new();
     set(&out, "x", &reduced(Some(&idx), x))?;
     let list = js_sys::Array::new();
-    for c in &cols {
+    for c in ys {
         list.push(&reduced(Some(&idx), c));
     }
     set(&out, "ys", &list)?;
     Ok(out.into())
+}
+
+#[wasm_bindgen]
+impl Log {
+    /// Columns of this log on its time axis reduced for a view, as `reduceSeries(time_s,
+    /// columns, view)` gives them, without copying whole columns out of the module.
+    #[wasm_bindgen(js_name = reduceColumns, unchecked_return_type = "{ x: Float64Array; ys: Float64Array[] }")]
+    pub fn reduce_columns(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "string[]")] names: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "ChartView")] view: JsValue,
+    ) -> JsResult<JsValue> {
+        let view = View::read(&view)?.ok_or_else(|| err("reduceColumns needs a view { x_range?, columns }"))?;
+        let arr: js_sys::Array = names.dyn_into().map_err(|_| type_err("Log.reduceColumns(names): expected an array of column names"))?;
+        let mut cols = Vec::new();
+        for n in arr.iter() {
+            let name = js_string(&n, "Log.reduceColumns(names)")?;
+            let c = gyrodrift::Column::from_name(&name).ok_or_else(|| err(format!("unknown column {name}")))?;
+            cols.push(self.log.require(c, "not in this log").map_err(err)?);
+        }
+        reduced_group(&view, self.log.time_s(), &cols)
+    }
 }

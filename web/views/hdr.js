@@ -143,12 +143,15 @@ function renderOverlays(overlaid) {
     .join("");
 }
 
-const columnCache = new WeakMap(); // log -> Map(column -> Float64Array)
-function column(log, name) {
-  let m = columnCache.get(log);
-  if (!m) columnCache.set(log, (m = new Map()));
-  if (!m.has(name)) m.set(name, log.column(name));
-  return m.get(name);
+const columnCache = new WeakMap(); // log -> { key, byName: Map(column -> { x, ys }) }
+/** A log column reduced for the view in core (the whole column never crosses), once per
+ * zoom and width. */
+function column(log, name, v) {
+  const key = JSON.stringify(v);
+  let c = columnCache.get(log);
+  if (!c || c.key !== key) columnCache.set(log, (c = { key, byName: new Map() }));
+  if (!c.byName.has(name)) c.byName.set(name, log.reduceColumns([name], v));
+  return c.byName.get(name);
 }
 
 /** Any column of the log (speed, temperature, the raw gyro, ...) on the shared time axis,
@@ -173,11 +176,11 @@ function renderColumns(e, overlaid, xr, cursor, v) {
   }
   const series = [];
   chosen.forEach((c, k) => {
-    const own = reduce(column(e.log, "time_s"), [column(e.log, c)], v);
+    const own = column(e.log, c, v);
     series.push({ name: c, color: PALETTE[k % PALETTE.length], x: own.x, y: own.ys[0] });
     overlaid.forEach((o, i) => {
       if (!o.entry.log.columns().includes(c)) return;
-      const r = reduce(column(o.entry.log, "time_s"), [column(o.entry.log, c)], v);
+      const r = column(o.entry.log, c, v);
       series.push({ name: `${o.entry.name}: ${c}`, color: PALETTE[(k + 3 + i) % PALETTE.length], width: 2, x: r.x, y: r.ys[0] });
     });
   });

@@ -184,6 +184,22 @@ impl Hdr {
         Ok(())
     }
 
+    /// `update_slice` keeping the headings (appended to `headings`) and the last output (in
+    /// `last`). Not generic, so bindings call a loop compiled with core's optimisation.
+    pub fn update_slice_headings(
+        &mut self,
+        time_s: &[f64],
+        rate_raw_dps: &[f64],
+        headings: &mut Vec<f64>,
+        last: &mut Option<HdrOutput>,
+    ) -> Result<()> {
+        headings.reserve(time_s.len());
+        self.update_slice(time_s, rate_raw_dps, |o| {
+            headings.push(o.heading_deg);
+            *last = Some(*o);
+        })
+    }
+
     /// Forgets the state (keeps parameters and eps0).
     pub fn reset(&mut self) {
         self.started = false;

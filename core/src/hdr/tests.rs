@@ -212,3 +212,20 @@ fn prepared_runs_equal_plain_runs() {
     assert!(!prep.fits(&other));
     assert!(run_prepared(&log, &prep, &other).unwrap_err().to_string().contains("preparation"));
 }
+
+#[test]
+fn update_slice_headings_equals_update_and_keeps_the_samples_before_an_error() {
+    let t = [0.0, 0.1, 0.2, 0.3, 0.3, 0.5];
+    let w = [1.0, 0.2, -0.3, 4.0, 1.0, 1.0];
+    let mut a = Hdr::new(HdrParams::default(), 0.5).unwrap();
+    let mut b = a.clone();
+    let want: Vec<f64> = (0..4).map(|k| a.update(t[k], w[k]).unwrap().heading_deg).collect();
+    let (mut got, mut last) = (vec![9.0], None);
+    let e = b.update_slice_headings(&t, &w, &mut got, &mut last).unwrap_err();
+    assert!(e.to_string().contains("time"), "{e}");
+    assert_eq!(got[0], 9.0, "appended, not overwritten");
+    assert_eq!(&got[1..], &want[..]);
+    assert_eq!(last.unwrap().heading_deg, want[3]);
+    // The state is the one after the fourth sample: the next sample continues from it.
+    assert_eq!(b.update(0.6, 1.0).unwrap().heading_deg, a.update(0.6, 1.0).unwrap().heading_deg);
+}

@@ -99,6 +99,7 @@ pub struct LogMeta {
     pub bias_s: Option<f64>,
     pub description: Option<String>,
     /// Any other `# key: value` pairs, kept verbatim.
+    #[serde(default)]
     pub other: BTreeMap<String, String>,
 }
 
@@ -301,58 +302,13 @@ impl DriveLog {
 
 impl DriveLog {
     /// A log from columns (e.g. handed over from a parsing worker), checked as the parser
-    /// checks: equal lengths, a finite strictly increasing time, finite or missing values.
+    /// checks: equal lengths, a finite strictly increasing time, finite or missing values in
+    /// range. `line` of another length than the columns numbers the rows from line 2.
     pub fn from_columns(meta: LogMeta, line: Vec<u64>, columns: Vec<(Column, Vec<f64>)>) -> Result<DriveLog> {
-        let mut log = DriveLog { meta, line, ..DriveLog::default() };
-        for (c, v) in columns {
-            if log.columns[c.index()].is_some() {
-                return Err(Error::File(format!("duplicate column {}", c.name())));
-            }
-            log.columns[c.index()] = Some(v);
-        }
-        let n = log.columns[Column::TimeS.index()].as_ref().map(Vec::len).ok_or_else(|| Error::missing("time_s", "every log needs it"))?;
-        if n == 0 {
-            return Err(Error::File("no data rows".into()));
-        }
-        if log.line.len() != n {
-            log.line = (0..n as u64).map(|i| i + 2).collect();
-        }
-        for c in Column::ALL {
-            if let Some(v) = log.column(c) {
-                if v.len() != n {
-                    return Err(Error::File(format!("column {} has {} values, time_s has {n}", c.name(), v.len())));
-                }
-                // The import and a worker's columns meet the parser's rules too (finite, in the
-                // physical range). One pass for the extremes; the cells are looked at one by
-                // one only when one is outside, to name it.
-                let (lo, hi) =
-                    v.iter().fold(
-                        (f64::INFINITY, f64::NEG_INFINITY),
-                        |(lo, hi), &x| if x.is_nan() { (lo, hi) } else { (lo.min(x), hi.max(x)) },
-                    );
-                let all_nan = lo > hi;
-                let ok = all_nan || (lo.is_finite() && hi.is_finite() && c.physical_range().is_none_or(|(a, b, _)| a <= lo && hi <= b));
-                if !ok {
-                    if let Some(i) = v.iter().position(|x| x.is_infinite()) {
-                        return Err(Error::Cell { line: log.line[i], column: c.name().into(), message: "not a finite number".into() });
-                    }
-                    for (i, &x) in v.iter().enumerate() {
-                        c.check_physical(x).map_err(|message| Error::Cell { line: log.line[i], column: c.name().into(), message })?;
-                    }
-                }
-            }
-        }
-        let t = log.time_s();
-        for i in 0..n {
-            if t[i].is_nan() || (i > 0 && !(t[i] > t[i - 1])) {
-                return Err(Error::Cell {
-                    line: log.line[i],
-                    column: "time_s".into(),
-                    message: "time must be present and strictly increase".into(),
-                });
-            }
-        }
-        Ok(log)
+        let names: Vec<Column> = columns.iter().map(|(c, _)| *c).collect();
+        let mut b = LogBuilder::new(meta, &names, 0)?;
+        b.append(line, columns)?;
+        b.finish()
     }
 
     /// The present columns with their values (for handing a parsed log to another thread).
@@ -372,6 +328,8 @@ pub enum LogKind {
 }
 
 pub mod accept;
+mod builder;
+pub use builder::LogBuilder;
 pub mod gaps;
 mod parse;
 pub use parse::{parse_log, parse_log_progress, parse_log_str, parse_log_with};
