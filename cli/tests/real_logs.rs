@@ -243,8 +243,15 @@ fn roads_compares_per_class_and_plots() {
     for c in classes {
         // every class has recorded and simulated minutes, and each distance is a KS value
         assert!(c["recorded"]["moving_min"].as_f64().unwrap() > 10.0 && c["simulated"]["moving_min"].as_f64().unwrap() > 10.0, "{c}");
-        for d in c["distance"].as_object().unwrap().values() {
-            assert!((0.0..=1.0).contains(&d.as_f64().unwrap()), "{c}");
+        let d = c["distance"].as_object().unwrap();
+        let spectrum = d["spectrum"].as_array().unwrap();
+        assert_eq!(spectrum.len(), 5, "one distance per period band");
+        for v in d.values().filter(|v| !v.is_array()).chain(spectrum) {
+            assert!((0.0..=1.0).contains(&v.as_f64().unwrap()), "{c}");
+        }
+        // the spectrum: RMS per band, each finite and positive on real and simulated roads
+        for side in ["recorded", "simulated"] {
+            assert!(c[side]["band_rms_dps"].as_array().unwrap().iter().all(|v| v.as_f64().unwrap() > 0.0), "{c}");
         }
     }
     // the pooled recorded minutes are the drives' minutes
@@ -252,7 +259,10 @@ fn roads_compares_per_class_and_plots() {
     assert!((sum - v["recorded_pool"]["moving_min"].as_f64().unwrap()).abs() < 1e-9);
     let text = std::fs::read_to_string(&svg).unwrap();
     assert!(
-        text.starts_with("<svg") && text.contains("highway: curve radius (m), KS") && text.contains("urban: abs yaw rate"),
+        text.starts_with("<svg")
+            && text.contains("highway: curve radius (m), KS")
+            && text.contains("urban: abs yaw rate")
+            && text.contains("rural: yaw-rate RMS per period band"),
         "SVG panels"
     );
 }

@@ -2,6 +2,7 @@
 //! two-sample distance of each distribution.
 
 use super::samples::{road_samples, ClassedSamples, RoadClass, RoadSamples, RoadSummary};
+use super::spectrum::BAND_NAMES;
 use crate::error::Result;
 use crate::log::{Column, DriveLog};
 use serde::Serialize;
@@ -15,6 +16,8 @@ pub struct RoadDistance {
     pub curve_runs: f64,
     pub curve_deg: f64,
     pub curve_radius: f64,
+    /// Per spectrum band (`spectrum::BANDS`): the distance of the windows' band powers.
+    pub spectrum: [f64; 5],
 }
 
 impl RoadDistance {
@@ -26,6 +29,7 @@ impl RoadDistance {
             curve_runs: ks_distance(&a.curve_runs_s, &b.curve_runs_s),
             curve_deg: ks_distance(&a.curve_deg, &b.curve_deg),
             curve_radius: ks_distance(&a.curve_radius_m, &b.curve_radius_m),
+            spectrum: std::array::from_fn(|k| ks_distance(&a.band_power_dps2[k], &b.band_power_dps2[k])),
         }
     }
 
@@ -190,6 +194,33 @@ impl RoadComparison {
         out += &dist_row("all moving", &self.distance);
         for c in &self.classes {
             out += &dist_row(c.class.name(), &c.distance);
+        }
+        out + &self.spectrum_markdown()
+    }
+
+    /// The yaw-rate spectrum per class: RMS per band, recorded and simulated, and the
+    /// distance of the windows' band powers.
+    fn spectrum_markdown(&self) -> String {
+        let mut out = String::from("
+Yaw-rate spectrum by period band (64 s windows of moving 1 Hz blocks, Hann, mean removed): RMS over the windows in deg/s, recorded / simulated, and the Kolmogorov-Smirnov distance of the windows' band powers:
+
+| pool | windows rec. / sim. |");
+        for b in BAND_NAMES {
+            out += &format!(" {b} RMS | {b} KS |");
+        }
+        out += "
+|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|
+";
+        let row = |name: &str, r: &RoadSamples, s: &RoadSamples, d: &RoadDistance| {
+            let (rs, ss) = (r.summary(), s.summary());
+            let cells: String =
+                (0..5).map(|k| format!(" {:.3} / {:.3} | {:.3} |", rs.band_rms_dps[k], ss.band_rms_dps[k], d.spectrum[k])).collect();
+            format!("| {name} | {} / {} |{cells}\n", r.band_power_dps2[0].len(), s.band_power_dps2[0].len())
+        };
+        let (rp, sp) = &self.pools;
+        out += &row("all moving", &rp.all, &sp.all, &self.distance);
+        for (i, c) in self.classes.iter().enumerate() {
+            out += &row(c.class.name(), &rp.class[i], &sp.class[i], &c.distance);
         }
         out
     }

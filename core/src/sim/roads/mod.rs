@@ -2,11 +2,12 @@
 //! and simulated drives so the simulator can be held against reality (issue 13): how much of
 //! the moving time the yaw rate stays below HDR's theta_w, how long such "straight" runs and
 //! the curves between them last, how sharp the curves are, and how far the slow (30 s) yaw
-//! rate strays from zero on roads that look straight; per road class (by speed), since
-//! recorded drives are not labelled by road type.
+//! rate strays from zero on roads that look straight, and the yaw rate's spectrum in period
+//! bands; per road class (by speed), since recorded drives are not labelled by road type.
 
 mod compare;
 mod samples;
+pub mod spectrum;
 
 pub use compare::{
     cdf_points, compare, ks_distance, simulated_samples, statistic, ClassComparison, RoadComparison, RoadDistance, STATISTICS,

@@ -1,6 +1,7 @@
 //! The road samples of one drive: its moving 1 Hz blocks, classified by speed, and the
 //! distributions measured on them.
 
+use super::spectrum::{Spectrum, STEP_S, WINDOW_S};
 use super::{CLASS_WINDOW_S, HIGHWAY_MIN_MPS, MOVING_MPS, STILL_MPS, THETA_W_DPS, URBAN_MAX_MPS};
 use crate::error::{Error, Result};
 use crate::log::{Column, DriveLog};
@@ -56,6 +57,9 @@ pub struct RoadSamples {
     pub curve_deg: Vec<f64>,
     /// Radius of each such run: mean speed over mean |yaw rate| (in rad/s), m.
     pub curve_radius_m: Vec<f64>,
+    /// Yaw-rate power per period band (`spectrum::BANDS`) of each 64 s window of
+    /// consecutive moving blocks, (deg/s)^2.
+    pub band_power_dps2: [Vec<f64>; 5],
 }
 
 /// One row of the comparison table.
@@ -73,6 +77,8 @@ pub struct RoadSummary {
     pub curve_run_p50_s: f64,
     pub curve_deg_p50: f64,
     pub curve_radius_p50_m: f64,
+    /// Root of the mean power per spectrum band over the windows, deg/s.
+    pub band_rms_dps: [f64; 5],
 }
 
 impl RoadSamples {
@@ -84,6 +90,9 @@ impl RoadSamples {
         self.curve_runs_s.extend(&other.curve_runs_s);
         self.curve_deg.extend(&other.curve_deg);
         self.curve_radius_m.extend(&other.curve_radius_m);
+        for (a, b) in self.band_power_dps2.iter_mut().zip(&other.band_power_dps2) {
+            a.extend(b);
+        }
     }
 
     /// The summary figures.
@@ -102,6 +111,7 @@ impl RoadSamples {
             curve_run_p50_s: quantile(&self.curve_runs_s, 0.5),
             curve_deg_p50: quantile(&self.curve_deg, 0.5),
             curve_radius_p50_m: quantile(&self.curve_radius_m, 0.5),
+            band_rms_dps: self.band_power_dps2.each_ref().map(|p| mean_std(p).0.sqrt()),
         }
     }
 
@@ -136,6 +146,16 @@ impl RoadSamples {
             let w = &moving[i..i + 30];
             if w[29].0 - w[0].0 == 29 && w.iter().all(|m| m.1.abs() < 3.0) {
                 s.slow_rate_dps.push((w.iter().map(|m| m.1).sum::<f64>() / 30.0).abs());
+            }
+        }
+        let spectrum = Spectrum::default();
+        for i in (0..(moving.len() + 1).saturating_sub(WINDOW_S)).step_by(STEP_S) {
+            let w = &moving[i..i + WINDOW_S];
+            if w[WINDOW_S - 1].0 - w[0].0 == WINDOW_S as i64 - 1 {
+                let rates: Vec<f64> = w.iter().map(|m| m.1).collect();
+                for (band, p) in s.band_power_dps2.iter_mut().zip(spectrum.band_powers(&rates)) {
+                    band.push(p);
+                }
             }
         }
         s
@@ -235,6 +255,39 @@ mod tests {
         // the minute around each moving block averages at most 10 m/s: urban
         assert_eq!(c.class[0].abs_rate_dps.len(), 60);
         assert!(c.class[1].abs_rate_dps.is_empty() && c.class[2].abs_rate_dps.is_empty());
+    }
+
+    #[test]
+    fn spectrum_windows_cover_consecutive_moving_seconds_only() {
+        // 200 s moving at a steady 1 deg/s, 30 s still, 100 s moving with a 4 s-period sway
+        let mut log = DriveLog::with_columns(&[Column::GyroDps, Column::SpeedMps]);
+        for i in 0..3300 {
+            let t = i as f64 / 10.0;
+            let (v, w) = if t < 200.0 {
+                (10.0, 1.0)
+            } else if t < 230.0 {
+                (0.0, 0.0)
+            } else {
+                (10.0, (2.0 * std::f64::consts::PI * t / 4.0).sin())
+            };
+            log.push_row(&[(Column::TimeS, t), (Column::GyroDps, w), (Column::SpeedMps, v)]);
+        }
+        let s = road_samples(&log, 0.0).unwrap().all;
+        // the moving blocks are seconds 0-199 and 230-329 (300 in all); windows start at
+        // moving-block indices 0, 32, ..., 224; those within one stretch: 0..=128 in the
+        // first (5), 224 (seconds 254-317) in the second; 160 and 192 straddle the stop
+        let p = &s.band_power_dps2;
+        assert_eq!(p[0].len(), 6, "{p:?}");
+        // a steady rate has no power once the window's mean is removed
+        assert!(p.iter().all(|b| b[..5].iter().all(|&x| x < 1e-20)), "{p:?}");
+        // 1 s blocks (means of 10 samples) of a 4 s sine: amplitude sin(pi/4) / (10
+        // sin(pi/40)) = 0.90124, power 0.40612, at bin 16 (the 4-2 s band); Hann leaks a
+        // quarter of it to bins 15 (the 8-4 s band) and 17: 1/6 and 5/6 of the power
+        let last: Vec<f64> = p.iter().map(|b| b[5]).collect();
+        let a = (std::f64::consts::PI / 4.0).sin() / (10.0 * (std::f64::consts::PI / 40.0).sin());
+        let power = a * a / 2.0;
+        let want = [0.0, 0.0, 0.0, power / 6.0, power * 5.0 / 6.0];
+        assert!(last.iter().zip(want).all(|(g, w)| (g - w).abs() < 1e-9), "{last:?} against {want:?}");
     }
 
     #[test]
