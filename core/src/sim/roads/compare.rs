@@ -18,6 +18,9 @@ pub struct RoadDistance {
     pub curve_radius: f64,
     /// Per spectrum band (`spectrum::BANDS`): the distance of the windows' band powers.
     pub spectrum: [f64; 5],
+    /// S-manoeuvres (lane-change-like): length and excursion.
+    pub s_length: f64,
+    pub s_peak: f64,
 }
 
 impl RoadDistance {
@@ -30,6 +33,8 @@ impl RoadDistance {
             curve_deg: ks_distance(&a.curve_deg, &b.curve_deg),
             curve_radius: ks_distance(&a.curve_radius_m, &b.curve_radius_m),
             spectrum: std::array::from_fn(|k| ks_distance(&a.band_power_dps2[k], &b.band_power_dps2[k])),
+            s_length: ks_distance(&a.s_length_s, &b.s_length_s),
+            s_peak: ks_distance(&a.s_peak_deg, &b.s_peak_deg),
         }
     }
 
@@ -195,7 +200,32 @@ impl RoadComparison {
         for c in &self.classes {
             out += &dist_row(c.class.name(), &c.distance);
         }
-        out + &self.spectrum_markdown()
+        out + &self.spectrum_markdown() + &self.manoeuvre_markdown()
+    }
+
+    /// S-manoeuvres and loops per class, recorded / simulated, with the distances.
+    fn manoeuvre_markdown(&self) -> String {
+        let mut out = String::from("\nS-manoeuvres (lane-change-like: an excursion of 1.5-15 deg crossing theta_w both ways and coming back within a quarter of it, in 3-12 s) and loops (curve runs over 180 deg: roundabouts, ramps), recorded / simulated:\n\n| pool | S per moving min | S length p50 (s) | S excursion p50 (deg) | KS length | KS excursion | loops per moving hour |\n|---|---:|---:|---:|---:|---:|---:|\n");
+        let mut row = |name: &str, r: &RoadSummary, s: &RoadSummary, d: &RoadDistance| {
+            out += &format!(
+                "| {name} | {:.2} / {:.2} | {:.0} / {:.0} | {:.1} / {:.1} | {:.3} | {:.3} | {:.1} / {:.1} |\n",
+                r.s_per_min,
+                s.s_per_min,
+                r.s_length_p50_s,
+                s.s_length_p50_s,
+                r.s_peak_p50_deg,
+                s.s_peak_p50_deg,
+                d.s_length,
+                d.s_peak,
+                r.loops_per_hour,
+                s.loops_per_hour
+            );
+        };
+        row("all moving", &self.recorded_pool, &self.simulated_pool, &self.distance);
+        for c in &self.classes {
+            row(c.class.name(), &c.recorded, &c.simulated, &c.distance);
+        }
+        out
     }
 
     /// The yaw-rate spectrum per class: RMS per band, recorded and simulated, and the

@@ -6,6 +6,7 @@
 //! bands; per road class (by speed), since recorded drives are not labelled by road type.
 
 mod compare;
+pub mod events;
 mod samples;
 pub mod spectrum;
 

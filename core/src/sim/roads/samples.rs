@@ -1,6 +1,7 @@
 //! The road samples of one drive: its moving 1 Hz blocks, classified by speed, and the
 //! distributions measured on them.
 
+use super::events::s_manoeuvres;
 use super::spectrum::{Spectrum, STEP_S, WINDOW_S};
 use super::{CLASS_WINDOW_S, HIGHWAY_MIN_MPS, MOVING_MPS, STILL_MPS, THETA_W_DPS, URBAN_MAX_MPS};
 use crate::error::{Error, Result};
@@ -60,6 +61,10 @@ pub struct RoadSamples {
     /// Yaw-rate power per period band (`spectrum::BANDS`) of each 64 s window of
     /// consecutive moving blocks, (deg/s)^2.
     pub band_power_dps2: [Vec<f64>; 5],
+    /// Length of each S-manoeuvre (lane-change-like, `events::s_manoeuvres`), s.
+    pub s_length_s: Vec<f64>,
+    /// Its largest heading excursion, deg.
+    pub s_peak_deg: Vec<f64>,
 }
 
 /// One row of the comparison table.
@@ -79,6 +84,12 @@ pub struct RoadSummary {
     pub curve_radius_p50_m: f64,
     /// Root of the mean power per spectrum band over the windows, deg/s.
     pub band_rms_dps: [f64; 5],
+    /// S-manoeuvres (lane-change-like) per moving minute, their median length and excursion.
+    pub s_per_min: f64,
+    pub s_length_p50_s: f64,
+    pub s_peak_p50_deg: f64,
+    /// Curve runs turning more than 180 degrees (roundabouts, ramps) per moving hour.
+    pub loops_per_hour: f64,
 }
 
 impl RoadSamples {
@@ -93,6 +104,8 @@ impl RoadSamples {
         for (a, b) in self.band_power_dps2.iter_mut().zip(&other.band_power_dps2) {
             a.extend(b);
         }
+        self.s_length_s.extend(&other.s_length_s);
+        self.s_peak_deg.extend(&other.s_peak_deg);
     }
 
     /// The summary figures.
@@ -112,6 +125,10 @@ impl RoadSamples {
             curve_deg_p50: quantile(&self.curve_deg, 0.5),
             curve_radius_p50_m: quantile(&self.curve_radius_m, 0.5),
             band_rms_dps: self.band_power_dps2.each_ref().map(|p| mean_std(p).0.sqrt()),
+            s_per_min: self.s_length_s.len() as f64 / self.moving_min,
+            s_length_p50_s: quantile(&self.s_length_s, 0.5),
+            s_peak_p50_deg: quantile(&self.s_peak_deg, 0.5),
+            loops_per_hour: self.curve_deg.iter().filter(|&&d| d > 180.0).count() as f64 / (self.moving_min / 60.0),
         }
     }
 
@@ -146,6 +163,17 @@ impl RoadSamples {
             let w = &moving[i..i + 30];
             if w[29].0 - w[0].0 == 29 && w.iter().all(|m| m.1.abs() < 3.0) {
                 s.slow_rate_dps.push((w.iter().map(|m| m.1).sum::<f64>() / 30.0).abs());
+            }
+        }
+        let mut start = 0;
+        for i in 0..moving.len() {
+            if i + 1 == moving.len() || moving[i + 1].0 != moving[i].0 + 1 {
+                let rates: Vec<f64> = moving[start..=i].iter().map(|m| m.1).collect();
+                for m in s_manoeuvres(&rates) {
+                    s.s_length_s.push(m.length_s);
+                    s.s_peak_deg.push(m.peak_deg);
+                }
+                start = i + 1;
             }
         }
         let spectrum = Spectrum::default();
@@ -288,6 +316,29 @@ mod tests {
         let power = a * a / 2.0;
         let want = [0.0, 0.0, 0.0, power / 6.0, power * 5.0 / 6.0];
         assert!(last.iter().zip(want).all(|(g, w)| (g - w).abs() < 1e-9), "{last:?} against {want:?}");
+    }
+
+    #[test]
+    fn lane_changes_and_loops_of_a_hand_made_drive() {
+        // 120 s moving at 10 m/s: a lane change (1, 2, 0, -2, -1 deg/s) at 20-24 s and a
+        // 200-degree loop (20 deg/s for 10 s) at 60-69 s
+        let mut log = DriveLog::with_columns(&[Column::GyroDps, Column::SpeedMps]);
+        let lane = [1.0, 2.0, 0.0, -2.0, -1.0];
+        for i in 0..1200 {
+            let t = i as f64 / 10.0;
+            let sec = t.floor() as usize;
+            let w = match sec {
+                20..=24 => lane[sec - 20],
+                60..=69 => 20.0,
+                _ => 0.0,
+            };
+            log.push_row(&[(Column::TimeS, t), (Column::GyroDps, w), (Column::SpeedMps, 10.0)]);
+        }
+        let s = road_samples(&log, 0.0).unwrap().all;
+        let sum = s.summary();
+        assert_eq!((s.s_length_s, s.s_peak_deg), (vec![5.0], vec![3.0]));
+        // 1 S in 2 moving minutes; 1 loop in 2 minutes = 30 per hour
+        assert_eq!((sum.s_per_min, sum.loops_per_hour), (0.5, 30.0));
     }
 
     #[test]
