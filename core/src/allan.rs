@@ -140,6 +140,14 @@ pub fn run_with_confidence(log: &DriveLog) -> Result<(AllanResult, AllanConfiden
     Ok((r, c))
 }
 
+/// A result and its confidence as the bindings give them: the Result keys, and `confidence`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AllanWithConfidence<'a> {
+    #[serde(flatten)]
+    pub result: &'a AllanResult,
+    pub confidence: &'a AllanConfidence,
+}
+
 /// How well each Allan deviation is known (beyond methods.md, which takes the plain
 /// minimum): a one-sigma (about 68 %) band per cluster time, and the cluster times whose
 /// band reaches the minimum's, i.e. where the minimum could as well lie. The last, longest

@@ -143,13 +143,17 @@ fn calibrate<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyA
 }
 
 /// Overlapping Allan deviation of the gyro column: the Result keys, `tau_s` and `adev_dps`
-/// as float64 arrays.
+/// as float64 arrays, and each point's 68 % band under `confidence` (beyond methods.md; the
+/// wasm package's and the CLI's).
 #[pyfunction]
 fn allan<'py>(py: Python<'py>, log: &PyLog) -> PyResult<Bound<'py, PyDict>> {
-    let r = py.detach(|| g::allan::run(&log.log)).map_err(value_err)?;
-    let d = result_dict(py, &r)?;
+    let (r, c) = py.detach(|| g::allan::run_with_confidence(&log.log)).map_err(value_err)?;
+    let d = result_dict(py, &g::allan::AllanWithConfidence { result: &r, confidence: &c })?;
     d.set_item("tau_s", array(py, r.tau_s.clone()))?;
     d.set_item("adev_dps", array(py, r.adev_dps.clone()))?;
+    let conf = d.get_item("confidence")?.ok_or_else(|| value_err("no confidence"))?.cast_into::<PyDict>()?;
+    conf.set_item("adev_low_dps", array(py, c.adev_low_dps.clone()))?;
+    conf.set_item("adev_high_dps", array(py, c.adev_high_dps.clone()))?;
     Ok(d)
 }
 

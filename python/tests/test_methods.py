@@ -48,7 +48,14 @@ def test_robot_turntable_and_static_methods_equal_the_cli(cli, samples):
     static = str(samples / "static" / "static-2h.csv")
     a = g.allan(g.read_log(static))
     want = cli("allan", static, "--json")
-    close({k: v for k, v in a.items() if k not in ("tau_s", "adev_dps")}, {k: v for k, v in want.items() if k not in ("tau_s", "adev_dps")})
+    arrays = ("tau_s", "adev_dps", "confidence")
+    close({k: v for k, v in a.items() if k not in arrays}, {k: v for k, v in want.items() if k not in arrays})
+    # the confidence band beside the Result keys (the wasm package's too: test_three_fronts;
+    # the CLI prints it in its text table, its --json keeps the Result keys)
+    conf = a["confidence"]
+    assert isinstance(conf["adev_low_dps"], np.ndarray) and conf["adev_low_dps"].dtype == np.float64
+    assert (conf["adev_low_dps"] < a["adev_dps"]).all() and (a["adev_dps"] < conf["adev_high_dps"]).all()
+    assert conf["tau_min_range_s"][0] <= a["tau_at_min_s"] <= conf["tau_min_range_s"][1]
     assert isinstance(a["tau_s"], np.ndarray) and a["tau_s"].dtype == np.float64
     np.testing.assert_allclose(a["adev_dps"], want["adev_dps"], rtol=1e-12)
     taus, adev = g.oadev(g.read_log(static))
