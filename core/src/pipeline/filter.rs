@@ -279,9 +279,41 @@ impl Pipeline {
             m.logw *= lam;
         }
         // Gather this block's evidence, then the guards, then the updates.
-        let mut stops: Vec<f64> = Vec::new();
         let lead_in = time_s < self.lead_in_end_s;
-        let mut reopened = false;
+        let stops = self.stop_evidence(time_s, rate_dps, still, lead_in);
+        let reopened = !stops.is_empty() && !self.stop.reopened && !lead_in && self.stop_guard();
+        let straight = !still && !lead_in && self.is_straight(time_s, rate_dps);
+        let priors: Vec<State> = self.recorded.iter().map(|&i| (self.models[i].x, self.models[i].p)).collect();
+        for &z in &stops {
+            self.stop_update(z, !lead_in);
+        }
+        if straight {
+            self.road_update(rate_dps);
+        }
+        let w = self.weights();
+        for (s, wi) in self.weight_sum.iter_mut().zip(&w) {
+            *s += wi;
+        }
+        for (j, &i) in self.recorded.iter().enumerate() {
+            self.records.push(BlockRecord { f: fs[i], prior: priors[j], post: (self.models[i].x, self.models[i].p) });
+            self.record_weights.push(w[i]);
+        }
+        let out = PipelineOutput {
+            heading_deg: self.heading_deg,
+            bias_dps: b_before,
+            bias_sigma_dps: p_before.sqrt(),
+            stop: !stops.is_empty(),
+            straight,
+            reopened,
+        };
+        Ok(out)
+    }
+
+    /// This block's stop evidence: the lead-in's every block; a stop's blocks once they are
+    /// `min_still_s` from both of its ends (so delayed), plausible as a bias and steady
+    /// within the stop. Never judged by closeness to the estimate.
+    fn stop_evidence(&mut self, time_s: f64, rate_dps: f64, still: bool, lead_in: bool) -> Vec<f64> {
+        let mut stops: Vec<f64> = Vec::new();
         if lead_in {
             stops.push(rate_dps);
         } else if still {
@@ -316,50 +348,26 @@ impl Pipeline {
         for &z in &stops {
             self.stop.add(time_s, z);
         }
-        if !stops.is_empty() && !self.stop.reopened && !lead_in {
-            reopened |= self.stop_guard();
+        stops
+    }
+
+    /// A moving block is straight-road evidence when it is within the gate of the dominant
+    /// rate of the recent moving blocks, and that rate is plausible as a bias.
+    fn is_straight(&mut self, time_s: f64, rate_dps: f64) -> bool {
+        self.window.push_back((time_s, rate_dps));
+        while self.window.front().is_some_and(|&(t, _)| time_s - t > self.p.road_window_s) {
+            self.window.pop_front();
         }
-        let moving = !still && !lead_in;
-        let mut straight = false;
-        if moving {
-            self.window.push_back((time_s, rate_dps));
-            while self.window.front().is_some_and(|&(t, _)| time_s - t > self.p.road_window_s) {
-                self.window.pop_front();
-            }
-            if self.window.len() >= 5 {
-                // The dominant rate is a bias only if a bias could be that large (a drive
-                // in circles is not straight).
-                let (mode, step) = self.window_mode_and_step();
-                // A quantised gyro (one row per block) puts the mode on its lattice: keep the
-                // gate two steps wide so the selection stays centred.
-                let gate = self.p.road_gate_dps.max(2.0 * step);
-                straight = mode.abs() <= self.p.max_bias_dps && (rate_dps - mode).abs() <= gate;
-            }
+        if self.window.len() < 5 {
+            return false;
         }
-        let priors: Vec<State> = self.recorded.iter().map(|&i| (self.models[i].x, self.models[i].p)).collect();
-        for &z in &stops {
-            self.stop_update(z, !lead_in);
-        }
-        if straight {
-            self.road_update(rate_dps);
-        }
-        let w = self.weights();
-        for (s, wi) in self.weight_sum.iter_mut().zip(&w) {
-            *s += wi;
-        }
-        for (j, &i) in self.recorded.iter().enumerate() {
-            self.records.push(BlockRecord { f: fs[i], prior: priors[j], post: (self.models[i].x, self.models[i].p) });
-            self.record_weights.push(w[i]);
-        }
-        let out = PipelineOutput {
-            heading_deg: self.heading_deg,
-            bias_dps: b_before,
-            bias_sigma_dps: p_before.sqrt(),
-            stop: !stops.is_empty(),
-            straight,
-            reopened,
-        };
-        Ok(out)
+        // The dominant rate is a bias only if a bias could be that large (a drive in circles
+        // is not straight).
+        let (mode, step) = self.window_mode_and_step();
+        // A quantised gyro (one row per block) puts the mode on its lattice: keep the gate
+        // two steps wide so the selection stays centred.
+        let gate = self.p.road_gate_dps.max(2.0 * step);
+        mode.abs() <= self.p.max_bias_dps && (rate_dps - mode).abs() <= gate
     }
 
     /// A steady stop that the estimate cannot explain: the bias moved, re-open it.
