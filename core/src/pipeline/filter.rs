@@ -1,7 +1,8 @@
 //! The causal estimator: a bank of small Kalman filters, one per bias-dynamics hypothesis
-//! (slow, medium, fast random walk), weighed by how well each predicted the evidence.
-//! State x = [b, c]: the gyro bias and the yaw rate of the "straight" road (curvature and
-//! sway, a Gauss-Markov process with the road's correlation time), so consecutive
+//! (random walks, warm-up terms, road rates: `model.rs`), weighed by how well each predicted
+//! the evidence. State x = [b_inf, d, c]: the settled bias, a decaying warm-up term, and the
+//! yaw rate of the "straight" road (curvature and sway, a Gauss-Markov process with the
+//! road's correlation time), so consecutive
 //! straight blocks are not counted as independent and the innovations stay white under a
 //! right hypothesis (which is what lets them weigh the hypotheses). No evidence is gated by
 //! closeness to the current estimate, so a large unknown bias cannot lock it out:
@@ -14,9 +15,10 @@
 //! A guard re-opens the bias uncertainty when a steady stop disagrees with the estimate
 //! beyond its uncertainty (a bias step, an OS re-calibration).
 
+use super::model::{half_sample_mode, BlockRecord, Model, State, StopStats, H_ROAD, H_STOP};
 use super::params::{PipelineParams, N_MODELS, N_ROADS, N_WARMS};
 use crate::error::{Error, Result};
-use nalgebra::{Matrix3, RowVector3, Vector3};
+use nalgebra::{Matrix3, Vector3};
 use std::collections::VecDeque;
 
 /// What one block did.
@@ -34,99 +36,6 @@ pub struct PipelineOutput {
     pub straight: bool,
     /// A guard re-opened the bias uncertainty at this block.
     pub reopened: bool,
-}
-
-/// State [settled bias b_inf, warm-up term d, road rate c] and its covariance; the bias
-/// is b_inf + d.
-pub type State = (Vector3<f64>, Matrix3<f64>);
-
-/// One hypothesis: its bias random walk, road-rate variance, warm-up decay time (infinite
-/// = no warm-up term), state, and log weight.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Model {
-    walk2: f64,
-    road_var: f64,
-    warm_tau_s: f64,
-    x: Vector3<f64>,
-    p: Matrix3<f64>,
-    logw: f64,
-}
-
-const H_STOP: RowVector3<f64> = RowVector3::new(1.0, 1.0, 0.0);
-const H_ROAD: RowVector3<f64> = RowVector3::new(1.0, 1.0, 1.0);
-
-impl Model {
-    /// Diagonal of the transition over dt (road factor `a`).
-    fn transition(&self, dt: f64, a: f64) -> Vector3<f64> {
-        let w = if self.warm_tau_s.is_finite() { libm::exp(-dt / self.warm_tau_s) } else { 1.0 };
-        Vector3::new(1.0, w, a)
-    }
-
-    /// Predict over dt: bias random walk, warm-up decay, road rate Gauss-Markov.
-    fn predict(&mut self, dt: f64, a: f64) -> Vector3<f64> {
-        let f = self.transition(dt, a);
-        self.x.component_mul_assign(&f);
-        self.p = Matrix3::from_fn(|i, j| self.p[(i, j)] * f[i] * f[j]);
-        self.p[(0, 0)] += self.walk2 * dt;
-        self.p[(2, 2)] += self.road_var * (1.0 - a * a);
-        f
-    }
-
-    fn bias(&self) -> (f64, f64) {
-        (self.x[0] + self.x[1], self.p[(0, 0)] + self.p[(0, 1)] + self.p[(1, 0)] + self.p[(1, 1)])
-    }
-
-    /// Scalar measurement z = h x + noise(r); returns the innovation's log likelihood.
-    fn update(&mut self, h: RowVector3<f64>, z: f64, r: f64) -> f64 {
-        let ph = self.p * h.transpose();
-        let s = (h * ph)[0] + r;
-        let nu = z - (h * self.x)[0];
-        let k = ph / s;
-        self.x += k * nu;
-        self.p -= k * ph.transpose();
-        self.p = 0.5 * (self.p + self.p.transpose());
-        -0.5 * nu * nu / s - 0.5 * libm::log(2.0 * std::f64::consts::PI * s)
-    }
-}
-
-/// One block of one recorded hypothesis, for the offline smoother: the transition into
-/// the block, the prior and the posterior.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BlockRecord {
-    pub f: Vector3<f64>,
-    pub prior: State,
-    pub post: State,
-}
-
-/// Running mean and spread of the current stop's evidence (Welford).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-struct StopStats {
-    n: usize,
-    first_s: f64,
-    last_s: f64,
-    mean: f64,
-    m2: f64,
-    reopened: bool,
-}
-
-impl StopStats {
-    fn add(&mut self, t: f64, z: f64) {
-        if self.n == 0 {
-            self.first_s = t;
-        }
-        self.last_s = t;
-        self.n += 1;
-        let d = z - self.mean;
-        self.mean += d / self.n as f64;
-        self.m2 += d * (z - self.mean);
-    }
-    fn std(&self) -> f64 {
-        if self.n < 2 {
-            f64::INFINITY
-        } else {
-            (self.m2 / (self.n - 1) as f64).sqrt()
-        }
-    }
 }
 
 /// The streaming drift reducer on 1 Hz blocks.
@@ -415,35 +324,5 @@ impl Pipeline {
         for m in &mut self.models {
             m.logw += m.update(H_ROAD, rate_dps, r);
         }
-    }
-}
-
-/// Bickel's half-sample mode: the densest point of a sample, robust to half of it being
-/// elsewhere (the turns). Sorts `x` in place; `x` must not be empty.
-pub fn half_sample_mode(x: &mut [f64]) -> f64 {
-    x.sort_by(f64::total_cmp);
-    let mut s = &x[..];
-    while s.len() > 3 {
-        let h = s.len().div_ceil(2);
-        let mut best = 0;
-        for i in 0..=s.len() - h {
-            if s[i + h - 1] - s[i] < s[best + h - 1] - s[best] {
-                best = i;
-            }
-        }
-        s = &s[best..best + h];
-    }
-    match s.len() {
-        3 => {
-            if s[1] - s[0] < s[2] - s[1] {
-                (s[0] + s[1]) / 2.0
-            } else if s[1] - s[0] > s[2] - s[1] {
-                (s[1] + s[2]) / 2.0
-            } else {
-                s[1]
-            }
-        }
-        2 => (s[0] + s[1]) / 2.0,
-        _ => s[0],
     }
 }

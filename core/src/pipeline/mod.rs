@@ -6,9 +6,11 @@
 //! tried and dropped: docs/pipeline.md. `gyrodrift hdr` stays the paper's exact method.
 
 pub mod filter;
+mod model;
 pub mod params;
 
-pub use filter::{half_sample_mode, BlockRecord, Pipeline, PipelineOutput};
+pub use filter::{Pipeline, PipelineOutput};
+pub use model::{half_sample_mode, BlockRecord, State};
 pub use params::{PipelineParams, N_MODELS, N_ROADS, N_WALKS, N_WARMS};
 
 use crate::error::Result;

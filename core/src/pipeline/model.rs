@@ -1,0 +1,128 @@
+//! One hypothesis of the pipeline's bank: a 3-state Kalman filter (settled bias, warm-up
+//! term, road rate) with its transition and scalar updates; the stop statistics and the
+//! half-sample mode the bank's evidence rules use.
+
+use nalgebra::{Matrix3, RowVector3, Vector3};
+
+/// State [settled bias b_inf, warm-up term d, road rate c] and its covariance; the bias
+/// is b_inf + d.
+pub type State = (Vector3<f64>, Matrix3<f64>);
+
+/// One hypothesis: its bias random walk, road-rate variance, warm-up decay time (infinite
+/// = no warm-up term), state, and log weight.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Model {
+    pub(super) walk2: f64,
+    pub(super) road_var: f64,
+    pub(super) warm_tau_s: f64,
+    pub(super) x: Vector3<f64>,
+    pub(super) p: Matrix3<f64>,
+    pub(super) logw: f64,
+}
+
+pub(super) const H_STOP: RowVector3<f64> = RowVector3::new(1.0, 1.0, 0.0);
+pub(super) const H_ROAD: RowVector3<f64> = RowVector3::new(1.0, 1.0, 1.0);
+
+impl Model {
+    /// Diagonal of the transition over dt (road factor `a`).
+    pub(super) fn transition(&self, dt: f64, a: f64) -> Vector3<f64> {
+        let w = if self.warm_tau_s.is_finite() { libm::exp(-dt / self.warm_tau_s) } else { 1.0 };
+        Vector3::new(1.0, w, a)
+    }
+
+    /// Predict over dt: bias random walk, warm-up decay, road rate Gauss-Markov.
+    pub(super) fn predict(&mut self, dt: f64, a: f64) -> Vector3<f64> {
+        let f = self.transition(dt, a);
+        self.x.component_mul_assign(&f);
+        self.p = Matrix3::from_fn(|i, j| self.p[(i, j)] * f[i] * f[j]);
+        self.p[(0, 0)] += self.walk2 * dt;
+        self.p[(2, 2)] += self.road_var * (1.0 - a * a);
+        f
+    }
+
+    pub(super) fn bias(&self) -> (f64, f64) {
+        (self.x[0] + self.x[1], self.p[(0, 0)] + self.p[(0, 1)] + self.p[(1, 0)] + self.p[(1, 1)])
+    }
+
+    /// Scalar measurement z = h x + noise(r); returns the innovation's log likelihood.
+    pub(super) fn update(&mut self, h: RowVector3<f64>, z: f64, r: f64) -> f64 {
+        let ph = self.p * h.transpose();
+        let s = (h * ph)[0] + r;
+        let nu = z - (h * self.x)[0];
+        let k = ph / s;
+        self.x += k * nu;
+        self.p -= k * ph.transpose();
+        self.p = 0.5 * (self.p + self.p.transpose());
+        -0.5 * nu * nu / s - 0.5 * libm::log(2.0 * std::f64::consts::PI * s)
+    }
+}
+
+/// One block of one recorded hypothesis, for the offline smoother: the transition into
+/// the block, the prior and the posterior.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BlockRecord {
+    pub f: Vector3<f64>,
+    pub prior: State,
+    pub post: State,
+}
+
+/// Running mean and spread of the current stop's evidence (Welford).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(super) struct StopStats {
+    pub(super) n: usize,
+    pub(super) first_s: f64,
+    pub(super) last_s: f64,
+    pub(super) mean: f64,
+    pub(super) m2: f64,
+    pub(super) reopened: bool,
+}
+
+impl StopStats {
+    pub(super) fn add(&mut self, t: f64, z: f64) {
+        if self.n == 0 {
+            self.first_s = t;
+        }
+        self.last_s = t;
+        self.n += 1;
+        let d = z - self.mean;
+        self.mean += d / self.n as f64;
+        self.m2 += d * (z - self.mean);
+    }
+    pub(super) fn std(&self) -> f64 {
+        if self.n < 2 {
+            f64::INFINITY
+        } else {
+            (self.m2 / (self.n - 1) as f64).sqrt()
+        }
+    }
+}
+
+/// Bickel's half-sample mode: the densest point of a sample, robust to half of it being
+/// elsewhere (the turns). Sorts `x` in place; `x` must not be empty.
+pub fn half_sample_mode(x: &mut [f64]) -> f64 {
+    x.sort_by(f64::total_cmp);
+    let mut s = &x[..];
+    while s.len() > 3 {
+        let h = s.len().div_ceil(2);
+        let mut best = 0;
+        for i in 0..=s.len() - h {
+            if s[i + h - 1] - s[i] < s[best + h - 1] - s[best] {
+                best = i;
+            }
+        }
+        s = &s[best..best + h];
+    }
+    match s.len() {
+        3 => {
+            if s[1] - s[0] < s[2] - s[1] {
+                (s[0] + s[1]) / 2.0
+            } else if s[1] - s[0] > s[2] - s[1] {
+                (s[1] + s[2]) / 2.0
+            } else {
+                s[1]
+            }
+        }
+        2 => (s[0] + s[1]) / 2.0,
+        _ => s[0],
+    }
+}
