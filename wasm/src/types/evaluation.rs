@@ -1,0 +1,143 @@
+//! TypeScript types: Allan deviation, the Table II report, the pipeline and the comparison of every method.
+
+use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_EVALUATION: &'static str = r#"
+/** Result keys of `allan` (methods.md). */
+export interface AllanResult {
+  T0_s: number;
+  m: number[];
+  tau_s: Float64Array;
+  adev_dps: Float64Array;
+  /** ARW / sqrt(tau) on the same taus: the -1/2 slope line (wasm only, not a Result key). */
+  arw_line_dps?: Float64Array;
+  arw_deg_per_sqrt_s: number;
+  arw_deg_per_sqrt_h: number;
+  bias_instability_dps: number;
+  bias_instability_dph: number;
+  tau_at_min_s: number;
+  /** How well each point is known (wasm only, beyond methods.md): core's AllanConfidence. */
+  confidence?: AllanConfidence;
+}
+
+/** A one-sigma (about 68 %) band per cluster time, 1 / sqrt(2 (N/m - 1)) (IEEE 952 Annex C),
+ * and the cluster times whose band reaches the minimum's (the curve's flat bottom). */
+export interface AllanConfidence {
+  n_samples: number;
+  adev_low_dps: Float64Array;
+  adev_high_dps: Float64Array;
+  min_low_dps: number;
+  min_high_dps: number;
+  bias_instability_low_dps: number;
+  bias_instability_high_dps: number;
+  tau_min_range_s: [number, number];
+  /** The cluster time with the lowest upper bound, and its deviation. */
+  tau_tightest_s: number;
+  adev_tightest_dps: number;
+}
+
+export interface ReportRow {
+  name: string;
+  duration_min: number;
+  E_psi_raw_deg: number;
+  NE_psi_raw_deg_per_min: number;
+  E_psi_hdr_deg: number;
+  NE_psi_hdr_deg_per_min: number;
+  improvement: number;
+}
+
+/** The HDR paper's Table II for a set of drives. */
+export interface Report {
+  rows: ReportRow[];
+  total_duration_min: number;
+  mean_E_psi_raw_deg: number;
+  mean_NE_psi_raw_deg_per_min: number;
+  mean_E_psi_hdr_deg: number;
+  mean_NE_psi_hdr_deg_per_min: number;
+  mean_improvement: number;
+  std_improvement: number;
+}
+
+/** Settings of the pipeline (all optional; defaults chosen on the battery's training cases). */
+export interface PipelineOptions {
+  still?: { still_speed_mps?: number; still_travel_m?: number; still_gyro_factor?: number };
+  min_still_s?: number;
+  stop_sigma_dps?: number;
+  max_bias_dps?: number;
+  jump_min_s?: number;
+  road_sigma_dps?: number;
+  road_corr_s?: number;
+  road_window_s?: number;
+  road_gate_dps?: number;
+  bias_walk_min_dps_per_sqrt_s?: number;
+  bias_walk_max_dps_per_sqrt_s?: number;
+  road_sigma_spread?: number;
+  block_sigma_dps?: number;
+  warm_sigma_dps?: number;
+  warm_tau_short_s?: number;
+  warm_tau_long_s?: number;
+  prior_bias_sigma_dps?: number;
+  forget_s?: number;
+  bias_s?: number | null;
+}
+export type StillSource = "speed" | "odometry" | "gyro" | "none";
+/** Result keys of `pipeline`. */
+export interface PipelineResult {
+  E_psi_raw_deg: number;
+  E_psi_hdr_deg: number;
+  E_psi_pipeline_deg: number;
+  NE_psi_raw_deg_per_min: number;
+  NE_psi_hdr_deg_per_min: number;
+  NE_psi_pipeline_deg_per_min: number;
+  improvement_pipeline: number;
+  duration_min: number;
+  /** The offline smoothed mode (non-causal: uses the whole log). */
+  E_psi_pipeline_smoothed_deg: number;
+  NE_psi_pipeline_smoothed_deg_per_min: number;
+  E_psi_fusion_offset_deg: number;
+  E_psi_zaru_deg: number;
+  NE_psi_fusion_offset_deg_per_min: number;
+  NE_psi_zaru_deg_per_min: number;
+  still_source: StillSource;
+  stop_s: number;
+  final_bias_dps: number;
+  final_bias_sigma_dps: number;
+  n_samples: number;
+}
+export interface PipelineRun {
+  result: PipelineResult | null;
+  error: string | null;
+  still_source: StillSource;
+  /** Per 1 Hz block; heading aligned to the reference when there is one. */
+  trace: {
+    time_s: Float64Array;
+    heading_deg: Float64Array;
+    /** Offline smoothed heading (non-causal). */
+    heading_smoothed_deg: Float64Array;
+    bias_dps: Float64Array;
+    bias_sigma_dps: Float64Array;
+    bias_smoothed_dps: Float64Array;
+    stop: Uint8Array;
+  };
+  /** Signed heading errors at the scored reference samples (null without a reference). */
+  errors: { time_s: Float64Array; pipeline_deg: Float64Array; smoothed_deg: Float64Array } | null;
+}
+export interface CompareRow {
+  name: string;
+  duration_min: number;
+  raw: number;
+  hdr_table_iii: number;
+  hdr_tuned: number | null;
+  pipeline: number;
+  /** Offline smoothed mode (non-causal). */
+  pipeline_smoothed: number;
+  fusion_offset: number;
+  zaru: number;
+}
+export interface Compare {
+  rows: CompareRow[];
+  mean: CompareRow;
+  tuned_params: HdrParams | null;
+}
+"#;

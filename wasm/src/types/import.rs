@@ -1,0 +1,100 @@
+//! TypeScript types: Simulation requests and the import of recorded logs (recipes, detection).
+
+use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_IMPORT: &'static str = r#"
+/** What to simulate; the same seed gives the same log natively and in wasm. */
+export interface SimRequest {
+  kind?: "drive" | "robot" | "turntable" | "static";
+  /** Drive: city, downtown, suburbs, rural, highway, mixed. Robot: straight, turns. */
+  scenario?: string | null;
+  minutes?: number | null;
+  seed?: number;
+  name?: string | null;
+}
+/** Import recipe (the CLI's TOML/JSON recipe as an object; see sample-logs/recipes/). */
+export type Sense = "ccw" | "cw";
+export interface RateSpec {
+  table: string;
+  column?: string;
+  axes?: [string, string, string];
+  signs?: [number, number, number];
+  gravity?: { axes: [string, string, string]; table?: string; signs?: [number, number, number]; first_s?: number };
+  unit: "deg/s" | "rad/s" | "mrad/s" | "deg/h" | "counts";
+  scale?: number;
+  offset?: number;
+  positive: Sense;
+}
+export interface TableSpec {
+  id: string;
+  file: string;
+  format?: "csv" | "whitespace" | "nmea";
+  /** Separator of a csv table (default ","), and numbers written with a decimal comma. */
+  delimiter?: "," | ";" | "\t" | "|";
+  decimal_comma?: boolean;
+  skip_lines?: number;
+  columns?: string[];
+  record?: string;
+  time: {
+    column?: string; format?: "seconds" | "iso8601"; unit?: "s" | "ms" | "us" | "ns"; period_s?: number; relative?: boolean;
+    /** Rows repeating a time: merged (default), the first kept, or an error. */
+    duplicates?: "mean" | "drop" | "error";
+    /** Rows a little earlier than the one before (up to max_backward_s, default 1 s): sorted in (default), dropped, or an error. */
+    backward?: "sort" | "drop" | "error";
+    max_backward_s?: number;
+  };
+  offset_s?: number;
+}
+export interface Recipe {
+  name?: string;
+  description?: string;
+  bias_s?: number;
+  table: TableSpec[];
+  yaw_rate: RateSpec;
+  positions?: { table: string; kind: "latlon" | "utm" | "ecef" | "enu"; columns: string[] };
+  heading?:
+    | { source: "column"; table: string; column: string; unit: "deg" | "rad"; positive: Sense; speed_column?: string; speed_unit?: "m/s" | "km/h" | "mph"; min_speed_mps?: number; time_column?: string }
+    | { source: "positions"; min_distance_m?: number; min_speed_mps?: number };
+  speed?: { source: "column"; table: string; column: string; unit: "m/s" | "km/h" | "mph"; time_column?: string } | { source: "positions"; window_s?: number };
+  odometry?: { table: string; left: string[]; right: string[]; kind: "speed" | "travel"; unit: string; track_m: number };
+  temperature?: { table: string; column: string; unit: "C" | "K" | "F" };
+  align?: { rate: RateSpec; max_lag_s?: number };
+  /** Keep only rows with start <= time_s <= end (s from the first gyro sample). */
+  span_s?: [number, number];
+}
+export interface ImportSummary {
+  n_rows: number;
+  n_gyro: number;
+  n_reference: number;
+  duration_min: number;
+  up: [number, number, number] | null;
+  align_offset_s: number | null;
+  start_time_s: number;
+  /** What the time policies did, over all tables. */
+  time_fixes: { merged_duplicates: number; dropped_duplicates: number; sorted_backward: number; dropped_backward: number };
+}
+/** A raw file's dialect and header, as `sniffFile` reads them. */
+export interface Sniffed {
+  name: string;
+  delimiter: "," | ";" | "\t" | "|";
+  decimal_comma: boolean;
+  skip_lines: number;
+  header: string[];
+}
+/** What `detectImport` found: the logger's preset and its recipe, ready for `importLog`. */
+export interface Detection {
+  preset: string;
+  title: string;
+  recipe: Recipe;
+  /** [role, file name] of each file the recipe reads. */
+  used: [string, string][];
+  /** Files no part of the preset took. */
+  ignored: string[];
+}
+
+export interface ImportResult {
+  log: Log;
+  summary: ImportSummary;
+}
+"#;

@@ -1,0 +1,56 @@
+//! TypeScript types: Logs: metadata, columns, and what `checkLog` and `Log.splitAtGaps` say of a log.
+
+use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_LOG: &'static str = r#"
+/** Kind of a log, from its columns. */
+export type LogKind = "drive" | "robot" | "turntable" | "static";
+
+/** `# key: value` metadata of a log. */
+export interface LogMeta {
+  name?: string;
+  wheelbase_m?: number;
+  bias_s?: number;
+  description?: string;
+  other: Record<string, string>;
+}
+
+/** A parsed log as plain data (transferable from a worker). */
+export interface LogColumns {
+  meta: LogMeta;
+  line: Float64Array;
+  columns: Record<string, Float64Array>;
+}
+
+/** One finding of `checkLog`, with the recipe field or setting that fixes it. */
+export interface CheckFinding {
+  severity: "error" | "warning" | "info";
+  code: "time_unit" | "gap" | "heading_unit" | "gyro_unit" | "gyro_sign" | "gyro_scale" | "bias" | "outlier";
+  message: string;
+  fix: string | null;
+}
+
+/** `Log.splitAtGaps`: the drives between a log's gaps in time. */
+export interface GapSplit {
+  parts: Log[];
+  /** Each gap: the time before it, its length (s), the line of the row after it. */
+  gaps: { at_s: number; length_s: number; line: number }[];
+  /** Parts under 30 s, dropped. */
+  dropped: number;
+  summary: string | null;
+}
+
+/** `checkLog`: what a log looks like before any method runs. */
+export interface CheckReport {
+  rows: number;
+  duration_min: number;
+  median_step_s: number;
+  jitter_p95: number;
+  /** [start time, length] of each gap, s. */
+  gaps_s: [number, number][];
+  eps0_dps: number | null;
+  gyro_over_reference: number | null;
+  findings: CheckFinding[];
+}
+"#;
