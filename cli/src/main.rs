@@ -232,7 +232,8 @@ enum Cmd {
         json: bool,
     },
     /// Road geometry of the recorded drives (via recipes) against the simulated sample
-    /// drives: yaw rate while moving, straight runs, slow curvature, and their distances.
+    /// drives, per road class: yaw rate while moving, straight runs, slow curvature, curves,
+    /// the yaw-rate spectrum, lane-change-like manoeuvres and loops, and their distances.
     Roads {
         #[arg(long, num_args = 1.., default_value = "sample-logs/recipes")]
         recipes: Vec<PathBuf>,
@@ -240,7 +241,7 @@ enum Cmd {
         data: Option<PathBuf>,
         #[arg(long)]
         json: bool,
-        /// Also draw the recorded and simulated distributions per road class into this SVG
+        /// Also draw the recorded and simulated distributions and spectra per road class into this SVG
         #[arg(long)]
         plot: Option<PathBuf>,
     },
