@@ -178,14 +178,14 @@ pub fn simulate(req: &gyrodrift::sim::SimRequest, out: Option<&Path>) -> Result<
     write_log(&log, out)
 }
 
-/// Every shipped sample log under `out`.
-pub fn samples(out: &Path) -> Result<(), Failure> {
+/// Every shipped sample log under `out` (`realisation` > 0: the same set with other seeds).
+pub fn samples(out: &Path, realisation: u64) -> Result<(), Failure> {
     for s in gyrodrift::sim::samples::SAMPLE_LOGS {
         let path = out.join(s.path);
         if let Some(dir) = path.parent() {
             std::fs::create_dir_all(dir).map_err(|e| Failure(format!("{}: {e}", dir.display())))?;
         }
-        let log = gyrodrift::sim::simulate(&s.request()).map_err(|e| Failure(e.to_string()))?;
+        let log = gyrodrift::sim::simulate(&s.realisation(realisation)).map_err(|e| Failure(e.to_string()))?;
         write_log(&log, Some(&path))?;
         eprintln!("wrote {}", path.display());
     }

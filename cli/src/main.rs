@@ -203,6 +203,10 @@ enum Cmd {
     Samples {
         #[arg(long, default_value = "sample-logs")]
         out: PathBuf,
+        /// Another realisation of the same set: every seed + 1000 x K (0 = the shipped logs).
+        /// The simulator's calibration averages over realisations (docs/simulator.md).
+        #[arg(long, default_value_t = 0)]
+        realisation: u64,
     },
     /// Import a recorded log in any format into a v1 drive log: by a recipe (TOML or JSON),
     /// or, given the logger's files, by the preset detected from their names and headers
@@ -404,7 +408,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             };
             c::simulate(&SimRequest { kind, scenario, minutes, seed, name }, out.as_deref())
         }
-        Cmd::Samples { out } => c::samples(&out),
+        Cmd::Samples { out, realisation } => c::samples(&out, realisation),
         Cmd::Battery { recipes, data, split, minutes, cases, set, json } => {
             let split = match split {
                 SplitArg::Training => battery::Split::Training,

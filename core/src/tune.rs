@@ -425,7 +425,7 @@ mod cv_tests {
     fn regularization_pulls_toward_table_iii() {
         let d = drives(2);
         let free = TuneOptions { max_iters: 60, restarts: 0, regularization_deg_per_min: 0.0, cross_validate: false, ..Default::default() };
-        let strong = TuneOptions { regularization_deg_per_min: 100.0, ..free };
+        let strong = TuneOptions { regularization_deg_per_min: 1000.0, ..free };
         let t3 = HdrParams::table_iii();
         let dist = |p: HdrParams| (p.i_c_dps - t3.i_c_dps).abs() / 0.3 + (p.theta_w_dps - t3.theta_w_dps).abs() / 3.0;
         let a = tune(&d, &free).unwrap().params;

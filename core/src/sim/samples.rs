@@ -25,6 +25,11 @@ impl SampleLog {
             name: Some(self.name.to_string()),
         }
     }
+
+    /// The request of another realisation of this log: the seed + 1000 x `k` (0 = shipped).
+    pub fn realisation(&self, k: u64) -> SimRequest {
+        SimRequest { seed: self.seed + 1000 * k, ..self.request() }
+    }
 }
 
 const fn drive(path: &'static str, name: &'static str, scenario: &'static str, minutes: f64, seed: u64) -> SampleLog {
@@ -86,4 +91,18 @@ pub fn training() -> impl Iterator<Item = &'static SampleLog> {
 /// The test drives' paths.
 pub fn test_set() -> impl Iterator<Item = &'static SampleLog> {
     SAMPLE_LOGS.iter().filter(|s| s.path.starts_with("test/"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn realisation_zero_is_the_shipped_request_and_k_shifts_the_seed() {
+        let s = &SAMPLE_LOGS[0];
+        assert_eq!(s.realisation(0), s.request());
+        let r = s.realisation(3);
+        assert_eq!(r.seed, s.seed + 3000);
+        assert_eq!((r.kind, r.scenario.as_deref(), r.minutes), (s.kind, s.scenario, s.minutes));
+    }
 }
