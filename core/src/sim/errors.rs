@@ -243,6 +243,25 @@ mod tests {
     }
 
     #[test]
+    fn allan_deviation_of_a_static_log_recovers_the_configured_noise_and_walk() {
+        // 10 h at rest, 10 Hz: white noise 0.1 deg/s per row (angle random walk
+        // N = 0.1 sqrt(0.1 s) = 0.0316 deg/sqrt(s)) and a bias walk K = 0.001 deg/s/sqrt(s),
+        // whose Allan deviation is K sqrt(tau / 3) (IEEE 952, Annex C).
+        let mut l = flat_log(360_000, 0.1, 0.0, 0.0);
+        l.meta.bias_s = Some(0.0);
+        let e = GyroErrors { noise_dps: 0.1, walk_dps_per_sqrt_s: 0.001, seed: 3, ..Default::default() };
+        let r = crate::allan::run(&inject(&l, &e).unwrap()).unwrap();
+        let n = 0.1 * 0.1f64.sqrt();
+        assert!((r.arw_deg_per_sqrt_s / n - 1.0).abs() < 0.05, "ARW {} against {n}", r.arw_deg_per_sqrt_s);
+        for (&tau, &adev) in r.tau_s.iter().zip(&r.adev_dps) {
+            if (1000.0..=3000.0).contains(&tau) {
+                let model = (n * n / tau + 0.001 * 0.001 * tau / 3.0).sqrt();
+                assert!((adev / model - 1.0).abs() < 0.3, "tau {tau}: adev {adev} against {model}");
+            }
+        }
+    }
+
+    #[test]
     fn same_seed_same_errors() {
         let l = flat_log(500, 0.1, 0.0, 0.0);
         let e = GyroErrors { walk_dps_per_sqrt_s: 0.01, noise_dps: 0.1, step_dps: 0.1, step_every_s: 10.0, seed: 7, ..Default::default() };
