@@ -377,9 +377,10 @@ mod tests {
             let limit = if c.profile == "as-is" { 4.0 } else { 1.1 };
             assert!(c.ne_psi[PIPELINE] <= limit * c.ne_psi[0] + 0.01, "{} / {} worse than raw: {:?}", c.base, c.profile, c.ne_psi);
         }
-        // The mean beats the best other method's mean by far (measured 0.46x on the roads with
-        // clothoids and roundabouts; 0.33x before, 0.21x before the drivers swayed).
-        assert!(s.mean_ratio < 0.5, "mean ratio {}", s.mean_ratio);
+        // The mean beats the best other method's mean by far (measured 0.39x since stops also
+        // correct the heading; 0.46x before, on the roads with clothoids and roundabouts;
+        // 0.33x before them, 0.21x before the drivers swayed).
+        assert!(s.mean_ratio < 0.45, "mean ratio {}", s.mean_ratio);
         // Acquisition without a lead-in: every large-bias case within 4.5x the best peer + 0.05
         // (worst measured 4.09x, sim-rural-crs03-3 / bias +3 cut, against Fusion's offset).
         for c in b.cases.iter().filter(|c| c.profile.starts_with("bias")) {

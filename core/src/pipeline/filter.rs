@@ -14,6 +14,12 @@
 //!
 //! A guard re-opens the bias uncertainty when a steady stop disagrees with the estimate
 //! beyond its uncertainty (a bias step, an OS re-calibration).
+//!
+//! Each hypothesis also carries the integral of its bias and that integral's covariance
+//! with the state, so a stop corrects the heading accumulated since the last good evidence
+//! (the causal E[heading | evidence so far], as a zero-velocity update corrects an INS);
+//! straight-road evidence corrects only the bias from then on (letting it rewrite the past
+//! amplified its errors on good gyros: docs/pipeline.md).
 
 use super::model::{half_sample_mode, BlockRecord, Model, State, StopStats, H_ROAD, H_STOP};
 use super::params::{PipelineParams, N_MODELS, N_ROADS, N_WARMS};
@@ -24,7 +30,8 @@ use std::collections::VecDeque;
 /// What one block did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PipelineOutput {
-    /// Heading from (rate - bias) integrated with the bias known before this block, deg.
+    /// Heading from (rate - bias) integrated with the bias known before each block, and
+    /// corrected at stops by what the stop says about the bias since (causal), deg.
     pub heading_deg: f64,
     /// Bias estimate used for this block (before its own evidence), deg/s.
     pub bias_dps: f64,
@@ -81,6 +88,9 @@ impl Pipeline {
                     x: Vector3::new(bias_dps, 0.0, 0.0),
                     p: Matrix3::from_diagonal(&Vector3::new(bias_sigma_dps * bias_sigma_dps, warm_var, r * r)),
                     logw: 0.0,
+                    h: 0.0,
+                    p_hx: Vector3::zeros(),
+                    p_hh: 0.0,
                 }
             })
             .collect();
@@ -193,6 +203,7 @@ impl Pipeline {
         let reopened = !stops.is_empty() && !self.stop.reopened && !lead_in && self.stop_guard();
         let straight = !still && !lead_in && self.is_straight(time_s, rate_dps);
         let priors: Vec<State> = self.recorded.iter().map(|&i| (self.models[i].x, self.models[i].p)).collect();
+        let h_before: Vec<f64> = self.models.iter().map(|m| m.h).collect();
         for &z in &stops {
             self.stop_update(z, !lead_in);
         }
@@ -207,6 +218,9 @@ impl Pipeline {
             self.records.push(BlockRecord { f: fs[i], prior: priors[j], post: (self.models[i].x, self.models[i].p) });
             self.record_weights.push(w[i]);
         }
+        // A stop corrected each hypothesis' bias integral: the heading takes their mix.
+        let dh: f64 = self.models.iter().zip(&h_before).zip(&w).map(|((m, hb), wi)| wi * (m.h - hb)).sum();
+        self.heading_deg -= dh;
         let out = PipelineOutput {
             heading_deg: self.heading_deg,
             bias_dps: b_before,
@@ -311,7 +325,7 @@ impl Pipeline {
     fn stop_update(&mut self, z: f64, weigh: bool) {
         let r = self.p.stop_sigma_dps * self.p.stop_sigma_dps;
         for m in &mut self.models {
-            let ll = m.update(H_STOP, z, r);
+            let ll = m.update(H_STOP, z, r, true);
             if weigh {
                 m.logw += ll;
             }
@@ -322,7 +336,7 @@ impl Pipeline {
     fn road_update(&mut self, rate_dps: f64) {
         let r = self.p.block_sigma_dps * self.p.block_sigma_dps;
         for m in &mut self.models {
-            m.logw += m.update(H_ROAD, rate_dps, r);
+            m.logw += m.update(H_ROAD, rate_dps, r, false);
         }
     }
 }

@@ -89,10 +89,14 @@ fn stop_step_hand_worked_and_heading_is_not_held() {
     }
     assert_eq!(h.bias().0, 0.0, "blocks 0-1 trimmed, block 2 waits until t = 4");
     assert!((g.bias().0 - 0.4 * k).abs() < 1e-14, "block 2 applied at t = 4: {}", g.bias().0);
-    // The heading integrates rate - bias at stops too.
+    // The heading integrates rate - bias at stops too (not held), and the stop corrects the
+    // integral of the last second's bias by the stop's innovation times the gain of the
+    // integral: P_hx / S = P1 / (P1 + q + R), P1 the bias variance after the first block.
     let b = f.bias().0;
     let o = f.update(1.0, 0.4, true).unwrap();
-    assert!((o.heading_deg - (0.4 - b)).abs() < 1e-15);
+    let p1 = 0.25 * 0.0025 / (0.25 + 0.0025);
+    let k_h = p1 / (p1 + 1e-6 + 0.0025);
+    assert!((o.heading_deg - (0.4 - b) * (1.0 - k_h)).abs() < 1e-12, "{} against {}", o.heading_deg, (0.4 - b) * (1.0 - k_h));
 }
 
 #[test]
