@@ -90,7 +90,6 @@ impl Pipeline {
                     logw: 0.0,
                     h: 0.0,
                     p_hx: Vector3::zeros(),
-                    p_hh: 0.0,
                 }
             })
             .collect();
@@ -203,7 +202,7 @@ impl Pipeline {
         let reopened = !stops.is_empty() && !self.stop.reopened && !lead_in && self.stop_guard();
         let straight = !still && !lead_in && self.is_straight(time_s, rate_dps);
         let priors: Vec<State> = self.recorded.iter().map(|&i| (self.models[i].x, self.models[i].p)).collect();
-        let h_before: Vec<f64> = self.models.iter().map(|m| m.h).collect();
+        let h_before: Vec<f64> = if stops.is_empty() { Vec::new() } else { self.models.iter().map(|m| m.h).collect() };
         for &z in &stops {
             self.stop_update(z, !lead_in);
         }
@@ -218,9 +217,12 @@ impl Pipeline {
             self.records.push(BlockRecord { f: fs[i], prior: priors[j], post: (self.models[i].x, self.models[i].p) });
             self.record_weights.push(w[i]);
         }
-        // A stop corrected each hypothesis' bias integral: the heading takes their mix.
-        let dh: f64 = self.models.iter().zip(&h_before).zip(&w).map(|((m, hb), wi)| wi * (m.h - hb)).sum();
-        self.heading_deg -= dh;
+        // A stop corrected each hypothesis' bias integral (road evidence does not): the
+        // heading takes their mix.
+        if !stops.is_empty() {
+            let dh: f64 = self.models.iter().zip(&h_before).zip(&w).map(|((m, hb), wi)| wi * (m.h - hb)).sum();
+            self.heading_deg -= dh;
+        }
         let out = PipelineOutput {
             heading_deg: self.heading_deg,
             bias_dps: b_before,

@@ -18,13 +18,11 @@ pub(super) struct Model {
     pub(super) x: Vector3<f64>,
     pub(super) p: Matrix3<f64>,
     pub(super) logw: f64,
-    /// The bias integrated since the start (deg), its covariance with `x`, and its
-    /// variance: a stop's evidence about today's bias also corrects the integral of the
+    /// The bias integrated since the start (deg) and its covariance with `x`: a stop's evidence about today's bias also corrects the integral of the
     /// bias since the last good evidence (as a zero-velocity update corrects an INS's
     /// heading through the heading-bias covariance).
     pub(super) h: f64,
     pub(super) p_hx: Vector3<f64>,
-    pub(super) p_hh: f64,
 }
 
 pub(super) const H_STOP: RowVector3<f64> = RowVector3::new(1.0, 1.0, 0.0);
@@ -42,7 +40,6 @@ impl Model {
         // The integral takes the bias before the block (as the heading integrates it).
         let pb = self.p.row(0) + self.p.row(1);
         self.h += dt * (self.x[0] + self.x[1]);
-        self.p_hh += 2.0 * dt * (self.p_hx[0] + self.p_hx[1]) + dt * dt * (pb[0] + pb[1]);
         self.p_hx += dt * pb.transpose();
         let f = self.transition(dt, a);
         self.p_hx.component_mul_assign(&f);
@@ -69,7 +66,6 @@ impl Model {
         if correct_integral {
             let k_h = hp / s;
             self.h += k_h * nu;
-            self.p_hh -= k_h * k_h * s;
             self.p_hx -= k_h * ph;
         } else {
             self.p_hx -= hp * k;
@@ -171,7 +167,6 @@ mod tests {
             logw: 0.0,
             h: 0.0,
             p_hx: Vector3::zeros(),
-            p_hh: 0.0,
         };
         let mut m = fresh();
         for _ in 0..10 {

@@ -38,19 +38,17 @@ pub(super) fn next_phases(st: &Style, v: f64, rng: &mut SimRng) -> Vec<Phase> {
     if u < acc {
         let speed = rng.range(4.0, 6.5);
         let radius = rng.range(8.0, 14.0);
-        let peak = (speed / radius).to_degrees();
-        return vec![Phase::Turn { left_deg: 90.0 * rng.sign(), peak_dps: peak, speed_mps: speed, ramp_dps2: 25.0, rate_dps: 0.0 }];
+        return vec![Phase::turn(90.0 * rng.sign(), speed, radius, 25.0)];
     }
     acc += st.p_curve;
     if u < acc {
         let angle = rng.range(st.curve_deg.0, st.curve_deg.1) * rng.sign();
         let radius = rng.range(st.curve_radius_m.0, st.curve_radius_m.1);
         let speed = st.cruise_mps.min(libm::sqrt(2.5 * radius)); // lateral accel <= 2.5 m/s^2
-        let peak = (speed / radius).to_degrees();
-        // Clothoid transitions: the lateral acceleration ramps at a comfortable 0.3-0.6 m/s^3
-        // (road design), so the yaw rate ramps at jerk / speed.
+                                                                 // Clothoid transitions: the lateral acceleration ramps at a comfortable 0.3-0.6 m/s^3
+                                                                 // (road design), so the yaw rate ramps at jerk / speed.
         let ramp = (rng.range(0.3, 0.6) / speed).to_degrees();
-        return vec![Phase::Turn { left_deg: angle, peak_dps: peak, speed_mps: speed, ramp_dps2: ramp, rate_dps: 0.0 }];
+        return vec![Phase::turn(angle, speed, radius, ramp)];
     }
     acc += st.p_stop;
     if u < acc {
@@ -71,13 +69,7 @@ pub(super) fn next_phases(st: &Style, v: f64, rng: &mut SimRng) -> Vec<Phase> {
         let angle = if rng.chance(0.5) { 90.0 } else { 270.0 } * rng.sign();
         let radius = rng.range(50.0, 120.0);
         let speed = libm::sqrt(3.0 * radius);
-        return vec![Phase::Turn {
-            left_deg: angle,
-            peak_dps: (speed / radius).to_degrees(),
-            speed_mps: speed,
-            ramp_dps2: 5.0,
-            rate_dps: 0.0,
-        }];
+        return vec![Phase::turn(angle, speed, radius, 5.0)];
     }
     acc += st.p_roundabout;
     if u < acc {
@@ -101,17 +93,20 @@ fn roundabout(rng: &mut SimRng) -> Vec<Phase> {
     let exit_deg = rng.range(25.0, 45.0);
     let radius = rng.range(12.0, 25.0);
     let speed = libm::sqrt(2.5 * radius);
-    let tight = |left_deg: f64, radius_m: f64| Phase::Turn {
-        left_deg,
-        peak_dps: (speed / radius_m).to_degrees(),
-        speed_mps: speed,
-        ramp_dps2: 25.0,
-        rate_dps: 0.0,
-    };
-    vec![tight(-entry_deg, 2.0 * radius), tight(net_deg + entry_deg + exit_deg, radius), tight(-exit_deg, 2.0 * radius)]
+    vec![
+        Phase::turn(-entry_deg, speed, 2.0 * radius, 25.0),
+        Phase::turn(net_deg + entry_deg + exit_deg, speed, radius, 25.0),
+        Phase::turn(-exit_deg, speed, 2.0 * radius, 25.0),
+    ]
 }
 
 impl Phase {
+    /// A turn of `left_deg` (signed) at `speed_mps` on radius `radius_m` (peak rate v / R),
+    /// the yaw rate ramping at `ramp_dps2` in and out.
+    fn turn(left_deg: f64, speed_mps: f64, radius_m: f64, ramp_dps2: f64) -> Phase {
+        Phase::Turn { left_deg, peak_dps: (speed_mps / radius_m).to_degrees(), speed_mps, ramp_dps2, rate_dps: 0.0 }
+    }
+
     /// One 0.1 s step of the phase: the target speed and the road's yaw rate.
     pub(super) fn advance(&mut self, st: &Style, v: f64) -> (f64, f64) {
         match self {
