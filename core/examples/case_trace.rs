@@ -8,20 +8,28 @@ fn main() {
     if a[1].ends_with(".csv") {
         return trace_csv(&a);
     }
-    let base = battery::simulated_bases(20.0).into_iter().find(|b| b.name == a[1]).expect("base");
+    // BASE is a battery base, or `cfg:SCENARIO:MINUTES:SEED` for a CRS03 drive as the samples make.
+    let (cfg, base_log) = if let Some(c) = a[1].strip_prefix("cfg:") {
+        let p: Vec<&str> = c.split(':').collect();
+        let cfg = sim::DriveConfig { scenario: p[0].parse().unwrap(), minutes: p[1].parse().unwrap(), seed: p[2].parse().unwrap() };
+        (cfg, sim::drive::simulate_drive(&cfg))
+    } else {
+        let base = battery::simulated_bases(20.0).into_iter().find(|b| b.name == a[1]).expect("base");
+        let parts: Vec<&str> = a[1].split('-').collect();
+        let cfg = sim::DriveConfig { scenario: parts[1].parse().unwrap(), minutes: 20.0, seed: parts[3].parse().unwrap() };
+        (cfg, base.log)
+    };
     let prof = battery::profiles().into_iter().find(|p| p.name == a[2]).expect("profile");
     // Same seed, same road: an ideal gyro gives the true rate.
-    let parts: Vec<&str> = a[1].split('-').collect();
-    let seed: u64 = parts[3].parse().unwrap();
-    let cfg = sim::DriveConfig { scenario: parts[1].parse().unwrap(), minutes: 20.0, seed };
     let ideal = sim::GyroSpec::ideal();
     let truth = sim::drive::simulate_drive_with(&cfg, &ideal);
-    let log = sim::inject(&base.log, &prof.errors).unwrap();
-    let skip = base.log.len() - log.len();
+    let log = sim::inject(&base_log, &prof.errors).unwrap();
+    let skip = base_log.len() - log.len();
     let t = log.time_s();
     let err: Vec<f64> =
         log.column(Column::GyroDps).unwrap().iter().zip(&truth.column(Column::GyroDps).unwrap()[skip..]).map(|(g, w)| g - w).collect();
     let true_bias = block_average_1hz(t, &err);
+    let road = block_average_1hz(t, &truth.column(Column::GyroDps).unwrap()[skip..]);
     let prep = Prepared::new(&log, None, &Default::default()).unwrap();
     let tr = prep.pipeline_trace(&Default::default()).unwrap();
     let h = hdr::run(&log, &Default::default()).unwrap();
@@ -29,13 +37,22 @@ fn main() {
     let mut f = gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, 0.5, prep.lead_in_end_s()).unwrap();
     let mut n_straight = 0;
     let mut w = Vec::new();
+    let mut straight_road = Vec::new();
     for i in 0..prep.blocks.len() {
         let o = f.update(prep.blocks.time_s[i], prep.blocks.rate_dps[i], prep.blocks.still[i]).unwrap();
         n_straight += o.straight as usize;
         w.push(f.weights());
+        if o.straight {
+            straight_road.push((prep.blocks.time_s[i], road.rate_dps.get(i).copied().unwrap_or(f64::NAN)));
+        }
     }
     println!("straight blocks {n_straight} of {}", prep.blocks.len());
     let step: usize = a.get(3).map_or(60, |s| s.parse().unwrap());
+    // The true road rate on the blocks the pipeline took as straight, per window of `step` s.
+    for c in straight_road.chunk_by(|x, y| (x.0 / step as f64) as i64 == (y.0 / step as f64) as i64) {
+        let m = c.iter().map(|x| x.1).sum::<f64>() / c.len() as f64;
+        println!("straight {:6.0} n {:3} true road rate mean {:7.4}", c[0].0, c.len(), m);
+    }
     for i in (0..tr.time_s.len()).step_by(step) {
         println!(
             "{:6.0} w {:.2} {:.2} {:.2} stop {} rate {:8.3} true {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
@@ -65,6 +82,12 @@ fn trace_csv(a: &[String]) {
     let drift = h.trace.drift_estimate_dps();
     let mut f = gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, 0.5, prep.lead_in_end_s()).unwrap();
     let step: usize = a.get(3).map_or(60, |s| s.parse().unwrap());
+    if std::env::var("HEADINGS").is_ok() {
+        for i in 0..tr.time_s.len() {
+            println!("H {} {} {} {}", tr.time_s[i], tr.heading_deg[i], prep.blocks.rate_dps[i], tr.bias_dps[i]);
+        }
+        return;
+    }
     for i in 0..prep.blocks.len() {
         let o = f.update(prep.blocks.time_s[i], prep.blocks.rate_dps[i], prep.blocks.still[i]).unwrap();
         if i % step == 0 {

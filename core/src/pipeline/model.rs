@@ -118,19 +118,25 @@ impl StopStats {
 }
 
 /// Bickel's half-sample mode: the densest point of a sample, robust to half of it being
-/// elsewhere (the turns). Sorts `x` in place; `x` must not be empty.
+/// elsewhere (the turns). Sorts `x` in place; `x` must not be empty. Equally dense halves
+/// (a quantised gyro's lattice makes many) are not resolved to the lowest: the search goes
+/// on within their span, or, where that span is the whole sample, ends at their mean centre.
 pub fn half_sample_mode(x: &mut [f64]) -> f64 {
     x.sort_by(f64::total_cmp);
     let mut s = &x[..];
     while s.len() > 3 {
         let h = s.len().div_ceil(2);
-        let mut best = 0;
-        for i in 0..=s.len() - h {
-            if s[i + h - 1] - s[i] < s[best + h - 1] - s[best] {
-                best = i;
-            }
+        let width = |i: usize| s[i + h - 1] - s[i];
+        let min = (0..=s.len() - h).map(width).fold(f64::INFINITY, f64::min);
+        let ties: Vec<usize> = (0..=s.len() - h).filter(|&i| width(i) <= min).collect();
+        let (lo, hi) = (ties[0], ties[ties.len() - 1]);
+        if lo == hi {
+            s = &s[lo..lo + h];
+        } else if hi + h - lo < s.len() {
+            s = &s[lo..hi + h];
+        } else {
+            return ties.iter().map(|&i| (s[i] + s[i + h - 1]) / 2.0).sum::<f64>() / ties.len() as f64;
         }
-        s = &s[best..best + h];
     }
     match s.len() {
         3 => {

@@ -201,6 +201,20 @@ fn half_sample_mode_finds_the_dense_cluster() {
 }
 
 #[test]
+fn half_sample_mode_of_a_lattice_is_not_pulled_to_its_lowest_value() {
+    // A gyro quantised at 0.1 deg/s, one row per block: equally dense halves tie at width 0.
+    // Six readings at -0.1 and six at 0: the densest point is between them, not -0.1.
+    let mut two = [vec![-0.1; 6], vec![0.0; 6]].concat();
+    assert!((half_sample_mode(&mut two) + 0.05).abs() < 1e-12);
+    // Symmetric about 0 with a turn on one side: the mode stays at 0.
+    let mut sym = [vec![-0.1; 4], vec![0.0; 5], vec![0.1; 4], vec![3.0; 3]].concat();
+    assert!(half_sample_mode(&mut sym).abs() < 1e-12);
+    // Two lattice values tied, the rest outliers on both sides.
+    let mut out = [vec![-5.0; 2], vec![0.2; 5], vec![0.3; 5], vec![7.0; 2]].concat();
+    assert!((half_sample_mode(&mut out) - 0.25).abs() < 1e-12);
+}
+
+#[test]
 fn bad_updates_and_params_are_errors() {
     let mut f = Pipeline::new(one_model(), 0.0, 0.5, f64::NEG_INFINITY).unwrap();
     f.update(1.0, 0.0, false).unwrap();
