@@ -53,6 +53,16 @@ fn main() {
         let m = c.iter().map(|x| x.1).sum::<f64>() / c.len() as f64;
         println!("straight {:6.0} n {:3} true road rate mean {:7.4}", c[0].0, c.len(), m);
     }
+    if std::env::var("HEADINGS").is_ok() {
+        // Heading error of the causal pipeline: its heading less the true rate's integral.
+        let mut psi_true = 0.0;
+        for i in 0..tr.time_s.len() {
+            let dt = if i == 0 { 0.0 } else { tr.time_s[i] - tr.time_s[i - 1] };
+            psi_true += road.rate_dps.get(i).copied().unwrap_or(0.0) * dt;
+            println!("E {:.0} {:.3} stop {} bias {:.4}", tr.time_s[i], tr.heading_deg[i] - psi_true, tr.stop[i] as u8, tr.bias_dps[i]);
+        }
+        return;
+    }
     for i in (0..tr.time_s.len()).step_by(step) {
         println!(
             "{:6.0} w {:.2} {:.2} {:.2} stop {} rate {:8.3} true {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
