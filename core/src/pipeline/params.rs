@@ -52,7 +52,10 @@ pub struct PipelineParams {
     pub warm_sigma_dps: f64,
     pub warm_tau_short_s: f64,
     pub warm_tau_long_s: f64,
-    /// Bias uncertainty at the start when the log has no stationary lead-in, deg/s.
+    /// Uncertainty of the bias at the start, before any evidence (a lead-in's or a stop's),
+    /// deg/s. By rule half of `max_bias_dps`, so any turn-on bias the filter accepts is
+    /// plausible from the first block (0.5 before: a 1.5-3 deg/s bias without a lead-in
+    /// was then learned too slowly, and trusted too little once learned).
     pub prior_bias_sigma_dps: f64,
     /// Hypothesis weights forget with this time constant, so the bank can switch, s.
     pub forget_s: f64,
@@ -79,7 +82,7 @@ impl Default for PipelineParams {
             warm_sigma_dps: 0.3,
             warm_tau_short_s: 200.0,
             warm_tau_long_s: 800.0,
-            prior_bias_sigma_dps: 0.5,
+            prior_bias_sigma_dps: 2.5,
             forget_s: 600.0,
             bias_s: None,
         }
