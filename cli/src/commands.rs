@@ -299,7 +299,9 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
 pub fn allan(log: &Path, json: bool) -> Result<(), Failure> {
     let drive = read_log(log)?;
     let (result, conf) = gyrodrift::allan::run_with_confidence(&drive).map_err(|e| fail(log, e))?;
-    emit(json, &result, || output::allan_table(log, &result, &conf))
+    // --json as the bindings give it: the Result keys, and the band under `confidence`.
+    let with = gyrodrift::allan::AllanWithConfidence { result: &result, confidence: &conf };
+    emit(json, &with, || output::allan_table(log, &result, &conf))
 }
 
 /// `check`: the findings, text or JSON; exit 1 when one is an error (the log would give

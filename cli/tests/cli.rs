@@ -239,9 +239,18 @@ fn gyrodometry_calibrate_allan_json_keys() {
             "arw_deg_per_sqrt_h",
             "bias_instability_dps",
             "bias_instability_dph",
-            "tau_at_min_s"
+            "tau_at_min_s",
+            "confidence"
         ])
     );
+    // The band as the bindings give it: one low and high per cluster time, around adev.
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let (adev, c) = (v["adev_dps"].as_array().unwrap(), &v["confidence"]);
+    for (i, a) in adev.iter().enumerate() {
+        let (lo, hi, a) = (c["adev_low_dps"][i].as_f64().unwrap(), c["adev_high_dps"][i].as_f64().unwrap(), a.as_f64().unwrap());
+        assert!(lo <= a && a <= hi, "{i}: {lo} {a} {hi}");
+    }
+    assert!(c["tau_min_range_s"].as_array().unwrap().len() == 2 && c["n_samples"].as_u64().unwrap() > 0);
 }
 
 #[test]
