@@ -86,7 +86,7 @@ function tooltip(id, c, ev) {
   if (!spec || !L || state.cursor == null) return (tip.hidden = true);
   const t = state.cursor;
   const per = L.x_unit_s;
-  const unit = (spec.y_label || "").match(/\(([^)]*)\)\s*$/)?.[1] || "";
+  const unit = plot.labelUnit(spec.y_label || "");
   const rows = [];
   const seen = new Set();
   for (const s of spec.series) {
@@ -224,7 +224,7 @@ export function timeChartsCsv(ids) {
   for (const id of ids) {
     const spec = state.specs[id];
     if (!spec) continue;
-    const unit = (spec.y_label || "").match(/\(([^)]*)\)\s*$/)?.[1];
+    const unit = plot.labelUnit(spec.y_label || "");
     const chartName = id.replace(/^c-/, "");
     for (const s of spec.series) if (s.name && s.name !== "zero") series.push({ ...s, name: `${chartName}: ${s.name}${unit ? ` (${unit})` : ""}` });
     if (spec.shade && !shade) shade = { ...spec.shade, label: `${chartName}: ${spec.shade.label}` };

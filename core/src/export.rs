@@ -18,6 +18,17 @@ fn cell(v: f64) -> String {
     }
 }
 
+/// The unit of an axis label written "<quantity> (<unit>)" (the last parenthesis at the
+/// end), or "" when it has none: the one reading of a label's unit for CSV columns and the
+/// dashboard's tooltips.
+pub fn label_unit(label: &str) -> &str {
+    let l = label.trim_end();
+    match (l.strip_suffix(')'), l.rfind('(')) {
+        (Some(head), Some(open)) if open < head.len() => head[open + 1..].trim(),
+        _ => "",
+    }
+}
+
 /// Series over a shared x (time, tau): a first column `x_name` holding every x any series
 /// has, in order and once, and a column per series with its value at that x, empty where it
 /// has no sample there. Series must be sorted by x (time traces are); samples with a
@@ -71,6 +82,18 @@ pub fn paths_csv(x_name: &str, y_name: &str, series: &[Series]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn label_unit_reads_the_last_parenthesis_at_the_end() {
+        assert_eq!(label_unit("heading error (deg)"), "deg");
+        assert_eq!(label_unit("rate (deg/s) "), "deg/s");
+        assert_eq!(label_unit("adev (deg/s) (1-sigma band)"), "1-sigma band");
+        assert_eq!(label_unit("speed ( m/s )"), "m/s");
+        assert_eq!(label_unit("count"), "");
+        assert_eq!(label_unit("(deg) after"), "");
+        assert_eq!(label_unit(""), "");
+        assert_eq!(label_unit(")"), "");
+    }
 
     #[test]
     fn series_on_the_union_of_their_times() {

@@ -39,10 +39,10 @@ test("gyrodometry, calibrate and allan equal the native CLI", () => {
   const al = plain(gd.allan(gd.Log.parse(readFileSync(st, "utf8"))));
   assert.ok(al.arw_line_dps.length === al.tau_s.length);
   delete al.arw_line_dps; // the plotting helper; the rest are the Result keys
-  // The confidence (beyond methods.md) matches the CLI's text table.
-  const conf = al.confidence;
-  delete al.confidence;
+  // The whole result, confidence band (beyond methods.md) included, equals the CLI's JSON,
+  // and the band matches the CLI's text table.
   assert.deepEqual(al, JSON.parse(cli("allan", st, "--json")));
+  const conf = al.confidence;
   const text = cli("allan", st);
   const band = text.match(/68 % band +([\d.]+) to ([\d.]+) deg\/s; the minimum could lie anywhere in tau ([\d.]+) to ([\d.]+) s/);
   assert.equal(conf.bias_instability_low_dps.toFixed(6), band[1]);

@@ -234,13 +234,19 @@ pub fn draw_chart(
     Ok(o.into())
 }
 
+/// The unit of an axis label "<quantity> (<unit>)", "" when it has none (core's
+/// `export::label_unit`): the one reading for CSV columns and the dashboard's tooltips.
+#[wasm_bindgen(js_name = labelUnit)]
+pub fn label_unit(label: &str) -> String {
+    export::label_unit(label).to_string()
+}
+
 /// Every series of a chart spec as CSV, as plotted (core's `export`): over a shared x
 /// (time in seconds, tau) one row per x; a chart of paths (a track) two columns per path.
 /// Columns are named "<series> (<y unit>)"; a shaded mask becomes a 0/1 column.
 #[wasm_bindgen(js_name = chartCsv)]
 pub fn chart_csv(#[wasm_bindgen(unchecked_param_type = "ChartSpec")] spec: JsValue) -> Result<String, JsValue> {
     let spec = Spec::read(&spec)?;
-    let unit = |label: &str| label.rsplit_once('(').map(|(_, u)| u.trim_end_matches(')').trim().to_string()).unwrap_or_default();
     let mut names: Vec<String> = Vec::new();
     let mut seen = std::collections::HashSet::new();
     let mut kept = Vec::new();
@@ -254,7 +260,7 @@ pub fn chart_csv(#[wasm_bindgen(unchecked_param_type = "ChartSpec")] spec: JsVal
         let series: Vec<Plotted> = kept.iter().zip(&names).map(|(s, n)| Plotted { name: n, x: &s.x, y: &s.y }).collect();
         return Ok(export::paths_csv(&spec.x_label, &spec.y_label, &series));
     }
-    let y_unit = unit(&spec.y_label);
+    let y_unit = export::label_unit(&spec.y_label);
     let columns: Vec<String> = names.iter().map(|n| if y_unit.is_empty() { n.clone() } else { format!("{n} ({y_unit})") }).collect();
     let mut series: Vec<Plotted> = kept.iter().zip(&columns).map(|(s, n)| Plotted { name: n, x: &s.x, y: &s.y }).collect();
     let shade_name = spec.shade.as_ref().map(|sh| format!("{} (0/1)", if sh.label.is_empty() { "shaded" } else { &sh.label }));
