@@ -2,7 +2,7 @@
 //! Prints one simulated battery case's bias over time: the truth (the same drive with an
 //! ideal gyro subtracted), the pipeline (causal, smoothed) and HDR's drift estimate.
 //! `cargo run --release --example case_trace -- BASE PROFILE` (BASE as `gyrodrift battery` names it).
-use gyrodrift::{battery, eval::Prepared, hdr, preprocess::block_average_1hz, sim, Column};
+use gyrodrift::{battery, eval::Prepared, hdr, pipeline::PipelineParams, preprocess::block_average_1hz, sim, Column};
 fn main() {
     let a: Vec<String> = std::env::args().collect();
     if a[1].ends_with(".csv") {
@@ -34,7 +34,7 @@ fn main() {
     let tr = prep.pipeline_trace(&Default::default()).unwrap();
     let h = hdr::run(&log, &Default::default()).unwrap();
     let drift = h.trace.drift_estimate_dps();
-    let mut f = gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, 0.5, prep.lead_in_end_s()).unwrap();
+    let mut f = gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, PipelineParams::default().prior_bias_sigma_dps, prep.lead_in_end_s()).unwrap();
     let mut n_straight = 0;
     let mut w = Vec::new();
     let mut straight_road = Vec::new();
@@ -65,11 +65,14 @@ fn main() {
     }
     for i in (0..tr.time_s.len()).step_by(step) {
         println!(
-            "{:6.0} w {:.2} {:.2} {:.2} stop {} rate {:8.3} true {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
+            "{:6.0} w {:.2} {:.2} {:.2} road {:.2} {:.2} {:.2} stop {} rate {:8.3} true {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
             tr.time_s[i],
             w[i][..9].iter().sum::<f64>(),
             w[i][18..27].iter().sum::<f64>(),
             w[i][36..].iter().sum::<f64>(),
+            (0..w[i].len()).filter(|j| (j / 3) % 3 == 0).map(|j| w[i][j]).sum::<f64>(),
+            (0..w[i].len()).filter(|j| (j / 3) % 3 == 1).map(|j| w[i][j]).sum::<f64>(),
+            (0..w[i].len()).filter(|j| (j / 3) % 3 == 2).map(|j| w[i][j]).sum::<f64>(),
             tr.stop[i] as u8,
             prep.blocks.rate_dps[i],
             true_bias.rate_dps[i],
@@ -90,7 +93,7 @@ fn trace_csv(a: &[String]) {
     let tr = prep.pipeline_trace(&Default::default()).unwrap();
     let h = hdr::run(&log, &Default::default()).unwrap();
     let drift = h.trace.drift_estimate_dps();
-    let mut f = gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, 0.5, prep.lead_in_end_s()).unwrap();
+    let mut f = gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, PipelineParams::default().prior_bias_sigma_dps, prep.lead_in_end_s()).unwrap();
     let step: usize = a.get(3).map_or(60, |s| s.parse().unwrap());
     if std::env::var("HEADINGS").is_ok() {
         for i in 0..tr.time_s.len() {
