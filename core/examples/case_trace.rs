@@ -34,7 +34,9 @@ fn main() {
     let tr = prep.pipeline_trace(&Default::default()).unwrap();
     let h = hdr::run(&log, &Default::default()).unwrap();
     let drift = h.trace.drift_estimate_dps();
-    let mut f = gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, PipelineParams::default().prior_bias_sigma_dps, prep.lead_in_end_s()).unwrap();
+    let mut f =
+        gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, PipelineParams::default().prior_bias_sigma_dps, prep.lead_in_end_s())
+            .unwrap();
     let mut n_straight = 0;
     let mut w = Vec::new();
     let mut straight_road = Vec::new();
@@ -93,7 +95,9 @@ fn trace_csv(a: &[String]) {
     let tr = prep.pipeline_trace(&Default::default()).unwrap();
     let h = hdr::run(&log, &Default::default()).unwrap();
     let drift = h.trace.drift_estimate_dps();
-    let mut f = gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, PipelineParams::default().prior_bias_sigma_dps, prep.lead_in_end_s()).unwrap();
+    let mut f =
+        gyrodrift::pipeline::Pipeline::new(Default::default(), 0.0, PipelineParams::default().prior_bias_sigma_dps, prep.lead_in_end_s())
+            .unwrap();
     let step: usize = a.get(3).map_or(60, |s| s.parse().unwrap());
     if std::env::var("HEADINGS").is_ok() {
         for i in 0..tr.time_s.len() {

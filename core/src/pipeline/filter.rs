@@ -21,6 +21,7 @@
 //! straight-road evidence corrects only the bias from then on (letting it rewrite the past
 //! amplified its errors on good gyros: docs/pipeline.md).
 
+use super::dating;
 use super::model::{half_sample_mode, BlockRecord, Model, State, StopStats, H_ROAD, H_STOP};
 use super::params::{PipelineParams, N_MODELS, N_ROADS, N_WARMS};
 use crate::error::{Error, Result};
@@ -64,6 +65,12 @@ pub struct Pipeline {
     record_weights: Vec<f64>,
     /// Sum of each hypothesis' weight over the blocks (to pick the ones to smooth).
     weight_sum: Vec<f64>,
+    /// Straight blocks since the last stop evidence (time, rate less the bias used), that
+    /// evidence's time, and the time of the latest stop evidence (taken over at the next
+    /// moving block): what dates a change a stop reveals (`dating`).
+    residuals: Vec<(f64, f64)>,
+    dating_t0_s: Option<f64>,
+    last_stop_s: Option<f64>,
 }
 
 impl Pipeline {
@@ -113,6 +120,9 @@ impl Pipeline {
             records: Vec::new(),
             record_weights: Vec::new(),
             weight_sum: vec![0.0; N_MODELS],
+            residuals: Vec::new(),
+            dating_t0_s: None,
+            last_stop_s: None,
         })
     }
 
@@ -207,6 +217,16 @@ impl Pipeline {
         let stops = self.stop_evidence(time_s, rate_dps, still, lead_in);
         let reopened = !stops.is_empty() && !self.stop.reopened && !lead_in && self.stop_guard();
         let straight = !still && !lead_in && self.is_straight(time_s, rate_dps);
+        self.dating_t0_s.get_or_insert(time_s);
+        if !still {
+            if let Some(t) = self.last_stop_s.take() {
+                self.residuals.clear();
+                self.dating_t0_s = Some(t);
+            }
+        }
+        if straight {
+            self.residuals.push((time_s, rate_dps - b_before));
+        }
         let priors: Vec<State> = self.recorded.iter().map(|&i| (self.models[i].x, self.models[i].p)).collect();
         let h_before: Vec<f64> = if stops.is_empty() { Vec::new() } else { self.models.iter().map(|m| m.h).collect() };
         for &z in &stops {
@@ -224,10 +244,22 @@ impl Pipeline {
             self.record_weights.push(w[i]);
         }
         // A stop corrected each hypothesis' bias integral (road evidence does not): the
-        // heading takes their mix.
+        // heading takes their mix, its age (the change spread as a walk) re-dated by the
+        // straight blocks since the last stop.
         if !stops.is_empty() {
             let dh: f64 = self.models.iter().zip(&h_before).zip(&w).map(|((m, hb), wi)| wi * (m.h - hb)).sum();
-            self.heading_deg -= dh;
+            let delta = self.bias().0 - b_before;
+            self.heading_deg -= if delta.abs() > 1e-12 && dh / delta > 0.0 {
+                let r = self.p.road_sigma_dps;
+                let model = 2.0 * r * r * self.p.road_corr_s + self.p.block_sigma_dps * self.p.block_sigma_dps;
+                let sigma2 = dating::long_run_variance(&self.residuals, 10)
+                    .map_or(model, |v| v.max(self.p.block_sigma_dps * self.p.block_sigma_dps));
+                let t0 = self.dating_t0_s.unwrap_or(time_s);
+                delta * dating::expected_age_s(&self.residuals, t0, time_s, delta, dh / delta, sigma2)
+            } else {
+                dh
+            };
+            self.last_stop_s = Some(time_s);
         }
         let out = PipelineOutput {
             heading_deg: self.heading_deg,

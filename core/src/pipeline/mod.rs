@@ -5,6 +5,7 @@
 //! mode (Rauch-Tung-Striebel over the whole log, labelled non-causal). Design and what was
 //! tried and dropped: docs/pipeline.md. `gyrodrift hdr` stays the paper's exact method.
 
+mod dating;
 pub mod filter;
 mod model;
 pub mod params;

@@ -245,3 +245,27 @@ fn smoother_keeps_a_lead_in_it_agrees_with() {
         assert!((tr.bias_smoothed_dps[k] - 0.1).abs() < 0.02, "block {k}: smoothed {}", tr.bias_smoothed_dps[k]);
     }
 }
+
+/// A known bias (lead-in), 600 s of straight road on it, then the bias steps by 0.2 deg/s
+/// 10 s before a stop; the step went unseen for 12 s (2.4 deg), so the ideal correction
+/// leaves the heading error where it was before the step. The walk model's correction
+/// (the change spread back over the straights it could not rule out) moves it by -6.3 deg;
+/// dated by the straights on the old bias (the step's own blocks are off the road's rate,
+/// not straight) by -3.8 deg.
+#[test]
+fn a_step_just_before_a_stop_is_not_spread_over_the_past() {
+    let n = 680;
+    let wobble = |i: usize| if (20..660).contains(&i) { 0.1 * ((i as f64) * 0.9).sin() } else { 0.0 };
+    let bias = |i: usize| if i >= 650 { 0.2 } else { 0.0 };
+    let blocks = Blocks {
+        time_s: (0..n).map(|i| i as f64).collect(),
+        rate_dps: (0..n).map(|i| bias(i) + wobble(i)).collect(),
+        temp_c: vec![f64::NAN; n],
+        still: (0..n).map(|i| !(20..660).contains(&i)).collect(),
+    };
+    let tr = run_blocks(&blocks, PipelineParams::default(), 20.0).unwrap();
+    let err = |i: usize| tr.heading_deg[i] - (1..=i).map(wobble).sum::<f64>();
+    let moved = err(n - 1) - err(649);
+    assert!(moved.abs() < 5.0, "heading error moved by {moved} deg across the step and stop");
+    assert!((tr.bias_dps[n - 1] - 0.2).abs() < 0.01, "bias {}", tr.bias_dps[n - 1]);
+}
