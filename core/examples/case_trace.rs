@@ -92,6 +92,11 @@ fn trace_csv(a: &[String]) {
     let prof = battery::profiles().into_iter().find(|p| p.name == a[2]).expect("profile");
     let log = sim::inject(&base, &prof.errors).unwrap();
     let prep = Prepared::new(&log, None, &Default::default()).unwrap();
+    // The injected error per block (the log less the recording).
+    let skip = base.len() - log.len();
+    let g = log.column(Column::GyroDps).unwrap();
+    let inj: Vec<f64> = g.iter().zip(&base.column(Column::GyroDps).unwrap()[skip..]).map(|(a, b)| a - b).collect();
+    let inj = block_average_1hz(log.time_s(), &inj).rate_dps;
     let tr = prep.pipeline_trace(&Default::default()).unwrap();
     let h = hdr::run(&log, &Default::default()).unwrap();
     let drift = h.trace.drift_estimate_dps();
@@ -109,12 +114,15 @@ fn trace_csv(a: &[String]) {
         let o = f.update(prep.blocks.time_s[i], prep.blocks.rate_dps[i], prep.blocks.still[i]).unwrap();
         if i % step == 0 {
             println!(
-                "{:7.0} still {} stop {} straight {} rate {:8.3} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
+                "{:7.0} w {:?} r {:?} still {} stop {} straight {} rate {:8.3} inj {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
                 tr.time_s[i] - tr.time_s[0],
+                (0..5).map(|k| (f.weights()[k * 9..k * 9 + 9].iter().sum::<f64>() * 100.0).round()).collect::<Vec<_>>(),
+                (0..3).map(|k| ((0..45).filter(|j| (j / 3) % 3 == k).map(|j| f.weights()[j]).sum::<f64>() * 100.0).round()).collect::<Vec<_>>(),
                 prep.blocks.still[i] as u8,
                 o.stop as u8,
                 o.straight as u8,
                 prep.blocks.rate_dps[i],
+                inj.get(i).copied().unwrap_or(f64::NAN),
                 tr.bias_dps[i],
                 tr.bias_sigma_dps[i],
                 tr.bias_smoothed_dps[i],
