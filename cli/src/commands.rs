@@ -281,7 +281,7 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
     }
     eprintln!("{note}");
     if print_recipe {
-        let text = toml::to_string(&d.recipe_json).map_err(|e| Failure(format!("recipe as TOML: {e}")))?;
+        let text = gyrodrift::import::recipe_value_to_toml(&d.recipe_json).map_err(|e| Failure(e.to_string()))?;
         return write_stdout(&format!("# gyrodrift import --recipe THIS.toml --data FOLDER (preset {})\n{text}", d.preset));
     }
     if out.is_some() || !json {

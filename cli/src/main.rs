@@ -305,45 +305,9 @@ fn settings<T: gyrodrift::options::Settings>(sets: &[String]) -> Result<T, Failu
 }
 
 /// Reads a recipe (TOML, or JSON by extension) and imports its files from `data` (default:
-/// the recipe's folder).
-/// A recipe's table file, confined to the data folder: a relative path with no `..`, and,
-/// after links are followed, still inside the folder (unless `allow_outside`). Checked
-/// before the file is opened, so a refused file is never read.
-fn confined(root: &Path, name: &str, allow_outside: bool) -> gyrodrift::Result<PathBuf> {
-    let refuse = |why: &str| {
-        Error::File(format!("{name}: refused: {why} (the recipe's files must lie inside the data folder; --allow-outside permits it)"))
-    };
-    let rel = Path::new(name);
-    let path = root.join(rel);
-    if allow_outside {
-        return Ok(path);
-    }
-    if rel.is_absolute() || rel.components().any(|c| !matches!(c, std::path::Component::Normal(_) | std::path::Component::CurDir)) {
-        return Err(refuse("not a plain relative path"));
-    }
-    let base = std::fs::canonicalize(root).map_err(|e| Error::File(format!("{}: cannot open the data folder: {e}", root.display())))?;
-    match std::fs::canonicalize(&path) {
-        Ok(real) if !real.starts_with(&base) => Err(refuse("a link leads out of the data folder")),
-        Ok(real) => Ok(real),
-        Err(e) => Err(Error::File(format!("{}: cannot open: {e}", path.display()))),
-    }
-}
-
+/// the recipe's folder), confined to that folder unless `allow_outside` (core's `fs`).
 fn import_recipe(recipe: &Path, data: Option<&Path>, allow_outside: bool) -> Result<(DriveLog, gyrodrift::import::ImportSummary), Failure> {
-    let text = std::fs::read_to_string(recipe).map_err(|e| Failure(format!("{}: cannot read: {e}", recipe.display())))?;
-    let parsed: gyrodrift::import::Recipe = if recipe.extension().is_some_and(|e| e == "json") {
-        serde_json::from_str(&text).map_err(|e| Failure(format!("{}: {e}", recipe.display())))?
-    } else {
-        toml::from_str(&text).map_err(|e| Failure(format!("{}: {e}", recipe.display())))?
-    };
-    let root = data.map(Path::to_path_buf).unwrap_or_else(|| recipe.parent().map(Path::to_path_buf).unwrap_or_default());
-    let mut files = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
-        let path = confined(&root, name, allow_outside)?;
-        std::fs::File::open(&path)
-            .map(|f| Box::new(f) as Box<dyn std::io::Read>)
-            .map_err(|e| Error::File(format!("{}: cannot open: {e}", path.display())))
-    };
-    gyrodrift::import::import(&parsed, &mut files).map_err(|e| fail(recipe, e))
+    gyrodrift::import::import_recipe_file(recipe, data, allow_outside).map_err(|e| Failure(e.to_string()))
 }
 
 /// Recipe paths: files as given, folders as their *.toml files (sorted).

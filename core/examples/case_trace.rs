@@ -117,7 +117,9 @@ fn trace_csv(a: &[String]) {
                 "{:7.0} w {:?} r {:?} still {} stop {} straight {} rate {:8.3} inj {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
                 tr.time_s[i] - tr.time_s[0],
                 (0..5).map(|k| (f.weights()[k * 9..k * 9 + 9].iter().sum::<f64>() * 100.0).round()).collect::<Vec<_>>(),
-                (0..3).map(|k| ((0..45).filter(|j| (j / 3) % 3 == k).map(|j| f.weights()[j]).sum::<f64>() * 100.0).round()).collect::<Vec<_>>(),
+                (0..3)
+                    .map(|k| ((0..45).filter(|j| (j / 3) % 3 == k).map(|j| f.weights()[j]).sum::<f64>() * 100.0).round())
+                    .collect::<Vec<_>>(),
                 prep.blocks.still[i] as u8,
                 o.stop as u8,
                 o.straight as u8,

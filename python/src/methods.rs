@@ -271,34 +271,19 @@ fn import_log<'py>(
     recipe: &Bound<'py, PyAny>,
     data_dir: Option<std::path::PathBuf>,
 ) -> PyResult<(PyLog, Bound<'py, PyDict>)> {
+    // A path is read by core (TOML, or JSON by extension); a dict is the same object as JSON.
+    // The files are confined to the data folder, links followed, as the CLI confines them.
     let (parsed, root): (gyrodrift::import::Recipe, std::path::PathBuf) = if let Ok(path) = recipe.extract::<std::path::PathBuf>() {
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| pyo3::exceptions::PyOSError::new_err(format!("{}: cannot read: {e}", path.display())))?;
-        let r = if path.extension().is_some_and(|e| e == "json") {
-            serde_json::from_str(&text).map_err(|e| value_err(format!("{}: {e}", path.display())))?
-        } else {
-            toml::from_str(&text).map_err(|e| value_err(format!("{}: {e}", path.display())))?
-        };
+        if !path.is_file() {
+            return Err(pyo3::exceptions::PyOSError::new_err(format!("{}: cannot read: no such file", path.display())));
+        }
+        let r = gyrodrift::import::read_recipe(&path).map_err(value_err)?;
         (r, data_dir.unwrap_or_else(|| path.parent().map(|p| p.to_path_buf()).unwrap_or_default()))
     } else {
         let r = serde_json::from_value(from_py("recipe", recipe)?).map_err(|e| value_err(format!("recipe: {e}")))?;
         (r, data_dir.unwrap_or_default())
     };
-    let (log, summary) = py
-        .detach(|| {
-            let mut files = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
-                let p = std::path::Path::new(name);
-                if p.is_absolute() || p.components().any(|c| matches!(c, std::path::Component::ParentDir)) {
-                    return Err(gyrodrift::Error::File(format!("{name}: refused: a recipe's files are named relative to data_dir")));
-                }
-                let path = root.join(p);
-                std::fs::File::open(&path)
-                    .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn std::io::Read>)
-                    .map_err(|e| gyrodrift::Error::File(format!("{}: cannot open: {e}", path.display())))
-            };
-            gyrodrift::import::import(&parsed, &mut files)
-        })
-        .map_err(value_err)?;
+    let (log, summary) = py.detach(|| gyrodrift::import::import_from_folder(&parsed, &root, false)).map_err(value_err)?;
     Ok((PyLog::new(log), result_dict(py, &summary)?))
 }
 

@@ -57,18 +57,15 @@ pub fn detect_import(#[wasm_bindgen(unchecked_param_type = "Record<string, Uint8
     Ok(out.into())
 }
 
-/// A recipe as TOML text (the format of `sample-logs/recipes`, `gyrodrift import --recipe`).
+/// A recipe as TOML text (the format of `sample-logs/recipes`, `gyrodrift import --recipe`),
+/// checked as a recipe first (core's `recipe_value_to_toml`).
 #[wasm_bindgen(js_name = recipeToToml)]
 pub fn recipe_to_toml(#[wasm_bindgen(unchecked_param_type = "Recipe")] recipe: JsValue) -> JsResult<String> {
-    let v = js_json("recipe", &recipe)?;
-    let _: import::Recipe = serde_json::from_value(v.clone()).map_err(|e| err(format!("recipe: {e}")))?;
-    toml::to_string(&v).map_err(|e| err(format!("recipe as TOML: {e}")))
+    import::recipe_value_to_toml(&js_json("recipe", &recipe)?).map_err(err)
 }
 
 /// A recipe from TOML text, checked as the CLI checks it (unknown fields refused).
 #[wasm_bindgen(js_name = recipeFromToml, unchecked_return_type = "Recipe")]
 pub fn recipe_from_toml(text: &str) -> JsResult<JsValue> {
-    let v: serde_json::Value = toml::from_str(text).map_err(|e| err(format!("recipe: {e}")))?;
-    let _: import::Recipe = serde_json::from_value(v.clone()).map_err(|e| err(format!("recipe: {e}")))?;
-    to_js(&v)
+    to_js(&import::recipe_value_from_toml(text).map_err(err)?)
 }

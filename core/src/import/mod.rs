@@ -6,14 +6,16 @@
 //! heading is never resampled (methods.md, detail 2).
 //!
 //! Transcendental functions come from `libm`, so the wasm package imports bit-identically.
-//! Core reads the files through [`Files`] (any `Read`); the recipe arrives deserialized
-//! (the CLI reads TOML, the wasm package takes a JS object), so core knows no file system.
+//! Core reads the files through [`Files`] (any `Read`) and the recipe from its text (TOML
+//! or JSON, `recipe_text`), so the import knows no file system; the `fs` feature adds the
+//! native fronts' shared file access (a recipe file, its tables confined to the data folder).
 
 mod channels;
 mod geo;
 mod merge;
 mod presets;
 mod recipe;
+mod recipe_text;
 mod sniff;
 mod table;
 mod time;
@@ -22,6 +24,7 @@ mod units;
 pub use geo::*;
 pub use presets::{detect, detect_and_import, presets, Detection};
 pub use recipe::*;
+pub use recipe_text::*;
 pub use sniff::{sniff, Sniffed, SNIFF_BYTES};
 pub use time::*;
 pub use units::parse_iso8601;

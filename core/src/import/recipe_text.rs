@@ -1,0 +1,122 @@
+//! A recipe as text: TOML (the shipped recipes, `gyrodrift import --recipe`) or JSON (the
+//! object the wasm and Python packages take), read and written in one place so every front
+//! refuses the same unknown fields with the same message. With the `fs` feature, the
+//! native fronts' file access: a recipe read from disk, its files confined to the data
+//! folder.
+
+use super::Recipe;
+use crate::error::{Error, Result};
+
+/// A recipe from TOML text, checked (unknown or misspelled fields refused).
+pub fn recipe_from_toml(text: &str) -> Result<Recipe> {
+    serde_json::from_value(recipe_value_from_toml(text)?).map_err(|e| Error::Data(format!("recipe: {e}")))
+}
+
+/// A recipe from JSON text, checked.
+pub fn recipe_from_json(text: &str) -> Result<Recipe> {
+    serde_json::from_str(text).map_err(|e| Error::Data(format!("recipe: {e}")))
+}
+
+/// A recipe from TOML text as the JSON object the packages take, checked as a recipe.
+pub fn recipe_value_from_toml(text: &str) -> Result<serde_json::Value> {
+    let v: serde_json::Value = toml::from_str(text).map_err(|e| Error::Data(format!("recipe: {e}")))?;
+    check_value(&v)?;
+    Ok(v)
+}
+
+/// A recipe (the JSON object) as TOML text, checked as a recipe first.
+pub fn recipe_value_to_toml(v: &serde_json::Value) -> Result<String> {
+    check_value(v)?;
+    toml::to_string(v).map_err(|e| Error::Data(format!("recipe as TOML: {e}")))
+}
+
+fn check_value(v: &serde_json::Value) -> Result<()> {
+    serde_json::from_value::<Recipe>(v.clone()).map(|_| ()).map_err(|e| Error::Data(format!("recipe: {e}")))
+}
+
+#[cfg(feature = "fs")]
+pub use files::*;
+
+#[cfg(feature = "fs")]
+mod files {
+    use super::super::{import, ImportSummary};
+    use super::*;
+    use crate::log::DriveLog;
+    use std::path::{Component, Path, PathBuf};
+
+    /// Reads a recipe file: JSON by its extension, TOML otherwise. Errors name the file.
+    pub fn read_recipe(path: &Path) -> Result<Recipe> {
+        let named = |e: Error| Error::In { name: path.display().to_string(), source: Box::new(e) };
+        let text = std::fs::read_to_string(path).map_err(|e| named(Error::File(format!("cannot read: {e}"))))?;
+        if path.extension().is_some_and(|e| e == "json") { recipe_from_json(&text) } else { recipe_from_toml(&text) }.map_err(named)
+    }
+
+    /// A recipe's table file, confined to the data folder: a relative path with no `..`,
+    /// and, after links are followed, still inside the folder (unless `allow_outside`).
+    /// Checked before the file is opened, so a refused file is never read.
+    pub fn confined(root: &Path, name: &str, allow_outside: bool) -> Result<PathBuf> {
+        let refuse = |why: &str| {
+            Error::File(format!(
+                "{name}: refused: {why} (the recipe's files must lie inside the data folder; the CLI's --allow-outside permits it)"
+            ))
+        };
+        let rel = Path::new(name);
+        let path = root.join(rel);
+        if allow_outside {
+            return Ok(path);
+        }
+        if rel.is_absolute() || rel.components().any(|c| !matches!(c, Component::Normal(_) | Component::CurDir)) {
+            return Err(refuse("not a plain relative path"));
+        }
+        let base = std::fs::canonicalize(root).map_err(|e| Error::File(format!("{}: cannot open the data folder: {e}", root.display())))?;
+        match std::fs::canonicalize(&path) {
+            Ok(real) if !real.starts_with(&base) => Err(refuse("a link leads out of the data folder")),
+            Ok(real) => Ok(real),
+            Err(e) => Err(Error::File(format!("{}: cannot open: {e}", path.display()))),
+        }
+    }
+
+    /// Imports by `recipe`, its files read from `root` and confined to it (`confined`).
+    pub fn import_from_folder(recipe: &Recipe, root: &Path, allow_outside: bool) -> Result<(DriveLog, ImportSummary)> {
+        let mut files = |name: &str| -> Result<Box<dyn std::io::Read>> {
+            let path = confined(root, name, allow_outside)?;
+            std::fs::File::open(&path)
+                .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn std::io::Read>)
+                .map_err(|e| Error::File(format!("{}: cannot open: {e}", path.display())))
+        };
+        import(recipe, &mut files)
+    }
+
+    /// Imports by the recipe file at `path`, its files from `data` (default: the recipe's
+    /// folder). Errors name the recipe.
+    pub fn import_recipe_file(path: &Path, data: Option<&Path>, allow_outside: bool) -> Result<(DriveLog, ImportSummary)> {
+        let recipe = read_recipe(path)?;
+        let root = data.map(Path::to_path_buf).unwrap_or_else(|| path.parent().map(Path::to_path_buf).unwrap_or_default());
+        import_from_folder(&recipe, &root, allow_outside).map_err(|e| Error::In { name: path.display().to_string(), source: Box::new(e) })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MINIMAL: &str = "name = \"m\"\n[[table]]\nid = \"g\"\nfile = \"g.csv\"\ntime = { column = \"t\", unit = \"s\" }\n[yaw_rate]\ntable = \"g\"\ncolumn = \"z\"\nunit = \"deg/s\"\npositive = \"ccw\"\n";
+
+    #[test]
+    fn toml_and_json_read_alike_and_round_trip() {
+        let v = recipe_value_from_toml(MINIMAL).unwrap();
+        let back = recipe_value_to_toml(&v).unwrap();
+        assert_eq!(recipe_value_from_toml(&back).unwrap(), v);
+        let json = serde_json::to_string(&v).unwrap();
+        assert_eq!(recipe_from_json(&json).unwrap(), recipe_from_toml(MINIMAL).unwrap());
+    }
+
+    #[test]
+    fn unknown_fields_and_bad_toml_are_refused_with_their_place() {
+        let e = recipe_from_toml(&MINIMAL.replace("name = ", "colour = \"red\"\nname = ")).unwrap_err().to_string();
+        assert!(e.contains("unknown field") && e.contains("colour"), "{e}");
+        let e = recipe_value_from_toml("[gyro\nfile = 1").unwrap_err().to_string();
+        assert!(e.starts_with("recipe: ") && e.contains("line 1"), "{e}");
+        assert!(recipe_value_to_toml(&serde_json::json!({"nope": 1})).is_err());
+    }
+}
