@@ -200,3 +200,20 @@ def test_the_type_stubs_name_exactly_what_the_module_has():
         methods = {m.name for m in cls.body if isinstance(m, ast.FunctionDef) and not m.name.startswith("__")}
         have = {n for n in dir(getattr(core, cls.name)) if not n.startswith("_")}
         assert methods == have, cls.name
+
+
+def test_import_refuses_a_link_out_of_the_data_folder(tmp_path):
+    # As the CLI does: a table file that is a link leading outside data_dir is refused
+    # before it is read (its content never reaches the message).
+    outside = tmp_path / "outside.csv"
+    outside.write_text("t,z\nSECRET,1\n")
+    data = tmp_path / "data"
+    data.mkdir()
+    (data / "g.csv").symlink_to(outside)
+    recipe = {
+        "table": [{"id": "g", "file": "g.csv", "time": {"column": "t", "unit": "s"}}],
+        "yaw_rate": {"table": "g", "column": "z", "unit": "deg/s", "positive": "ccw"},
+    }
+    with pytest.raises(ValueError, match="refused: a link leads out of the data folder") as e:
+        g.import_log(recipe, str(data))
+    assert "SECRET" not in str(e.value)
