@@ -1,0 +1,74 @@
+//! Many logs at once: Table II, tuning; and the simulator.
+
+use super::*;
+
+/// The HDR paper's Table II over many logs (named by their `name`).
+#[wasm_bindgen(unchecked_return_type = "Report")]
+pub fn report(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+) -> JsResult<JsValue> {
+    to_js(&build_report(&logs, options)?)
+}
+
+/// Table II over a JS array of logs with HDR options (shared by `report` and `reportMarkdown`).
+fn build_report(logs: &JsValue, options: JsValue) -> JsResult<report::Report> {
+    let opts: HdrOptions = self::options("report", options)?;
+    let logs = Log::from_array(logs, "logs")?;
+    let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), &**l)).collect();
+    report::Report::build(&named, &opts).map_err(err)
+}
+
+/// The report as Markdown (the CLI's `report --markdown`).
+#[wasm_bindgen(js_name = reportMarkdown)]
+pub fn report_markdown(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+) -> JsResult<String> {
+    Ok(build_report(&logs, options)?.to_markdown())
+}
+
+/// The report as CSV (one row per drive, then the average).
+#[wasm_bindgen(js_name = reportCsv)]
+pub fn report_csv(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+) -> JsResult<String> {
+    Ok(build_report(&logs, options)?.to_csv())
+}
+
+/// Tunes the five HDR parameters on `train` and reports Table III vs tuned on both sets.
+/// `progress(fraction)`, if given, is called as the search goes (e.g. from a Web Worker).
+#[cfg(feature = "tune")]
+#[wasm_bindgen(unchecked_return_type = "TuneReport")]
+pub fn tune(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] train: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Log[] | undefined")] test: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "TuneOptions")] options: JsValue,
+    progress: Option<js_sys::Function>,
+) -> JsResult<JsValue> {
+    let opts: tune::TuneOptions = self::options("tune", options)?;
+    let hdr_opts = HdrOptions::default();
+    let prep = |v: Vec<(String, Rc<DriveLog>)>| -> JsResult<Vec<tune::PreparedDrive>> {
+        let named: Vec<(String, &DriveLog)> = v.iter().map(|(n, l)| (n.clone(), &**l)).collect();
+        tune::prepare_all(&named, &hdr_opts).map_err(err)
+    };
+    let train = prep(Log::from_array(&train, "train")?)?;
+    let test = prep(Log::from_array(&test, "test")?)?;
+    let expected = tune::expected_evaluations_for(&opts, train.len()).max(1) as f64;
+    let report = |n: u64| {
+        if let Some(f) = &progress {
+            let _ = f.call1(&JsValue::NULL, &JsValue::from_f64((n as f64 / expected).min(1.0)));
+        }
+    };
+    to_js(&tune::tune_and_report_with_progress(&train, &test, &opts, &report).map_err(err)?)
+}
+
+/// Simulates a log with known truth (the CLI's `simulate`); the same seed gives the same
+/// log as the native CLI.
+#[cfg(feature = "sim")]
+#[wasm_bindgen]
+pub fn simulate(#[wasm_bindgen(unchecked_param_type = "SimRequest")] request: JsValue) -> JsResult<Log> {
+    let req: sim::SimRequest = self::options("simulate", request)?;
+    sim::simulate(&req).map(Log::new).map_err(err)
+}

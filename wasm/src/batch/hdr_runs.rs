@@ -1,0 +1,122 @@
+//! HDR over a parsed log: the Result keys, its per-sample series reduced for a chart, the
+//! dead-reckoned tracks and the trace CSV.
+
+use super::*;
+
+/// HDR on a log: the Result keys of methods.md. Throws when the log has no usable reference.
+#[wasm_bindgen(unchecked_return_type = "HdrResult")]
+pub fn hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
+    let opts: HdrOptions = self::options("hdr", options)?;
+    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    to_js(&run.result.map_err(err)?)
+}
+
+/// Prepares HDR's samples and reference for these options and caches them on the log, so a
+/// page can spend that time (O(rows)) in a task of its own before the first `runHdr`.
+#[wasm_bindgen(js_name = prepareHdr)]
+pub fn prepare_hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<()> {
+    let opts: HdrOptions = self::options("hdr", options)?;
+    log.hdr_prepared(&opts).map(|_| ()).map_err(err)
+}
+
+/// HDR with its per-sample series (Float64Array) for plotting: `{ result, error, eps0_dps, trace }`;
+/// `result` is null and `error` says why when the log has no usable reference.
+#[wasm_bindgen(js_name = runHdr, unchecked_return_type = "HdrRun")]
+pub fn run_hdr(
+    log: &Log,
+    #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "ChartView")] view: Option<JsValue>,
+) -> JsResult<JsValue> {
+    let opts: HdrOptions = self::options("hdr", options)?;
+    let view = View::read(&view.unwrap_or(JsValue::UNDEFINED))?;
+    let prepared = log.hdr_prepared(&opts).map_err(err)?;
+    let run = hdr::run_prepared(&log.log, &prepared, &opts).map_err(err)?;
+    let out = run_object(&run.result, run.eps0_dps)?;
+    let t = &run.trace;
+    let drift = t.drift_estimate_dps();
+    let switch: Vec<f64> = t.turn_switch.iter().map(|&b| b as u8 as f64).collect();
+    // With a view, every series keeps only the samples that draw the same (metrics are
+    // computed on all of them first).
+    let idx =
+        view.as_ref().map(|v| v.indices(&t.time_s, &[&t.heading_raw_deg, &t.heading_hdr_deg, &t.rate_corrected_dps, &drift, &switch]));
+    let r = |v: &[f64]| reduced(idx.as_deref(), v);
+    let trace = object_of(&[
+        ("time_s", r(&t.time_s)),
+        ("heading_raw_deg", r(&t.heading_raw_deg)),
+        ("heading_hdr_deg", r(&t.heading_hdr_deg)),
+        ("rate_raw_dps", r(&t.rate_raw_dps)),
+        ("rate_corrected_dps", r(&t.rate_corrected_dps)),
+        ("i_dps", r(&t.i_dps)),
+        ("drift_estimate_dps", r(&drift)),
+        (
+            "turn_switch",
+            match &idx {
+                Some(i) => bools(&i.iter().map(|&k| t.turn_switch[k]).collect::<Vec<_>>()),
+                None => bools(&t.turn_switch),
+            },
+        ),
+        ("attenuation", r(&t.attenuation)),
+    ])?;
+    set(&out, "trace", &trace)?;
+    let against = prepared.reference.as_ref().ok().and_then(|rf| Some((rf, run.errors_against(rf)?)));
+    let (reference, errors) = match against {
+        Some((rf, e)) => {
+            let ri = view.as_ref().map(|v| v.indices(&rf.time_s, &[&rf.heading_deg]));
+            let ei = view.as_ref().map(|v| v.indices(&e.time_s, &[&e.errors_deg[0], &e.errors_deg[1]]));
+            let reference =
+                object_of(&[("time_s", reduced(ri.as_deref(), &rf.time_s)), ("heading_deg", reduced(ri.as_deref(), &rf.heading_deg))])?;
+            let errors = object_of(&[
+                ("time_s", reduced(ei.as_deref(), &e.time_s)),
+                ("raw_deg", reduced(ei.as_deref(), &e.errors_deg[0])),
+                ("hdr_deg", reduced(ei.as_deref(), &e.errors_deg[1])),
+            ])?;
+            (reference.into(), errors.into())
+        }
+        None => (JsValue::NULL, JsValue::NULL),
+    };
+    set(&out, "reference", &reference)?;
+    set(&out, "errors", &errors)?;
+    Ok(out.into())
+}
+
+/// Resolution the Track view's paths are reduced to (pixels across the larger extent), and
+/// the most points a path keeps (a 60 h drive's path is coarser than half a pixel).
+const TRACK_COLUMNS: usize = 4000;
+const TRACK_MAX_POINTS: usize = 50_000;
+
+/// Dead-reckoned paths (m) of a drive with speed: along the raw, HDR and reference headings.
+/// `{ raw: {x_m, y_m}, hdr: {...}, reference: {...} | null }` as Float64Array, reduced for
+/// drawing to points at least 1/8000 of the path's extent apart, at most 50 000 per path
+/// (core's `Path::for_drawing`).
+#[wasm_bindgen(unchecked_return_type = "Tracks")]
+pub fn track(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<JsValue> {
+    let opts: HdrOptions = self::options("track", options)?;
+    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    let t = &run.trace;
+    let path = |p: gyrodrift::track::Path| -> JsResult<JsValue> {
+        let p = p.for_drawing(TRACK_COLUMNS, TRACK_MAX_POINTS);
+        let o = Object::new();
+        set(&o, "x_m", &f64s(&p.x_m))?;
+        set(&o, "y_m", &f64s(&p.y_m))?;
+        Ok(o.into())
+    };
+    let out = Object::new();
+    set(&out, "raw", &path(gyrodrift::track::dead_reckon(&log.log, &t.time_s, &t.heading_raw_deg).map_err(err)?)?)?;
+    set(&out, "hdr", &path(gyrodrift::track::dead_reckon(&log.log, &t.time_s, &t.heading_hdr_deg).map_err(err)?)?)?;
+    let reference = match gyrodrift::track::reference_path(&log.log) {
+        Ok(p) => path(p)?,
+        Err(_) => JsValue::NULL,
+    };
+    set(&out, "reference", &reference)?;
+    Ok(out.into())
+}
+
+/// The per-sample heading trace CSV of methods.md (time_s, heading_raw_deg, heading_hdr_deg).
+#[wasm_bindgen(js_name = hdrTraceCsv)]
+pub fn hdr_trace_csv(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue) -> JsResult<String> {
+    let opts: HdrOptions = self::options("hdr", options)?;
+    let run = hdr::run(&log.log, &opts).map_err(err)?;
+    let mut buf = Vec::new();
+    run.trace.write_csv(&mut buf).map_err(err)?;
+    String::from_utf8(buf).map_err(err)
+}
