@@ -57,6 +57,54 @@ pub fn log_ticks(lo_log10: f64, hi_log10: f64, max_count: usize) -> Vec<f64> {
     }
 }
 
+/// The smallest and largest finite value, or None when there is none.
+pub fn finite_range(vals: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in vals.filter(|v| v.is_finite()) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    (lo <= hi).then_some((lo, hi))
+}
+
+/// A value axis' range for these values: their span padded by 5 % each side (none on a log
+/// axis, whose values are already exponents), one either side of a single value, 0..1 with
+/// no finite value.
+pub fn value_range(vals: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
+    match finite_range(vals) {
+        Some((a, b)) if b > a => {
+            let pad = if log { 0.0 } else { (b - a) * 0.05 };
+            (a - pad, b + pad)
+        }
+        Some((a, _)) => (a - 1.0, a + 1.0),
+        None => (0.0, 1.0),
+    }
+}
+
+/// The intervals of x where a 0/1 mask is on (from the first x on to the first x off, or
+/// the last x), gaps narrower than `min_gap` merged: the shaded stretches of a chart.
+pub fn mask_intervals(x: &[f64], mask: &[f64], min_gap: f64) -> Vec<(f64, f64)> {
+    let n = x.len().min(mask.len());
+    let mut intervals: Vec<(f64, f64)> = Vec::new();
+    let mut start: Option<f64> = None;
+    for i in 0..=n {
+        let on = i < n && mask[i] > 0.5;
+        match (on, start) {
+            (true, None) => start = Some(x[i]),
+            (false, Some(s0)) => {
+                let e = if i < n { x[i] } else { x[n - 1] };
+                match intervals.last_mut() {
+                    Some(last) if s0 - last.1 < min_gap => last.1 = e,
+                    _ => intervals.push((s0, e)),
+                }
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    intervals
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -100,5 +148,25 @@ mod tests {
         // Nothing sensible to span: seconds.
         assert_eq!(time_unit(f64::NAN).name, "s");
         assert_eq!(time_unit(-5.0).name, "s");
+    }
+
+    #[test]
+    fn value_range_pads_by_5_percent_hand_worked() {
+        assert_eq!(value_range([1.0, f64::NAN, 3.0].into_iter(), false), (0.9, 3.1));
+        assert_eq!(value_range([1.0, 3.0].into_iter(), true), (1.0, 3.0));
+        assert_eq!(value_range([2.0, 2.0].into_iter(), false), (1.0, 3.0));
+        assert_eq!(value_range([f64::NAN].into_iter(), false), (0.0, 1.0));
+        assert_eq!(finite_range(std::iter::empty()), None);
+    }
+
+    #[test]
+    fn mask_intervals_hand_worked() {
+        let x = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0];
+        // On at 1-2, off at 3, on 4-5, off 6, on 7 (to the end).
+        let m = [0.0, 1.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+        assert_eq!(mask_intervals(&x, &m, 0.5), vec![(1.0, 3.0), (4.0, 6.0), (7.0, 7.0)]);
+        // Gaps of 1 (3 to 4, 6 to 7) under min_gap 1.5 merge all three.
+        assert_eq!(mask_intervals(&x, &m, 1.5), vec![(1.0, 7.0)]);
+        assert!(mask_intervals(&x, &[0.0; 8], 1.0).is_empty());
     }
 }

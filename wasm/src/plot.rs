@@ -194,15 +194,6 @@ fn js_err(e: impl std::fmt::Display) -> JsValue {
     js_sys::Error::new(&e.to_string()).into()
 }
 
-fn finite_range(vals: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for v in vals.filter(|v| v.is_finite()) {
-        lo = lo.min(v);
-        hi = hi.max(v);
-    }
-    (lo <= hi).then_some((lo, hi))
-}
-
 /// Draws a chart on the canvas (sized to its CSS box times the device pixel ratio).
 #[wasm_bindgen(js_name = drawChart, unchecked_return_type = "ChartLayout")]
 pub fn draw_chart(
@@ -278,7 +269,7 @@ type Decimated<'a> = Vec<(&'a Series, Vec<f64>, Vec<f64>)>;
 fn ranges(spec: &Spec, columns: usize) -> (f64, f64, f64, f64, Decimated<'_>) {
     let (x0, x1) = match spec.x_range {
         Some([a, b]) if b > a => (a, b),
-        _ => finite_range(spec.series.iter().flat_map(|s| s.x.iter().copied())).unwrap_or((0.0, 1.0)),
+        _ => axis::finite_range(spec.series.iter().flat_map(|s| s.x.iter().copied())).unwrap_or((0.0, 1.0)),
     };
     let mut decimated = Vec::with_capacity(spec.series.len());
     for s in &spec.series {
@@ -287,44 +278,12 @@ fn ranges(spec: &Spec, columns: usize) -> (f64, f64, f64, f64, Decimated<'_>) {
     }
     let (y0, y1) = match spec.y_range {
         Some([a, b]) if b > a => (a, b),
-        _ => {
-            let r = finite_range(
-                decimated.iter().flat_map(|(_, dx, dy)| dx.iter().zip(dy.iter()).filter(|(x, _)| **x >= x0 && **x <= x1).map(|(_, y)| *y)),
-            );
-            match r {
-                Some((a, b)) if b > a => {
-                    let pad = if spec.log_y { 0.0 } else { (b - a) * 0.05 };
-                    (a - pad, b + pad)
-                }
-                Some((a, _)) => (a - 1.0, a + 1.0),
-                None => (0.0, 1.0),
-            }
-        }
+        _ => axis::value_range(
+            decimated.iter().flat_map(|(_, dx, dy)| dx.iter().zip(dy.iter()).filter(|(x, _)| **x >= x0 && **x <= x1).map(|(_, y)| *y)),
+            spec.log_y,
+        ),
     };
     (x0, x1, y0, y1, decimated)
-}
-
-/// The intervals where a mask is on; gaps narrower than `min_gap` are merged.
-fn shade_intervals(x: &[f64], mask: &[f64], min_gap: f64) -> Vec<(f64, f64)> {
-    let n = x.len().min(mask.len());
-    let mut intervals: Vec<(f64, f64)> = Vec::new();
-    let mut start: Option<f64> = None;
-    for i in 0..=n {
-        let on = i < n && mask[i] > 0.5;
-        match (on, start) {
-            (true, None) => start = Some(x[i]),
-            (false, Some(s0)) => {
-                let e = if i < n { x[i] } else { x[n - 1] };
-                match intervals.last_mut() {
-                    Some(last) if s0 - last.1 < min_gap => last.1 = e,
-                    _ => intervals.push((s0, e)),
-                }
-                start = None;
-            }
-            _ => {}
-        }
-    }
-    intervals
 }
 
 fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout, Box<dyn std::error::Error>> {
@@ -371,7 +330,7 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
     // a pixel column are merged, so a flickering mask costs a few rectangles, not thousands.
     if let Some(sh) = &spec.shade {
         let c = parse_color(&sh.color).mix(0.18);
-        let intervals = shade_intervals(&sh.x, &sh.mask, (x1 - x0) / columns as f64);
+        let intervals = axis::mask_intervals(&sh.x, &sh.mask, (x1 - x0) / columns as f64);
         let visible: Vec<(f64, f64)> = intervals.into_iter().filter(|(s0, e)| *e >= x0 && *s0 <= x1).collect();
         if !visible.is_empty() {
             let drawn = chart
