@@ -22,7 +22,7 @@
 //! amplified its errors on good gyros: docs/pipeline.md).
 
 use super::dating;
-use super::model::{half_sample_mode, BlockRecord, Model, State, StopStats, H_ROAD, H_STOP};
+use super::model::{half_sample_mode, log_likelihood, BlockRecord, Model, State, StopStats, H_ROAD, H_STOP};
 use super::params::{PipelineParams, N_MODELS, N_ROADS, N_WARMS};
 use crate::error::{Error, Result};
 use nalgebra::{Matrix3, Vector3};
@@ -365,7 +365,8 @@ impl Pipeline {
     fn stop_update(&mut self, z: f64, weigh: bool) {
         let r = self.p.stop_sigma_dps * self.p.stop_sigma_dps;
         for m in &mut self.models {
-            let ll = m.update(H_STOP, z, r, true);
+            let (nu, s) = m.update(H_STOP, z, r, true);
+            let ll = log_likelihood(nu, s, self.p.huber_k);
             if weigh {
                 m.logw += ll;
             }
@@ -376,7 +377,8 @@ impl Pipeline {
     fn road_update(&mut self, rate_dps: f64) {
         let r = self.p.block_sigma_dps * self.p.block_sigma_dps;
         for m in &mut self.models {
-            m.logw += m.update(H_ROAD, rate_dps, r, false);
+            let (nu, s) = m.update(H_ROAD, rate_dps, r, false);
+            m.logw += log_likelihood(nu, s, self.p.huber_k);
         }
     }
 }

@@ -57,6 +57,9 @@ pub struct PipelineParams {
     /// plausible from the first block (0.5 before: a 1.5-3 deg/s bias without a lead-in
     /// was then learned too slowly, and trusted too little once learned).
     pub prior_bias_sigma_dps: f64,
+    /// Innovations beyond this many sigma count linearly, not quadratically, in the
+    /// hypotheses' log likelihood (Huber's k; infinite = Gaussian). 3 by convention.
+    pub huber_k: f64,
     /// Hypothesis weights forget with this time constant, so the bank can switch, s.
     pub forget_s: f64,
     /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
@@ -83,6 +86,7 @@ impl Default for PipelineParams {
             warm_tau_short_s: 200.0,
             warm_tau_long_s: 800.0,
             prior_bias_sigma_dps: 2.5,
+            huber_k: 3.0,
             forget_s: 600.0,
             bias_s: None,
         }
@@ -138,6 +142,9 @@ impl PipelineParams {
             if !(v.is_finite() && v > 0.0 && v < 1e6) {
                 return Err(Error::param(name, format!("{v} is not a number in (0, 1e6)")));
             }
+        }
+        if !(self.huber_k > 0.0) {
+            return Err(Error::param("huber_k", format!("{} is not a positive number of sigma", self.huber_k)));
         }
         for (name, v) in [("min_still_s", self.min_still_s), ("jump_min_s", self.jump_min_s)] {
             if !(v.is_finite() && (0.0..1e6).contains(&v)) {
