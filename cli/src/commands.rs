@@ -235,7 +235,8 @@ pub fn battery(
         tuned.cv.as_ref().map_or(f64::NAN, |c| c.cv_table_iii_deg_per_min),
         if tuned.recommended_is_tuned { "tuned parameters used" } else { "Table III used (tuning does not generalise)" }
     );
-    let b = battery::run(&bases, &battery::profiles(), split, &params, Some(tuned.recommended)).map_err(|e| Failure(e.to_string()))?;
+    let peer = battery::TunedHdr::from_result(&tuned);
+    let b = battery::run(&bases, &battery::profiles(), split, &params, Some(&peer)).map_err(|e| Failure(e.to_string()))?;
     emit(json, &b, || b.to_markdown(cases))
 }
 

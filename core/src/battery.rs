@@ -133,6 +133,32 @@ pub fn tune_hdr(bases: &[Base]) -> Result<crate::tune::TuneResult> {
     crate::tune::tune(&prepared, &Default::default())
 }
 
+/// The tuned-HDR peer: the parameters tuning recommends, and for each drive it was tuned
+/// on, the parameters its cross-validation fold tuned without that drive, so no case is
+/// scored with parameters fitted to its own base (that would be in-sample, not a peer).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TunedHdr {
+    pub params: HdrParams,
+    pub held_out: Vec<(String, HdrParams)>,
+}
+
+impl TunedHdr {
+    /// From a tuning run: out-of-fold parameters only where the tuned ones are recommended
+    /// (when Table III is, every base gets Table III).
+    pub fn from_result(r: &crate::tune::TuneResult) -> Self {
+        let held_out = match (&r.cv, r.recommended_is_tuned) {
+            (Some(cv), true) => cv.folds.iter().map(|f| (f.held_out.clone(), f.params)).collect(),
+            _ => Vec::new(),
+        };
+        TunedHdr { params: r.recommended, held_out }
+    }
+
+    /// The parameters for a case on this base.
+    pub fn for_base(&self, base: &str) -> HdrParams {
+        self.held_out.iter().find(|(n, _)| n == base).map_or(self.params, |(_, p)| *p)
+    }
+}
+
 /// The methods of the battery, in column order.
 pub fn method_names(with_tuned: bool) -> Vec<&'static str> {
     let mut v = vec!["raw", "HDR Table III", "Fusion offset", "ZARU", "pipeline", "smoothed"];
@@ -210,7 +236,7 @@ pub fn best_peer(ne: &[f64]) -> f64 {
 }
 
 /// Runs every (base, profile) case of the split.
-pub fn run(bases: &[Base], profiles: &[Profile], split: Split, params: &PipelineParams, tuned: Option<HdrParams>) -> Result<Battery> {
+pub fn run(bases: &[Base], profiles: &[Profile], split: Split, params: &PipelineParams, tuned: Option<&TunedHdr>) -> Result<Battery> {
     params.validate()?;
     let mut jobs = Vec::new();
     for b in bases {
@@ -227,7 +253,7 @@ pub fn run(bases: &[Base], profiles: &[Profile], split: Split, params: &Pipeline
         }
     }
     let run_one = |(b, pr, training): &(&Base, &Profile, bool)| -> (String, String, bool, Result<(f64, Vec<f64>)>) {
-        let r = inject(&b.log, &pr.errors).and_then(|log| score_case(&log, params, tuned));
+        let r = inject(&b.log, &pr.errors).and_then(|log| score_case(&log, params, tuned.map(|t| t.for_base(&b.name))));
         (b.name.clone(), pr.name.clone(), *training, r)
     };
     #[cfg(feature = "parallel")]
@@ -355,6 +381,42 @@ impl Battery {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A training base is scored with its fold's parameters (tuned without it); any other
+    /// base with the recommended ones; Table III recommended means Table III for every base.
+    #[test]
+    fn the_tuned_peer_is_out_of_fold_on_the_drives_it_was_tuned_on() {
+        let t3 = HdrParams::table_iii();
+        let fold = HdrParams { i_c_dps: 0.01, ..t3 };
+        let all = HdrParams { i_c_dps: 0.02, ..t3 };
+        let cv = crate::tune::CrossValidation {
+            folds: vec![crate::tune::CvFold {
+                held_out: "a".into(),
+                ne_psi_table_iii_deg_per_min: 1.0,
+                ne_psi_tuned_deg_per_min: 0.5,
+                params: fold,
+            }],
+            cv_table_iii_deg_per_min: 1.0,
+            cv_tuned_deg_per_min: 0.5,
+        };
+        let mut r = crate::tune::TuneResult {
+            params: all,
+            objective_start_deg_per_min: 1.0,
+            objective_tuned_deg_per_min: 0.5,
+            n_evaluations: 1,
+            cv: Some(cv),
+            recommended: all,
+            recommended_is_tuned: true,
+        };
+        let peer = TunedHdr::from_result(&r);
+        assert_eq!(peer.for_base("a"), fold);
+        assert_eq!(peer.for_base("b"), all);
+        r.recommended = t3;
+        r.recommended_is_tuned = false;
+        let peer = TunedHdr::from_result(&r);
+        assert_eq!(peer.for_base("a"), t3);
+        assert_eq!(peer.for_base("b"), t3);
+    }
 
     /// A small fixed subset of the battery (simulated training bases, 10 min, five profiles)
     /// as a regression guard on the ratios the docs quote; not a timed test.
