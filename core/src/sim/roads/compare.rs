@@ -21,6 +21,8 @@ pub struct RoadDistance {
     /// S-manoeuvres (lane-change-like): length and excursion.
     pub s_length: f64,
     pub s_peak: f64,
+    /// Fast sway (10 s windows' residual spread).
+    pub sway: f64,
 }
 
 impl RoadDistance {
@@ -35,6 +37,7 @@ impl RoadDistance {
             spectrum: std::array::from_fn(|k| ks_distance(&a.band_power_dps2[k], &b.band_power_dps2[k])),
             s_length: ks_distance(&a.s_length_s, &b.s_length_s),
             s_peak: ks_distance(&a.s_peak_deg, &b.s_peak_deg),
+            sway: ks_distance(&a.sway_dps, &b.sway_dps),
         }
     }
 
@@ -200,7 +203,32 @@ impl RoadComparison {
         for c in &self.classes {
             out += &dist_row(c.class.name(), &c.distance);
         }
-        out + &self.spectrum_markdown() + &self.manoeuvre_markdown()
+        out + &self.spectrum_markdown() + &self.manoeuvre_markdown() + &self.sway_markdown()
+    }
+
+    /// Fast sway per class, recorded / simulated quartiles and the distance.
+    fn sway_markdown(&self) -> String {
+        let mut out = String::from("\nFast sway (the residual spread of 10 s windows of moving blocks, all under 3 deg/s, about their least-squares line: the weaving and quick steering of straight driving), recorded / simulated, deg/s:\n\n| pool | windows | p25 | p50 | p75 | KS |\n|---|---:|---:|---:|---:|---:|\n");
+        let mut row = |name: &str, r: &RoadSamples, s: &RoadSamples, d: &RoadDistance| {
+            let (a, b) = (r.summary(), s.summary());
+            out += &format!(
+                "| {name} | {} / {} | {:.3} / {:.3} | {:.3} / {:.3} | {:.3} / {:.3} | {:.3} |\n",
+                r.sway_dps.len(),
+                s.sway_dps.len(),
+                a.sway_p25_dps,
+                b.sway_p25_dps,
+                a.sway_p50_dps,
+                b.sway_p50_dps,
+                a.sway_p75_dps,
+                b.sway_p75_dps,
+                d.sway
+            );
+        };
+        row("all moving", &self.pools.0.all, &self.pools.1.all, &self.distance);
+        for (i, c) in self.classes.iter().enumerate() {
+            row(c.class.name(), &self.pools.0.class[i], &self.pools.1.class[i], &c.distance);
+        }
+        out
     }
 
     /// S-manoeuvres and loops per class, recorded / simulated, with the distances.

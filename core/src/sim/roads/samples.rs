@@ -65,6 +65,34 @@ pub struct RoadSamples {
     pub s_length_s: Vec<f64>,
     /// Its largest heading excursion, deg.
     pub s_peak_deg: Vec<f64>,
+    /// Fast sway: the residual standard deviation about the least-squares line of each
+    /// 10 s window (every 5 s) of consecutive moving blocks all below 3 deg/s, deg/s. The
+    /// line takes the road's slow curvature out, so what is left is the driver's weaving
+    /// and quick steering, which HDR's turn switch and sign steps see on every straight.
+    pub sway_dps: Vec<f64>,
+}
+
+/// Window and step of the fast-sway statistic, s.
+pub const SWAY_WINDOW_S: usize = 10;
+pub const SWAY_STEP_S: usize = 5;
+
+/// Residual standard deviation of `y` (one value a second) about its least-squares line
+/// (n - 2 degrees of freedom); None under 3 values.
+pub fn detrended_std(y: &[f64]) -> Option<f64> {
+    let n = y.len();
+    if n < 3 {
+        return None;
+    }
+    let xm = (n - 1) as f64 / 2.0;
+    let ym = y.iter().sum::<f64>() / n as f64;
+    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
+    for (i, &v) in y.iter().enumerate() {
+        let dx = i as f64 - xm;
+        sxx += dx * dx;
+        sxy += dx * (v - ym);
+        syy += (v - ym) * (v - ym);
+    }
+    Some(((syy - sxy * sxy / sxx).max(0.0) / (n - 2) as f64).sqrt())
 }
 
 /// One row of the comparison table.
@@ -88,6 +116,10 @@ pub struct RoadSummary {
     pub s_per_min: f64,
     pub s_length_p50_s: f64,
     pub s_peak_p50_deg: f64,
+    /// Fast sway (`RoadSamples::sway_dps`): quartiles, deg/s.
+    pub sway_p25_dps: f64,
+    pub sway_p50_dps: f64,
+    pub sway_p75_dps: f64,
     /// Curve runs turning more than 180 degrees (roundabouts, ramps) per moving hour.
     pub loops_per_hour: f64,
 }
@@ -106,6 +138,7 @@ impl RoadSamples {
         }
         self.s_length_s.extend(&other.s_length_s);
         self.s_peak_deg.extend(&other.s_peak_deg);
+        self.sway_dps.extend(&other.sway_dps);
     }
 
     /// The summary figures.
@@ -128,6 +161,9 @@ impl RoadSamples {
             s_per_min: self.s_length_s.len() as f64 / self.moving_min,
             s_length_p50_s: quantile(&self.s_length_s, 0.5),
             s_peak_p50_deg: quantile(&self.s_peak_deg, 0.5),
+            sway_p25_dps: quantile(&self.sway_dps, 0.25),
+            sway_p50_dps: quantile(&self.sway_dps, 0.5),
+            sway_p75_dps: quantile(&self.sway_dps, 0.75),
             loops_per_hour: self.curve_deg.iter().filter(|&&d| d > 180.0).count() as f64 / (self.moving_min / 60.0),
         }
     }
@@ -163,6 +199,13 @@ impl RoadSamples {
             let w = &moving[i..i + 30];
             if w[29].0 - w[0].0 == 29 && w.iter().all(|m| m.1.abs() < 3.0) {
                 s.slow_rate_dps.push((w.iter().map(|m| m.1).sum::<f64>() / 30.0).abs());
+            }
+        }
+        for i in (0..(moving.len() + 1).saturating_sub(SWAY_WINDOW_S)).step_by(SWAY_STEP_S) {
+            let w = &moving[i..i + SWAY_WINDOW_S];
+            if w[SWAY_WINDOW_S - 1].0 - w[0].0 == SWAY_WINDOW_S as i64 - 1 && w.iter().all(|m| m.1.abs() < 3.0) {
+                let rates: Vec<f64> = w.iter().map(|m| m.1).collect();
+                s.sway_dps.extend(detrended_std(&rates));
             }
         }
         let mut start = 0;
@@ -339,6 +382,39 @@ mod tests {
         assert_eq!((s.s_length_s, s.s_peak_deg), (vec![5.0], vec![3.0]));
         // 1 S in 2 moving minutes; 1 loop in 2 minutes = 30 per hour
         assert_eq!((sum.s_per_min, sum.loops_per_hour), (0.5, 30.0));
+    }
+
+    /// A line leaves nothing; a single 1 deg/s block among ten zeros: mean 0.1, slope
+    /// Sxy / Sxx = 4.5 / 82.5, residual sum of squares 0.9 - 4.5^2 / 82.5 = 0.654545..., over
+    /// 8 degrees of freedom: std 0.286039...
+    #[test]
+    fn detrended_std_hand_worked() {
+        let line: Vec<f64> = (0..10).map(|i| 0.3 + 0.05 * i as f64).collect();
+        assert!(detrended_std(&line).unwrap() < 1e-12);
+        let mut y = vec![0.0; 10];
+        y[9] = 1.0;
+        assert!((detrended_std(&y).unwrap() - (0.654_545_454_545_454_5f64 / 8.0).sqrt()).abs() < 1e-12);
+        assert_eq!(detrended_std(&[1.0, 2.0]), None);
+    }
+
+    /// Sway windows: 10 consecutive moving seconds, every 5 s, none holding a turn (3 deg/s or
+    /// more) or a stop; an alternating +-0.2 deg/s weave gives each the same spread.
+    #[test]
+    fn sway_windows_of_a_hand_made_drive() {
+        // 60 s moving with a +-0.2 weave, a 2 s turn at 4 deg/s at 30-31 s
+        let mut log = DriveLog::with_columns(&[Column::GyroDps, Column::SpeedMps]);
+        for i in 0..600 {
+            let t = i as f64 / 10.0;
+            let sec = t.floor() as usize;
+            let w = if sec == 30 || sec == 31 { 4.0 } else if sec % 2 == 0 { 0.2 } else { -0.2 };
+            log.push_row(&[(Column::TimeS, t), (Column::GyroDps, w), (Column::SpeedMps, 10.0)]);
+        }
+        let s = road_samples(&log, 0.0).unwrap().all;
+        // windows start at 0, 5, ..., 50; those holding second 30 or 31 (25, 30) are skipped
+        assert_eq!(s.sway_dps.len(), 9, "{:?}", s.sway_dps);
+        let want = detrended_std(&[0.2, -0.2, 0.2, -0.2, 0.2, -0.2, 0.2, -0.2, 0.2, -0.2]).unwrap();
+        assert!(s.sway_dps.iter().all(|&v| (v - want).abs() < 1e-9), "{:?} {want}", s.sway_dps);
+        assert!(want > 0.2 && want < 0.23, "{want}");
     }
 
     #[test]
