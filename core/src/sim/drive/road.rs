@@ -55,7 +55,8 @@ pub(super) struct Style {
     pub(super) p_roundabout: f64,
     pub(super) curve_deg: (f64, f64),
     pub(super) curve_radius_m: (f64, f64),
-    /// Human sway: the rate sigma of a damped oscillation about the road heading, deg/s
+    /// Human sway: the rate sigma of a damped oscillation about the road heading, deg/s (its
+    /// root mean square: the size itself varies slowly, `SWAY_VOL_SIGMA`)
     /// (2.5x the first guesses, by the recorded roads: docs/simulator.md).
     pub(super) sway_dps: f64,
     /// Road meander: a Gauss-Markov curvature in distance (sigma, deg/m; correlation
@@ -77,7 +78,7 @@ pub(super) fn style(s: Scenario) -> Style {
             p_roundabout: 0.02,
             curve_deg: (15.0, 45.0),
             curve_radius_m: (80.0, 200.0),
-            sway_dps: 0.5,
+            sway_dps: 0.41,
             meander_deg_per_m: 0.0105,
             meander_len_m: 80.0,
         },
@@ -92,7 +93,7 @@ pub(super) fn style(s: Scenario) -> Style {
             p_roundabout: 0.0,
             curve_deg: (10.0, 20.0),
             curve_radius_m: (60.0, 100.0),
-            sway_dps: 0.5,
+            sway_dps: 0.41,
             meander_deg_per_m: 0.0105,
             meander_len_m: 50.0,
         },
@@ -107,7 +108,7 @@ pub(super) fn style(s: Scenario) -> Style {
             p_roundabout: 0.02,
             curve_deg: (20.0, 90.0),
             curve_radius_m: (40.0, 150.0),
-            sway_dps: 0.375,
+            sway_dps: 0.31,
             meander_deg_per_m: 0.014,
             meander_len_m: 60.0,
         },
@@ -122,7 +123,7 @@ pub(super) fn style(s: Scenario) -> Style {
             p_roundabout: 0.02,
             curve_deg: (10.0, 60.0),
             curve_radius_m: (200.0, 600.0),
-            sway_dps: 0.3,
+            sway_dps: 0.37,
             meander_deg_per_m: 0.0025,
             meander_len_m: 200.0,
         },
@@ -137,7 +138,7 @@ pub(super) fn style(s: Scenario) -> Style {
             p_roundabout: 0.0,
             curve_deg: (5.0, 40.0),
             curve_radius_m: (800.0, 2500.0),
-            sway_dps: 0.2,
+            sway_dps: 0.31,
             meander_deg_per_m: 0.0032,
             meander_len_m: 600.0,
         },

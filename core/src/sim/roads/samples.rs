@@ -406,7 +406,13 @@ mod tests {
         for i in 0..600 {
             let t = i as f64 / 10.0;
             let sec = t.floor() as usize;
-            let w = if sec == 30 || sec == 31 { 4.0 } else if sec % 2 == 0 { 0.2 } else { -0.2 };
+            let w = if sec == 30 || sec == 31 {
+                4.0
+            } else if sec % 2 == 0 {
+                0.2
+            } else {
+                -0.2
+            };
             log.push_row(&[(Column::TimeS, t), (Column::GyroDps, w), (Column::SpeedMps, 10.0)]);
         }
         let s = road_samples(&log, 0.0).unwrap().all;
