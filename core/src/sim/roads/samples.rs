@@ -408,7 +408,7 @@ mod tests {
             let sec = t.floor() as usize;
             let w = if sec == 30 || sec == 31 {
                 4.0
-            } else if sec % 2 == 0 {
+            } else if sec.is_multiple_of(2) {
                 0.2
             } else {
                 -0.2
