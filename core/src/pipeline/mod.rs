@@ -2,8 +2,7 @@
 //! (slow, medium, fast bias walk, weighed by their likelihood) fed by stops and, with a
 //! mixture likelihood, by HDR's straight-road heuristic; guards re-open the bias when the
 //! evidence says it moved. Causal and streaming ([`Pipeline`]), with an offline smoothed
-//! mode (Rauch-Tung-Striebel over the whole log, held to the causal heading where stops
-//! corrected it; labelled non-causal). Design and what was
+//! mode (Rauch-Tung-Striebel over the whole log, labelled non-causal). Design and what was
 //! tried and dropped: docs/pipeline.md. `gyrodrift hdr` stays the paper's exact method.
 
 mod dating;
@@ -64,54 +63,15 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     for i in 0..n {
         g.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
     }
-    let rts_bias = g.smoothed_bias();
-    let mut rts = Vec::with_capacity(n);
+    tr.bias_smoothed_dps = g.smoothed_bias();
     let mut h = 0.0;
     for i in 0..n {
         if i > 0 {
-            h += (blocks.rate_dps[i] - rts_bias[i]) * (blocks.time_s[i] - blocks.time_s[i - 1]);
+            h += (blocks.rate_dps[i] - tr.bias_smoothed_dps[i]) * (blocks.time_s[i] - blocks.time_s[i - 1]);
         }
-        rts.push(h);
+        tr.heading_smoothed_deg.push(h);
     }
-    (tr.heading_smoothed_deg, tr.bias_smoothed_dps) = anchor_to_stops(&tr, &blocks.rate_dps, &rts, &rts_bias);
     Ok(tr)
-}
-
-/// The smoothed heading held to the causal one where a stop corrected it: between two such
-/// blocks it takes the shape of the smoothed bias' integral `rts`, and the two ends' mismatch
-/// is spread linearly over the span (a constant bias error, as the smoothed bias leaves it);
-/// after the last, the smoothed integral carries on. A stop fixes the heading better than a
-/// smoothed bias integrated from the start can (on a calibrated phone gyro the unanchored
-/// integral was worse than raw). Returns the heading (0 at the first block) and the bias
-/// consistent with it.
-fn anchor_to_stops(tr: &PipelineTrace, rate_dps: &[f64], rts: &[f64], rts_bias: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let (t, n) = (&tr.time_s, tr.time_s.len());
-    let mut anchors = vec![0usize];
-    for i in 1..n {
-        let integrated = (rate_dps[i] - tr.bias_dps[i]) * (t[i] - t[i - 1]);
-        if (tr.heading_deg[i] - tr.heading_deg[i - 1] - integrated).abs() > 1e-9 {
-            anchors.push(i);
-        }
-    }
-    let base = tr.heading_deg.first().copied().unwrap_or(0.0);
-    let (mut heading, mut bias) = (rts.to_vec(), rts_bias.to_vec());
-    for w in anchors.windows(2) {
-        let (j, i) = (w[0], w[1]);
-        let span = t[i] - t[j];
-        let mismatch = (tr.heading_deg[i] - tr.heading_deg[j]) - (rts[i] - rts[j]);
-        for k in j..=i {
-            heading[k] = tr.heading_deg[j] - base + (rts[k] - rts[j]) + mismatch * (t[k] - t[j]) / span;
-        }
-        for b in &mut bias[j + 1..=i] {
-            *b -= mismatch / span;
-        }
-    }
-    if let Some(&last) = anchors.last() {
-        for k in last..n {
-            heading[k] = tr.heading_deg[last] - base + (rts[k] - rts[last]);
-        }
-    }
-    (heading, bias)
 }
 
 /// The pipeline's result keys (E_psi_*, NE_psi_*, improvement_pipeline, duration_min),

@@ -269,26 +269,3 @@ fn a_step_just_before_a_stop_is_not_spread_over_the_past() {
     assert!(moved.abs() < 5.0, "heading error moved by {moved} deg across the step and stop");
     assert!((tr.bias_dps[n - 1] - 0.2).abs() < 0.01, "bias {}", tr.bias_dps[n - 1]);
 }
-
-/// Causal heading [0, 1, 2, 2.4, 3.4] with rate - bias = 1 a block: block 3 holds a stop's
-/// correction of -0.6. The smoothed integral is [0, 0.9, 1.8, 2.7, 3.6] (its bias 0.1
-/// higher). Between the anchors 0 and 3 the mismatch (2.4 - 0) - (2.7 - 0) = -0.3 is
-/// spread over 3 s: [0, 0.8, 1.6, 2.4]; after block 3 the smoothed integral carries on:
-/// 2.4 + 0.9 = 3.3. The bias follows: 0.1 lower in blocks 1-3, unchanged in block 4.
-#[test]
-fn smoothed_heading_is_held_to_the_causal_one_at_stop_corrections_hand_worked() {
-    let tr = PipelineTrace {
-        time_s: vec![0.0, 1.0, 2.0, 3.0, 4.0],
-        heading_deg: vec![0.0, 1.0, 2.0, 2.4, 3.4],
-        bias_dps: vec![0.0; 5],
-        ..Default::default()
-    };
-    let rate = vec![1.0; 5];
-    let rts = vec![0.0, 0.9, 1.8, 2.7, 3.6];
-    let rts_bias = vec![0.1; 5];
-    let (h, b) = anchor_to_stops(&tr, &rate, &rts, &rts_bias);
-    let want_h = [0.0, 0.8, 1.6, 2.4, 3.3];
-    let want_b = [0.1, 0.2, 0.2, 0.2, 0.1];
-    assert!(h.iter().zip(want_h).all(|(g, w)| (g - w).abs() < 1e-12), "{h:?}");
-    assert!(b.iter().zip(want_b).all(|(g, w)| (g - w).abs() < 1e-12), "{b:?}");
-}
