@@ -209,24 +209,16 @@ impl RoadComparison {
     /// Fast sway per class, recorded / simulated quartiles and the distance.
     fn sway_markdown(&self) -> String {
         let mut out = String::from("\nFast sway (the residual spread of 10 s windows of moving blocks, all under 3 deg/s, about their least-squares line: the weaving and quick steering of straight driving), recorded / simulated, deg/s:\n\n| pool | windows | p25 | p50 | p75 | KS |\n|---|---:|---:|---:|---:|---:|\n");
-        let mut row = |name: &str, r: &RoadSamples, s: &RoadSamples, d: &RoadDistance| {
-            let (a, b) = (r.summary(), s.summary());
+        let mut row = |name: &str, n: (usize, usize), a: &RoadSummary, b: &RoadSummary, d: &RoadDistance| {
             out += &format!(
                 "| {name} | {} / {} | {:.3} / {:.3} | {:.3} / {:.3} | {:.3} / {:.3} | {:.3} |\n",
-                r.sway_dps.len(),
-                s.sway_dps.len(),
-                a.sway_p25_dps,
-                b.sway_p25_dps,
-                a.sway_p50_dps,
-                b.sway_p50_dps,
-                a.sway_p75_dps,
-                b.sway_p75_dps,
-                d.sway
+                n.0, n.1, a.sway_p25_dps, b.sway_p25_dps, a.sway_p50_dps, b.sway_p50_dps, a.sway_p75_dps, b.sway_p75_dps, d.sway
             );
         };
-        row("all moving", &self.pools.0.all, &self.pools.1.all, &self.distance);
+        let (rp, sp) = &self.pools;
+        row("all moving", (rp.all.sway_dps.len(), sp.all.sway_dps.len()), &self.recorded_pool, &self.simulated_pool, &self.distance);
         for (i, c) in self.classes.iter().enumerate() {
-            row(c.class.name(), &self.pools.0.class[i], &self.pools.1.class[i], &c.distance);
+            row(c.class.name(), (rp.class[i].sway_dps.len(), sp.class[i].sway_dps.len()), &c.recorded, &c.simulated, &c.distance);
         }
         out
     }

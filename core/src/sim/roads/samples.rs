@@ -201,12 +201,9 @@ impl RoadSamples {
                 s.slow_rate_dps.push((w.iter().map(|m| m.1).sum::<f64>() / 30.0).abs());
             }
         }
-        for i in (0..(moving.len() + 1).saturating_sub(SWAY_WINDOW_S)).step_by(SWAY_STEP_S) {
-            let w = &moving[i..i + SWAY_WINDOW_S];
-            if w[SWAY_WINDOW_S - 1].0 - w[0].0 == SWAY_WINDOW_S as i64 - 1 && w.iter().all(|m| m.1.abs() < 3.0) {
-                let rates: Vec<f64> = w.iter().map(|m| m.1).collect();
-                s.sway_dps.extend(detrended_std(&rates));
-            }
+        for w in consecutive_windows(moving, SWAY_WINDOW_S, SWAY_STEP_S).filter(|w| w.iter().all(|m| m.1.abs() < 3.0)) {
+            let rates: Vec<f64> = w.iter().map(|m| m.1).collect();
+            s.sway_dps.extend(detrended_std(&rates));
         }
         let mut start = 0;
         for i in 0..moving.len() {
@@ -220,17 +217,23 @@ impl RoadSamples {
             }
         }
         let spectrum = Spectrum::default();
-        for i in (0..(moving.len() + 1).saturating_sub(WINDOW_S)).step_by(STEP_S) {
-            let w = &moving[i..i + WINDOW_S];
-            if w[WINDOW_S - 1].0 - w[0].0 == WINDOW_S as i64 - 1 {
-                let rates: Vec<f64> = w.iter().map(|m| m.1).collect();
-                for (band, p) in s.band_power_dps2.iter_mut().zip(spectrum.band_powers(&rates)) {
-                    band.push(p);
-                }
+        for w in consecutive_windows(moving, WINDOW_S, STEP_S) {
+            let rates: Vec<f64> = w.iter().map(|m| m.1).collect();
+            for (band, p) in s.band_power_dps2.iter_mut().zip(spectrum.band_powers(&rates)) {
+                band.push(p);
             }
         }
         s
     }
+}
+
+/// Windows of `len` moving blocks starting every `step`, those over consecutive seconds
+/// only (a stop or a gap ends every window).
+fn consecutive_windows(moving: &[(i64, f64, f64)], len: usize, step: usize) -> impl Iterator<Item = &[(i64, f64, f64)]> {
+    (0..(moving.len() + 1).saturating_sub(len))
+        .step_by(step)
+        .map(move |i| &moving[i..i + len])
+        .filter(move |w| w[len - 1].0 - w[0].0 == len as i64 - 1)
 }
 
 /// A drive's samples: all moving blocks, and those of each road class.
