@@ -49,7 +49,7 @@ impl Split {
         if self.gaps.is_empty() {
             return None;
         }
-        let gaps: Vec<String> = self.gaps.iter().map(|g| format!("{:.1} s at line {}", g.length_s, g.line)).collect();
+        let gaps = self.gaps.iter().map(|g| format!("{:.1} s at line {}", g.length_s, g.line)).reduce(|a, b| a + ", " + &b);
         let dropped = match self.dropped.len() {
             0 => String::new(),
             n => format!(", {n} part(s) under {MIN_PART_S} s dropped"),
@@ -57,7 +57,7 @@ impl Split {
         Some(format!(
             "split at {} gap(s) ({}) into {} part(s) scored as drives of their own{dropped}",
             self.gaps.len(),
-            gaps.join(", "),
+            gaps.unwrap_or_default(),
             self.parts.len()
         ))
     }

@@ -2,7 +2,8 @@
 //! (slow, medium, fast bias walk, weighed by their likelihood) fed by stops and, with a
 //! mixture likelihood, by HDR's straight-road heuristic; guards re-open the bias when the
 //! evidence says it moved. Causal and streaming ([`Pipeline`]), with an offline smoothed
-//! mode (Rauch-Tung-Striebel over the whole log, labelled non-causal). Design and what was
+//! mode (Rauch-Tung-Striebel over the whole log, held to the causal heading at stops;
+//! labelled non-causal). Design and what was
 //! tried and dropped: docs/pipeline.md. `gyrodrift hdr` stays the paper's exact method.
 
 mod dating;
@@ -55,7 +56,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     }
     let mut order: Vec<usize> = (0..N_MODELS).collect();
     let sums = f.weight_sums().to_vec();
-    order.sort_by(|&a, &b| sums[b].total_cmp(&sums[a]));
+    order.sort_unstable_by(|&a, &b| sums[b].total_cmp(&sums[a]).then(a.cmp(&b)));
     order.truncate(N_SMOOTHED);
     let mut g = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
     g.restrict(&order);
@@ -63,7 +64,9 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     for i in 0..n {
         g.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
     }
-    tr.bias_smoothed_dps = g.smoothed_bias();
+    let mut bias = g.smoothed_bias();
+    hold_to_stops(&tr, &blocks.rate_dps, &mut bias);
+    tr.bias_smoothed_dps = bias;
     let mut h = 0.0;
     for i in 0..n {
         if i > 0 {
@@ -72,6 +75,25 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
         tr.heading_smoothed_deg.push(h);
     }
     Ok(tr)
+}
+
+/// Holds the smoothed heading to the causal one at every block with stop evidence: between
+/// two such blocks the smoothed bias is shifted by the constant that makes its integral
+/// meet the causal heading's change (a constant bias error, as smoothing leaves one). A
+/// stop fixes the heading better than a smoothed bias integrated from the start can: on a
+/// calibrated phone gyro the unheld integral was worse than raw. After the last stop the
+/// smoothed bias is left as it is.
+fn hold_to_stops(tr: &PipelineTrace, rate_dps: &[f64], bias_dps: &mut [f64]) {
+    let t = &tr.time_s;
+    let (mut j, mut turned) = (0, 0.0);
+    for i in 1..t.len() {
+        turned += (rate_dps[i] - bias_dps[i]) * (t[i] - t[i - 1]);
+        if tr.stop[i] {
+            let shift = (turned - (tr.heading_deg[i] - tr.heading_deg[j])) / (t[i] - t[j]);
+            bias_dps[j + 1..=i].iter_mut().for_each(|b| *b += shift);
+            (j, turned) = (i, 0.0);
+        }
+    }
 }
 
 /// The pipeline's result keys (E_psi_*, NE_psi_*, improvement_pipeline, duration_min),

@@ -269,3 +269,21 @@ fn a_step_just_before_a_stop_is_not_spread_over_the_past() {
     assert!(moved.abs() < 5.0, "heading error moved by {moved} deg across the step and stop");
     assert!((tr.bias_dps[n - 1] - 0.2).abs() < 0.01, "bias {}", tr.bias_dps[n - 1]);
 }
+
+/// Causal heading [0, 1, 2, 2.4, 3.4] with rate 1 and a stop at block 3 (its correction
+/// -0.6). The smoothed bias 0.1 integrates to 2.7 by block 3, 0.3 more than the causal 2.4:
+/// blocks 1-3 take 0.1 + 0.3 / 3 = 0.2, so the smoothed heading [0, 0.8, 1.6, 2.4] meets the
+/// causal one there; after the last stop, block 4 keeps 0.1 (heading 3.3).
+#[test]
+fn smoothed_heading_is_held_to_the_causal_one_at_stops_hand_worked() {
+    let tr = PipelineTrace {
+        time_s: vec![0.0, 1.0, 2.0, 3.0, 4.0],
+        heading_deg: vec![0.0, 1.0, 2.0, 2.4, 3.4],
+        stop: vec![false, false, false, true, false],
+        ..Default::default()
+    };
+    let mut b = vec![0.1; 5];
+    hold_to_stops(&tr, &[1.0; 5], &mut b);
+    let want = [0.1, 0.2, 0.2, 0.2, 0.1];
+    assert!(b.iter().zip(want).all(|(g, w)| (g - w).abs() < 1e-12), "{b:?}");
+}
