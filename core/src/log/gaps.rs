@@ -49,6 +49,8 @@ impl Split {
         if self.gaps.is_empty() {
             return None;
         }
+        // Folded, not `join`ed: a `[String]` join is a second instance in the browser's
+        // size-capped module (BENCHMARKS.md).
         let gaps = self.gaps.iter().map(|g| format!("{:.1} s at line {}", g.length_s, g.line)).reduce(|a, b| a + ", " + &b);
         let dropped = match self.dropped.len() {
             0 => String::new(),

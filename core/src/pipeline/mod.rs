@@ -56,6 +56,8 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     }
     let mut order: Vec<usize> = (0..N_MODELS).collect();
     let sums = f.weight_sums().to_vec();
+    // Unstable with the index as tie-break: the stable sort's order, without a stable-sort
+    // instance of its own in the browser's size-capped module (BENCHMARKS.md).
     order.sort_unstable_by(|&a, &b| sums[b].total_cmp(&sums[a]).then(a.cmp(&b)));
     order.truncate(N_SMOOTHED);
     let mut g = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
