@@ -67,8 +67,11 @@ fn main() {
     }
     for i in (0..tr.time_s.len()).step_by(step) {
         println!(
-            "{:6.0} w {:.2} {:.2} {:.2} road {:.2} {:.2} {:.2} stop {} rate {:8.3} true {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
+            "{:6.0} warm {:.2} {:.2} {:.2} w {:.2} {:.2} {:.2} road {:.2} {:.2} {:.2} stop {} rate {:8.3} true {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
             tr.time_s[i],
+            (0..w[i].len()).filter(|j| j % 3 == 0).map(|j| w[i][j]).sum::<f64>(),
+            (0..w[i].len()).filter(|j| j % 3 == 1).map(|j| w[i][j]).sum::<f64>(),
+            (0..w[i].len()).filter(|j| j % 3 == 2).map(|j| w[i][j]).sum::<f64>(),
             w[i][..9].iter().sum::<f64>(),
             w[i][18..27].iter().sum::<f64>(),
             w[i][36..].iter().sum::<f64>(),

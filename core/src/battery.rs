@@ -202,6 +202,17 @@ pub struct Summary {
     pub worst_ratio: f64,
     /// Cases where the pipeline is worse than raw integration by more than 10 %.
     pub n_worse_than_raw: usize,
+    /// The goal's two counts applied to every method in turn (column order): cases within
+    /// 1.25x + 0.05 of the best of the *other* causal methods, and worse than 2x + 0.05. For
+    /// the pipeline these are `n_within` and `n_over_2x`; for a peer the pipeline is one
+    /// of its others; the smoothed mode is measured against every causal method.
+    pub each_within: Vec<usize>,
+    pub each_over_2x: Vec<usize>,
+}
+
+/// Best causal method of a row other than column `j`.
+fn best_other_than(ne: &[f64], j: usize) -> f64 {
+    ne.iter().enumerate().filter(|(i, _)| *i != j && *i != SMOOTHED).map(|(_, v)| *v).fold(f64::INFINITY, f64::min)
 }
 
 /// The battery's result.
@@ -304,7 +315,11 @@ pub fn summarize(cases: &[&CaseRow]) -> Option<Summary> {
     let mean: Vec<f64> = (0..m).map(|j| cases.iter().map(|c| c.ne_psi[j]).sum::<f64>() / n).collect();
     let best_other = best_peer(&mean);
     let worst = cases.iter().max_by(|a, b| a.ratio.total_cmp(&b.ratio))?;
+    let within = |j: usize| cases.iter().filter(|c| c.ne_psi[j] <= 1.25 * best_other_than(&c.ne_psi, j) + 0.05).count();
+    let over_2x = |j: usize| cases.iter().filter(|c| c.ne_psi[j] > 2.0 * best_other_than(&c.ne_psi, j) + 0.05).count();
     Some(Summary {
+        each_within: (0..m).map(within).collect(),
+        each_over_2x: (0..m).map(over_2x).collect(),
         n_cases: cases.len(),
         mean_ratio: mean[PIPELINE] / best_other,
         n_within: cases.iter().filter(|c| c.within).count(),
@@ -353,6 +368,17 @@ impl Battery {
                     sm.worst_ratio,
                     sm.worst
                 );
+            }
+        }
+        let _ = writeln!(s, "\nThe same two counts for every method against the best of its others (the pipeline is one of a peer's others; smoothed is measured against every causal method):\n");
+        head(&mut s, "cases: within 1.25x + 0.05 / worse than 2x + 0.05");
+        for (label, sm) in [("training", &self.training), ("scoring", &self.scoring)] {
+            if let Some(sm) = sm {
+                let _ = write!(s, "| {label} ({}) |", sm.n_cases);
+                for (w, o) in sm.each_within.iter().zip(&sm.each_over_2x) {
+                    let _ = write!(s, " {w} / {o} |");
+                }
+                let _ = writeln!(s, " |");
             }
         }
         if !self.skipped.is_empty() {
@@ -452,6 +478,29 @@ mod tests {
         for c in b.cases.iter().filter(|c| c.profile.starts_with("bias")) {
             assert!(c.ne_psi[PIPELINE] <= 3.5 * best_peer(&c.ne_psi) + 0.05, "{} / {}: {:?}", c.base, c.profile, c.ne_psi);
         }
+    }
+
+    #[test]
+    fn each_method_is_counted_against_the_best_of_its_others_hand_worked() {
+        // Columns: raw, HDR, Fusion, ZARU, pipeline, smoothed.
+        let row = |ne: [f64; 6]| CaseRow {
+            base: "b".into(),
+            profile: "p".into(),
+            training: true,
+            duration_min: 1.0,
+            ratio: ne[PIPELINE] / best_peer(&ne),
+            within: ne[PIPELINE] <= 1.25 * best_peer(&ne) + 0.05,
+            ne_psi: ne.to_vec(),
+        };
+        // A: the pipeline (0.4) is the best causal method; raw's others' best is 0.4, so raw
+        // (1.0 > 0.85) is over 2x, HDR (0.5 <= 0.55) within; smoothed against 0.4 within.
+        // B: raw (0.2) best; the others' 0.29 <= 0.30 within; the pipeline 0.5 > 0.45 and
+        // smoothed 0.6 over 2x.
+        let (a, b) = (row([1.0, 0.5, 2.0, 3.0, 0.4, 0.1]), row([0.2, 0.29, 0.29, 0.29, 0.5, 0.6]));
+        let s = summarize(&[&a, &b]).unwrap();
+        assert_eq!(s.each_within, vec![1, 2, 1, 1, 1, 1]);
+        assert_eq!(s.each_over_2x, vec![1, 0, 1, 1, 1, 1]);
+        assert_eq!((s.each_within[PIPELINE], s.each_over_2x[PIPELINE]), (s.n_within, s.n_over_2x));
     }
 
     #[test]
