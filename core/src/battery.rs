@@ -335,16 +335,15 @@ impl Battery {
     /// Markdown: the two summaries, then every case (best causal method in bold).
     pub fn to_markdown(&self, cases: bool) -> String {
         let mut s = String::new();
-        let head = |s: &mut String, first: &str| {
+        let head = |s: &mut String, first: &str, last: Option<&str>| {
             let _ = write!(s, "| {first} |");
-            for m in &self.methods {
+            for m in self.methods.iter().map(String::as_str).chain(last) {
                 let _ = write!(s, " {m} |");
             }
-            let _ = writeln!(s, " pipeline / best other |");
-            let _ = writeln!(s, "|---|{}---:|", "---:|".repeat(self.methods.len()));
+            let _ = writeln!(s, "\n|---|{}", "---:|".repeat(self.methods.len() + last.is_some() as usize));
         };
         let _ = writeln!(s, "Mean NE_psi (deg/min) per method; \"smoothed\" is offline (non-causal) and not a peer.\n");
-        head(&mut s, "cases");
+        head(&mut s, "cases", Some("pipeline / best other"));
         for (label, sm) in [("training", &self.training), ("scoring", &self.scoring)] {
             if let Some(sm) = sm {
                 let _ = write!(s, "| {label} ({}) |", sm.n_cases);
@@ -371,14 +370,14 @@ impl Battery {
             }
         }
         let _ = writeln!(s, "\nThe same two counts for every method against the best of its others (the pipeline is one of a peer's others; smoothed is measured against every causal method):\n");
-        head(&mut s, "cases: within 1.25x + 0.05 / worse than 2x + 0.05");
+        head(&mut s, "cases: within 1.25x + 0.05 / worse than 2x + 0.05", None);
         for (label, sm) in [("training", &self.training), ("scoring", &self.scoring)] {
             if let Some(sm) = sm {
                 let _ = write!(s, "| {label} ({}) |", sm.n_cases);
                 for (w, o) in sm.each_within.iter().zip(&sm.each_over_2x) {
                     let _ = write!(s, " {w} / {o} |");
                 }
-                let _ = writeln!(s, " |");
+                let _ = writeln!(s);
             }
         }
         if !self.skipped.is_empty() {
@@ -386,7 +385,7 @@ impl Battery {
         }
         if cases {
             let _ = writeln!(s);
-            head(&mut s, "case (T = training)");
+            head(&mut s, "case (T = training)", Some("pipeline / best other"));
             for c in &self.cases {
                 let best = best_peer(&c.ne_psi).min(c.ne_psi[PIPELINE]);
                 let _ = write!(s, "| {}{} / {} |", if c.training { "T " } else { "" }, c.base, c.profile);
