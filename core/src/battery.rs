@@ -243,7 +243,7 @@ fn score_case(log: &DriveLog, params: &PipelineParams, tuned: Option<HdrParams>)
 
 /// Best causal peer of a row (every column but the pipeline's two).
 pub fn best_peer(ne: &[f64]) -> f64 {
-    ne.iter().enumerate().filter(|(i, _)| *i != PIPELINE && *i != SMOOTHED).map(|(_, v)| *v).fold(f64::INFINITY, f64::min)
+    best_other_than(ne, PIPELINE)
 }
 
 /// Runs every (base, profile) case of the split.
@@ -323,7 +323,7 @@ pub fn summarize(cases: &[&CaseRow]) -> Option<Summary> {
         n_cases: cases.len(),
         mean_ratio: mean[PIPELINE] / best_other,
         n_within: cases.iter().filter(|c| c.within).count(),
-        n_over_2x: cases.iter().filter(|c| c.ne_psi[PIPELINE] > 2.0 * best_peer(&c.ne_psi) + 0.05).count(),
+        n_over_2x: over_2x(PIPELINE),
         worst: format!("{} / {}", worst.base, worst.profile),
         worst_ratio: worst.ratio,
         n_worse_than_raw: cases.iter().filter(|c| c.ne_psi[PIPELINE] > 1.1 * c.ne_psi[0] + 1e-9).count(),

@@ -282,11 +282,7 @@ impl Pipeline {
     fn stop_evidence(&mut self, time_s: f64, rate_dps: f64, still: bool, lead_in: bool) -> Vec<f64> {
         let mut stops: Vec<f64> = Vec::new();
         if lead_in {
-            // A declared lead-in is trusted to be still, but not with a rate no bias has
-            // (a log whose `# bias_s:` covers a turn): that would set the bias to the turn.
-            if rate_dps.abs() <= self.p.max_bias_dps {
-                stops.push(rate_dps);
-            }
+            stops.push(rate_dps);
         } else if still {
             let start = *self.stop_start_s.get_or_insert(time_s);
             if start == time_s {
@@ -298,9 +294,7 @@ impl Pipeline {
                     self.pending.pop_front();
                 } else if time_s - t >= self.p.min_still_s {
                     self.pending.pop_front();
-                    if z.abs() <= self.p.max_bias_dps {
-                        stops.push(z);
-                    }
+                    stops.push(z);
                 } else {
                     break;
                 }
@@ -309,13 +303,12 @@ impl Pipeline {
             self.stop_start_s = None;
             self.pending.clear();
         }
-        if !lead_in {
-            // Steady within the stop: a block far from the stop's own mean is a slow turn.
-            let tol = 4.0 * self.p.stop_sigma_dps + 0.1;
-            let mean = self.stop.mean;
-            let n = self.stop.n;
-            stops.retain(|&z| n == 0 || (z - mean).abs() <= tol);
-        }
+        // Plausible as a bias, stop or declared lead-in alike: a faster rate is a turn (a slow
+        // turn with the GPS speed held at zero, a `# bias_s:` that covers a turn). And, but
+        // for the lead-in, steady within the stop: a block far from its mean is a slow turn.
+        let (max, tol) = (self.p.max_bias_dps, 4.0 * self.p.stop_sigma_dps + 0.1);
+        let (mean, n) = (self.stop.mean, self.stop.n);
+        stops.retain(|&z| z.abs() <= max && (lead_in || n == 0 || (z - mean).abs() <= tol));
         for &z in &stops {
             self.stop.add(time_s, z);
         }

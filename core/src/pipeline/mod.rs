@@ -1,7 +1,6 @@
-//! The recommended drift reduction, beyond the paper: a bank of bias Kalman filters
-//! (slow, medium, fast bias walk, weighed by their likelihood) fed by stops and, with a
-//! mixture likelihood, by HDR's straight-road heuristic; guards re-open the bias when the
-//! evidence says it moved. Causal and streaming ([`Pipeline`]), with an offline smoothed
+//! The recommended drift reduction, beyond the paper: a bank of small Kalman filters (bias
+//! walks x warm-up terms x road levels, weighed by their Huber likelihood) fed by stops and
+//! by HDR's straight-road heuristic; a guard re-opens the bias when a stop says it moved. Causal and streaming ([`Pipeline`]), with an offline smoothed
 //! mode (Rauch-Tung-Striebel over the whole log, held to the causal heading at stops;
 //! labelled non-causal). Design and what was
 //! tried and dropped: docs/pipeline.md. `gyrodrift hdr` stays the paper's exact method.
