@@ -328,3 +328,47 @@ fn a_lead_in_block_with_no_plausible_bias_is_not_evidence() {
     let (b, _) = f.bias();
     assert!((b - 0.4).abs() < 0.01, "bias {b}");
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+    /// The whole run bounded too, the smoothed bias after it is held to the causal heading at
+    /// stops included: that hold shifts it by whatever the causal heading did, and across a
+    /// declared lead-in that covers a turn (33.8, -12.1, 6.8, -5.0 deg/s in a 15 s `bias_s`)
+    /// it reached 9.8 deg/s before the smoothed bias was projected after the hold as well.
+    #[test]
+    fn the_whole_run_is_bounded_smoothed_bias_after_the_hold_included(
+        blocks in proptest::collection::vec((0.2f64..3.0, -40.0f64..40.0, proptest::prelude::any::<bool>()), 1..300),
+        lead_in_s in 0.0f64..30.0,
+    ) {
+        let p = PipelineParams::default();
+        let mut b = crate::still::Blocks::default();
+        let mut t = 0.0;
+        for (dt, rate, still) in blocks {
+            t += dt;
+            b.time_s.push(t);
+            b.rate_dps.push(rate);
+            b.temp_c.push(f64::NAN);
+            b.still.push(still);
+        }
+        let tr = run_blocks(&b, p, lead_in_s).unwrap();
+        for (x, h) in tr.bias_smoothed_dps.iter().zip(&tr.heading_smoothed_deg) {
+            proptest::prop_assert!(x.is_finite() && x.abs() <= p.max_bias_dps && h.is_finite(), "smoothed bias {x}, heading {h}");
+        }
+    }
+}
+
+#[test]
+fn a_lead_in_over_a_turn_leaves_the_smoothed_bias_bounded() {
+    // The property test's shrunk case: a 15 s declared lead-in over 6 blocks of a turn.
+    let mut b = crate::still::Blocks::default();
+    let mut t = 0.0;
+    for (dt, r) in [(0.2, 33.79), (0.2, -12.10), (1.58, 6.76), (1.26, -4.99), (2.63, 0.0), (0.2, 0.0)] {
+        t += dt;
+        b.time_s.push(t);
+        b.rate_dps.push(r);
+        b.temp_c.push(f64::NAN);
+        b.still.push(false);
+    }
+    let tr = run_blocks(&b, PipelineParams::default(), 15.24).unwrap();
+    assert!(tr.bias_smoothed_dps.iter().all(|x| x.abs() <= 5.0), "{:?}", tr.bias_smoothed_dps);
+}
