@@ -276,9 +276,9 @@ impl Pipeline {
         Ok(out)
     }
 
-    /// This block's stop evidence: the lead-in's every block; a stop's blocks once they are
-    /// `min_still_s` from both of its ends (so delayed), plausible as a bias and steady
-    /// within the stop. Never judged by closeness to the estimate.
+    /// This block's stop evidence: the lead-in's blocks at once, a stop's once they are
+    /// `min_still_s` from both of its ends (so delayed); either plausible as a bias and
+    /// steady within its stop or lead-in. Never judged by closeness to the estimate.
     fn stop_evidence(&mut self, time_s: f64, rate_dps: f64, still: bool, lead_in: bool) -> Vec<f64> {
         let mut stops: Vec<f64> = Vec::new();
         if lead_in {
@@ -304,11 +304,12 @@ impl Pipeline {
             self.pending.clear();
         }
         // Plausible as a bias, stop or declared lead-in alike: a faster rate is a turn (a slow
-        // turn with the GPS speed held at zero, a `# bias_s:` that covers a turn). And, but
-        // for the lead-in, steady within the stop: a block far from its mean is a slow turn.
+        // turn with the GPS speed held at zero, a `# bias_s:` that covers a turn). And steady
+        // within the stop or the lead-in: a block far from its mean is a slow turn (a car that
+        // pulls away before the declared lead-in ends).
         let (max, tol) = (self.p.max_bias_dps, 4.0 * self.p.stop_sigma_dps + 0.1);
         let (mean, n) = (self.stop.mean, self.stop.n);
-        stops.retain(|&z| z.abs() <= max && (lead_in || n == 0 || (z - mean).abs() <= tol));
+        stops.retain(|&z| z.abs() <= max && (n == 0 || (z - mean).abs() <= tol));
         for &z in &stops {
             self.stop.add(time_s, z);
         }

@@ -372,3 +372,16 @@ fn a_lead_in_over_a_turn_leaves_the_smoothed_bias_bounded() {
     let tr = run_blocks(&b, PipelineParams::default(), 15.24).unwrap();
     assert!(tr.bias_smoothed_dps.iter().all(|x| x.abs() <= 5.0), "{:?}", tr.bias_smoothed_dps);
 }
+
+#[test]
+fn a_declared_lead_in_that_outlasts_the_standing_is_judged_steady_like_a_stop() {
+    // `bias_s: 10`, but the car pulls away into a slow 3 deg/s turn after 5 s: the turn's
+    // blocks are plausible as a bias (under 5 deg/s) but not steady with the standing
+    // ones, so the bias stays the standing rate (0.4), not their mean (1.56).
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 10.0).unwrap();
+    for t in 0..9 {
+        f.update(t as f64, if t < 5 { 0.4 } else { 3.0 }, true).unwrap();
+    }
+    let (b, _) = f.bias();
+    assert!((b - 0.4).abs() < 0.01, "bias {b}");
+}
