@@ -67,8 +67,8 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     }
     let mut bias = g.smoothed_bias();
     hold_to_stops(&tr, &blocks.rate_dps, &mut bias);
-    // Bounded like the causal bias: a hold across a declared lead-in that covers a turn
-    // shifted it to 9.8 deg/s (property test below).
+    // Bounded like the causal bias: the hold shifts a span by whatever the causal heading
+    // did over it (9.8 deg/s across a lead-in over a turn; pipeline::tests).
     let m = params.max_bias_dps;
     bias.iter_mut().for_each(|b| *b = b.max(-m).min(m));
     tr.bias_smoothed_dps = bias;

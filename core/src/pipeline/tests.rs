@@ -329,28 +329,33 @@ fn a_lead_in_block_with_no_plausible_bias_is_not_evidence() {
     assert!((b - 0.4).abs() < 0.01, "bias {b}");
 }
 
+/// 1 Hz-ish blocks from (duration s, rate deg/s, still) triples, times accumulated.
+fn blocks_of(items: &[(f64, f64, bool)]) -> crate::still::Blocks {
+    let mut b = crate::still::Blocks::default();
+    let mut t = 0.0;
+    for &(dt, rate, still) in items {
+        t += dt;
+        b.time_s.push(t);
+        b.rate_dps.push(rate);
+        b.temp_c.push(f64::NAN);
+        b.still.push(still);
+    }
+    b
+}
+
 proptest::proptest! {
     #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
     /// The whole run bounded too, the smoothed bias after it is held to the causal heading at
-    /// stops included: that hold shifts it by whatever the causal heading did, and across a
-    /// declared lead-in that covers a turn (33.8, -12.1, 6.8, -5.0 deg/s in a 15 s `bias_s`)
-    /// it reached 9.8 deg/s before the smoothed bias was projected after the hold as well.
+    /// stops included: the hold shifts a span's bias by whatever the causal heading did over
+    /// it, and reached 9.8 deg/s across a declared lead-in that covers a turn, -6.0 after a
+    /// turn into a stop with a slow rotation (below), before it was projected after the hold.
     #[test]
     fn the_whole_run_is_bounded_smoothed_bias_after_the_hold_included(
-        blocks in proptest::collection::vec((0.2f64..3.0, -40.0f64..40.0, proptest::prelude::any::<bool>()), 1..300),
+        items in proptest::collection::vec((0.2f64..3.0, -40.0f64..40.0, proptest::prelude::any::<bool>()), 1..300),
         lead_in_s in 0.0f64..30.0,
     ) {
         let p = PipelineParams::default();
-        let mut b = crate::still::Blocks::default();
-        let mut t = 0.0;
-        for (dt, rate, still) in blocks {
-            t += dt;
-            b.time_s.push(t);
-            b.rate_dps.push(rate);
-            b.temp_c.push(f64::NAN);
-            b.still.push(still);
-        }
-        let tr = run_blocks(&b, p, lead_in_s).unwrap();
+        let tr = run_blocks(&blocks_of(&items), p, lead_in_s).unwrap();
         for (x, h) in tr.bias_smoothed_dps.iter().zip(&tr.heading_smoothed_deg) {
             proptest::prop_assert!(x.is_finite() && x.abs() <= p.max_bias_dps && h.is_finite(), "smoothed bias {x}, heading {h}");
         }
@@ -358,18 +363,13 @@ proptest::proptest! {
 }
 
 #[test]
-fn a_lead_in_over_a_turn_leaves_the_smoothed_bias_bounded() {
-    // The property test's shrunk case: a 15 s declared lead-in over 6 blocks of a turn.
-    let mut b = crate::still::Blocks::default();
-    let mut t = 0.0;
-    for (dt, r) in [(0.2, 33.79), (0.2, -12.10), (1.58, 6.76), (1.26, -4.99), (2.63, 0.0), (0.2, 0.0)] {
-        t += dt;
-        b.time_s.push(t);
-        b.rate_dps.push(r);
-        b.temp_c.push(f64::NAN);
-        b.still.push(false);
-    }
-    let tr = run_blocks(&b, PipelineParams::default(), 15.24).unwrap();
+fn a_turn_into_a_stop_leaves_the_smoothed_bias_bounded() {
+    // The property test's shrunk case: 30 s straight, a 40 deg/s block, then a stop whose
+    // blocks read -3.9 and -4.1 deg/s (plausible, steady): without the projection after the
+    // hold the smoothed bias reached -6.0 deg/s.
+    let mut items = vec![(2.0, 0.0, false); 15];
+    items.extend([(2.3, 39.6, false), (2.2, 0.0, true), (2.4, -3.93, true), (1.3, -4.15, true), (1.8, 0.0, true)]);
+    let tr = run_blocks(&blocks_of(&items), PipelineParams::default(), 0.0).unwrap();
     assert!(tr.bias_smoothed_dps.iter().all(|x| x.abs() <= 5.0), "{:?}", tr.bias_smoothed_dps);
 }
 
@@ -377,7 +377,7 @@ fn a_lead_in_over_a_turn_leaves_the_smoothed_bias_bounded() {
 fn a_declared_lead_in_that_outlasts_the_standing_is_judged_steady_like_a_stop() {
     // `bias_s: 10`, but the car pulls away into a slow 3 deg/s turn after 5 s: the turn's
     // blocks are plausible as a bias (under 5 deg/s) but not steady with the standing
-    // ones, so the bias stays the standing rate (0.4), not their mean (1.56).
+    // ones, so the bias stays the standing rate (0.4; 1.68 with the lead-in exempt).
     let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 10.0).unwrap();
     for t in 0..9 {
         f.update(t as f64, if t < 5 { 0.4 } else { 3.0 }, true).unwrap();
