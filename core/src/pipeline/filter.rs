@@ -176,8 +176,7 @@ impl Pipeline {
                 norm[t] += w;
             }
         }
-        let m = self.p.max_bias_dps;
-        out.iter().zip(&norm).map(|(o, w)| (if *w > 0.0 { o / w } else { *o / k as f64 }).max(-m).min(m)).collect()
+        out.iter().zip(&norm).map(|(o, w)| self.p.bounded_bias_dps(if *w > 0.0 { o / w } else { *o / k as f64 })).collect()
     }
 
     /// Normalised hypothesis weights.
@@ -196,7 +195,7 @@ impl Pipeline {
         let w = self.weights();
         let b: f64 = self.models.iter().zip(&w).map(|(m, wi)| wi * m.bias().0).sum();
         let p: f64 = self.models.iter().zip(&w).map(|(m, wi)| wi * (m.bias().1 + (m.bias().0 - b).powi(2))).sum();
-        (b.max(-self.p.max_bias_dps).min(self.p.max_bias_dps), p)
+        (self.p.bounded_bias_dps(b), p)
     }
 
     /// One block: its end time, mean raw rate, and whether the vehicle stood.

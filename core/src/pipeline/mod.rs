@@ -69,8 +69,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     hold_to_stops(&tr, &blocks.rate_dps, &mut bias);
     // Bounded like the causal bias: the hold shifts a span by whatever the causal heading
     // did over it (9.8 deg/s across a lead-in over a turn; pipeline::tests).
-    let m = params.max_bias_dps;
-    bias.iter_mut().for_each(|b| *b = b.max(-m).min(m));
+    bias.iter_mut().for_each(|b| *b = params.bounded_bias_dps(*b));
     tr.bias_smoothed_dps = bias;
     let mut h = 0.0;
     for i in 0..n {

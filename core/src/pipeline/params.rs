@@ -117,6 +117,12 @@ impl PipelineParams {
         [r / k, r, r * k]
     }
 
+    /// A bias projected onto +-max_bias_dps, the widest the filter accepts (causal, smoothed
+    /// and held alike). `max` / `min`: `f64::clamp` links a panic message (BENCHMARKS.md).
+    pub fn bounded_bias_dps(&self, b: f64) -> f64 {
+        b.max(-self.max_bias_dps).min(self.max_bias_dps)
+    }
+
     /// Every setting finite and in range.
     pub fn validate(&self) -> Result<()> {
         let pos = [

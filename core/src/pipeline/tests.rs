@@ -288,6 +288,12 @@ fn smoothed_heading_is_held_to_the_causal_one_at_stops_hand_worked() {
     assert!(b.iter().zip(want).all(|(g, w)| (g - w).abs() < 1e-12), "{b:?}");
 }
 
+/// Arbitrary block sequences for the property tests: (duration s, rate deg/s, still), rates
+/// far beyond any bias, stops anywhere, irregular times.
+fn any_blocks(max_len: usize) -> impl proptest::strategy::Strategy<Value = Vec<(f64, f64, bool)>> {
+    proptest::collection::vec((0.2f64..3.0, -40.0f64..40.0, proptest::prelude::any::<bool>()), 1..max_len)
+}
+
 proptest::proptest! {
     #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
     /// No divergence by construction, whatever the gyro does: on any finite block sequence
@@ -298,7 +304,7 @@ proptest::proptest! {
     /// extrapolated to 10 deg/s here).
     #[test]
     fn never_diverges_on_any_block_sequence(
-        blocks in proptest::collection::vec((0.2f64..3.0, -40.0f64..40.0, proptest::prelude::any::<bool>()), 1..400),
+        blocks in any_blocks(400),
         lead_in_s in 0.0f64..30.0,
     ) {
         let p = PipelineParams::default();
@@ -313,6 +319,22 @@ proptest::proptest! {
         }
         for b in f.smoothed_bias() {
             proptest::prop_assert!(b.is_finite() && b.abs() <= p.max_bias_dps, "smoothed bias {b}");
+        }
+    }
+
+    /// The whole run bounded too, the smoothed bias after it is held to the causal heading at
+    /// stops included: the hold shifts a span's bias by whatever the causal heading did over
+    /// it, and reached 9.8 deg/s across a declared lead-in that covers a turn, -6.0 after a
+    /// turn into a stop with a slow rotation (below), before it was projected after the hold.
+    #[test]
+    fn the_whole_run_is_bounded_smoothed_bias_after_the_hold_included(
+        items in any_blocks(300),
+        lead_in_s in 0.0f64..30.0,
+    ) {
+        let p = PipelineParams::default();
+        let tr = run_blocks(&blocks_of(&items), p, lead_in_s).unwrap();
+        for (x, h) in tr.bias_smoothed_dps.iter().zip(&tr.heading_smoothed_deg) {
+            proptest::prop_assert!(x.is_finite() && x.abs() <= p.max_bias_dps && h.is_finite(), "smoothed bias {x}, heading {h}");
         }
     }
 }
@@ -341,25 +363,6 @@ fn blocks_of(items: &[(f64, f64, bool)]) -> crate::still::Blocks {
         b.still.push(still);
     }
     b
-}
-
-proptest::proptest! {
-    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
-    /// The whole run bounded too, the smoothed bias after it is held to the causal heading at
-    /// stops included: the hold shifts a span's bias by whatever the causal heading did over
-    /// it, and reached 9.8 deg/s across a declared lead-in that covers a turn, -6.0 after a
-    /// turn into a stop with a slow rotation (below), before it was projected after the hold.
-    #[test]
-    fn the_whole_run_is_bounded_smoothed_bias_after_the_hold_included(
-        items in proptest::collection::vec((0.2f64..3.0, -40.0f64..40.0, proptest::prelude::any::<bool>()), 1..300),
-        lead_in_s in 0.0f64..30.0,
-    ) {
-        let p = PipelineParams::default();
-        let tr = run_blocks(&blocks_of(&items), p, lead_in_s).unwrap();
-        for (x, h) in tr.bias_smoothed_dps.iter().zip(&tr.heading_smoothed_deg) {
-            proptest::prop_assert!(x.is_finite() && x.abs() <= p.max_bias_dps && h.is_finite(), "smoothed bias {x}, heading {h}");
-        }
-    }
 }
 
 #[test]
