@@ -84,6 +84,7 @@ pub fn profiles() -> Vec<Profile> {
         p("rate-dep 1 %", true, GyroErrors { rate_dep: 0.01, ..e }),
         p("g-sens 0.05", true, GyroErrors { g_sens_dps_per_mps2: 0.05, ..e }),
         p("lsb 0.1", true, GyroErrors { lsb_dps: 0.1, ..e }),
+        p("vibration 0.3 / +0.05", true, GyroErrors { vibration_noise_dps: 0.3, vibration_bias_dps: 0.05, seed: 14, ..e }),
         p(
             "cheap MEMS A cut",
             true,
@@ -106,6 +107,8 @@ pub fn profiles() -> Vec<Profile> {
         p("rate-dep -1 %", false, GyroErrors { rate_dep: -0.01, ..e }),
         p("g-sens -0.1", false, GyroErrors { g_sens_dps_per_mps2: -0.1, ..e }),
         p("lsb 0.05", false, GyroErrors { lsb_dps: 0.05, ..e }),
+        p("vibration 0.15 / +0.02", false, GyroErrors { vibration_noise_dps: 0.15, vibration_bias_dps: 0.02, seed: 26, ..e }),
+        p("vibration 0.6 / -0.1", false, GyroErrors { vibration_noise_dps: 0.6, vibration_bias_dps: -0.1, seed: 27, ..e }),
         p(
             "cheap MEMS B cut",
             false,
