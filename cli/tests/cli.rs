@@ -468,3 +468,26 @@ fn report_and_compare_as_csv() {
     assert!(text.starts_with("name,duration_min,raw,hdr_table_iii,hdr_tuned,pipeline") && text.lines().count() == 3, "{text}");
     assert_eq!(run(&["report", p.to_str().unwrap(), "--csv", "--json"]).status.code(), Some(2));
 }
+
+/// `battery` on its simulated half alone (3 min drives, training split): the summary's
+/// goals as JSON, each verdict agreeing with the counts it is measured from, and the
+/// good-gyro goal absent (no recorded Pixel drive was given).
+#[test]
+fn battery_reports_the_goals_it_measures() {
+    let out = run(&["battery", "--minutes", "3", "--split", "training", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["scoring"].is_null());
+    let s = &v["training"];
+    let goals = s["goals"].as_array().unwrap();
+    let names: Vec<&str> = goals.iter().map(|g| g["goal"].as_str().unwrap()).collect();
+    assert_eq!(names.len(), 5, "{names:?}");
+    assert!(names.iter().all(|n| !n.contains("Pixel")), "{names:?}");
+    let n = s["n_cases"].as_f64().unwrap();
+    assert_eq!(goals[1]["measured"].as_f64(), s["n_over_2x"].as_f64());
+    assert_eq!(goals[1]["holds"].as_bool(), Some(s["n_over_2x"].as_u64() == Some(0)));
+    assert_eq!(goals[2]["measured"].as_f64(), Some(s["n_within"].as_f64().unwrap() / n));
+    assert_eq!(goals[4]["measured"].as_f64(), s["n_worse_than_raw"].as_f64());
+    let text = String::from_utf8(run(&["battery", "--minutes", "3", "--split", "training"]).stdout).unwrap();
+    assert!(text.contains("| training | no case worse than 2x the best other + 0.05 |"), "{text}");
+}
