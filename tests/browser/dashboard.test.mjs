@@ -837,6 +837,20 @@ test("at phone width the log list stacks above the views and the charts take the
       const b = await box(sel);
       assert.ok(b && b.x >= 0 && b.x + b.width <= 391, `${sel} inside 390 px: ${JSON.stringify(b)}`);
     }
+    // A chart's legend wraps beside its CSV and PNG buttons, never under them.
+    const clashes = await page.evaluate(() => {
+      const meet = (a, b) => a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom;
+      const out = [];
+      for (const c of document.querySelectorAll("section:not([hidden]) .chart")) {
+        const keys = [...c.querySelectorAll(".legend .key")].map((k) => k.getBoundingClientRect());
+        for (const b of c.querySelectorAll("button.csv, button.png")) {
+          const r = b.getBoundingClientRect();
+          if (r.width > 0 && keys.some((k) => meet(k, r))) out.push(c.querySelector("canvas")?.id);
+        }
+      }
+      return out;
+    });
+    assert.deepEqual(clashes, []);
     await page.screenshot({ path: join(ARTIFACTS, "phone.png"), fullPage: true });
     // a tablet (820 px) stacks too
     await page.setViewportSize({ width: 820, height: 1000 });

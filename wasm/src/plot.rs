@@ -286,6 +286,29 @@ fn ranges(spec: &Spec, columns: usize) -> (f64, f64, f64, f64, Decimated<'_>) {
     (x0, x1, y0, y1, decimated)
 }
 
+/// The chart's title and its font size: `full` px, smaller down to `least` when the title is
+/// wider than `avail` px (a phone), and cut at a word with an ellipsis below that, so a title
+/// never runs off the canvas.
+fn fit_caption(root: &DrawingArea<CanvasBackend, Shift>, title: &str, avail: u32, full: i32, least: i32) -> (String, i32) {
+    let width = |t: &str, size: i32| root.estimate_text_size(t, &("sans-serif", size).into_font().into()).map_or(0, |(w, _)| w);
+    let w_full = width(title, full);
+    if w_full <= avail {
+        return (title.to_string(), full);
+    }
+    let size = ((full as f64 * avail as f64 / w_full as f64).floor() as i32).clamp(least, full);
+    if width(title, size) <= avail {
+        return (title.to_string(), size);
+    }
+    let words: Vec<&str> = title.split(' ').collect();
+    for n in (1..words.len()).rev() {
+        let cut = format!("{}…", words[..n].join(" "));
+        if width(&cut, size) <= avail {
+            return (cut, size);
+        }
+    }
+    (title.to_string(), size)
+}
+
 fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout, Box<dyn std::error::Error>> {
     root.fill(&WHITE)?;
     let dpr = spec.dpr.clamp(0.5, 4.0);
@@ -308,8 +331,9 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
     // log one (drawn linear in log10).
     let tick = |log: bool, a: f64, b: f64| if log { axis::log_ticks(a, b, 12) } else { axis::ticks(a, b, 10) };
     let (x_ticks, y_ticks) = (tick(spec.log_x, cx0, cx1), tick(spec.log_y, cy0, cy1));
+    let (title, title_px) = fit_caption(root, &spec.title, w.saturating_sub(px(24.0).max(0) as u32), px(15.0), px(11.0));
     let mut chart = ChartBuilder::on(root)
-        .caption(&spec.title, ("sans-serif", px(15.0)).into_font())
+        .caption(&title, ("sans-serif", title_px).into_font())
         .margin(px(8.0))
         .x_label_area_size(px(34.0))
         .y_label_area_size(px(62.0))
