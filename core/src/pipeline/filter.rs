@@ -58,6 +58,9 @@ pub struct Pipeline {
     pending: VecDeque<(f64, f64)>,
     stop: StopStats,
     window: VecDeque<(f64, f64)>,
+    /// This stop's evidence so far as one change: the bias change, the walk model's integral
+    /// correction, and the heading correction applied (deg/s, deg, deg).
+    stop_change: (f64, f64, f64),
     /// Hypotheses whose blocks are recorded for the smoother, and their records
     /// (block-major: one per recorded hypothesis per block) with the block's weights.
     recorded: Vec<usize>,
@@ -84,9 +87,13 @@ impl Pipeline {
         let walks = params.bias_walks_dps_per_sqrt_s();
         let roads = params.road_sigmas_dps();
         let warms = params.warm_taus_s();
+        let pair = |i: usize| (walks[i / (N_ROADS * N_WARMS)], roads[(i / N_WARMS) % N_ROADS]);
+        // A hypothesis that cannot tell its bias from its road has no weight, ever (if the
+        // settings leave none that can, every one is kept).
+        let any = (0..N_MODELS).any(|i| params.identifiable(pair(i).0, pair(i).1));
         let models = (0..N_MODELS)
             .map(|i| {
-                let (w, r, tau) = (walks[i / (N_ROADS * N_WARMS)], roads[(i / N_WARMS) % N_ROADS], warms[i % N_WARMS]);
+                let ((w, r), tau) = (pair(i), warms[i % N_WARMS]);
                 let warm_var = if tau.is_finite() { params.warm_sigma_dps * params.warm_sigma_dps } else { 0.0 };
                 // The warm-up term is the bias' change from its start value, independent of
                 // it: b_inf = b_start - d, so b_inf carries both variances and the covariance
@@ -100,7 +107,7 @@ impl Pipeline {
                     warm_tau_s: tau,
                     x: Vector3::new(bias_dps, 0.0, 0.0),
                     p,
-                    logw: 0.0,
+                    logw: if !any || params.identifiable(w, r) { 0.0 } else { f64::NEG_INFINITY },
                     h: 0.0,
                     p_hx: Vector3::zeros(),
                 }
@@ -116,6 +123,7 @@ impl Pipeline {
             pending: VecDeque::new(),
             stop: StopStats::default(),
             window: VecDeque::new(),
+            stop_change: (0.0, 0.0, 0.0),
             recorded: Vec::new(),
             records: Vec::new(),
             record_weights: Vec::new(),
@@ -213,7 +221,9 @@ impl Pipeline {
         let mut fs = vec![Vector3::zeros(); self.models.len()];
         for (m, f) in self.models.iter_mut().zip(fs.iter_mut()) {
             *f = m.predict(dt, a);
-            m.logw *= lam;
+            if m.logw.is_finite() {
+                m.logw *= lam;
+            }
         }
         // Gather this block's evidence, then the guards, then the updates.
         let lead_in = time_s < self.lead_in_end_s;
@@ -225,6 +235,7 @@ impl Pipeline {
             if let Some(t) = self.last_stop_s.take() {
                 self.residuals.clear();
                 self.dating_t0_s = Some(t);
+                self.stop_change = (0.0, 0.0, 0.0);
             }
         }
         if straight {
@@ -248,11 +259,16 @@ impl Pipeline {
         }
         // A stop corrected each hypothesis' bias integral (road evidence does not): the
         // heading takes their mix, its age (the change spread as a walk) re-dated by the
-        // straight blocks since the last stop.
+        // straight blocks since the last stop. The stop's blocks so far are dated as one
+        // change (their sums), and the heading takes what that adds to what they gave before:
+        // a first block's small change is not dated alone with the age of a walk.
         if !stops.is_empty() {
             let dh: f64 = self.models.iter().zip(&h_before).zip(&w).map(|((m, hb), wi)| wi * (m.h - hb)).sum();
             let delta = self.bias().0 - b_before;
-            self.heading_deg -= if delta.abs() > 1e-12 && dh / delta > 0.0 {
+            self.stop_change.0 += delta;
+            self.stop_change.1 += dh;
+            let (delta, dh) = (self.stop_change.0, self.stop_change.1);
+            let correction = if delta.abs() > 1e-12 && dh / delta > 0.0 {
                 let r = self.p.road_sigma_dps;
                 let model = 2.0 * r * r * self.p.road_corr_s + self.p.block_sigma_dps * self.p.block_sigma_dps;
                 let sigma2 = dating::long_run_variance(&self.residuals, 10)
@@ -262,6 +278,8 @@ impl Pipeline {
             } else {
                 dh
             };
+            self.heading_deg -= correction - self.stop_change.2;
+            self.stop_change.2 = correction;
             self.last_stop_s = Some(time_s);
         }
         let out = PipelineOutput {
@@ -334,21 +352,27 @@ impl Pipeline {
         mode.abs() <= self.p.max_bias_dps && (rate_dps - mode).abs() <= gate
     }
 
-    /// A steady stop that the estimate cannot explain: the bias moved, re-open it.
+    /// A steady stop that a hypothesis cannot explain: for it the bias moved, re-open its
+    /// uncertainty. Judged per hypothesis: the bank's mixed variance grows with their spread,
+    /// so a step that the slow hypotheses miss and the fast ones follow would hide from it.
     fn stop_guard(&mut self) -> bool {
         let s = self.stop;
-        let (b, p) = self.bias();
         let r = self.p.stop_sigma_dps * self.p.stop_sigma_dps;
         let steady = s.std() <= 3.0 * self.p.stop_sigma_dps;
         let long = s.last_s - s.first_s >= self.p.jump_min_s;
-        if steady && long && (s.mean - b).abs() > 4.0 * (p + r / s.n as f64).sqrt() {
-            for m in &mut self.models {
-                m.p[(0, 0)] += (s.mean - m.bias().0).powi(2);
-            }
-            self.stop.reopened = true;
-            return true;
+        if !(steady && long) {
+            return false;
         }
-        false
+        let mut reopened = false;
+        for m in self.models.iter_mut().filter(|m| m.logw.is_finite()) {
+            let (b, p) = m.bias();
+            if (s.mean - b).abs() > 4.0 * (p + r / s.n as f64).sqrt() {
+                m.p[(0, 0)] += (s.mean - b).powi(2);
+                reopened = true;
+            }
+        }
+        self.stop.reopened = reopened;
+        reopened
     }
 
     /// The dominant rate of the recent moving blocks (where a road vehicle drives

@@ -117,6 +117,14 @@ impl PipelineParams {
         [r / k, r, r * k]
     }
 
+    /// Whether the bank keeps the hypothesis pairing this bias walk with this road: one whose
+    /// bias walks, over one road correlation time, by more than half its road's spread
+    /// cannot tell its bias from its road and chases the road's curves (docs/pipeline.md).
+    /// With the defaults it drops the fastest walk with the narrowest road only.
+    pub fn identifiable(&self, walk_dps_per_sqrt_s: f64, road_sigma_dps: f64) -> bool {
+        walk_dps_per_sqrt_s * libm::sqrt(self.road_corr_s) <= 0.5 * road_sigma_dps
+    }
+
     /// A bias projected onto +-max_bias_dps, the widest the filter accepts (causal, smoothed
     /// and held alike). `max` / `min`: `f64::clamp` links a panic message (BENCHMARKS.md).
     pub fn bounded_bias_dps(&self, b: f64) -> f64 {
