@@ -335,6 +335,7 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
     let mut chart = ChartBuilder::on(root)
         .caption(&title, ("sans-serif", title_px).into_font())
         .margin(px(8.0))
+        .margin_right(px(16.0))
         .x_label_area_size(px(34.0))
         .y_label_area_size(px(62.0))
         .build_cartesian_2d(Ticked { range: cx0..cx1, ticks: x_ticks.clone() }, Ticked { range: cy0..cy1, ticks: y_ticks.clone() })?;
