@@ -67,7 +67,8 @@ fn regression_guard_on_a_fixed_subset() {
     // stops also correct the heading; 0.46x before that).
     assert!(s.mean_ratio < 0.3, "mean ratio {}", s.mean_ratio);
     // Acquisition without a lead-in: every large-bias case within 3.5x the best peer + 0.05
-    // (worst measured 2.60x, sim-city-crs03-1 / bias +3 cut, against Fusion's offset;
+    // (worst measured 2.28x, sim-city-crs03-1 / bias +3 cut, against Fusion's offset, since
+    // the bank dropped its non-identifiable pair; 2.60x before;
     // 2.75x before the sway's size varied;
     // 2.70x before stops' corrections were dated, 4.09x before the wide start prior).
     for c in b.cases.iter().filter(|c| c.profile.starts_with("bias")) {
