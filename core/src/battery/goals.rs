@@ -1,7 +1,7 @@
 //! The robustness issue's goals, measured on one split's cases, so the verdicts in
 //! docs/battery.md come from a command anyone can re-run (`gyrodrift battery`), not by hand.
 
-use super::{best_peer, CaseRow, PIPELINE};
+use super::{best_peer, summarize, CaseRow, Summary, PIPELINE};
 use crate::eval::col;
 use serde::{Deserialize, Serialize};
 
@@ -34,34 +34,40 @@ fn mean(v: impl Iterator<Item = f64>) -> (f64, usize) {
     (if n == 0 { f64::NAN } else { s / n as f64 }, n)
 }
 
-/// The six goals on these cases; a goal with no case to judge it (no simulated or
-/// good-gyro base in the split) is left out.
+/// The six goals on these cases (their [`summarize`]'s goals; none without cases).
 pub fn goals(cases: &[&CaseRow]) -> Vec<GoalCheck> {
-    let n = cases.len();
-    if n == 0 {
-        return Vec::new();
-    }
-    let m = cases[0].ne_psi.len();
-    let means: Vec<f64> = (0..m).map(|j| mean(cases.iter().map(|c| c.ne_psi[j])).0).collect();
-    let best_other = best_peer(&means);
-    let mut out = vec![check(
-        "mean NE_psi <= 0.7x the best other method's mean",
-        means[PIPELINE] / best_other,
-        0.7,
-        false,
-        format!("{:.3} against {:.3}", means[PIPELINE], best_other),
-    )];
-    let over: Vec<&&CaseRow> = cases.iter().filter(|c| c.ne_psi[PIPELINE] > 2.0 * best_peer(&c.ne_psi) + 0.05).collect();
-    let worst = cases.iter().max_by(|a, b| a.ratio.total_cmp(&b.ratio)).expect("n > 0");
-    out.push(check(
-        "no case worse than 2x the best other + 0.05",
-        over.len() as f64,
-        0.0,
-        false,
-        format!("{} of {n}; worst {:.2}x ({} / {})", over.len(), worst.ratio, worst.base, worst.profile),
-    ));
-    let within = cases.iter().filter(|c| c.within).count();
-    out.push(check(">= 90 % of cases within 1.25x the best other + 0.05", within as f64 / n as f64, 0.9, true, format!("{within} of {n}")));
+    summarize(cases).map_or_else(Vec::new, |s| s.goals)
+}
+
+/// The goals from a split's summary and its cases: the summary's figures, and the two goals
+/// that concern some bases only; a goal with no case to judge it (no simulated or good-gyro
+/// base in the split) is left out.
+pub(super) fn goals_of(s: &Summary, cases: &[&CaseRow]) -> Vec<GoalCheck> {
+    let n = s.n_cases;
+    let best_other = best_peer(&s.mean);
+    let mut out = vec![
+        check(
+            "mean NE_psi <= 0.7x the best other method's mean",
+            s.mean_ratio,
+            0.7,
+            false,
+            format!("{:.3} against {best_other:.3}", s.mean[PIPELINE]),
+        ),
+        check(
+            "no case worse than 2x the best other + 0.05",
+            s.n_over_2x as f64,
+            0.0,
+            false,
+            format!("{} of {n}; worst {:.2}x ({})", s.n_over_2x, s.worst_ratio, s.worst),
+        ),
+        check(
+            ">= 90 % of cases within 1.25x the best other + 0.05",
+            s.n_within as f64 / n as f64,
+            0.9,
+            true,
+            format!("{} of {n}", s.n_within),
+        ),
+    ];
     let sims: Vec<&&CaseRow> = cases.iter().filter(|c| c.simulated).collect();
     if !sims.is_empty() {
         let (p, k) = mean(sims.iter().map(|c| c.ne_psi[PIPELINE]));
@@ -74,8 +80,13 @@ pub fn goals(cases: &[&CaseRow]) -> Vec<GoalCheck> {
             format!("{p:.3} against {h:.3} over {k} cases"),
         ));
     }
-    let worse_raw = cases.iter().filter(|c| c.ne_psi[PIPELINE] > 1.1 * c.ne_psi[col::RAW] + 1e-9).count();
-    out.push(check("never worse than raw integration by more than 10 %", worse_raw as f64, 0.0, false, format!("{worse_raw} of {n}")));
+    out.push(check(
+        "never worse than raw integration by more than 10 %",
+        s.n_worse_than_raw as f64,
+        0.0,
+        false,
+        format!("{} of {n}", s.n_worse_than_raw),
+    ));
     let good: Vec<&&CaseRow> =
         cases.iter().filter(|c| !c.simulated && c.profile == "as-is" && c.base.starts_with(GOOD_GYRO_PREFIX)).collect();
     if !good.is_empty() {

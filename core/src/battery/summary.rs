@@ -1,6 +1,6 @@
-//! Means, counts and the worst case over a split's cases, and the goals on them.
+//! Means, counts and the worst case over a split's cases, and the goals measured from them.
 
-use super::{goals, CaseRow, GoalCheck, PIPELINE, SMOOTHED};
+use super::{goals::goals_of, CaseRow, GoalCheck, PIPELINE, SMOOTHED};
 use serde::{Deserialize, Serialize};
 
 /// Summary over a set of cases.
@@ -25,7 +25,7 @@ pub struct Summary {
     /// of its others; the smoothed mode is measured against every causal method.
     pub each_within: Vec<usize>,
     pub each_over_2x: Vec<usize>,
-    /// The goals measured on these cases ([`goals`]).
+    /// The goals measured on these cases (`goals.rs`).
     pub goals: Vec<GoalCheck>,
 }
 
@@ -49,10 +49,10 @@ pub fn summarize(cases: &[&CaseRow]) -> Option<Summary> {
     let worst = cases.iter().max_by(|a, b| a.ratio.total_cmp(&b.ratio))?;
     let within = |j: usize| cases.iter().filter(|c| c.ne_psi[j] <= 1.25 * best_other_than(&c.ne_psi, j) + 0.05).count();
     let over_2x = |j: usize| cases.iter().filter(|c| c.ne_psi[j] > 2.0 * best_other_than(&c.ne_psi, j) + 0.05).count();
-    Some(Summary {
+    let mut s = Summary {
         each_within: (0..m).map(within).collect(),
         each_over_2x: (0..m).map(over_2x).collect(),
-        goals: goals(cases),
+        goals: Vec::new(),
         n_cases: cases.len(),
         mean_ratio: mean[PIPELINE] / best_other,
         n_within: cases.iter().filter(|c| c.within).count(),
@@ -61,5 +61,7 @@ pub fn summarize(cases: &[&CaseRow]) -> Option<Summary> {
         worst_ratio: worst.ratio,
         n_worse_than_raw: cases.iter().filter(|c| c.ne_psi[PIPELINE] > 1.1 * c.ne_psi[0] + 1e-9).count(),
         mean,
-    })
+    };
+    s.goals = goals_of(&s, cases);
+    Some(s)
 }
