@@ -1,42 +1,113 @@
-//! The bank's ceiling on the battery's training cases: every single hypothesis of the
-//! pipeline's bank run alone (causal heading), scored like the battery. The best of them in
-//! hindsight per case says whether a better weighing could win a case (some hypothesis
+//! The bank's ceiling on the battery's training cases: every hypothesis of the pipeline's
+//! bank run alone (causal heading), scored like the battery against the best causal peer
+//! (raw, Table-III HDR, cross-validated tuned HDR, Fusion's offset, ZARU). The best of them
+//! in hindsight per case says whether a better weighing could win a case (some hypothesis
 //! does) or whether no hypothesis of the model can (docs/pipeline.md).
-//! `cargo run --release --example bank_ceiling -- RECORDED.csv ... > ceiling.json`
-//! (the battery's recorded training bases, imported by their recipes).
-use gyrodrift::{battery, eval::Prepared, pipeline::Pipeline, pipeline::PipelineParams, pipeline::N_MODELS};
+//!
+//! `cargo run --release --example bank_ceiling -- RECORDED.csv ...` (the battery's recorded
+//! training bases, imported by their recipes) prints the table; with `CEILING_JSON=FILE`
+//! it also writes every case: `ne`, each hypothesis' NE_psi alone, and `share`, its mean
+//! weight in the whole bank over the log.
+use gyrodrift::battery::{self, best_peer, PIPELINE};
+use gyrodrift::eval::{standard_methods, Prepared};
+use gyrodrift::pipeline::{Pipeline, PipelineParams, N_MODELS, N_ROADS, N_WARMS};
+
+struct Case {
+    name: String,
+    peers: Vec<f64>,
+    ne: Vec<f64>,
+    share: Vec<f64>,
+}
 
 fn main() {
-    let files: Vec<String> = std::env::args().skip(1).collect();
-    let mut bases: Vec<battery::Base> = files
-        .iter()
+    let mut bases: Vec<battery::Base> = std::env::args()
+        .skip(1)
         .map(|f| {
-            let log = gyrodrift::parse_log(std::fs::File::open(f).unwrap()).unwrap();
-            let stem = std::path::Path::new(f).file_stem().unwrap().to_string_lossy().into_owned();
+            let log = gyrodrift::parse_log(std::fs::File::open(&f).expect("a CSV v1 log")).expect("a CSV v1 log");
+            let stem = std::path::Path::new(&f).file_stem().unwrap().to_string_lossy().into_owned();
             battery::recorded_base(&stem, log)
         })
         .collect();
     bases.extend(battery::simulated_bases(20.0));
+    let tuned = battery::TunedHdr::from_result(&battery::tune_hdr(&bases).expect("tuning"));
     let params = PipelineParams::default();
-    let mut out = Vec::new();
+    let (walks, roads) = (params.bias_walks_dps_per_sqrt_s(), params.road_sigmas_dps());
+    let kept: Vec<usize> =
+        (0..N_MODELS).filter(|&k| params.identifiable(walks[k / (N_ROADS * N_WARMS)], roads[(k / N_WARMS) % N_ROADS])).collect();
+    let mut cases = Vec::new();
     for b in bases.iter().filter(|b| b.training) {
         for pr in battery::profiles().iter().filter(|p| p.training) {
             let log = gyrodrift::sim::inject(&b.log, &pr.errors).unwrap();
             let prep = Prepared::new(&log, None, &params.still).unwrap();
             let Ok(reference) = prep.reference() else { continue };
-            let mut ne = Vec::new();
-            for k in 0..N_MODELS {
+            let peers: Vec<f64> = prep
+                .score_all(&standard_methods(&params, Some(tuned.for_base(&b.name))))
+                .unwrap()
+                .iter()
+                .map(|s| s.ne_psi_deg_per_min)
+                .collect();
+            let bl = &prep.blocks;
+            let run = |only: Option<usize>| {
                 let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, prep.lead_in_end_s()).unwrap();
-                f.restrict(&[k]);
-                let bl = &prep.blocks;
+                if let Some(k) = only {
+                    f.restrict(&[k]);
+                }
                 let psi: Vec<f64> =
                     (0..bl.len()).map(|i| f.update(bl.time_s[i], bl.rate_dps[i], bl.still[i]).unwrap().heading_deg).collect();
-                // A hypothesis the bank never weighs (logw -inf) still runs alone here.
-                let s = gyrodrift::metrics::score(&bl.time_s, &psi, reference).unwrap();
-                ne.push(gyrodrift::metrics::ne_psi(s.e_psi_deg, prep.duration_min));
-            }
-            out.push(format!("{{\"base\":\"{}\",\"profile\":\"{}\",\"ne\":{:?}}}", b.name, pr.name, ne));
+                (psi, f.weight_sums().iter().map(|w| w / bl.len() as f64).collect::<Vec<f64>>())
+            };
+            let ne: Vec<f64> = (0..N_MODELS)
+                .map(|k| {
+                    let s = gyrodrift::metrics::score(&bl.time_s, &run(Some(k)).0, reference).unwrap();
+                    gyrodrift::metrics::ne_psi(s.e_psi_deg, prep.duration_min)
+                })
+                .collect();
+            cases.push(Case { name: format!("{} / {}", b.name, pr.name), peers, ne, share: run(None).1 });
         }
     }
-    println!("[{}]", out.join(",\n"));
+    if let Ok(path) = std::env::var("CEILING_JSON") {
+        let rows: Vec<String> = cases
+            .iter()
+            .map(|c| format!("{{\"case\":\"{}\",\"peers\":{:?},\"ne\":{:?},\"share\":{:?}}}", c.name, c.peers, c.ne, c.share))
+            .collect();
+        std::fs::write(path, format!("[{}]\n", rows.join(",\n"))).unwrap();
+    }
+    println!(
+        "| on the {} training cases | within 1.25x + 0.05 | worse than 2x + 0.05 | worse than raw | worst | mean NE_psi |",
+        cases.len()
+    );
+    println!("|---|---:|---:|---:|---:|---:|");
+    let row = |label: &str, pick: &dyn Fn(&Case) -> f64| {
+        let (mut within, mut over2, mut raw, mut worst, mut sum) = (0, 0, 0, 0.0f64, 0.0);
+        for c in &cases {
+            let (p, b) = (pick(c), best_peer(&c.peers));
+            within += (p <= 1.25 * b + 0.05) as usize;
+            over2 += (p > 2.0 * b + 0.05) as usize;
+            raw += (p > 1.1 * c.peers[0]) as usize;
+            worst = worst.max(p / b);
+            sum += p;
+        }
+        let pct = 100.0 * within as f64 / cases.len() as f64;
+        println!("| {label} | {within} ({pct:.0} %) | {over2} | {raw} | {worst:.2}x | {:.3} |", sum / cases.len() as f64);
+    };
+    row("the pipeline (the bank, weighed by likelihood)", &|c| c.peers[PIPELINE]);
+    let best = |c: &Case| kept.iter().map(|&k| c.ne[k]).fold(f64::INFINITY, f64::min);
+    row("the best hypothesis per case, chosen in hindsight (an oracle)", &best);
+    // One hypothesis per base: the one within 1.25x on most of its profiles.
+    let base_of = |c: &Case| c.name.split(" / ").next().unwrap().to_string();
+    let per_base = |c: &Case| {
+        let same: Vec<&Case> = cases.iter().filter(|d| base_of(d) == base_of(c)).collect();
+        let score = |k: usize| same.iter().filter(|d| d.ne[k] <= 1.25 * best_peer(&d.peers) + 0.05).count();
+        let k = kept.iter().copied().rev().max_by_key(|&k| score(k)).unwrap();
+        c.ne[k]
+    };
+    row("the best hypothesis per base, one for all its profiles (an oracle that knows the drive)", &per_base);
+    let fixed = *kept.iter().rev().max_by_key(|&&k| cases.iter().filter(|c| c.ne[k] <= 1.25 * best_peer(&c.peers) + 0.05).count()).unwrap();
+    let label = format!(
+        "the best single fixed hypothesis (walk {:.0e}, road {} deg/s, warm-up {} s)",
+        walks[fixed / (N_ROADS * N_WARMS)],
+        roads[(fixed / N_WARMS) % N_ROADS],
+        params.warm_taus_s()[fixed % N_WARMS]
+    );
+    row(&label, &|c| c.ne[fixed]);
 }
