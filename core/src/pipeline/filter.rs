@@ -74,6 +74,9 @@ pub struct Pipeline {
     residuals: Vec<(f64, f64)>,
     dating_t0_s: Option<f64>,
     last_stop_s: Option<f64>,
+    /// The declared lead-in gave stop evidence, and the warm-up prior has been sized by it.
+    lead_in_seen: bool,
+    warm_up_sized: bool,
 }
 
 impl Pipeline {
@@ -131,6 +134,8 @@ impl Pipeline {
             residuals: Vec::new(),
             dating_t0_s: None,
             last_stop_s: None,
+            lead_in_seen: false,
+            warm_up_sized: false,
         })
     }
 
@@ -213,6 +218,9 @@ impl Pipeline {
         }
         let dt = self.last_time_s.map_or(0.0, |t| time_s - t);
         self.last_time_s = Some(time_s);
+        if time_s >= self.lead_in_end_s && self.lead_in_seen && !self.warm_up_sized {
+            self.size_warm_up();
+        }
         let (b_before, p_before) = self.bias();
         self.heading_deg += (rate_dps - b_before) * dt;
         // Predict: each hypothesis' random walk and the road rate; weights forget toward equal.
@@ -228,6 +236,7 @@ impl Pipeline {
         // Gather this block's evidence, then the guards, then the updates.
         let lead_in = time_s < self.lead_in_end_s;
         let stops = self.stop_evidence(time_s, rate_dps, still, lead_in);
+        self.lead_in_seen |= lead_in && !stops.is_empty();
         let reopened = !stops.is_empty() && !self.stop.reopened && !lead_in && self.stop_guard();
         let straight = !still && !lead_in && self.is_straight(time_s, rate_dps);
         self.dating_t0_s.get_or_insert(time_s);
@@ -291,6 +300,34 @@ impl Pipeline {
             reopened,
         };
         Ok(out)
+    }
+
+    /// Sizes the warm-up prior by the turn-on bias the lead-in showed: a warm-up is part of
+    /// the turn-on bias that decays, so a gyro that starts within 0.01 deg/s of zero (a
+    /// calibrated one) is not given a 0.3 deg/s warm-up to fit to the road's slow curves
+    /// on a drive without stops. The prior's scale becomes max(|b|, sigma_b) (the turn-on
+    /// bias, or its uncertainty), at most `warm_sigma_dps`. With b_start = b_inf + d fixed,
+    /// d is scaled by rho (x' = A x, P' = A P A^T, A = [[1, 1 - rho, 0], [0, rho, 0],
+    /// [0, 0, 1]]), which after a short lead-in that told nothing of d is the prior's
+    /// rescaling. Logs without a lead-in keep the default (docs/pipeline.md).
+    fn size_warm_up(&mut self) {
+        self.warm_up_sized = true;
+        let (b, p) = self.bias();
+        let rho = b.abs().max(p.sqrt()).min(self.p.warm_sigma_dps) / self.p.warm_sigma_dps;
+        for m in self.models.iter_mut().filter(|m| m.warm_tau_s.is_finite()) {
+            m.x[0] += (1.0 - rho) * m.x[1];
+            m.x[1] *= rho;
+            m.p_hx[0] += (1.0 - rho) * m.p_hx[1];
+            m.p_hx[1] *= rho;
+            for c in 0..3 {
+                m.p[(0, c)] += (1.0 - rho) * m.p[(1, c)];
+                m.p[(1, c)] *= rho;
+            }
+            for r in 0..3 {
+                m.p[(r, 0)] += (1.0 - rho) * m.p[(r, 1)];
+                m.p[(r, 1)] *= rho;
+            }
+        }
     }
 
     /// This block's stop evidence: the lead-in's blocks at once, a stop's once they are
@@ -424,6 +461,44 @@ mod tests {
             assert_eq!(m.x[1], 0.0);
             assert!((m.bias().0 - 3.0 * 0.25 / 0.2525).abs() < 1e-12, "{}", m.bias().0);
             assert!((m.bias().1 - 0.25 * 0.0025 / 0.2525).abs() < 1e-12);
+        }
+    }
+
+    /// A lead-in of nine 1 s blocks at 0.05 deg/s (noise 0.05) leaves the bias at 0.05 +-
+    /// about 0.05 / 3 = 0.0167: the turn-on bias is 1/6 of the 0.3 deg/s warm-up prior, so every
+    /// warm-up term is scaled by rho = 1/6 (its variance by 1/36), the start bias and its
+    /// variance kept. A lead-in at 1 deg/s leaves the prior as it is.
+    #[test]
+    fn the_lead_in_sizes_the_warm_up_prior_hand_worked() {
+        for (z, rho_expected) in [(0.05, 1.0 / 6.0), (1.0, 1.0)] {
+            let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 10.0).unwrap();
+            for t in 1..10 {
+                f.update(t as f64, z, true).unwrap();
+            }
+            assert!(f.lead_in_seen && !f.warm_up_sized);
+            let (b, p) = f.bias();
+            // The walks widen it a little over the nine seconds (at most by 0.01^2 x 9).
+            assert!((b - z).abs() < 1e-4 && p.sqrt() > 0.05 / 3.0 && p.sqrt() < 0.02, "{b} {p}");
+            let before: Vec<Model> = f.models.clone();
+            f.size_warm_up();
+            let rho = b.abs().max(p.sqrt()).min(0.3) / 0.3;
+            assert!((rho - rho_expected).abs() < 1e-3, "{rho}");
+            let sum = |m: &Model| (m.x[0] + m.x[1], m.p[(0, 0)] + 2.0 * m.p[(0, 1)] + m.p[(1, 1)], m.p[(0, 1)] + m.p[(1, 1)]);
+            for (m, o) in f.models.iter().zip(&before) {
+                let k = if o.warm_tau_s.is_finite() { rho } else { 1.0 };
+                assert!((sum(m).0 - sum(o).0).abs() < 1e-12 && (sum(m).1 - sum(o).1).abs() < 1e-12);
+                assert!((m.p[(1, 1)] - k * k * o.p[(1, 1)]).abs() < 1e-12);
+                // Cov(b_start, d) scales with d.
+                assert!((sum(m).2 - k * sum(o).2).abs() < 1e-12);
+                assert_eq!(m.x[2], o.x[2]);
+            }
+            // Through `update`: once, at the first block past the lead-in.
+            let mut g = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 10.0).unwrap();
+            for t in 1..10 {
+                g.update(t as f64, z, true).unwrap();
+            }
+            g.update(10.0, z, false).unwrap();
+            assert!(g.warm_up_sized);
         }
     }
 }
