@@ -54,11 +54,12 @@ fn regression_guard_on_a_fixed_subset() {
     // Never diverges: with an injected error, no case worse than raw integration by more
     // than 10 % + 0.01. As recorded ("as-is") the pipeline may read the meander, sway and
     // clothoid curves of the simulated roads as bias (docs/battery.md): measured up to
-    // 5.97x raw (sim-highway-mems-4, since the highway sway was fitted to the recorded
-    // drives' and its size varies; 3.92x before; 1.56x on sim-city-crs03-1 before the
-    // clothoids); guarded at 6.5x.
+    // 2.50x raw (sim-highway-mems-4, since the lead-in sizes the warm-up prior; 5.97x
+    // before, since the highway sway was fitted to the recorded drives' and its size
+    // varies; 3.92x before that; 1.56x on sim-city-crs03-1 before the clothoids); guarded
+    // at 3x (6.5x before the warm-up prior was sized).
     for c in &b.cases {
-        let limit = if c.profile == "as-is" { 6.5 } else { 1.1 };
+        let limit = if c.profile == "as-is" { 3.0 } else { 1.1 };
         assert!(c.ne_psi[PIPELINE] <= limit * c.ne_psi[0] + 0.01, "{} / {} worse than raw: {:?}", c.base, c.profile, c.ne_psi);
     }
     // The mean beats the best other method's mean by far (measured 0.21x on the roads
