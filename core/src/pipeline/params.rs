@@ -47,8 +47,9 @@ pub struct PipelineParams {
     /// Slowest and fastest bias random walk of the filter bank, deg/s per sqrt(s).
     pub bias_walk_min_dps_per_sqrt_s: f64,
     pub bias_walk_max_dps_per_sqrt_s: f64,
-    /// Warm-up term: prior size of a bias part that decays after power-on, deg/s, and the two
-    /// decay times the bank tries, s.
+    /// Warm-up term: prior size of a bias part that decays after power-on, deg/s (after a
+    /// declared lead-in, at most this: it is sized by the turn-on bias the lead-in shows),
+    /// and the two decay times the bank tries, s.
     pub warm_sigma_dps: f64,
     pub warm_tau_short_s: f64,
     pub warm_tau_long_s: f64,
