@@ -8,9 +8,9 @@
 //! training bases, imported by their recipes) prints the table; with `CEILING_JSON=FILE`
 //! it also writes every case: `ne`, each hypothesis' NE_psi alone, and `share`, its mean
 //! weight in the whole bank over the log.
-use gyrodrift::battery::{self, best_peer, PIPELINE};
+use gyrodrift::battery::{self, best_peer, summarize, CaseRow, PIPELINE};
 use gyrodrift::eval::{standard_methods, Prepared};
-use gyrodrift::pipeline::{Pipeline, PipelineParams, N_MODELS, N_ROADS, N_WARMS};
+use gyrodrift::pipeline::{Pipeline, PipelineParams, N_MODELS};
 
 struct Case {
     name: String,
@@ -31,9 +31,12 @@ fn main() {
     bases.extend(battery::simulated_bases(20.0));
     let tuned = battery::TunedHdr::from_result(&battery::tune_hdr(&bases).expect("tuning"));
     let params = PipelineParams::default();
-    let (walks, roads) = (params.bias_walks_dps_per_sqrt_s(), params.road_sigmas_dps());
-    let kept: Vec<usize> =
-        (0..N_MODELS).filter(|&k| params.identifiable(walks[k / (N_ROADS * N_WARMS)], roads[(k / N_WARMS) % N_ROADS])).collect();
+    let kept: Vec<usize> = (0..N_MODELS)
+        .filter(|&k| {
+            let (walk, road, _) = params.hypothesis(k);
+            params.identifiable(walk, road)
+        })
+        .collect();
     let mut cases = Vec::new();
     for b in bases.iter().filter(|b| b.training) {
         for pr in battery::profiles().iter().filter(|p| p.training) {
@@ -77,18 +80,22 @@ fn main() {
         cases.len()
     );
     println!("|---|---:|---:|---:|---:|---:|");
+    // Each pick in the pipeline's column, counted by the battery's own summary.
     let row = |label: &str, pick: &dyn Fn(&Case) -> f64| {
-        let (mut within, mut over2, mut raw, mut worst, mut sum) = (0, 0, 0, 0.0f64, 0.0);
-        for c in &cases {
-            let (p, b) = (pick(c), best_peer(&c.peers));
-            within += (p <= 1.25 * b + 0.05) as usize;
-            over2 += (p > 2.0 * b + 0.05) as usize;
-            raw += (p > 1.1 * c.peers[0]) as usize;
-            worst = worst.max(p / b);
-            sum += p;
-        }
-        let pct = 100.0 * within as f64 / cases.len() as f64;
-        println!("| {label} | {within} ({pct:.0} %) | {over2} | {raw} | {worst:.2}x | {:.3} |", sum / cases.len() as f64);
+        let rows: Vec<CaseRow> = cases
+            .iter()
+            .map(|c| {
+                let mut ne = c.peers.clone();
+                ne[PIPELINE] = pick(c);
+                CaseRow::new(c.name.clone(), String::new(), true, false, 0.0, ne)
+            })
+            .collect();
+        let s = summarize(&rows.iter().collect::<Vec<_>>()).expect("training cases");
+        let pct = 100.0 * s.n_within as f64 / s.n_cases as f64;
+        println!(
+            "| {label} | {} ({pct:.0} %) | {} | {} | {:.2}x | {:.3} |",
+            s.n_within, s.n_over_2x, s.n_worse_than_raw, s.worst_ratio, s.mean[PIPELINE]
+        );
     };
     row("the pipeline (the bank, weighed by likelihood)", &|c| c.peers[PIPELINE]);
     let best = |c: &Case| kept.iter().map(|&k| c.ne[k]).fold(f64::INFINITY, f64::min);
@@ -103,11 +110,7 @@ fn main() {
     };
     row("the best hypothesis per base, one for all its profiles (an oracle that knows the drive)", &per_base);
     let fixed = *kept.iter().rev().max_by_key(|&&k| cases.iter().filter(|c| c.ne[k] <= 1.25 * best_peer(&c.peers) + 0.05).count()).unwrap();
-    let label = format!(
-        "the best single fixed hypothesis (walk {:.0e}, road {} deg/s, warm-up {} s)",
-        walks[fixed / (N_ROADS * N_WARMS)],
-        roads[(fixed / N_WARMS) % N_ROADS],
-        params.warm_taus_s()[fixed % N_WARMS]
-    );
+    let (walk, road, tau) = params.hypothesis(fixed);
+    let label = format!("the best single fixed hypothesis (walk {walk:.0e}, road {road} deg/s, warm-up {tau} s)");
     row(&label, &|c| c.ne[fixed]);
 }

@@ -201,6 +201,15 @@ pub struct CaseRow {
     pub within: bool,
 }
 
+impl CaseRow {
+    /// A scored case: its ratio to the best causal peer and the goal's band from `ne_psi`
+    /// (NE_psi per method, in [`method_names`]' columns).
+    pub fn new(base: String, profile: String, training: bool, simulated: bool, duration_min: f64, ne_psi: Vec<f64>) -> CaseRow {
+        let (pipe, best) = (ne_psi[PIPELINE], best_peer(&ne_psi));
+        CaseRow { base, profile, training, simulated, duration_min, ratio: pipe / best, within: pipe <= 1.25 * best + 0.05, ne_psi }
+    }
+}
+
 /// The battery's result.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Battery {
@@ -260,20 +269,7 @@ pub fn run(bases: &[Base], profiles: &[Profile], split: Split, params: &Pipeline
     let mut skipped = Vec::new();
     for (base, profile, training, simulated, r) in results {
         match r {
-            Ok((duration_min, ne_psi)) => {
-                let best = best_peer(&ne_psi);
-                let pipe = ne_psi[PIPELINE];
-                cases.push(CaseRow {
-                    base,
-                    profile,
-                    training,
-                    simulated,
-                    duration_min,
-                    ratio: pipe / best,
-                    within: pipe <= 1.25 * best + 0.05,
-                    ne_psi,
-                });
-            }
+            Ok((duration_min, ne_psi)) => cases.push(CaseRow::new(base, profile, training, simulated, duration_min, ne_psi)),
             Err(e) => skipped.push((format!("{base} / {profile}"), e.to_string())),
         }
     }

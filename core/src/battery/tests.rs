@@ -80,16 +80,7 @@ fn regression_guard_on_a_fixed_subset() {
 #[test]
 fn each_method_is_counted_against_the_best_of_its_others_hand_worked() {
     // Columns: raw, HDR, Fusion, ZARU, pipeline, smoothed.
-    let row = |ne: [f64; 6]| CaseRow {
-        base: "b".into(),
-        profile: "p".into(),
-        training: true,
-        simulated: false,
-        duration_min: 1.0,
-        ratio: ne[PIPELINE] / best_peer(&ne),
-        within: ne[PIPELINE] <= 1.25 * best_peer(&ne) + 0.05,
-        ne_psi: ne.to_vec(),
-    };
+    let row = |ne: [f64; 6]| CaseRow::new("b".into(), "p".into(), true, false, 1.0, ne.to_vec());
     // A: the pipeline (0.4) is the best causal method; raw's others' best is 0.4, so raw
     // (1.0 > 0.85) is over 2x, HDR (0.5 <= 0.55) within; smoothed against 0.4 within.
     // B: raw (0.2) best; the others' 0.29 <= 0.30 within; the pipeline 0.5 > 0.45 and
@@ -105,16 +96,7 @@ fn each_method_is_counted_against_the_best_of_its_others_hand_worked() {
 /// pipeline, smoothed).
 #[test]
 fn goals_hand_worked() {
-    let row = |base: &str, simulated: bool, ne: [f64; 6]| CaseRow {
-        base: base.into(),
-        profile: "as-is".into(),
-        training: true,
-        simulated,
-        duration_min: 1.0,
-        ratio: ne[PIPELINE] / best_peer(&ne),
-        within: ne[PIPELINE] <= 1.25 * best_peer(&ne) + 0.05,
-        ne_psi: ne.to_vec(),
-    };
+    let row = |base: &str, simulated: bool, ne: [f64; 6]| CaseRow::new(base.into(), "as-is".into(), true, simulated, 1.0, ne.to_vec());
     // a: simulated, the pipeline 0.4 against HDR 1.0 (best peer 1.0): within.
     // b: the good gyro, raw 0.2 best: the pipeline 0.5 > 2 x 0.2 + 0.05, and 2.5x raw.
     // c: recorded, within.

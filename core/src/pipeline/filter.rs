@@ -23,7 +23,7 @@
 
 use super::dating;
 use super::model::{half_sample_mode, log_likelihood, BlockRecord, Model, State, StopStats, H_ROAD, H_STOP};
-use super::params::{PipelineParams, N_MODELS, N_ROADS, N_WARMS};
+use super::params::{PipelineParams, N_MODELS};
 use crate::error::{Error, Result};
 use nalgebra::{Matrix3, Vector3};
 use std::collections::VecDeque;
@@ -87,16 +87,15 @@ impl Pipeline {
         if !(bias_dps.is_finite() && bias_sigma_dps.is_finite() && bias_sigma_dps > 0.0) {
             return Err(Error::param("prior_bias_sigma_dps", format!("start {bias_dps} +- {bias_sigma_dps} deg/s is not usable")));
         }
-        let walks = params.bias_walks_dps_per_sqrt_s();
-        let roads = params.road_sigmas_dps();
-        let warms = params.warm_taus_s();
-        let pair = |i: usize| (walks[i / (N_ROADS * N_WARMS)], roads[(i / N_WARMS) % N_ROADS]);
         // A hypothesis that cannot tell its bias from its road has no weight, ever (if the
         // settings leave none that can, every one is kept).
-        let any = (0..N_MODELS).any(|i| params.identifiable(pair(i).0, pair(i).1));
+        let any = (0..N_MODELS).any(|i| {
+            let (w, r, _) = params.hypothesis(i);
+            params.identifiable(w, r)
+        });
         let models = (0..N_MODELS)
             .map(|i| {
-                let ((w, r), tau) = (pair(i), warms[i % N_WARMS]);
+                let (w, r, tau) = params.hypothesis(i);
                 let warm_var = if tau.is_finite() { params.warm_sigma_dps * params.warm_sigma_dps } else { 0.0 };
                 // The warm-up term is the bias' change from its start value, independent of
                 // it: b_inf = b_start - d, so b_inf carries both variances and the covariance

@@ -118,6 +118,13 @@ impl PipelineParams {
         [r / k, r, r * k]
     }
 
+    /// Hypothesis `i` of the bank: its bias walk (deg/s per sqrt(s)), road sigma (deg/s) and
+    /// warm-up decay time (s, infinite = none), walk-major as the bank orders them.
+    pub fn hypothesis(&self, i: usize) -> (f64, f64, f64) {
+        let (walks, roads, warms) = (self.bias_walks_dps_per_sqrt_s(), self.road_sigmas_dps(), self.warm_taus_s());
+        (walks[i / (N_ROADS * N_WARMS)], roads[(i / N_WARMS) % N_ROADS], warms[i % N_WARMS])
+    }
+
     /// Whether the bank keeps the hypothesis pairing this bias walk with this road: one whose
     /// bias walks, over one road correlation time, by more than half its road's spread
     /// cannot tell its bias from its road and chases the road's curves (docs/pipeline.md).
