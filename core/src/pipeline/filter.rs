@@ -22,11 +22,12 @@
 //! amplified its errors on good gyros: docs/pipeline.md).
 
 use super::dating;
-use super::model::{half_sample_mode, log_likelihood, BlockRecord, Model, State, StopStats, H_ROAD, H_STOP};
+use super::evidence::Evidence;
+use super::model::{log_likelihood, BlockRecord, Model, State, H_ROAD, H_STOP};
 use super::params::{PipelineParams, N_MODELS};
+use super::smoother;
 use crate::error::{Error, Result};
 use nalgebra::{Matrix3, Vector3};
-use std::collections::VecDeque;
 
 /// What one block did.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,10 +55,7 @@ pub struct Pipeline {
     last_time_s: Option<f64>,
     lead_in_end_s: f64,
     heading_deg: f64,
-    stop_start_s: Option<f64>,
-    pending: VecDeque<(f64, f64)>,
-    stop: StopStats,
-    window: VecDeque<(f64, f64)>,
+    evidence: Evidence,
     /// This stop's evidence so far as one change: the bias change, the walk model's integral
     /// correction, and the heading correction applied (deg/s, deg, deg).
     stop_change: (f64, f64, f64),
@@ -121,10 +119,7 @@ impl Pipeline {
             last_time_s: None,
             lead_in_end_s,
             heading_deg: 0.0,
-            stop_start_s: None,
-            pending: VecDeque::new(),
-            stop: StopStats::default(),
-            window: VecDeque::new(),
+            evidence: Evidence::default(),
             stop_change: (0.0, 0.0, 0.0),
             recorded: Vec::new(),
             records: Vec::new(),
@@ -159,36 +154,7 @@ impl Pipeline {
     /// Rauch-Tung-Striebel smoothing of the recorded hypotheses, mixed with their weights
     /// (renormalised among them) at each block: the smoothed bias per recorded block.
     pub fn smoothed_bias(&self) -> Vec<f64> {
-        let k = self.recorded.len();
-        if k == 0 {
-            return Vec::new();
-        }
-        let n = self.records.len() / k;
-        let mut out = vec![0.0; n];
-        let mut norm = vec![0.0; n];
-        for j in 0..k {
-            let mut next = Vector3::zeros();
-            for t in (0..n).rev() {
-                let (x, p) = self.records[t * k + j].post;
-                let xs = if t + 1 == n {
-                    x
-                } else {
-                    let rec = &self.records[(t + 1) * k + j];
-                    let (xp, q) = rec.prior;
-                    let pf = Matrix3::from_fn(|r, c| p[(r, c)] * rec.f[c]);
-                    // A hypothesis without a warm-up term has a zero row: regularise.
-                    match (q + Matrix3::identity() * 1e-12).try_inverse() {
-                        Some(inv) => x + pf * inv * (next - xp),
-                        None => x,
-                    }
-                };
-                next = xs;
-                let w = self.record_weights[t * k + j];
-                out[t] += w * (xs[0] + xs[1]);
-                norm[t] += w;
-            }
-        }
-        out.iter().zip(&norm).map(|(o, w)| self.p.bounded_bias_dps(if *w > 0.0 { o / w } else { *o / k as f64 })).collect()
+        smoother::rts_mixed(&self.records, &self.record_weights, self.recorded.len(), &self.p)
     }
 
     /// Normalised hypothesis weights.
@@ -234,10 +200,10 @@ impl Pipeline {
         }
         // Gather this block's evidence, then the guards, then the updates.
         let lead_in = time_s < self.lead_in_end_s;
-        let stops = self.stop_evidence(time_s, rate_dps, still, lead_in);
+        let stops = self.evidence.stops(&self.p, time_s, rate_dps, still, lead_in);
         self.lead_in_seen |= lead_in && !stops.is_empty();
-        let reopened = !stops.is_empty() && !self.stop.reopened && !lead_in && self.stop_guard();
-        let straight = !still && !lead_in && self.is_straight(time_s, rate_dps);
+        let reopened = !stops.is_empty() && !self.evidence.stop.reopened && !lead_in && self.stop_guard();
+        let straight = !still && !lead_in && self.evidence.is_straight(&self.p, time_s, rate_dps);
         self.dating_t0_s.get_or_insert(time_s);
         if !still {
             if let Some(t) = self.last_stop_s.take() {
@@ -329,70 +295,11 @@ impl Pipeline {
         }
     }
 
-    /// This block's stop evidence: the lead-in's blocks at once, a stop's once they are
-    /// `min_still_s` from both of its ends (so delayed); either plausible as a bias and
-    /// steady within its stop or lead-in. Never judged by closeness to the estimate.
-    fn stop_evidence(&mut self, time_s: f64, rate_dps: f64, still: bool, lead_in: bool) -> Vec<f64> {
-        let mut stops: Vec<f64> = Vec::new();
-        if lead_in {
-            stops.push(rate_dps);
-        } else if still {
-            let start = *self.stop_start_s.get_or_insert(time_s);
-            if start == time_s {
-                self.stop = StopStats::default();
-            }
-            self.pending.push_back((time_s, rate_dps));
-            while let Some(&(t, z)) = self.pending.front() {
-                if t - start < self.p.min_still_s {
-                    self.pending.pop_front();
-                } else if time_s - t >= self.p.min_still_s {
-                    self.pending.pop_front();
-                    stops.push(z);
-                } else {
-                    break;
-                }
-            }
-        } else {
-            self.stop_start_s = None;
-            self.pending.clear();
-        }
-        // Plausible as a bias, stop or declared lead-in alike: a faster rate is a turn (a slow
-        // turn with the GPS speed held at zero, a `# bias_s:` that covers a turn). And steady
-        // within the stop or the lead-in: a block far from its mean is a slow turn (a car that
-        // pulls away before the declared lead-in ends).
-        let (max, tol) = (self.p.max_bias_dps, 4.0 * self.p.stop_sigma_dps + 0.1);
-        let (mean, n) = (self.stop.mean, self.stop.n);
-        stops.retain(|&z| z.abs() <= max && (n == 0 || (z - mean).abs() <= tol));
-        for &z in &stops {
-            self.stop.add(time_s, z);
-        }
-        stops
-    }
-
-    /// A moving block is straight-road evidence when it is within the gate of the dominant
-    /// rate of the recent moving blocks, and that rate is plausible as a bias.
-    fn is_straight(&mut self, time_s: f64, rate_dps: f64) -> bool {
-        self.window.push_back((time_s, rate_dps));
-        while self.window.front().is_some_and(|&(t, _)| time_s - t > self.p.road_window_s) {
-            self.window.pop_front();
-        }
-        if self.window.len() < 5 {
-            return false;
-        }
-        // The dominant rate is a bias only if a bias could be that large (a drive in circles
-        // is not straight).
-        let (mode, step) = self.window_mode_and_step();
-        // A quantised gyro (one row per block) puts the mode on its lattice: keep the gate
-        // two steps wide so the selection stays centred.
-        let gate = self.p.road_gate_dps.max(2.0 * step);
-        mode.abs() <= self.p.max_bias_dps && (rate_dps - mode).abs() <= gate
-    }
-
     /// A steady stop that a hypothesis cannot explain: for it the bias moved, re-open its
     /// uncertainty. Judged per hypothesis: the bank's mixed variance grows with their spread,
     /// so a step that the slow hypotheses miss and the fast ones follow would hide from it.
     fn stop_guard(&mut self) -> bool {
-        let s = self.stop;
+        let s = self.evidence.stop;
         let r = self.p.stop_sigma_dps * self.p.stop_sigma_dps;
         let steady = s.std() <= 3.0 * self.p.stop_sigma_dps;
         let long = s.last_s - s.first_s >= self.p.jump_min_s;
@@ -407,18 +314,8 @@ impl Pipeline {
                 reopened = true;
             }
         }
-        self.stop.reopened = reopened;
+        self.evidence.stop.reopened = reopened;
         reopened
-    }
-
-    /// The dominant rate of the recent moving blocks (where a road vehicle drives
-    /// straight), and the smallest non-zero step between them: the gyro's quantisation
-    /// when a block holds one row (infinite steps count as 1 deg/s).
-    fn window_mode_and_step(&self) -> (f64, f64) {
-        let mut r: Vec<f64> = self.window.iter().map(|w| w.1).collect();
-        r.sort_by(f64::total_cmp);
-        let step = r.windows(2).map(|w| w[1] - w[0]).filter(|&d| d > 1e-6).fold(1.0, f64::min);
-        (half_sample_mode(&mut r), step)
     }
 
     /// Stop evidence (rate = b). Its likelihood weighs the hypotheses; `weigh` = false for

@@ -6,13 +6,17 @@
 //! tried and dropped: docs/pipeline.md. `gyrodrift hdr` stays the paper's exact method.
 
 mod dating;
+mod evidence;
 pub mod filter;
 mod model;
 pub mod params;
+mod smoother;
 
+pub use evidence::half_sample_mode;
 pub use filter::{Pipeline, PipelineOutput};
-pub use model::{half_sample_mode, BlockRecord, State};
+pub use model::{BlockRecord, State};
 pub use params::{PipelineParams, N_MODELS, N_ROADS, N_WALKS, N_WARMS};
+pub use smoother::N_SMOOTHED;
 
 use crate::error::Result;
 use crate::eval::{Method, Prepared};
@@ -35,13 +39,8 @@ pub struct PipelineTrace {
     pub stop: Vec<bool>,
 }
 
-/// How many hypotheses the offline smoother follows (those with the most weight over the
-/// log): recording all of them would cost memory on long logs for no gain.
-pub const N_SMOOTHED: usize = 3;
-
-/// Runs the filter over the blocks from bias 0 +- the prior, then the smoother (a second
-/// pass with only the hypotheses with the most weight over the first, recorded); the heading traces
-/// are unaligned. Blocks stamped before `lead_in_end_s` are the lead-in.
+/// Runs the filter over the blocks from bias 0 +- the prior, then the smoother
+/// (`smoother.rs`); the heading traces are unaligned. Blocks stamped before `lead_in_end_s` are the lead-in.
 pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -> Result<PipelineTrace> {
     let n = blocks.len();
     let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
@@ -53,24 +52,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
         tr.bias_sigma_dps.push(o.bias_sigma_dps);
         tr.stop.push(o.stop);
     }
-    let mut order: Vec<usize> = (0..N_MODELS).collect();
-    let sums = f.weight_sums().to_vec();
-    // Unstable with the index as tie-break: the stable sort's order, without a stable-sort
-    // instance of its own in the browser's size-capped module (BENCHMARKS.md).
-    order.sort_unstable_by(|&a, &b| sums[b].total_cmp(&sums[a]).then(a.cmp(&b)));
-    order.truncate(N_SMOOTHED);
-    let mut g = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
-    g.restrict(&order);
-    g.record((0..order.len()).collect());
-    for i in 0..n {
-        g.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
-    }
-    let mut bias = g.smoothed_bias();
-    hold_to_stops(&tr, &blocks.rate_dps, &mut bias);
-    // Bounded like the causal bias: the hold shifts a span by whatever the causal heading
-    // did over it (9.8 deg/s across a lead-in over a turn; pipeline::tests).
-    bias.iter_mut().for_each(|b| *b = params.bounded_bias_dps(*b));
-    tr.bias_smoothed_dps = bias;
+    tr.bias_smoothed_dps = smoother::smoothed_bias(blocks, params, lead_in_end_s, &f, &tr)?;
     let mut h = 0.0;
     for i in 0..n {
         if i > 0 {
@@ -79,25 +61,6 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
         tr.heading_smoothed_deg.push(h);
     }
     Ok(tr)
-}
-
-/// Holds the smoothed heading to the causal one at every block with stop evidence: between
-/// two such blocks the smoothed bias is shifted by the constant that makes its integral
-/// meet the causal heading's change (a constant bias error, as smoothing leaves one). A
-/// stop fixes the heading better than a smoothed bias integrated from the start can: on a
-/// calibrated phone gyro the unheld integral was worse than raw. After the last stop the
-/// smoothed bias is left as it is.
-fn hold_to_stops(tr: &PipelineTrace, rate_dps: &[f64], bias_dps: &mut [f64]) {
-    let t = &tr.time_s;
-    let (mut j, mut turned) = (0, 0.0);
-    for i in 1..t.len() {
-        turned += (rate_dps[i] - bias_dps[i]) * (t[i] - t[i - 1]);
-        if tr.stop[i] {
-            let shift = (turned - (tr.heading_deg[i] - tr.heading_deg[j])) / (t[i] - t[j]);
-            bias_dps[j + 1..=i].iter_mut().for_each(|b| *b += shift);
-            (j, turned) = (i, 0.0);
-        }
-    }
 }
 
 /// The pipeline's result keys (E_psi_*, NE_psi_*, improvement_pipeline, duration_min),

@@ -1,6 +1,6 @@
 //! One hypothesis of the pipeline's bank: a 3-state Kalman filter (settled bias, warm-up
-//! term, road rate) with its transition and scalar updates; the stop statistics and the
-//! half-sample mode the bank's evidence rules use.
+//! term, road rate) with its transition and scalar updates, and the Huber likelihood that
+//! weighs it.
 
 use nalgebra::{Matrix3, RowVector3, Vector3};
 
@@ -93,73 +93,6 @@ pub struct BlockRecord {
     pub f: Vector3<f64>,
     pub prior: State,
     pub post: State,
-}
-
-/// Running mean and spread of the current stop's evidence (Welford).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub(super) struct StopStats {
-    pub(super) n: usize,
-    pub(super) first_s: f64,
-    pub(super) last_s: f64,
-    pub(super) mean: f64,
-    pub(super) m2: f64,
-    pub(super) reopened: bool,
-}
-
-impl StopStats {
-    pub(super) fn add(&mut self, t: f64, z: f64) {
-        if self.n == 0 {
-            self.first_s = t;
-        }
-        self.last_s = t;
-        self.n += 1;
-        let d = z - self.mean;
-        self.mean += d / self.n as f64;
-        self.m2 += d * (z - self.mean);
-    }
-    pub(super) fn std(&self) -> f64 {
-        if self.n < 2 {
-            f64::INFINITY
-        } else {
-            (self.m2 / (self.n - 1) as f64).sqrt()
-        }
-    }
-}
-
-/// Bickel's half-sample mode: the densest point of a sample, robust to half of it being
-/// elsewhere (the turns). Sorts `x` in place; `x` must not be empty. Equally dense halves
-/// (a quantised gyro's lattice makes many) are not resolved to the lowest: the search goes
-/// on within their span, or, where that span is the whole sample, ends at their mean centre.
-pub fn half_sample_mode(x: &mut [f64]) -> f64 {
-    x.sort_by(f64::total_cmp);
-    let mut s = &x[..];
-    while s.len() > 3 {
-        let h = s.len().div_ceil(2);
-        let width = |i: usize| s[i + h - 1] - s[i];
-        let min = (0..=s.len() - h).map(width).fold(f64::INFINITY, f64::min);
-        let ties: Vec<usize> = (0..=s.len() - h).filter(|&i| width(i) <= min).collect();
-        let (lo, hi) = (ties[0], ties[ties.len() - 1]);
-        if lo == hi {
-            s = &s[lo..lo + h];
-        } else if hi + h - lo < s.len() {
-            s = &s[lo..hi + h];
-        } else {
-            return ties.iter().map(|&i| (s[i] + s[i + h - 1]) / 2.0).sum::<f64>() / ties.len() as f64;
-        }
-    }
-    match s.len() {
-        3 => {
-            if s[1] - s[0] < s[2] - s[1] {
-                (s[0] + s[1]) / 2.0
-            } else if s[1] - s[0] > s[2] - s[1] {
-                (s[1] + s[2]) / 2.0
-            } else {
-                s[1]
-            }
-        }
-        2 => (s[0] + s[1]) / 2.0,
-        _ => s[0],
-    }
 }
 
 #[cfg(test)]

@@ -1,5 +1,6 @@
 //! Hand-worked steps of the filter bank and its behaviour on logs with known truth.
 
+use super::smoother::hold_to_stops;
 use super::*;
 
 /// One hypothesis (walk min = max, one road), so the numbers are a plain Kalman filter;

@@ -1,0 +1,155 @@
+//! Which blocks are evidence about the bias, judged without the bias estimate (so a large
+//! unknown bias cannot lock itself out): stop blocks, trimmed at both ends, plausible as a
+//! bias and steady within their stop; and straight-road blocks, near the dominant rate (the
+//! half-sample mode) of the recent moving blocks, HDR's heuristic.
+
+use super::params::PipelineParams;
+use std::collections::VecDeque;
+
+/// The evidence rules' state: the current stop and its delayed blocks, and the window of
+/// recent moving blocks.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Evidence {
+    stop_start_s: Option<f64>,
+    pending: VecDeque<(f64, f64)>,
+    pub(super) stop: StopStats,
+    window: VecDeque<(f64, f64)>,
+}
+
+impl Evidence {
+    /// This block's stop evidence: the lead-in's blocks at once, a stop's once they are
+    /// `min_still_s` from both of its ends (so delayed); either plausible as a bias and
+    /// steady within its stop or lead-in. Never judged by closeness to the estimate.
+    pub(super) fn stops(&mut self, p: &PipelineParams, time_s: f64, rate_dps: f64, still: bool, lead_in: bool) -> Vec<f64> {
+        let mut stops: Vec<f64> = Vec::new();
+        if lead_in {
+            stops.push(rate_dps);
+        } else if still {
+            let start = *self.stop_start_s.get_or_insert(time_s);
+            if start == time_s {
+                self.stop = StopStats::default();
+            }
+            self.pending.push_back((time_s, rate_dps));
+            while let Some(&(t, z)) = self.pending.front() {
+                if t - start < p.min_still_s {
+                    self.pending.pop_front();
+                } else if time_s - t >= p.min_still_s {
+                    self.pending.pop_front();
+                    stops.push(z);
+                } else {
+                    break;
+                }
+            }
+        } else {
+            self.stop_start_s = None;
+            self.pending.clear();
+        }
+        // Plausible as a bias, stop or declared lead-in alike: a faster rate is a turn (a slow
+        // turn with the GPS speed held at zero, a `# bias_s:` that covers a turn). And steady
+        // within the stop or the lead-in: a block far from its mean is a slow turn (a car that
+        // pulls away before the declared lead-in ends).
+        let (max, tol) = (p.max_bias_dps, 4.0 * p.stop_sigma_dps + 0.1);
+        let (mean, n) = (self.stop.mean, self.stop.n);
+        stops.retain(|&z| z.abs() <= max && (n == 0 || (z - mean).abs() <= tol));
+        for &z in &stops {
+            self.stop.add(time_s, z);
+        }
+        stops
+    }
+
+    /// A moving block is straight-road evidence when it is within the gate of the dominant
+    /// rate of the recent moving blocks, and that rate is plausible as a bias.
+    pub(super) fn is_straight(&mut self, p: &PipelineParams, time_s: f64, rate_dps: f64) -> bool {
+        self.window.push_back((time_s, rate_dps));
+        while self.window.front().is_some_and(|&(t, _)| time_s - t > p.road_window_s) {
+            self.window.pop_front();
+        }
+        if self.window.len() < 5 {
+            return false;
+        }
+        // The dominant rate is a bias only if a bias could be that large (a drive in circles
+        // is not straight).
+        let (mode, step) = self.window_mode_and_step();
+        // A quantised gyro (one row per block) puts the mode on its lattice: keep the gate
+        // two steps wide so the selection stays centred.
+        let gate = p.road_gate_dps.max(2.0 * step);
+        mode.abs() <= p.max_bias_dps && (rate_dps - mode).abs() <= gate
+    }
+
+    /// The dominant rate of the recent moving blocks (where a road vehicle drives
+    /// straight), and the smallest non-zero step between them: the gyro's quantisation
+    /// when a block holds one row (infinite steps count as 1 deg/s).
+    fn window_mode_and_step(&self) -> (f64, f64) {
+        let mut r: Vec<f64> = self.window.iter().map(|w| w.1).collect();
+        r.sort_by(f64::total_cmp);
+        let step = r.windows(2).map(|w| w[1] - w[0]).filter(|&d| d > 1e-6).fold(1.0, f64::min);
+        (half_sample_mode(&mut r), step)
+    }
+}
+
+/// Running mean and spread of the current stop's evidence (Welford).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(super) struct StopStats {
+    pub(super) n: usize,
+    pub(super) first_s: f64,
+    pub(super) last_s: f64,
+    pub(super) mean: f64,
+    pub(super) m2: f64,
+    pub(super) reopened: bool,
+}
+
+impl StopStats {
+    pub(super) fn add(&mut self, t: f64, z: f64) {
+        if self.n == 0 {
+            self.first_s = t;
+        }
+        self.last_s = t;
+        self.n += 1;
+        let d = z - self.mean;
+        self.mean += d / self.n as f64;
+        self.m2 += d * (z - self.mean);
+    }
+    pub(super) fn std(&self) -> f64 {
+        if self.n < 2 {
+            f64::INFINITY
+        } else {
+            (self.m2 / (self.n - 1) as f64).sqrt()
+        }
+    }
+}
+
+/// Bickel's half-sample mode: the densest point of a sample, robust to half of it being
+/// elsewhere (the turns). Sorts `x` in place; `x` must not be empty. Equally dense halves
+/// (a quantised gyro's lattice makes many) are not resolved to the lowest: the search goes
+/// on within their span, or, where that span is the whole sample, ends at their mean centre.
+pub fn half_sample_mode(x: &mut [f64]) -> f64 {
+    x.sort_by(f64::total_cmp);
+    let mut s = &x[..];
+    while s.len() > 3 {
+        let h = s.len().div_ceil(2);
+        let width = |i: usize| s[i + h - 1] - s[i];
+        let min = (0..=s.len() - h).map(width).fold(f64::INFINITY, f64::min);
+        let ties: Vec<usize> = (0..=s.len() - h).filter(|&i| width(i) <= min).collect();
+        let (lo, hi) = (ties[0], ties[ties.len() - 1]);
+        if lo == hi {
+            s = &s[lo..lo + h];
+        } else if hi + h - lo < s.len() {
+            s = &s[lo..hi + h];
+        } else {
+            return ties.iter().map(|&i| (s[i] + s[i + h - 1]) / 2.0).sum::<f64>() / ties.len() as f64;
+        }
+    }
+    match s.len() {
+        3 => {
+            if s[1] - s[0] < s[2] - s[1] {
+                (s[0] + s[1]) / 2.0
+            } else if s[1] - s[0] > s[2] - s[1] {
+                (s[1] + s[2]) / 2.0
+            } else {
+                s[1]
+            }
+        }
+        2 => (s[0] + s[1]) / 2.0,
+        _ => s[0],
+    }
+}

@@ -1,0 +1,99 @@
+//! The offline smoothed mode (non-causal: it uses the whole log): a second pass over the
+//! blocks with only the hypotheses that held the most weight in the first, recorded;
+//! Rauch-Tung-Striebel smoothing of each, mixed by their weights at each block; the result
+//! held to the causal heading at stops and bounded like the causal bias.
+
+use super::filter::Pipeline;
+use super::model::BlockRecord;
+use super::params::{PipelineParams, N_MODELS};
+use super::PipelineTrace;
+use crate::error::Result;
+use crate::still::Blocks;
+use nalgebra::{Matrix3, Vector3};
+
+/// How many hypotheses the offline smoother follows (those with the most weight over the
+/// log): recording all of them would cost memory on long logs for no gain.
+pub const N_SMOOTHED: usize = 3;
+
+/// The smoothed bias per block, from the causal run `first` (its weight sums pick the
+/// hypotheses) and its trace `tr` (whose stops and heading the result is held to).
+pub(super) fn smoothed_bias(
+    blocks: &Blocks,
+    params: PipelineParams,
+    lead_in_end_s: f64,
+    first: &Pipeline,
+    tr: &PipelineTrace,
+) -> Result<Vec<f64>> {
+    let mut order: Vec<usize> = (0..N_MODELS).collect();
+    let sums = first.weight_sums();
+    // Unstable with the index as tie-break: the stable sort's order, without a stable-sort
+    // instance of its own in the browser's size-capped module (BENCHMARKS.md).
+    order.sort_unstable_by(|&a, &b| sums[b].total_cmp(&sums[a]).then(a.cmp(&b)));
+    order.truncate(N_SMOOTHED);
+    let mut g = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
+    g.restrict(&order);
+    g.record((0..order.len()).collect());
+    for i in 0..blocks.len() {
+        g.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
+    }
+    let mut bias = g.smoothed_bias();
+    hold_to_stops(tr, &blocks.rate_dps, &mut bias);
+    // Bounded like the causal bias: the hold shifts a span by whatever the causal heading
+    // did over it (9.8 deg/s across a lead-in over a turn; pipeline::tests).
+    bias.iter_mut().for_each(|b| *b = params.bounded_bias_dps(*b));
+    Ok(bias)
+}
+
+/// Rauch-Tung-Striebel smoothing of `k` recorded hypotheses (block-major records), mixed
+/// with their weights (renormalised among them) at each block: the bias per block, bounded
+/// like the causal one.
+pub(super) fn rts_mixed(records: &[BlockRecord], weights: &[f64], k: usize, params: &PipelineParams) -> Vec<f64> {
+    if k == 0 {
+        return Vec::new();
+    }
+    let n = records.len() / k;
+    let mut out = vec![0.0; n];
+    let mut norm = vec![0.0; n];
+    for j in 0..k {
+        let mut next = Vector3::zeros();
+        for t in (0..n).rev() {
+            let (x, p) = records[t * k + j].post;
+            let xs = if t + 1 == n {
+                x
+            } else {
+                let rec = &records[(t + 1) * k + j];
+                let (xp, q) = rec.prior;
+                let pf = Matrix3::from_fn(|r, c| p[(r, c)] * rec.f[c]);
+                // A hypothesis without a warm-up term has a zero row: regularise.
+                match (q + Matrix3::identity() * 1e-12).try_inverse() {
+                    Some(inv) => x + pf * inv * (next - xp),
+                    None => x,
+                }
+            };
+            next = xs;
+            let w = weights[t * k + j];
+            out[t] += w * (xs[0] + xs[1]);
+            norm[t] += w;
+        }
+    }
+    out.iter().zip(&norm).map(|(o, w)| params.bounded_bias_dps(if *w > 0.0 { o / w } else { *o / k as f64 })).collect()
+}
+
+/// Holds the smoothed heading to the causal one at every block with stop evidence: between
+/// two such blocks the smoothed bias is shifted by the constant that makes its integral
+/// meet the causal heading's change (a constant bias error, as smoothing leaves one). A
+/// stop fixes the heading better than a smoothed bias integrated from the start can: on a
+/// calibrated phone gyro the unheld integral was worse than raw. After the last stop the
+/// smoothed bias is left as it is.
+pub(super) fn hold_to_stops(tr: &PipelineTrace, rate_dps: &[f64], bias_dps: &mut [f64]) {
+    let t = &tr.time_s;
+    let (mut j, mut turned) = (0, 0.0);
+    for i in 1..t.len() {
+        turned += (rate_dps[i] - bias_dps[i]) * (t[i] - t[i - 1]);
+        if tr.stop[i] {
+            let shift = (turned - (tr.heading_deg[i] - tr.heading_deg[j])) / (t[i] - t[j]);
+            bias_dps[j + 1..=i].iter_mut().for_each(|b| *b += shift);
+            (j, turned) = (i, 0.0);
+        }
+    }
+}
