@@ -5,7 +5,8 @@
 //! road's correlation time), so consecutive
 //! straight blocks are not counted as independent and the innovations stay white under a
 //! right hypothesis (which is what lets them weigh the hypotheses). No evidence is gated by
-//! closeness to the current estimate, so a large unknown bias cannot lock it out:
+//! closeness to the current estimate, so a large unknown bias cannot lock it out
+//! (`evidence.rs`):
 //!
 //! - stop blocks (judged by speed, wheels or the gyro's own spread; trimmed at both ends;
 //!   plausible, and steady within the stop): rate = b;
