@@ -121,7 +121,8 @@ pub fn run(log: &DriveLog, params: &PipelineParams) -> Result<PipelineRun> {
     let prep = Prepared::new(log, params.bias_s, &params.still)?;
     let mut trace = prep.pipeline_trace(params)?;
     let blocks = &prep.blocks;
-    let stop_s: f64 = (1..blocks.len()).filter(|&i| trace.stop[i]).map(|i| blocks.time_s[i] - blocks.time_s[i - 1]).sum();
+    // + 0: an empty float sum is -0 in Rust, which printed as "-0 s".
+    let stop_s = (1..blocks.len()).filter(|&i| trace.stop[i]).map(|i| blocks.time_s[i] - blocks.time_s[i - 1]).sum::<f64>() + 0.0;
     let result = prep.reference().and_then(|reference| {
         let pipe = crate::metrics::score(&trace.time_s, &trace.heading_deg, reference)?;
         let smooth = crate::metrics::score(&trace.time_s, &trace.heading_smoothed_deg, reference)?;

@@ -413,3 +413,17 @@ fn a_declared_lead_in_that_outlasts_the_standing_is_judged_steady_like_a_stop() 
     let (b, _) = f.bias();
     assert!((b - 0.4).abs() < 0.01, "bias {b}");
 }
+
+/// A drive that never stops counts +0 s of stops: an empty float sum is -0 in Rust, which
+/// the CLI printed as "-0 s counted".
+#[test]
+fn a_drive_without_stops_counts_plus_zero_seconds_of_stops() {
+    let mut csv = String::from("# bias_s: 0\ntime_s,gyro_dps,ref_heading_deg,speed_mps\n");
+    for i in 0..120 {
+        csv.push_str(&format!("{i},0.1,{},10\n", -0.1 * i as f64));
+    }
+    let log = crate::parse_log_str(&csv).unwrap();
+    let r = run(&log, &PipelineParams::default()).unwrap().result.unwrap();
+    assert_eq!(r.stop_s, 0.0);
+    assert!(r.stop_s.is_sign_positive(), "{}", r.stop_s);
+}
