@@ -248,7 +248,8 @@ pub fn summarize(rows: &[DriveRow]) -> FleetSummary {
         files: files.len(),
         scored: scored.len(),
         errors: rows.iter().filter(|r| r.error.is_some()).count(),
-        hours: scored.iter().filter_map(|r| r.duration_min).sum::<f64>() / 60.0,
+        // Folded from +0: an empty float sum is -0 in Rust ("-0.0 h" when nothing scored).
+        hours: scored.iter().filter_map(|r| r.duration_min).fold(0.0, |a, b| a + b) / 60.0,
         methods,
     }
 }

@@ -72,6 +72,15 @@ fn the_summary_averages_scored_rows_and_counts_errors() {
     assert!(s.to_markdown().contains("| HDR Table III | 2 | 9.000 | 0.3000 |"), "{}", s.to_markdown());
 }
 
+/// A fleet where every file failed scores +0 h, not "-0.0 h" (an empty float sum is -0).
+#[test]
+fn a_fleet_with_nothing_scored_says_zero_hours() {
+    let s = summarize(&[DriveRow::failed("a", "line 2: bad")]);
+    assert_eq!((s.files, s.scored, s.errors), (1, 0, 1));
+    assert!(s.hours == 0.0 && s.hours.is_sign_positive(), "{}", s.hours);
+    assert!(s.to_markdown().starts_with("1 files, 0 drives scored (0.0 h), 1 errors"), "{}", s.to_markdown());
+}
+
 #[test]
 fn csv_rows_have_the_header_and_quote_messages() {
     let rows = vec![DriveRow::failed("a,b.csv", "line 3, column gyro_dps: \"x\" is not a number")];
