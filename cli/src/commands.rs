@@ -207,16 +207,23 @@ pub fn roads(recipes: &[PathBuf], data: Option<&Path>, json: bool, plot: Option<
     emit(json, &c, || c.to_markdown())
 }
 
+/// The battery's simulated drives: their length, and which draw of the scoring bases.
+pub struct SimDraw {
+    pub minutes: f64,
+    pub draw: u64,
+}
+
 pub fn battery(
     recipes: &[PathBuf],
     data: Option<&Path>,
     split: battery::Split,
-    minutes: f64,
+    sim: SimDraw,
     cases: bool,
     set: &[String],
     json: bool,
 ) -> Result<(), Failure> {
     let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
+    let SimDraw { minutes, draw } = sim;
     if !(minutes.is_finite() && minutes > 1.0 && minutes <= 600.0) {
         return Err(Failure(format!("--minutes {minutes}: expected a length in (1, 600] min")));
     }
@@ -226,7 +233,7 @@ pub fn battery(
         let stem = r.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         bases.push(battery::recorded_base(&stem, log));
     }
-    bases.extend(battery::simulated_bases(minutes));
+    bases.extend(battery::simulated_bases_drawn(minutes, draw));
     let tuned = battery::tune_hdr(&bases).map_err(|e| Failure(e.to_string()))?;
     eprintln!(
         "HDR tuned on the {} training bases: cross-validated NE_psi {:.4} (Table III {:.4}) -> {}",

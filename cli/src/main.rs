@@ -160,6 +160,10 @@ enum Cmd {
         /// Length of each simulated drive, min.
         #[arg(long, default_value_t = 20.0)]
         minutes: f64,
+        /// Draw the simulated scoring bases afresh: K > 0 gives them seeds 101-106 + 1000 K
+        /// (other roads, drivers and gyro units; the training cases stay as they are).
+        #[arg(long, default_value_t = 0)]
+        draw: u64,
         /// Print every case, not only the summaries.
         #[arg(long)]
         cases: bool,
@@ -373,13 +377,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
             c::simulate(&SimRequest { kind, scenario, minutes, seed, name }, out.as_deref())
         }
         Cmd::Samples { out, realisation } => c::samples(&out, realisation),
-        Cmd::Battery { recipes, data, split, minutes, cases, set, json } => {
+        Cmd::Battery { recipes, data, split, minutes, draw, cases, set, json } => {
             let split = match split {
                 SplitArg::Training => battery::Split::Training,
                 SplitArg::Scoring => battery::Split::Scoring,
                 SplitArg::All => battery::Split::All,
             };
-            c::battery(&recipes, data.as_deref(), split, minutes, cases, &set, json)
+            c::battery(&recipes, data.as_deref(), split, c::SimDraw { minutes, draw }, cases, &set, json)
         }
         Cmd::Import { files, recipe, print_recipe, data, allow_outside, out, json } => match recipe {
             Some(recipe) => c::import(&recipe, data.as_deref(), allow_outside, out.as_deref(), json),

@@ -491,3 +491,21 @@ fn battery_reports_the_goals_it_measures() {
     let text = String::from_utf8(run(&["battery", "--minutes", "3", "--split", "training"]).stdout).unwrap();
     assert!(text.contains("| training | no case worse than 2x the best other + 0.05 |"), "{text}");
 }
+
+/// `battery --draw K`: the simulated scoring bases drawn afresh (seeds 101-106 + 1000 K),
+/// the training bases as they were.
+#[test]
+fn battery_draws_the_simulated_scoring_bases_afresh() {
+    let out = run(&["battery", "--minutes", "2", "--split", "all", "--draw", "2", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let cases = v["cases"].as_array().unwrap();
+    let bases = |training: bool| {
+        let mut b: Vec<&str> =
+            cases.iter().filter(|c| c["training"].as_bool() == Some(training)).map(|c| c["base"].as_str().unwrap()).collect();
+        b.dedup();
+        b
+    };
+    assert!(bases(false).contains(&"sim-city-mems-2101") && !bases(false).contains(&"sim-city-mems-101"), "{:?}", bases(false));
+    assert!(bases(true).contains(&"sim-city-crs03-1"), "{:?}", bases(true));
+}

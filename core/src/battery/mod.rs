@@ -55,10 +55,17 @@ pub fn recorded_base(name: &str, log: DriveLog) -> Base {
 /// Simulated bases: six scenarios with the paper's CRS03-class gyro and six with a
 /// consumer MEMS gyro; seeds 1-6 train, seeds 101-106 score.
 pub fn simulated_bases(minutes: f64) -> Vec<Base> {
+    simulated_bases_drawn(minutes, 0)
+}
+
+/// As [`simulated_bases`], with the scoring bases drawn afresh: draw K > 0 gives them seeds
+/// 101-106 + 1000 K (the same scenarios and gyro classes, other roads, drivers and gyro
+/// units), never seen by any choice; the training bases stay.
+pub fn simulated_bases_drawn(minutes: f64, draw: u64) -> Vec<Base> {
     use Scenario::*;
     let scen = [City, Suburbs, Rural, Highway, Mixed, Downtown];
     let mut out = Vec::new();
-    for (k, &(seed0, training)) in [(1u64, true), (101u64, false)].iter().enumerate() {
+    for (k, &(seed0, training)) in [(1u64, true), (101 + 1000 * draw, false)].iter().enumerate() {
         for (i, &s) in scen.iter().enumerate() {
             let seed = seed0 + i as u64;
             let (spec, gyro) = if (i + k) % 2 == 0 { (GyroSpec::crs03_like(), "crs03") } else { (GyroSpec::consumer_mems(), "mems") };

@@ -134,3 +134,25 @@ fn split_is_by_rule_and_profiles_have_unique_names() {
     assert!(sims.iter().all(|b| b.simulated));
     assert!(!recorded_base("pixel6a-20230806_144805", DriveLog::default()).simulated);
 }
+
+/// A fresh draw keeps the training bases as they are and gives the scoring bases other
+/// seeds: the same scenarios and gyro classes, other drives.
+#[test]
+fn a_fresh_draw_changes_only_the_scoring_bases() {
+    let (a, b) = (simulated_bases(2.0), simulated_bases_drawn(2.0, 3));
+    assert_eq!(a.len(), b.len());
+    let gyro = |l: &DriveLog| l.column(crate::Column::GyroDps).unwrap().to_vec();
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(x.training, y.training);
+        if x.training {
+            assert_eq!(x.name, y.name);
+            assert!(gyro(&x.log) == gyro(&y.log), "{}", x.name);
+        } else {
+            // sim-city-mems-101 -> sim-city-mems-3101: same scenario and gyro, another seed.
+            let stem = |n: &str| n.rsplit_once('-').unwrap().0.to_string();
+            assert_eq!(stem(&x.name), stem(&y.name));
+            assert!(y.name.ends_with(&format!("-{}", x.name.rsplit_once('-').unwrap().1.parse::<u64>().unwrap() + 3000)), "{}", y.name);
+            assert!(gyro(&x.log) != gyro(&y.log), "{}", y.name);
+        }
+    }
+}
