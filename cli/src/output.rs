@@ -193,8 +193,7 @@ pub fn import_line(recipe: &Path, s: &gyrodrift::import::ImportSummary) -> Strin
 
 pub fn pipeline_table(path: &Path, r: &gyrodrift::pipeline::PipelineResult) -> String {
     let mut s = String::new();
-    let source = format!("{:?}", r.still_source).to_lowercase();
-    let _ = writeln!(s, "{}: {:.1} min, stops from {source} ({:.0} s counted)", path.display(), r.duration_min, r.stop_s);
+    let _ = writeln!(s, "{}: {:.1} min, stops from {} ({:.0} s counted)", path.display(), r.duration_min, r.still_source.name(), r.stop_s);
     let _ = writeln!(s, "                    {:>12} {:>18} {:>12}", "E_psi (deg)", "NE_psi (deg/min)", "vs raw");
     for (name, e, ne) in [
         ("raw", r.E_psi_raw_deg, r.NE_psi_raw_deg_per_min),

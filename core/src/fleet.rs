@@ -137,7 +137,7 @@ fn score_part(row: &mut DriveRow, part: &DriveLog, params: &PipelineParams) -> R
     let prep = Prepared::new(part, params.bias_s, &params.still)?;
     row.duration_min = Some(prep.duration_min);
     row.static_bias_dps = Some(prep.eps0_dps);
-    row.still_source = serde_json::to_value(prep.source).ok().and_then(|v| v.as_str().map(str::to_string));
+    row.still_source = Some(prep.source.name().to_string());
     let scores = prep.score_all(&standard_methods(params, None))?;
     row.set_scores(&scores);
     Ok(())
@@ -248,8 +248,8 @@ pub fn summarize(rows: &[DriveRow]) -> FleetSummary {
         files: files.len(),
         scored: scored.len(),
         errors: rows.iter().filter(|r| r.error.is_some()).count(),
-        // Folded from +0: an empty float sum is -0 in Rust ("-0.0 h" when nothing scored).
-        hours: scored.iter().filter_map(|r| r.duration_min).fold(0.0, |a, b| a + b) / 60.0,
+        // + 0: an empty float sum is -0 in Rust ("-0.0 h" when nothing scored).
+        hours: (scored.iter().filter_map(|r| r.duration_min).sum::<f64>() + 0.0) / 60.0,
         methods,
     }
 }

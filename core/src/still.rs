@@ -37,6 +37,18 @@ pub enum StillSource {
     None,
 }
 
+impl StillSource {
+    /// Its name as the JSON and the CSV rows spell it (speed, odometry, gyro, none).
+    pub fn name(self) -> &'static str {
+        match self {
+            StillSource::Speed => "speed",
+            StillSource::Odometry => "odometry",
+            StillSource::Gyro => "gyro",
+            StillSource::None => "none",
+        }
+    }
+}
+
 /// The 1 Hz blocks of a log with what the pipeline needs per block.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Blocks {
@@ -160,6 +172,14 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The name is the serde one, so the text output, the JSON and the CSV rows agree.
+    #[test]
+    fn a_still_source_is_named_as_serde_names_it() {
+        for s in [StillSource::Speed, StillSource::Odometry, StillSource::Gyro, StillSource::None] {
+            assert_eq!(serde_json::to_value(s).unwrap(), s.name());
+        }
+    }
     use crate::preprocess::block_average_1hz;
 
     fn log(speed: bool) -> DriveLog {
