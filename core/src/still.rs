@@ -172,6 +172,7 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::preprocess::block_average_1hz;
 
     /// The name is the serde one, so the text output, the JSON and the CSV rows agree.
     #[test]
@@ -180,7 +181,6 @@ mod tests {
             assert_eq!(serde_json::to_value(s).unwrap(), s.name());
         }
     }
-    use crate::preprocess::block_average_1hz;
 
     fn log(speed: bool) -> DriveLog {
         let mut cols = vec![Column::GyroDps, Column::TempC];
