@@ -232,30 +232,8 @@ impl Pipeline {
             self.records.push(BlockRecord { f: fs[i], prior: priors[j], post: (self.models[i].x, self.models[i].p) });
             self.record_weights.push(w[i]);
         }
-        // A stop corrected each hypothesis' bias integral (road evidence does not): the
-        // heading takes their mix, its age (the change spread as a walk) re-dated by the
-        // straight blocks since the last stop. The stop's blocks so far are dated as one
-        // change (their sums), and the heading takes what that adds to what they gave before:
-        // a first block's small change is not dated alone with the age of a walk.
         if !stops.is_empty() {
-            let dh: f64 = self.models.iter().zip(&h_before).zip(&w).map(|((m, hb), wi)| wi * (m.h - hb)).sum();
-            let delta = self.bias().0 - b_before;
-            self.stop_change.0 += delta;
-            self.stop_change.1 += dh;
-            let (delta, dh) = (self.stop_change.0, self.stop_change.1);
-            let correction = if delta.abs() > 1e-12 && dh / delta > 0.0 {
-                let r = self.p.road_sigma_dps;
-                let model = 2.0 * r * r * self.p.road_corr_s + self.p.block_sigma_dps * self.p.block_sigma_dps;
-                let sigma2 = dating::long_run_variance(&self.residuals, 10)
-                    .map_or(model, |v| v.max(self.p.block_sigma_dps * self.p.block_sigma_dps));
-                let t0 = self.dating_t0_s.unwrap_or(time_s);
-                delta * dating::expected_age_s(&self.residuals, t0, time_s, delta, dh / delta, sigma2)
-            } else {
-                dh
-            };
-            self.heading_deg -= correction - self.stop_change.2;
-            self.stop_change.2 = correction;
-            self.last_stop_s = Some(time_s);
+            self.correct_heading_at_stop(&h_before, &w, b_before, time_s);
         }
         let out = PipelineOutput {
             heading_deg: self.heading_deg,
@@ -266,6 +244,33 @@ impl Pipeline {
             reopened,
         };
         Ok(out)
+    }
+
+    /// A stop corrected each hypothesis' bias integral (road evidence does not): the
+    /// heading takes their mix, its age (the change spread as a walk) re-dated by the
+    /// straight blocks since the last stop (`dating`). The stop's blocks so far are dated as
+    /// one change (their sums), and the heading takes what that adds to what they gave
+    /// before: a first block's small change is not dated alone with the age of a walk.
+    /// `h_before`: each hypothesis' integral before the stop's updates; `w`: the weights after.
+    fn correct_heading_at_stop(&mut self, h_before: &[f64], w: &[f64], b_before: f64, time_s: f64) {
+        let dh: f64 = self.models.iter().zip(h_before).zip(w).map(|((m, hb), wi)| wi * (m.h - hb)).sum();
+        let delta = self.bias().0 - b_before;
+        self.stop_change.0 += delta;
+        self.stop_change.1 += dh;
+        let (delta, dh) = (self.stop_change.0, self.stop_change.1);
+        let correction = if delta.abs() > 1e-12 && dh / delta > 0.0 {
+            let r = self.p.road_sigma_dps;
+            let model = 2.0 * r * r * self.p.road_corr_s + self.p.block_sigma_dps * self.p.block_sigma_dps;
+            let sigma2 =
+                dating::long_run_variance(&self.residuals, 10).map_or(model, |v| v.max(self.p.block_sigma_dps * self.p.block_sigma_dps));
+            let t0 = self.dating_t0_s.unwrap_or(time_s);
+            delta * dating::expected_age_s(&self.residuals, t0, time_s, delta, dh / delta, sigma2)
+        } else {
+            dh
+        };
+        self.heading_deg -= correction - self.stop_change.2;
+        self.stop_change.2 = correction;
+        self.last_stop_s = Some(time_s);
     }
 
     /// Sizes the warm-up prior by the turn-on bias the lead-in showed: a warm-up is part of
