@@ -85,9 +85,7 @@ pub fn simulate_drive(cfg: &DriveConfig) -> DriveLog {
 /// As `simulate_drive`, with the gyro drawn from another spec (same road for the same seed).
 pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
     let mut rng = SimRng::new(cfg.seed ^ 0x0D21_5EED);
-    // The sway's size draws from a stream of its own, so the roads stay as they were.
-    let mut sway_rng = SimRng::new(cfg.seed ^ 0x5A7E_A11D);
-    let mut sway_log_size = 0.0f64;
+    let mut sway = Sway::new(cfg.seed);
     let mut log = DriveLog::with_columns(&[Column::GyroDps, Column::TempC, Column::RefHeadingDeg, Column::SpeedMps]);
     log.meta.bias_s = Some(LEAD_IN_S);
     log.meta.description = Some(format!("simulated {:?} drive, {} min, seed {}", cfg.scenario, cfg.minutes, cfg.seed));
@@ -97,7 +95,7 @@ pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
     let warm_tau_s = rng.range(4.0, 12.0) * 60.0;
     let mut gyro = GyroModel::draw(spec, temp_start, &mut rng);
     let mut heading_deg = rng.range(0.0, 360.0);
-    let (mut v, mut sway_rate, mut sway_dev) = (0.0f64, 0.0f64, 0.0f64);
+    let mut v = 0.0f64;
     let mut meander_deg_per_m = 0.0f64;
     let mut phase = Phase::Still { left_s: LEAD_IN_S };
     let mut plan = std::collections::VecDeque::new();
@@ -116,21 +114,7 @@ pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
         } else {
             v = (v - BRAKE * DT).max(target_v);
         }
-        // Human swaying: a damped stochastic oscillation of heading about the road's.
-        if v > 1.0 {
-            let tau_r = 1.5;
-            let tau_e = 3.0;
-            // Its size wanders (log-normal, a minute's correlation): calm stretches and busy
-            // ones, as recorded straight driving has; exp(s - sigma^2) keeps the mean square.
-            let a = libm::exp(-DT / SWAY_VOL_TAU_S);
-            sway_log_size = a * sway_log_size + SWAY_VOL_SIGMA * libm::sqrt(1.0 - a * a) * sway_rng.normal();
-            let size = st.sway_dps * libm::exp(sway_log_size - SWAY_VOL_SIGMA * SWAY_VOL_SIGMA);
-            sway_rate += DT * (-sway_rate / tau_r - sway_dev / (tau_e * tau_r)) + size * libm::sqrt(2.0 * DT / tau_r) * rng.normal();
-            sway_dev += sway_rate * DT;
-        } else {
-            sway_rate = 0.0;
-            sway_dev *= 0.9;
-        }
+        let sway_rate = sway.step(v, st.sway_dps, &mut rng);
         // Road meander: first-order Gauss-Markov curvature over the distance driven.
         let a = libm::exp(-v * DT / st.meander_len_m);
         meander_deg_per_m = a * meander_deg_per_m + st.meander_deg_per_m * libm::sqrt(1.0 - a * a) * rng.normal();
@@ -167,6 +151,42 @@ pub fn simulate_drive_with(cfg: &DriveConfig, spec: &GyroSpec) -> DriveLog {
         }
     }
     log
+}
+
+/// Human swaying: a damped stochastic oscillation of heading about the road's, whose size
+/// wanders (log-normal, a minute's correlation): calm stretches and busy ones, as recorded
+/// straight driving has. The size draws from a stream of its own, so the roads stay as they
+/// were when it began to vary.
+struct Sway {
+    size_rng: SimRng,
+    log_size: f64,
+    rate_dps: f64,
+    dev_deg: f64,
+}
+
+impl Sway {
+    fn new(seed: u64) -> Self {
+        Sway { size_rng: SimRng::new(seed ^ 0x5A7E_A11D), log_size: 0.0, rate_dps: 0.0, dev_deg: 0.0 }
+    }
+
+    /// One 0.1 s step at speed `v_mps` for a style whose sway is `sway_dps`: the sway's yaw
+    /// rate (it fades at walking pace and below). `rng` is the drive's stream.
+    fn step(&mut self, v_mps: f64, sway_dps: f64, rng: &mut SimRng) -> f64 {
+        if v_mps > 1.0 {
+            let (tau_r, tau_e) = (1.5, 3.0);
+            // exp(s - sigma^2) keeps the mean square.
+            let a = libm::exp(-DT / SWAY_VOL_TAU_S);
+            self.log_size = a * self.log_size + SWAY_VOL_SIGMA * libm::sqrt(1.0 - a * a) * self.size_rng.normal();
+            let size = sway_dps * libm::exp(self.log_size - SWAY_VOL_SIGMA * SWAY_VOL_SIGMA);
+            self.rate_dps +=
+                DT * (-self.rate_dps / tau_r - self.dev_deg / (tau_e * tau_r)) + size * libm::sqrt(2.0 * DT / tau_r) * rng.normal();
+            self.dev_deg += self.rate_dps * DT;
+        } else {
+            self.rate_dps = 0.0;
+            self.dev_deg *= 0.9;
+        }
+        self.rate_dps
+    }
 }
 
 #[cfg(test)]
