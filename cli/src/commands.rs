@@ -213,16 +213,8 @@ pub struct SimDraw {
     pub draw: u64,
 }
 
-pub fn battery(
-    recipes: &[PathBuf],
-    data: Option<&Path>,
-    split: battery::Split,
-    sim: SimDraw,
-    cases: bool,
-    set: &[String],
-    json: bool,
-) -> Result<(), Failure> {
-    let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
+/// The battery's bases: the recipes' drives (named by their recipe's stem) and the simulated ones.
+fn battery_bases(recipes: &[PathBuf], data: Option<&Path>, sim: SimDraw) -> Result<Vec<battery::Base>, Failure> {
     let SimDraw { minutes, draw } = sim;
     if !(minutes.is_finite() && minutes > 1.0 && minutes <= 600.0) {
         return Err(Failure(format!("--minutes {minutes}: expected a length in (1, 600] min")));
@@ -234,6 +226,27 @@ pub fn battery(
         bases.push(battery::recorded_base(&stem, log));
     }
     bases.extend(battery::simulated_bases_drawn(minutes, draw));
+    Ok(bases)
+}
+
+/// One battery case's log ("BASE / PROFILE") to a file or stdout.
+pub fn battery_case(recipes: &[PathBuf], data: Option<&Path>, sim: SimDraw, case: &str, out: Option<&Path>) -> Result<(), Failure> {
+    let bases = battery_bases(recipes, data, sim)?;
+    let log = battery::case_log(&bases, &battery::profiles(), case).map_err(|e| Failure(e.to_string()))?;
+    write_log(&log, out)
+}
+
+pub fn battery(
+    recipes: &[PathBuf],
+    data: Option<&Path>,
+    split: battery::Split,
+    sim: SimDraw,
+    cases: bool,
+    set: &[String],
+    json: bool,
+) -> Result<(), Failure> {
+    let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
+    let bases = battery_bases(recipes, data, sim)?;
     let tuned = battery::tune_hdr(&bases).map_err(|e| Failure(e.to_string()))?;
     eprintln!(
         "HDR tuned on the {} training bases: cross-validated NE_psi {:.4} (Table III {:.4}) -> {}",

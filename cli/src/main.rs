@@ -172,6 +172,13 @@ enum Cmd {
         set: Vec<String>,
         #[arg(long)]
         json: bool,
+        /// Write one case's log instead ("BASE / PROFILE", as the cases are named), to open
+        /// in the dashboard or run with any command. A scoring case looked at is a look.
+        #[arg(long, value_name = "CASE", conflicts_with_all = ["json", "cases", "set"])]
+        write_case: Option<String>,
+        /// With --write-case: the file (stdout when absent).
+        #[arg(long, requires = "write_case")]
+        out: Option<PathBuf>,
     },
     /// Tune the five HDR parameters on training drives; report Table III vs tuned.
     Tune {
@@ -377,7 +384,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
             c::simulate(&SimRequest { kind, scenario, minutes, seed, name }, out.as_deref())
         }
         Cmd::Samples { out, realisation } => c::samples(&out, realisation),
-        Cmd::Battery { recipes, data, split, minutes, draw, cases, set, json } => {
+        Cmd::Battery { recipes, data, minutes, draw, write_case: Some(case), out, .. } => {
+            c::battery_case(&recipes, data.as_deref(), c::SimDraw { minutes, draw }, &case, out.as_deref())
+        }
+        Cmd::Battery { recipes, data, split, minutes, draw, cases, set, json, .. } => {
             let split = match split {
                 SplitArg::Training => battery::Split::Training,
                 SplitArg::Scoring => battery::Split::Scoring,

@@ -509,3 +509,36 @@ fn battery_draws_the_simulated_scoring_bases_afresh() {
     assert!(bases(false).contains(&"sim-city-mems-2101") && !bases(false).contains(&"sim-city-mems-101"), "{:?}", bases(false));
     assert!(bases(true).contains(&"sim-city-crs03-1"), "{:?}", bases(true));
 }
+
+/// `battery --write-case`: one case's log, which `compare` scores as the battery did (raw,
+/// Table-III HDR, Fusion, ZARU, pipeline, smoothed: the battery's first six columns); an
+/// unknown case exits 2 (the CLI's code for an error) with the names it knows.
+#[test]
+fn battery_writes_a_case_that_scores_as_the_battery_did() {
+    let case = "sim-city-crs03-1 / bias +0.5";
+    let out = run(&["battery", "--minutes", "2", "--split", "training", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let row = v["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| format!("{} / {}", c["base"].as_str().unwrap(), c["profile"].as_str().unwrap()) == case)
+        .unwrap();
+    let dir = std::env::temp_dir().join(format!("gyrodrift-case-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("case.csv");
+    let w = run(&["battery", "--minutes", "2", "--write-case", case, "--out", file.to_str().unwrap()]);
+    assert!(w.status.success(), "{}", String::from_utf8_lossy(&w.stderr));
+    let c: serde_json::Value = serde_json::from_slice(&run(&["compare", "--json", file.to_str().unwrap()]).stdout).unwrap();
+    let r = &c["rows"][0];
+    assert_eq!(r["name"].as_str(), Some(case));
+    let keys = ["raw", "hdr_table_iii", "fusion_offset", "zaru", "pipeline", "pipeline_smoothed"];
+    for (i, k) in keys.iter().enumerate() {
+        assert_eq!(r[k].as_f64(), row["ne_psi"][i].as_f64(), "{k}");
+    }
+    let bad = run(&["battery", "--minutes", "2", "--write-case", "sim-city-crs03-1 / bias +9"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("the profiles are as-is"), "{}", String::from_utf8_lossy(&bad.stderr));
+    std::fs::remove_dir_all(&dir).ok();
+}

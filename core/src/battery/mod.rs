@@ -144,6 +144,35 @@ pub fn profiles() -> Vec<Profile> {
     ]
 }
 
+/// One case's log as the battery scores it, named "BASE / PROFILE": the base's log with the
+/// profile's gyro errors added, so a case can be opened in the dashboard or run by any
+/// command (its file reproduces the battery's figures: the CSV keeps every value exactly).
+/// Writing out a scoring case and looking at it is a look (docs/battery.md).
+pub fn case_log(bases: &[Base], profiles: &[Profile], case: &str) -> Result<DriveLog> {
+    let names = |v: Vec<&str>| v.join(", ");
+    let (base, profile) = case
+        .split_once(" / ")
+        .ok_or_else(|| Error::data(format!("battery case \"{case}\": expected \"BASE / PROFILE\" as the battery names it")))?;
+    let b = bases.iter().find(|b| b.name == base.trim()).ok_or_else(|| {
+        Error::data(format!(
+            "battery case \"{case}\": no base \"{base}\"; the bases are {}",
+            names(bases.iter().map(|b| b.name.as_str()).collect())
+        ))
+    })?;
+    let p = profiles.iter().find(|p| p.name == profile.trim()).ok_or_else(|| {
+        Error::data(format!(
+            "battery case \"{case}\": no profile \"{profile}\"; the profiles are {}",
+            names(profiles.iter().map(|p| p.name.as_str()).collect())
+        ))
+    })?;
+    let mut log = inject(&b.log, &p.errors)?;
+    let split = if b.training && p.training { "training" } else { "scoring" };
+    log.meta.name = Some(format!("{} / {}", b.name, p.name));
+    log.meta.description =
+        Some(format!("robustness battery, {split} case: {} with the gyro errors of profile \"{}\" added", b.name, p.name));
+    Ok(log)
+}
+
 /// HDR tuned the way a user should tune it: on the training bases as recorded, with
 /// leave-one-drive-out cross-validation; `recommended` is Table III when tuning does not
 /// generalise.

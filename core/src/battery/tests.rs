@@ -156,3 +156,33 @@ fn a_fresh_draw_changes_only_the_scoring_bases() {
         }
     }
 }
+
+/// A case's log is the base with the profile's errors, named and described as a case; its
+/// CSV round trip scores exactly as the battery does; unknown names list the known ones.
+#[test]
+fn a_case_log_is_the_case_the_battery_scores() {
+    let bases: Vec<Base> = simulated_bases(2.0).into_iter().filter(|b| b.name == "sim-city-crs03-1").collect();
+    let profiles = profiles();
+    let log = case_log(&bases, &profiles, "sim-city-crs03-1 / vibration 0.3 / +0.05").unwrap();
+    let p = profiles.iter().find(|p| p.name == "vibration 0.3 / +0.05").unwrap();
+    let direct = inject(&bases[0].log, &p.errors).unwrap();
+    assert_eq!(log.column(crate::Column::GyroDps), direct.column(crate::Column::GyroDps));
+    assert_eq!(log.meta.name.as_deref(), Some("sim-city-crs03-1 / vibration 0.3 / +0.05"));
+    assert!(log.meta.description.as_deref().unwrap().contains("training case"), "{:?}", log.meta.description);
+    let mut csv = Vec::new();
+    log.write_csv(&mut csv).unwrap();
+    let back = crate::parse_log(&csv[..]).unwrap();
+    let params = PipelineParams::default();
+    let row = run(&bases, std::slice::from_ref(p), Split::All, &params, None).unwrap();
+    assert_eq!(score_case(&back, &params, None).unwrap().1, row.cases[0].ne_psi);
+    let scoring = case_log(&bases, &profiles, "sim-city-crs03-1 / bias -3").unwrap();
+    assert!(scoring.meta.description.as_deref().unwrap().contains("scoring case"));
+    for (bad, says) in [
+        ("sim-city-crs03-1", "expected \"BASE / PROFILE\""),
+        ("nowhere / as-is", "the bases are sim-city-crs03-1"),
+        ("sim-city-crs03-1 / bias +9", "the profiles are as-is, bias +0.5"),
+    ] {
+        let e = case_log(&bases, &profiles, bad).unwrap_err().to_string();
+        assert!(e.contains(says), "{bad}: {e}");
+    }
+}
