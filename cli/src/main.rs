@@ -174,7 +174,7 @@ enum Cmd {
         json: bool,
         /// Write one case's log instead ("BASE / PROFILE", as the cases are named), to open
         /// in the dashboard or run with any command. A scoring case looked at is a look.
-        #[arg(long, value_name = "CASE", conflicts_with_all = ["json", "cases", "set"])]
+        #[arg(long, value_name = "CASE", conflicts_with_all = ["json", "cases", "set", "split"])]
         write_case: Option<String>,
         /// With --write-case: the file (stdout when absent).
         #[arg(long, requires = "write_case")]
