@@ -245,6 +245,59 @@ fn max_abs(v: impl Iterator<Item = f64>) -> f64 {
     v.fold(f64::NAN, |m, x| if m.is_nan() || x.abs() > m { x.abs() } else { m })
 }
 
+/// A row's temperature: its own, else `fallback` (its set's or the lead-in's mean).
+fn temp_at(temp: Option<&[f64]>, r: usize, fallback: f64) -> f64 {
+    match temp {
+        Some(t) if !t[r].is_nan() => t[r],
+        _ => fallback,
+    }
+}
+
+/// w_s* (Eq. 15): the stationary lead-in's mean rate less the fitted model, 0 without a lead-in.
+fn lead_in_bias_compensated_dps(
+    log: &DriveLog,
+    gyro: &[f64],
+    temp: Option<&[f64]>,
+    model: &ErrorModel,
+    bias_s: f64,
+    need_temp: bool,
+) -> Result<f64> {
+    let t0 = log.time_s()[0];
+    let lead: Vec<usize> = (0..log.len()).take_while(|&r| log.time_s()[r] - t0 < bias_s).filter(|&r| !gyro[r].is_nan()).collect();
+    if lead.is_empty() {
+        return Ok(0.0);
+    }
+    let lead_temps: Vec<f64> = lead.iter().filter_map(|&r| temp.map(|t| t[r]).filter(|v| !v.is_nan())).collect();
+    if need_temp && lead_temps.is_empty() {
+        return Err(Error::Cell {
+            line: log.line[lead[0]],
+            column: "temp_c".into(),
+            message: "the stationary lead-in has no temperature (needed for w_s*, Eq. 15)".into(),
+        });
+    }
+    let t_mean = if lead_temps.is_empty() { 0.0 } else { lead_temps.iter().sum::<f64>() / lead_temps.len() as f64 };
+    Ok(lead.iter().map(|&r| gyro[r] - model.eval(gyro[r], temp_at(temp, r, t_mean))).sum::<f64>() / lead.len() as f64)
+}
+
+/// Each set's residual against the table rate, static bias only (Eq. 1) and compensated
+/// (Eq. 16), on per-sample corrected rates averaged over the set.
+fn correct_sets(sets: &mut [CalSet], gyro: &[f64], temp: Option<&[f64]>, model: &ErrorModel, w_s: f64, w_s_star: f64) {
+    for s in sets.iter_mut() {
+        let (mut so, mut co, mut n) = (0.0, 0.0, 0usize);
+        for r in s.start..s.end {
+            let g = gyro[r];
+            if g.is_nan() {
+                continue;
+            }
+            so += g - w_s;
+            co += g - model.eval(g, temp_at(temp, r, s.temp_c)) - w_s_star; // Eq. 16
+            n += 1;
+        }
+        s.residual_static_only_dps = so / n as f64 - s.table_rate_dps;
+        s.residual_compensated_dps = co / n as f64 - s.table_rate_dps;
+    }
+}
+
 /// Fits and evaluates the calibration on a turntable log.
 pub fn run(log: &DriveLog, opts: &CalibrationOptions) -> Result<CalibrationRun> {
     crate::options::Settings::validate(opts)?;
@@ -274,47 +327,11 @@ pub fn run(log: &DriveLog, opts: &CalibrationOptions) -> Result<CalibrationRun> 
     let model = ErrorModel::fit(&wg, &tc, &err, opts.p, opts.q)?;
     let fit_residual_rms_dps = rms((0..sets.len()).map(|i| err[i] - model.eval(wg[i], tc[i])));
 
-    // Per-sample temperature: the row's, else its set's (or lead-in's) mean.
-    let temp_at = |r: usize, fallback: f64| -> f64 {
-        match temp {
-            Some(t) if !t[r].is_nan() => t[r],
-            _ => fallback,
-        }
-    };
     // Eq. 1 and Eq. 15 on the stationary lead-in.
     let bias_s = log.bias_s(opts.bias_s);
     let w_s = preprocess::static_bias_dps(log.time_s(), gyro, bias_s)?;
-    let t0 = log.time_s()[0];
-    let lead: Vec<usize> = (0..log.len()).take_while(|&r| log.time_s()[r] - t0 < bias_s).filter(|&r| !gyro[r].is_nan()).collect();
-    let w_s_star = if lead.is_empty() {
-        0.0
-    } else {
-        let lead_temps: Vec<f64> = lead.iter().filter_map(|&r| temp.map(|t| t[r]).filter(|v| !v.is_nan())).collect();
-        if need_temp && lead_temps.is_empty() {
-            return Err(Error::Cell {
-                line: log.line[lead[0]],
-                column: "temp_c".into(),
-                message: "the stationary lead-in has no temperature (needed for w_s*, Eq. 15)".into(),
-            });
-        }
-        let t_mean = if lead_temps.is_empty() { 0.0 } else { lead_temps.iter().sum::<f64>() / lead_temps.len() as f64 };
-        lead.iter().map(|&r| gyro[r] - model.eval(gyro[r], temp_at(r, t_mean))).sum::<f64>() / lead.len() as f64
-    };
-    // Residuals per set, on per-sample corrected rates averaged per set.
-    for s in sets.iter_mut() {
-        let (mut so, mut co, mut n) = (0.0, 0.0, 0usize);
-        for r in s.start..s.end {
-            let g = gyro[r];
-            if g.is_nan() {
-                continue;
-            }
-            so += g - w_s;
-            co += g - model.eval(g, temp_at(r, s.temp_c)) - w_s_star; // Eq. 16
-            n += 1;
-        }
-        s.residual_static_only_dps = so / n as f64 - s.table_rate_dps;
-        s.residual_compensated_dps = co / n as f64 - s.table_rate_dps;
-    }
+    let w_s_star = lead_in_bias_compensated_dps(log, gyro, temp, &model, bias_s, need_temp)?;
+    correct_sets(&mut sets, gyro, temp, &model, w_s, w_s_star);
     let turning = || sets.iter().filter(|s| s.table_rate_dps.abs() >= 5.0);
     let t_so = || turning().map(|s| turn360_err_deg(s.residual_static_only_dps, s.table_rate_dps));
     let t_co = || turning().map(|s| turn360_err_deg(s.residual_compensated_dps, s.table_rate_dps));
