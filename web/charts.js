@@ -122,6 +122,7 @@ function band(c, box) {
 }
 const TALL_PX = 16;
 
+/** Zoom and pan on time chart `id` (drag a band, Shift + drag to pan, wheel, keys); every time chart shares state.zoom. */
 export function attachTimeInteraction(id) {
   const c = $(id);
   let drag = null;
@@ -172,6 +173,17 @@ export function attachTimeInteraction(id) {
       scheduleRender();
     }
   });
+  attachWheel(c, id, toX, toY);
+  attachKeys(c, id);
+  c.addEventListener("mouseleave", () => {
+    state.cursor = null;
+    tooltip(id, c, null);
+    scheduleRender();
+  });
+}
+
+/** Wheel: zoom time around the cursor; Alt + wheel: this chart's y. */
+function attachWheel(c, id, toX, toY) {
   c.addEventListener("wheel", (ev) => {
     const L = state.layouts[id];
     if (!L) return;
@@ -187,8 +199,11 @@ export function attachTimeInteraction(id) {
     }
     scheduleRender();
   }, { passive: false });
+}
+
+/** Double click or 0 resets; + / - zoom, arrow keys pan (the canvas is focusable). */
+function attachKeys(c, id) {
   c.addEventListener("dblclick", () => { state.zoom = null; delete state.yzoom[id]; scheduleRender(); });
-  // Keyboard: + / - zoom, arrow keys pan, 0 resets (the canvas is focusable).
   c.tabIndex = 0;
   c.addEventListener("keydown", (ev) => {
     const L = state.layouts[id];
@@ -202,11 +217,6 @@ export function attachTimeInteraction(id) {
     else if (ev.key === "0") { state.zoom = null; delete state.yzoom[id]; }
     else return;
     ev.preventDefault();
-    scheduleRender();
-  });
-  c.addEventListener("mouseleave", () => {
-    state.cursor = null;
-    tooltip(id, c, null);
     scheduleRender();
   });
 }

@@ -43,19 +43,13 @@ function row(label, ...controls) {
 }
 
 /**
- * Opens the panel for `files` ([{name, bytes}]) with `why` (the detection's error).
- * `importer(recipe)` imports in the worker: {data, detection} or {error}. Resolves with the
- * last good import {res, recipe}, or null when cancelled.
+ * The form's fields for the sniffed files, appended to `body`, each guessed from the
+ * headers: the time of each file, the yaw rate (one axis, or three on gravity), the
+ * reference heading, the speed and the lead-in.
  */
-export function openMapping(files, why, importer) {
-  const sniffed = files.map((f) => gd.sniffFile(f.name, f.bytes.subarray(0, 65536)));
+function buildForm(sniffed, body) {
   const cols = [["", "—"]];
   sniffed.forEach((s, i) => s.header.forEach((c) => cols.push([`${i}:${c}`, sniffed.length > 1 ? `${s.name} › ${c}` : c])));
-  const dlg = $("mapping");
-  $("mapping-why").textContent = why;
-  const body = $("mapping-fields");
-  body.replaceChildren();
-
   // Time of each file.
   const times = sniffed.map((s, i) => {
     const c = s.header.find((h) => /time|stamp|^t$|^t_|_s$/i.test(h)) || s.header[0];
@@ -100,61 +94,80 @@ export function openMapping(files, why, importer) {
   lead.setAttribute("aria-label", "stationary lead-in, s");
   body.append(row("speed (optional)", sp, spUnit), row("stationary lead-in, s", lead));
 
-  const show = () => {
-    oneRow.hidden = mode.value !== "one";
-    threeRow.hidden = mode.value !== "three";
-    refRow.hidden = refMode.value !== "column";
-    posRow.hidden = refMode.value !== "positions";
-  };
+  return { times, mode, rate, axes, acc, rateUnit, sense, oneRow, threeRow, refMode, ref, refUnit, refSense, latSel, lonSel, refRow, posRow, sp, spUnit, lead };
+}
 
-  /** The recipe the form says, or an error text. */
-  function recipe() {
-    const used = new Set();
-    const at = (v) => {
-      const k = v.indexOf(":");
-      used.add(Number(v.slice(0, k)));
-      return { table: `t${v.slice(0, k)}`, column: v.slice(k + 1) };
-    };
-    const r = { name: `${files[0].name} (mapped)`, description: "imported by a column mapping", bias_s: Number(lead.value) || 0 };
-    if (mode.value === "one") {
-      if (!rate.value) return "choose the gyro column";
-      const g = at(rate.value);
-      r.yaw_rate = { ...g, unit: rateUnit.value, positive: sense.value };
-    } else {
-      if ([...axes, ...acc].some((s) => !s.value)) return "choose three gyro and three accelerometer columns";
-      const g = axes.map((s) => at(s.value));
-      const a = acc.map((s) => at(s.value));
-      if (g.some((x) => x.table !== g[0].table)) return "the three gyro axes must be in one file";
-      r.yaw_rate = { table: g[0].table, axes: g.map((x) => x.column), gravity: { axes: a.map((x) => x.column), table: a[0].table }, unit: rateUnit.value, positive: sense.value };
-    }
-    if (refMode.value === "column" && ref.value) {
-      const h = at(ref.value);
-      r.heading = { source: "column", ...h, unit: refUnit.value, positive: refSense.value };
-      if (sp.value && at(sp.value).table === h.table) Object.assign(r.heading, { speed_column: at(sp.value).column, speed_unit: spUnit.value, min_speed_mps: 5 });
-    } else if (refMode.value === "positions" && latSel.value && lonSel.value) {
-      const p = at(latSel.value);
-      r.positions = { table: p.table, kind: "latlon", columns: [p.column, at(lonSel.value).column] };
-      r.heading = { source: "positions" };
-    }
-    if (sp.value) r.speed = { source: "column", ...at(sp.value), unit: spUnit.value };
-    r.table = [...used].sort().map((i) => {
-      const s = sniffed[i];
-      const t = times[i];
-      const time = t.unit.value === "iso8601" ? { column: t.col.value, format: "iso8601" } : { column: t.col.value, unit: t.unit.value };
-      const spec = { id: `t${i}`, file: s.name, time };
-      if (s.delimiter !== ",") spec.delimiter = s.delimiter;
-      if (s.decimal_comma) spec.decimal_comma = true;
-      if (s.skip_lines) spec.skip_lines = s.skip_lines;
-      return spec;
-    });
-    return r;
+/** Shows the rows the chosen modes use. */
+function showRows(f) {
+  f.oneRow.hidden = f.mode.value !== "one";
+  f.threeRow.hidden = f.mode.value !== "three";
+  f.refRow.hidden = f.refMode.value !== "column";
+  f.posRow.hidden = f.refMode.value !== "positions";
+}
+
+/** The recipe the form `f` says for `files`, or an error text. */
+function recipeOf(f, files, sniffed) {
+  const { times, mode, rate, axes, acc, rateUnit, sense, refMode, ref, refUnit, refSense, latSel, lonSel, sp, spUnit, lead } = f;
+  const used = new Set();
+  const at = (v) => {
+    const k = v.indexOf(":");
+    used.add(Number(v.slice(0, k)));
+    return { table: `t${v.slice(0, k)}`, column: v.slice(k + 1) };
+  };
+  const r = { name: `${files[0].name} (mapped)`, description: "imported by a column mapping", bias_s: Number(lead.value) || 0 };
+  if (mode.value === "one") {
+    if (!rate.value) return "choose the gyro column";
+    const g = at(rate.value);
+    r.yaw_rate = { ...g, unit: rateUnit.value, positive: sense.value };
+  } else {
+    if ([...axes, ...acc].some((s) => !s.value)) return "choose three gyro and three accelerometer columns";
+    const g = axes.map((s) => at(s.value));
+    const a = acc.map((s) => at(s.value));
+    if (g.some((x) => x.table !== g[0].table)) return "the three gyro axes must be in one file";
+    r.yaw_rate = { table: g[0].table, axes: g.map((x) => x.column), gravity: { axes: a.map((x) => x.column), table: a[0].table }, unit: rateUnit.value, positive: sense.value };
   }
+  if (refMode.value === "column" && ref.value) {
+    const h = at(ref.value);
+    r.heading = { source: "column", ...h, unit: refUnit.value, positive: refSense.value };
+    if (sp.value && at(sp.value).table === h.table) Object.assign(r.heading, { speed_column: at(sp.value).column, speed_unit: spUnit.value, min_speed_mps: 5 });
+  } else if (refMode.value === "positions" && latSel.value && lonSel.value) {
+    const p = at(latSel.value);
+    r.positions = { table: p.table, kind: "latlon", columns: [p.column, at(lonSel.value).column] };
+    r.heading = { source: "positions" };
+  }
+  if (sp.value) r.speed = { source: "column", ...at(sp.value), unit: spUnit.value };
+  r.table = [...used].sort().map((i) => {
+    const s = sniffed[i];
+    const t = times[i];
+    const time = t.unit.value === "iso8601" ? { column: t.col.value, format: "iso8601" } : { column: t.col.value, unit: t.unit.value };
+    const spec = { id: `t${i}`, file: s.name, time };
+    if (s.delimiter !== ",") spec.delimiter = s.delimiter;
+    if (s.decimal_comma) spec.decimal_comma = true;
+    if (s.skip_lines) spec.skip_lines = s.skip_lines;
+    return spec;
+  });
+  return r;
+}
+
+/**
+ * Opens the panel for `files` ([{name, bytes}]) with `why` (the detection's error).
+ * `importer(recipe)` imports in the worker: {data, detection} or {error}. Resolves with the
+ * last good import {res, recipe}, or null when cancelled.
+ */
+export function openMapping(files, why, importer) {
+  const sniffed = files.map((f) => gd.sniffFile(f.name, f.bytes.subarray(0, 65536)));
+  const dlg = $("mapping");
+  $("mapping-why").textContent = why;
+  const body = $("mapping-fields");
+  body.replaceChildren();
+  const form = buildForm(sniffed, body);
+  const recipe = () => recipeOf(form, files, sniffed);
 
   let last = null;
   let seq = 0;
   let timer = 0;
   async function preview() {
-    show();
+    showRows(form);
     const r = recipe();
     const out = $("mapping-preview");
     last = null;

@@ -309,6 +309,86 @@ fn fit_caption(root: &DrawingArea<CanvasBackend, Shift>, title: &str, avail: u32
     (title.to_string(), size)
 }
 
+/// The plotted coordinates: a time axis in its unit, a log axis in log10.
+#[derive(Clone, Copy)]
+struct Scale {
+    log_x: bool,
+    log_y: bool,
+    /// Seconds per unit of a time axis (1 otherwise).
+    per: f64,
+}
+
+impl Scale {
+    fn tx(self, v: f64) -> f64 {
+        if self.log_x {
+            v.log10()
+        } else {
+            v / self.per
+        }
+    }
+    fn ty(self, v: f64) -> f64 {
+        if self.log_y {
+            v.log10()
+        } else {
+            v
+        }
+    }
+}
+
+type Chart<'a> = ChartContext<'a, CanvasBackend, Cartesian2d<Ticked, Ticked>>;
+type DrawResult<T> = Result<T, Box<dyn std::error::Error>>;
+
+/// Shaded intervals where the mask is 1 (turn switch, gyro used, ...); gaps narrower than a
+/// pixel column are merged, so a flickering mask costs a few rectangles, not thousands.
+fn draw_shade(chart: &mut Chart, sh: &Shade, sc: Scale, x: (f64, f64), cy: (f64, f64), columns: usize) -> DrawResult<()> {
+    let (x0, x1) = x;
+    let c = parse_color(&sh.color).mix(0.18);
+    let intervals = axis::mask_intervals(&sh.x, &sh.mask, (x1 - x0) / columns as f64);
+    let visible: Vec<(f64, f64)> = intervals.into_iter().filter(|(s0, e)| *e >= x0 && *s0 <= x1).collect();
+    if visible.is_empty() {
+        return Ok(());
+    }
+    let drawn = chart
+        .draw_series(visible.iter().map(|&(s0, e)| Rectangle::new([(sc.tx(s0.max(x0)), cy.0), (sc.tx(e.min(x1)), cy.1)], c.filled())))?;
+    if !sh.label.is_empty() {
+        drawn.label(sh.label.as_str()).legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 16, y + 5)], c.filled()));
+    }
+    Ok(())
+}
+
+/// One series, decimated, as a line or as square markers, with its legend entry.
+fn draw_line(
+    chart: &mut Chart,
+    s: &Series,
+    (dx, dy): (&[f64], &[f64]),
+    sc: Scale,
+    cx: (f64, f64),
+    px: impl Fn(f64) -> i32,
+) -> DrawResult<()> {
+    let color = parse_color(&s.color);
+    let width = px(s.width.unwrap_or(1) as f64).max(1) as u32;
+    let pts: Vec<(f64, f64)> = dx
+        .iter()
+        .zip(dy.iter())
+        .filter(|(x, y)| x.is_finite() && y.is_finite() && (!sc.log_x || **x > 0.0) && (!sc.log_y || **y > 0.0))
+        .map(|(x, y)| (sc.tx(*x), sc.ty(*y)))
+        .collect();
+    let style = ShapeStyle { color: color.to_rgba(), filled: true, stroke_width: width };
+    let drawn = if s.points {
+        // Square markers: a filled rect is far cheaper on a canvas than an arc.
+        let r = px(1.5);
+        chart.draw_series(
+            pts.iter().filter(|(x, _)| *x >= cx.0 && *x <= cx.1).map(|&p| EmptyElement::at(p) + Rectangle::new([(-r, -r), (r, r)], style)),
+        )?
+    } else {
+        chart.draw_series(LineSeries::new(pts, style))?
+    };
+    drawn.label(s.name.as_str()).legend(move |(x, y)| {
+        PathElement::new(vec![(x, y), (x + 16, y)], ShapeStyle { color: color.to_rgba(), filled: true, stroke_width: 2 })
+    });
+    Ok(())
+}
+
 fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout, Box<dyn std::error::Error>> {
     root.fill(&WHITE)?;
     let dpr = spec.dpr.clamp(0.5, 4.0);
@@ -323,9 +403,8 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
         Some(u) => format!("{} ({})", spec.x_label, u.name),
         None => spec.x_label.clone(),
     };
-    let tx = |v: f64| if spec.log_x { v.log10() } else { v / per };
-    let ty = |v: f64| if spec.log_y { v.log10() } else { v };
-    let (cx0, cx1, cy0, cy1) = (tx(x0), tx(x1), ty(y0), ty(y1));
+    let sc = Scale { log_x: spec.log_x, log_y: spec.log_y, per };
+    let (cx0, cx1, cy0, cy1) = (sc.tx(x0), sc.tx(x1), sc.ty(y0), sc.ty(y1));
     let font = ("sans-serif", px(13.0)).into_font();
     // Ticks at round values (core's axis): 1-2-5 steps on a linear axis, whole decades on a
     // log one (drawn linear in log10).
@@ -351,48 +430,15 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
         .y_label_formatter(&fmt_y)
         .light_line_style(RGBColor(242, 242, 242))
         .draw()?;
-    // Shaded intervals where the mask is 1 (turn switch, gyro used, ...); gaps narrower than
-    // a pixel column are merged, so a flickering mask costs a few rectangles, not thousands.
     if let Some(sh) = &spec.shade {
-        let c = parse_color(&sh.color).mix(0.18);
-        let intervals = axis::mask_intervals(&sh.x, &sh.mask, (x1 - x0) / columns as f64);
-        let visible: Vec<(f64, f64)> = intervals.into_iter().filter(|(s0, e)| *e >= x0 && *s0 <= x1).collect();
-        if !visible.is_empty() {
-            let drawn = chart
-                .draw_series(visible.iter().map(|&(s0, e)| Rectangle::new([(tx(s0.max(x0)), cy0), (tx(e.min(x1)), cy1)], c.filled())))?;
-            if !sh.label.is_empty() {
-                drawn.label(sh.label.as_str()).legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 16, y + 5)], c.filled()));
-            }
-        }
+        draw_shade(&mut chart, sh, sc, (x0, x1), (cy0, cy1), columns)?;
     }
     for (s, dx, dy) in &decimated {
-        let color = parse_color(&s.color);
-        let width = px(s.width.unwrap_or(1) as f64).max(1) as u32;
-        let pts: Vec<(f64, f64)> = dx
-            .iter()
-            .zip(dy.iter())
-            .filter(|(x, y)| x.is_finite() && y.is_finite() && (!spec.log_x || **x > 0.0) && (!spec.log_y || **y > 0.0))
-            .map(|(x, y)| (tx(*x), ty(*y)))
-            .collect();
-        let style = ShapeStyle { color: color.to_rgba(), filled: true, stroke_width: width };
-        let drawn = if s.points {
-            // Square markers: a filled rect is far cheaper on a canvas than an arc.
-            let r = px(1.5);
-            chart.draw_series(
-                pts.iter()
-                    .filter(|(x, _)| *x >= cx0 && *x <= cx1)
-                    .map(|&p| EmptyElement::at(p) + Rectangle::new([(-r, -r), (r, r)], style)),
-            )?
-        } else {
-            chart.draw_series(LineSeries::new(pts, style))?
-        };
-        drawn.label(s.name.as_str()).legend(move |(x, y)| {
-            PathElement::new(vec![(x, y), (x + 16, y)], ShapeStyle { color: color.to_rgba(), filled: true, stroke_width: 2 })
-        });
+        draw_line(&mut chart, s, (dx, dy), sc, (cx0, cx1), px)?;
     }
     if let Some(c) = spec.cursor_x {
         if c >= x0 && c <= x1 {
-            chart.draw_series(LineSeries::new(vec![(tx(c), cy0), (tx(c), cy1)], RGBColor(120, 120, 120)))?;
+            chart.draw_series(LineSeries::new(vec![(sc.tx(c), cy0), (sc.tx(c), cy1)], RGBColor(120, 120, 120)))?;
         }
     }
     if spec.legend {
