@@ -2,7 +2,8 @@
 //! Prints one simulated battery case's bias over time: the truth (the same drive with an
 //! ideal gyro subtracted), the pipeline (causal, smoothed) and HDR's drift estimate.
 //! `cargo run --release --example case_trace -- BASE PROFILE` (BASE as `gyrodrift battery` names it).
-use gyrodrift::{battery, eval::Prepared, hdr, pipeline::PipelineParams, preprocess::block_average_1hz, sim, Column};
+use gyrodrift::pipeline::{PipelineParams, PipelineTrace};
+use gyrodrift::{battery, eval::Prepared, hdr, preprocess::block_average_1hz, sim, Column};
 fn main() {
     let a: Vec<String> = std::env::args().collect();
     if a[1].ends_with(".csv") {
@@ -65,6 +66,12 @@ fn main() {
         }
         return;
     }
+    print_trace(&tr, &w, &prep, &true_bias.rate_dps, &drift, h.eps0_dps, step);
+}
+
+/// Every `step` s: the bank's weight by warm-up, walk and road, the rate, the true bias, the
+/// pipeline's (causal, smoothed) and HDR's.
+fn print_trace(tr: &PipelineTrace, w: &[Vec<f64>], prep: &Prepared, true_bias: &[f64], drift: &[f64], eps0_dps: f64, step: usize) {
     for i in (0..tr.time_s.len()).step_by(step) {
         println!(
             "{:6.0} warm {:.2} {:.2} {:.2} w {:.2} {:.2} {:.2} road {:.2} {:.2} {:.2} stop {} rate {:8.3} true {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
@@ -80,11 +87,11 @@ fn main() {
             (0..w[i].len()).filter(|j| (j / 3) % 3 == 2).map(|j| w[i][j]).sum::<f64>(),
             tr.stop[i] as u8,
             prep.blocks.rate_dps[i],
-            true_bias.rate_dps[i],
+            true_bias[i],
             tr.bias_dps[i],
             tr.bias_sigma_dps[i],
             tr.bias_smoothed_dps[i],
-            drift[i] + h.eps0_dps
+            drift[i] + eps0_dps
         );
     }
 }
