@@ -213,40 +213,51 @@ pub struct SimDraw {
     pub draw: u64,
 }
 
-/// The battery's bases: the recipes' drives (named by their recipe's stem) and the simulated ones.
-fn battery_bases(recipes: &[PathBuf], data: Option<&Path>, sim: SimDraw) -> Result<Vec<battery::Base>, Failure> {
+/// The recorded drives given to the battery: shipped-style recipes, the user's own v1 logs
+/// (read, checked and split at gaps as every command reads a log), and the input policy.
+pub struct BatteryInput<'a> {
+    pub recipes: &'a [PathBuf],
+    pub logs: &'a [PathBuf],
+    pub data: Option<&'a Path>,
+    pub input: Input,
+}
+
+/// The battery's bases: the recipes' drives (named by their recipe's stem), the logs given
+/// (added bases, named by `# name:` or file stem) and the simulated drives.
+fn battery_bases(given: BatteryInput, sim: SimDraw) -> Result<Vec<battery::Base>, Failure> {
     let SimDraw { minutes, draw } = sim;
     if !(minutes.is_finite() && minutes > 1.0 && minutes <= 600.0) {
         return Err(Failure(format!("--minutes {minutes}: expected a length in (1, 600] min")));
     }
     let mut bases = Vec::new();
-    for r in expand_recipes(recipes)? {
-        let (log, _) = import_recipe(&r, data, false)?;
+    for r in expand_recipes(given.recipes)? {
+        let (log, _) = import_recipe(&r, given.data, false)?;
         let stem = r.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         bases.push(battery::recorded_base(&stem, log));
+    }
+    for path in given.logs {
+        for part in read_checked(path, given.input, None)? {
+            let name = part.meta.name.clone().unwrap_or_default();
+            bases.push(battery::added_base(&name, part).map_err(|e| fail(path, e))?);
+        }
     }
     bases.extend(battery::simulated_bases_drawn(minutes, draw));
     Ok(bases)
 }
 
 /// One battery case's log ("BASE / PROFILE") to a file or stdout.
-pub fn battery_case(recipes: &[PathBuf], data: Option<&Path>, sim: SimDraw, case: &str, out: Option<&Path>) -> Result<(), Failure> {
-    let bases = battery_bases(recipes, data, sim)?;
+pub fn battery_case(given: BatteryInput, sim: SimDraw, case: &str, out: Option<&Path>) -> Result<(), Failure> {
+    let bases = battery_bases(given, sim)?;
     let log = battery::case_log(&bases, &battery::profiles(), case).map_err(|e| Failure(e.to_string()))?;
     write_log(&log, out)
 }
 
-pub fn battery(
-    recipes: &[PathBuf],
-    data: Option<&Path>,
-    split: battery::Split,
-    sim: SimDraw,
-    cases: bool,
-    set: &[String],
-    json: bool,
-) -> Result<(), Failure> {
+pub fn battery(given: BatteryInput, split: battery::Split, sim: SimDraw, cases: bool, set: &[String], json: bool) -> Result<(), Failure> {
+    if !given.logs.is_empty() && split == battery::Split::Training {
+        return Err(Failure("--logs with --split training: the drives you add are scoring bases, so none of their cases would run".into()));
+    }
     let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
-    let bases = battery_bases(recipes, data, sim)?;
+    let bases = battery_bases(given, sim)?;
     let tuned = battery::tune_hdr(&bases).map_err(|e| Failure(e.to_string()))?;
     eprintln!(
         "HDR tuned on the {} training bases: cross-validated NE_psi {:.4} (Table III {:.4}) -> {}",

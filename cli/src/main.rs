@@ -151,6 +151,10 @@ enum Cmd {
         /// Recipes of recorded drives (a folder's *.toml or files); none = simulated only.
         #[arg(long, num_args = 1..)]
         recipes: Vec<PathBuf>,
+        /// Your own drives as v1 logs with a reference heading: scoring bases whatever their
+        /// names, with every error profile added; their cases are also summarised apart.
+        #[arg(long, num_args = 1..)]
+        logs: Vec<PathBuf>,
         /// Folder the recipes' files are in (default: each recipe's folder).
         #[arg(long)]
         data: Option<PathBuf>,
@@ -384,16 +388,18 @@ fn run(cli: Cli) -> Result<(), Failure> {
             c::simulate(&SimRequest { kind, scenario, minutes, seed, name }, out.as_deref())
         }
         Cmd::Samples { out, realisation } => c::samples(&out, realisation),
-        Cmd::Battery { recipes, data, minutes, draw, write_case: Some(case), out, .. } => {
-            c::battery_case(&recipes, data.as_deref(), c::SimDraw { minutes, draw }, &case, out.as_deref())
+        Cmd::Battery { recipes, logs, data, minutes, draw, write_case: Some(case), out, .. } => {
+            let given = c::BatteryInput { recipes: &recipes, logs: &logs, data: data.as_deref(), input };
+            c::battery_case(given, c::SimDraw { minutes, draw }, &case, out.as_deref())
         }
-        Cmd::Battery { recipes, data, split, minutes, draw, cases, set, json, .. } => {
+        Cmd::Battery { recipes, logs, data, split, minutes, draw, cases, set, json, .. } => {
             let split = match split {
                 SplitArg::Training => battery::Split::Training,
                 SplitArg::Scoring => battery::Split::Scoring,
                 SplitArg::All => battery::Split::All,
             };
-            c::battery(&recipes, data.as_deref(), split, c::SimDraw { minutes, draw }, cases, &set, json)
+            let given = c::BatteryInput { recipes: &recipes, logs: &logs, data: data.as_deref(), input };
+            c::battery(given, split, c::SimDraw { minutes, draw }, cases, &set, json)
         }
         Cmd::Import { files, recipe, print_recipe, data, allow_outside, out, json } => match recipe {
             Some(recipe) => c::import(&recipe, data.as_deref(), allow_outside, out.as_deref(), json),

@@ -542,3 +542,31 @@ fn battery_writes_a_case_that_scores_as_the_battery_did() {
     assert!(String::from_utf8_lossy(&bad.stderr).contains("the profiles are as-is"), "{}", String::from_utf8_lossy(&bad.stderr));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `battery --logs`: the user's own v1 log becomes a scoring base (whatever its name), run
+/// with every error profile and summarised apart as "added"; a log without a reference
+/// heading, or two logs of one name, exit 2 naming the problem.
+#[test]
+fn battery_runs_the_profiles_on_a_users_own_log() {
+    let p = write("battery-own.csv", &drive_csv());
+    let out = run(&["battery", "--minutes", "2", "--split", "scoring", "--json", "--logs", p.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let mine: Vec<&serde_json::Value> = v["cases"].as_array().unwrap().iter().filter(|c| c["base"] == "test drive").collect();
+    assert!(mine.len() > 20 && mine.iter().all(|c| c["training"] == false), "{}", mine.len());
+    assert_eq!(v["added"]["n_cases"].as_u64(), Some(mine.len() as u64));
+    let text = String::from_utf8(run(&["battery", "--minutes", "2", "--split", "scoring", "--logs", p.to_str().unwrap()]).stdout).unwrap();
+    assert!(text.contains(&format!("| added ({}) |", mine.len())), "{text}");
+
+    let no_ref = write("battery-noref.csv", "time_s,gyro_dps\n0,0.1\n1,0.1\n2,0.1\n");
+    let bad = run(&["battery", "--minutes", "2", "--logs", no_ref.to_str().unwrap()]);
+    assert_eq!(bad.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(err.contains("battery-noref.csv") && err.contains("ref_heading_deg"), "{err}");
+    let twice = run(&["battery", "--minutes", "2", "--logs", p.to_str().unwrap(), p.to_str().unwrap()]);
+    assert_eq!(twice.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&twice.stderr).contains("two battery bases are named \"test drive\""));
+    let training = run(&["battery", "--minutes", "2", "--split", "training", "--logs", p.to_str().unwrap()]);
+    assert_eq!(training.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&training.stderr).contains("the drives you add are scoring bases"));
+}

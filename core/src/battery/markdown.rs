@@ -1,9 +1,14 @@
 //! The battery as Markdown: the summaries, the goals with their verdicts, every case.
 
-use super::{best_peer, Battery, PIPELINE};
+use super::{best_peer, Battery, Summary, PIPELINE};
 use std::fmt::Write;
 
 impl Battery {
+    /// The summaries by split, and of the drives a user added (a part of the scoring cases).
+    fn splits(&self) -> [(&'static str, &Option<Summary>); 3] {
+        [("training", &self.training), ("scoring", &self.scoring), ("added", &self.added)]
+    }
+
     /// Markdown: the two summaries, then every case (best causal method in bold).
     pub fn to_markdown(&self, cases: bool) -> String {
         let mut s = String::new();
@@ -16,7 +21,7 @@ impl Battery {
         };
         let _ = writeln!(s, "Mean NE_psi (deg/min) per method; \"smoothed\" is offline (non-causal) and not a peer.\n");
         head(&mut s, "cases", Some("pipeline / best other"));
-        for (label, sm) in [("training", &self.training), ("scoring", &self.scoring)] {
+        for (label, sm) in self.splits() {
             if let Some(sm) = sm {
                 let _ = write!(s, "| {label} ({}) |", sm.n_cases);
                 for v in &sm.mean {
@@ -26,7 +31,10 @@ impl Battery {
             }
         }
         let _ = writeln!(s);
-        for (label, sm) in [("training", &self.training), ("scoring", &self.scoring)] {
+        if self.added.is_some() {
+            let _ = writeln!(s, "\"added\": the cases on the drives given as logs (`--logs`), which are scoring cases too.\n");
+        }
+        for (label, sm) in self.splits() {
             if let Some(sm) = sm {
                 let _ = writeln!(
                     s,
@@ -43,7 +51,7 @@ impl Battery {
         }
         let _ = writeln!(s, "\nThe same two counts for every method against the best of its others (the pipeline is one of a peer's others; smoothed is measured against every causal method):\n");
         head(&mut s, "cases: within 1.25x + 0.05 / worse than 2x + 0.05", None);
-        for (label, sm) in [("training", &self.training), ("scoring", &self.scoring)] {
+        for (label, sm) in self.splits() {
             if let Some(sm) = sm {
                 let _ = write!(s, "| {label} ({}) |", sm.n_cases);
                 for (w, o) in sm.each_within.iter().zip(&sm.each_over_2x) {
@@ -54,7 +62,7 @@ impl Battery {
         }
         let _ = writeln!(s, "\nThe robustness issue's goals, measured on each split (`Summary::goals`):\n");
         let _ = writeln!(s, "| cases | goal | measured | verdict |\n|---|---|---|---|");
-        for (label, sm) in [("training", &self.training), ("scoring", &self.scoring)] {
+        for (label, sm) in self.splits() {
             for g in sm.iter().flat_map(|sm| &sm.goals) {
                 let verdict = if g.holds { "holds" } else { "**misses**" };
                 let measured = if g.measured.fract() == 0.0 { format!("{:.0}", g.measured) } else { format!("{:.3}", g.measured) };

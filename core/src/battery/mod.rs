@@ -9,7 +9,7 @@
 use crate::error::{Error, Result};
 use crate::eval::{col, standard_methods, Prepared};
 use crate::hdr::HdrParams;
-use crate::log::DriveLog;
+use crate::log::{Column, DriveLog};
 use crate::pipeline::PipelineParams;
 use crate::sim::{errors::GyroErrors, inject, GyroSpec, Scenario};
 use serde::{Deserialize, Serialize};
@@ -37,6 +37,8 @@ pub struct Base {
     pub training: bool,
     /// Simulated (known truth) rather than recorded.
     pub simulated: bool,
+    /// A drive the user added as a log: scoring whatever its name, and summarised apart.
+    pub added: bool,
 }
 
 /// One gyro error profile.
@@ -49,7 +51,16 @@ pub struct Profile {
 
 /// A recorded base; training when its name is in [`TRAINING_RECORDED`].
 pub fn recorded_base(name: &str, log: DriveLog) -> Base {
-    Base { name: name.to_string(), training: TRAINING_RECORDED.contains(&name), simulated: false, log }
+    Base { name: name.to_string(), training: TRAINING_RECORDED.contains(&name), simulated: false, added: false, log }
+}
+
+/// A recorded drive the user adds as a log (not by a shipped recipe): a scoring base
+/// whatever its name, since no choice was made on it, with its cases summarised apart. It
+/// needs the gyro and a reference heading, which every case is scored against.
+pub fn added_base(name: &str, log: DriveLog) -> Result<Base> {
+    log.require(Column::GyroDps, "needed by the battery")?;
+    log.require(Column::RefHeadingDeg, "needed by the battery, which scores every method against it")?;
+    Ok(Base { name: name.to_string(), training: false, simulated: false, added: true, log })
 }
 
 /// Simulated bases: six scenarios with the paper's CRS03-class gyro and six with a
@@ -73,7 +84,7 @@ pub fn simulated_bases_drawn(minutes: f64, draw: u64) -> Vec<Base> {
             let mut log = crate::sim::drive::simulate_drive_with(&cfg, &spec);
             let name = format!("sim-{}-{gyro}-{seed}", format!("{s:?}").to_lowercase());
             log.meta.name = Some(name.clone());
-            out.push(Base { name, log, training, simulated: true });
+            out.push(Base { name, log, training, simulated: true, added: false });
         }
     }
     out
@@ -253,6 +264,9 @@ pub struct Battery {
     pub cases: Vec<CaseRow>,
     pub training: Option<Summary>,
     pub scoring: Option<Summary>,
+    /// The cases on drives the user added as logs (a part of the scoring cases).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub added: Option<Summary>,
     /// Cases that could not be scored (e.g. a cut lead-in left no reference), with why.
     pub skipped: Vec<(String, String)>,
 }
@@ -275,6 +289,12 @@ fn score_case(log: &DriveLog, params: &PipelineParams, tuned: Option<HdrParams>)
 /// Runs every (base, profile) case of the split.
 pub fn run(bases: &[Base], profiles: &[Profile], split: Split, params: &PipelineParams, tuned: Option<&TunedHdr>) -> Result<Battery> {
     params.validate()?;
+    if let Some((_, b)) = bases.iter().enumerate().find(|(i, b)| bases[..*i].iter().any(|a| a.name == b.name)) {
+        return Err(Error::data(format!(
+            "two battery bases are named \"{}\": a case is named by its base, so rename one (`# name:` in a log)",
+            b.name
+        )));
+    }
     let mut jobs = Vec::new();
     for b in bases {
         for pr in profiles {
@@ -313,10 +333,13 @@ pub fn run(bases: &[Base], profiles: &[Profile], split: Split, params: &Pipeline
         return Err(Error::data("the battery has no case that could be scored"));
     }
     let summary = |train: bool| summarize(&cases.iter().filter(|c| c.training == train).collect::<Vec<_>>());
+    let added: Vec<&str> = bases.iter().filter(|b| b.added).map(|b| b.name.as_str()).collect();
+    let added_summary = summarize(&cases.iter().filter(|c| added.contains(&c.base.as_str())).collect::<Vec<_>>());
     Ok(Battery {
         methods: method_names(tuned.is_some()).into_iter().map(String::from).collect(),
         training: summary(true),
         scoring: summary(false),
+        added: added_summary,
         cases,
         skipped,
     })

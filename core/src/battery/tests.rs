@@ -186,3 +186,42 @@ fn a_case_log_is_the_case_the_battery_scores() {
         assert!(e.contains(says), "{bad}: {e}");
     }
 }
+
+/// A drive added as a log is a scoring base whatever its name (even a training recipe's),
+/// needs a reference heading, and its cases are summarised apart as well as among the
+/// scoring ones; two bases of one name are refused, since cases are named by their base.
+#[test]
+fn an_added_drive_is_scored_and_summarised_apart() {
+    let sim = simulated_bases(2.0);
+    let drive = sim.iter().find(|b| b.name == "sim-city-crs03-1").unwrap().log.clone();
+    let added = added_base("pixel6a-20230806_144805", drive.clone()).unwrap();
+    assert!(added.added && !added.training && !added.simulated);
+    assert!(recorded_base("pixel6a-20230806_144805", drive.clone()).training);
+    let kept = drive.columns().into_iter().filter(|(c, _)| *c != crate::Column::RefHeadingDeg).map(|(c, v)| (c, v.to_vec())).collect();
+    let no_ref = DriveLog::from_columns(drive.meta.clone(), drive.line.clone(), kept).unwrap();
+    let e = added_base("x", no_ref).unwrap_err().to_string();
+    assert!(e.contains("ref_heading_deg"), "{e}");
+
+    let keep = ["as-is", "bias -1.5 cut", "bias -3"];
+    let profiles: Vec<Profile> = profiles().into_iter().filter(|p| keep.contains(&p.name.as_str())).collect();
+    let other = sim.iter().find(|b| b.name == "sim-suburbs-mems-2").unwrap().clone();
+    let params = PipelineParams::default();
+    let b = run(&[other.clone(), added], &profiles, Split::All, &params, None).unwrap();
+    let a = b.added.as_ref().expect("a summary of the added drive");
+    assert_eq!(a.n_cases, 3);
+    let mine: Vec<&CaseRow> = b.cases.iter().filter(|c| c.base == "pixel6a-20230806_144805").collect();
+    assert!(mine.iter().all(|c| !c.training));
+    assert_eq!(Some(a), summarize(&mine).as_ref());
+    assert_eq!(b.scoring.as_ref().unwrap().n_cases, 4, "the added drive's 3 cases and the other base's scoring profile");
+    assert!(b.to_markdown(false).contains("| added (3) |"));
+
+    // Without an added drive: no summary, and no key in the JSON.
+    let plain = run(std::slice::from_ref(&other), &profiles, Split::All, &params, None).unwrap();
+    assert!(plain.added.is_none());
+    assert!(!serde_json::to_string(&plain).unwrap().contains("\"added\""));
+    assert!(!plain.to_markdown(false).contains("added"));
+
+    let twice = [other.clone(), Base { added: true, training: false, ..other }];
+    let e = run(&twice, &profiles, Split::All, &params, None).unwrap_err().to_string();
+    assert!(e.contains("two battery bases are named \"sim-suburbs-mems-2\""), "{e}");
+}
