@@ -10,6 +10,7 @@ import { buildParams, syncParams, logFor } from "./controls.js";
 import { attachTimeInteraction, csvOf, download, pngOf, timeChartsCsv } from "./charts.js";
 import { render, scheduleRender, showError } from "./render.js";
 import { runTune, reportExports } from "./views/report.js";
+import { runBattery } from "./views/robustness.js";
 
 // ---------- start ----------
 async function main() {
@@ -92,6 +93,7 @@ function setupExports() {
     download(fileName("hdr.json"), JSON.stringify(out, null, 2), "application/json");
   });
   $("tune").addEventListener("click", runTune);
+  $("battery").addEventListener("click", runBattery);
   reportExports(download);
 }
 

@@ -5,9 +5,10 @@
 // - import: raw logger files by their detected preset (or a given recipe); recipes to and
 //   from TOML;
 // - tune: the HDR parameters over the drives' columns, with progress;
+// - battery: the robustness battery's error profiles on the drives' columns;
 // - track, pipeline: the slow work on a large log this worker parsed and kept (`key`), so
 //   the page's Track view and pipeline never pause it.
-import init, { Log, tune, detectImport, importLog, recipeToToml, recipeFromToml, track, runPipeline, checkLog } from "./pkg/full/gyrodrift.js";
+import init, { Log, tune, battery, detectImport, importLog, recipeToToml, recipeFromToml, track, runPipeline, checkLog } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 /** Large logs parsed here, kept for later work on them (freed on "forget"). */
@@ -43,6 +44,19 @@ self.onmessage = async (ev) => {
       const report = tune(logs, undefined, ev.data.options || {}, progressReporter(id));
       for (const l of logs) l.free();
       self.postMessage({ id, data: report });
+      return;
+    }
+    if (type === "battery") {
+      const logs = ev.data.drives.map((c) => {
+        const log = Log.fromColumns(c);
+        log.name = c.name;
+        return log;
+      });
+      try {
+        self.postMessage({ id, data: battery(logs, ev.data.options || {}) });
+      } finally {
+        for (const l of logs) l.free();
+      }
       return;
     }
     if (type === "track" || type === "pipeline") {

@@ -769,6 +769,27 @@ for (const [view, canvases] of [["track", ["c-track"]], ["gyrodometry", ["c-gyro
   });
 }
 
+test("the robustness battery runs on the loaded drives in the worker, with the CLI's numbers", async () => {
+  await page.locator("#tabs button[data-view=report]").click();
+  await page.locator("#battery").click();
+  await page.waitForSelector("#battery-summary", { timeout: 120000 });
+  const status = await page.locator("#battery-status").innerText();
+  assert.match(status, /^\d+ cases in [\d.]+ s: the pipeline within 1\.25× the best other \+ 0\.05 on \d+, .* worst [\d.]+× \(/);
+  const n = Number(status.match(/^(\d+) cases/)[1]);
+  assert.equal(await page.locator("#battery-cases tbody tr").count(), n);
+  assert.equal(await page.locator("#battery-summary tbody tr").count(), 2);
+  // City 1 with a +0.5 deg/s turn-on bias: each method's NE_psi as the CLI's `battery --logs` gives it.
+  const native = JSON.parse(cli("battery", "--logs", join(SAMPLES, "train", "city-1.csv"), "--minutes", "2", "--split", "scoring", "--json"));
+  const row = native.cases.find((c) => c.base === "City 1" && c.profile === "bias +0.5");
+  await page.locator("#battery-result details summary").click();
+  const cells = await page.evaluate(() =>
+    [...document.querySelectorAll("#battery-cases tbody tr")].map((tr) => [...tr.cells].map((td) => td.textContent)).find((c) => c[0] === "City 1 / bias +0.5"),
+  );
+  assert.deepEqual(cells.slice(1, 7), row.ne_psi.slice(0, 6).map((v) => v.toFixed(3)), String(cells));
+  await page.screenshot({ path: join(ARTIFACTS, "battery.png"), fullPage: true });
+  await page.locator("#tabs button[data-view=hdr]").click();
+});
+
 test("the Allan view marks the minimum with its 68 % band and the flat bottom, with the CLI's numbers", async () => {
   await page.locator("#logs li", { hasText: "Static 2 h" }).locator("button.pick").click();
   await page.locator("#tabs button[data-view=allan]").click();

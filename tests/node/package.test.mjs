@@ -299,3 +299,30 @@ test("Log.reduceColumns gives reduceSeries' points of the log's own columns, wit
   assert.throws(() => log.reduceColumns(["speed_mps"], {}), /columns/);
   log.free();
 });
+
+test("battery on the user's drives gives the CLI's `battery --logs` cases, method for method", () => {
+  const file = join(SAMPLES, "test", "city-3.csv");
+  const log = gd.Log.parse(readFileSync(file, "utf8"));
+  const b = gd.battery([log], {});
+  const native = JSON.parse(cli("battery", "--logs", file, "--minutes", "2", "--split", "scoring", "--json"));
+  const mine = native.cases.filter((c) => c.base === log.name);
+  assert.ok(mine.length > 20);
+  assert.deepEqual(b.methods, native.methods.slice(0, 6)); // the page has no tuned-HDR peer
+  assert.equal(b.cases.length, mine.length);
+  assert.equal(b.added.n_cases, mine.length);
+  assert.equal(b.training, undefined);
+  assert.deepEqual(b.scoring, b.added);
+  b.cases.forEach((c, i) => {
+    assert.equal(c.profile, mine[i].profile);
+    assert.equal(c.training, false);
+    assert.deepEqual(c.ne_psi, mine[i].ne_psi.slice(0, 6), c.profile);
+  });
+  assert.match(gd.batteryMarkdown([log], {}), /\| added \(\d+\) \|/);
+  // A log without a reference heading is refused with core's reason; the module keeps working.
+  const bare = gd.Log.parse("time_s,gyro_dps\n0,0.1\n1,0.1\n2,0.1\n");
+  assert.throws(() => gd.battery([bare], {}), (e) => e instanceof Error && /ref_heading_deg/.test(e.message));
+  assert.throws(() => gd.battery([log], { no_such_setting: 1 }), /no_such_setting/);
+  assert.equal(gd.battery([log], {}).cases.length, mine.length);
+  bare.free();
+  log.free();
+});

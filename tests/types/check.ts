@@ -1,6 +1,6 @@
 // Compiled with `tsc --noEmit`: the package's types describe options and results (no `any`).
-import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, isDriveLog, pipeline, runPipeline, compare, checkLog } from "gyrodrift";
-import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, PipelineResult, PipelineRun, Compare, CheckReport, CheckFinding, GapSplit } from "gyrodrift";
+import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, isDriveLog, pipeline, runPipeline, compare, checkLog, battery, batteryMarkdown } from "gyrodrift";
+import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, PipelineResult, PipelineRun, Compare, CheckReport, CheckFinding, GapSplit, Battery, BatteryCase } from "gyrodrift";
 
 const log: Log = Log.parse("time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1,0\n");
 const opts: HdrOptions = { i_c_dps: 0.0422, tau_s: 0.75, resample: true };
@@ -61,3 +61,10 @@ const split: GapSplit = log.splitAtGaps(undefined);
 const part: Log | undefined = split.parts[0];
 const gapLine: number = split.gaps[0]?.line ?? 0;
 export { e, h, psi, st, rep, t, tcv, trec, sim, c0, rows, pe, stops, smoothed, ps, cm, badRecipe, chk, fix, gap, badCode, split, part, gapLine, why, ver, tables };
+const bat: Battery = battery([log], { warm_sigma_dps: 0.3 });
+const firstCase: BatteryCase | undefined = bat.cases[0];
+const within: number = (bat.added?.n_within ?? 0) + (firstCase?.ne_psi[0] ?? 0);
+const goalHolds: boolean = bat.added?.goals[0]?.holds ?? false;
+const batMd: string = batteryMarkdown([log], {});
+// @ts-expect-error: the battery's summary is typed, no such key
+bat.added?.n_cases_within;

@@ -63,6 +63,14 @@ pub fn added_base(name: &str, log: DriveLog) -> Result<Base> {
     Ok(Base { name: name.to_string(), training: false, simulated: false, added: true, log })
 }
 
+/// Every error profile on the user's own drives alone (each an [`added_base`]), without the
+/// tuned-HDR peer (tuned on the battery's training bases, which these are not): how each
+/// method would fare on these roads with a worse gyro. What the dashboard runs.
+pub fn on_drives(drives: &[(String, &DriveLog)], params: &PipelineParams) -> Result<Battery> {
+    let bases = drives.iter().map(|(n, l)| added_base(n, (*l).clone())).collect::<Result<Vec<Base>>>()?;
+    run(&bases, &profiles(), Split::All, params, None)
+}
+
 /// Simulated bases: six scenarios with the paper's CRS03-class gyro and six with a
 /// consumer MEMS gyro; seeds 1-6 train, seeds 101-106 score.
 pub fn simulated_bases(minutes: f64) -> Vec<Base> {

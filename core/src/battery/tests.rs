@@ -221,6 +221,10 @@ fn an_added_drive_is_scored_and_summarised_apart() {
     assert!(!serde_json::to_string(&plain).unwrap().contains("\"added\""));
     assert!(!plain.to_markdown(false).contains("added"));
 
+    let only = on_drives(&[("mine".to_string(), &drive)], &params).unwrap();
+    assert!(only.training.is_none() && only.added.is_some() && only.added == only.scoring);
+    assert_eq!(only.cases.len(), crate::battery::profiles().len() - only.skipped.len());
+
     let twice = [other.clone(), Base { added: true, training: false, ..other }];
     let e = run(&twice, &profiles, Split::All, &params, None).unwrap_err().to_string();
     assert!(e.contains("two battery bases are named \"sim-suburbs-mems-2\""), "{e}");

@@ -1,4 +1,4 @@
-//! Many logs at once: Table II, tuning; and the simulator.
+//! Many logs at once: Table II, tuning, the robustness battery; and the simulator.
 
 use super::*;
 
@@ -62,6 +62,36 @@ pub fn tune(
         }
     };
     to_js(&tune::tune_and_report_with_progress(&train, &test, &opts, &report).map_err(err)?)
+}
+
+/// The robustness battery's error profiles on these drives (core's `battery::on_drives`):
+/// every method's NE_psi per case, the summary (`added`) and the goals; no tuned-HDR
+/// peer (`batteryMarkdown` gives the same as the CLI prints it).
+#[cfg(feature = "sim")]
+#[wasm_bindgen(unchecked_return_type = "Battery")]
+pub fn battery(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue,
+) -> JsResult<JsValue> {
+    to_js(&build_battery(&logs, options)?)
+}
+
+/// The battery on these drives as Markdown, every case listed (the CLI's `battery --cases`).
+#[cfg(feature = "sim")]
+#[wasm_bindgen(js_name = batteryMarkdown)]
+pub fn battery_markdown(
+    #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue,
+) -> JsResult<String> {
+    Ok(build_battery(&logs, options)?.to_markdown(true))
+}
+
+#[cfg(feature = "sim")]
+fn build_battery(logs: &JsValue, options: JsValue) -> JsResult<gyrodrift::battery::Battery> {
+    let p: gyrodrift::pipeline::PipelineParams = self::options("battery", options)?;
+    let logs = Log::from_array(logs, "logs")?;
+    let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), &**l)).collect();
+    gyrodrift::battery::on_drives(&named, &p).map_err(err)
 }
 
 /// Simulates a log with known truth (the CLI's `simulate`); the same seed gives the same

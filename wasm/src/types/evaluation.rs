@@ -1,4 +1,4 @@
-//! TypeScript types: Allan deviation, the Table II report, the pipeline and the comparison of every method.
+//! TypeScript types: Allan deviation, the Table II report, the pipeline, the comparison of every method and the robustness battery.
 
 use wasm_bindgen::prelude::*;
 
@@ -139,5 +139,53 @@ export interface Compare {
   rows: CompareRow[];
   mean: CompareRow;
   tuned_params: HdrParams | null;
+}
+/** One battery case: a drive with one error profile; NE_psi (deg/min) per method in the
+ * order of `Battery.methods`. */
+export interface BatteryCase {
+  base: string;
+  profile: string;
+  training: boolean;
+  simulated: boolean;
+  duration_min: number;
+  ne_psi: number[];
+  /** The pipeline's NE_psi over the best other causal method's. */
+  ratio: number;
+  /** Within 1.25x the best other + 0.05 deg/min. */
+  within: boolean;
+}
+/** One of the robustness issue's goals, measured. */
+export interface BatteryGoal {
+  goal: string;
+  measured: number;
+  target: number;
+  at_least: boolean;
+  holds: boolean;
+  detail: string;
+}
+/** Means, counts and the worst case over some cases. */
+export interface BatterySummary {
+  n_cases: number;
+  mean: number[];
+  mean_ratio: number;
+  n_within: number;
+  n_over_2x: number;
+  worst: string;
+  worst_ratio: number;
+  n_worse_than_raw: number;
+  each_within: number[];
+  each_over_2x: number[];
+  goals: BatteryGoal[];
+}
+/** `battery(logs)`: the error profiles on these drives (all scoring cases, also summarised
+ * as `added`); `skipped` lists the cases that could not be scored, with why. */
+export interface Battery {
+  methods: string[];
+  cases: BatteryCase[];
+  /** Absent (undefined) when no case is of that split: the page's drives are all scoring. */
+  training?: BatterySummary;
+  scoring?: BatterySummary;
+  added?: BatterySummary;
+  skipped: [string, string][];
 }
 "#;

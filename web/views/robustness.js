@@ -1,0 +1,76 @@
+// The Report view's robustness battery: the battery's error profiles on the loaded drives,
+// run in the worker (core's battery::on_drives); the summary per method and every case.
+import { $, fmt, state, hdrOptions } from "../state.js";
+import { inWorker } from "../loading.js";
+
+/** Runs the battery on every loaded drive and shows it. */
+export async function runBattery() {
+  const drives = state.entries.filter((e) => !e.error && e.kind === "drive");
+  if (!drives.length) return;
+  const button = $("battery");
+  button.disabled = true;
+  $("battery-status").textContent = "running in a worker…";
+  const cols = drives.map((e) => ({ ...e.log.toColumns(), name: e.name }));
+  const transfer = cols.flatMap((c) => [c.line.buffer, ...Object.values(c.columns).map((a) => a.buffer)]);
+  const t0 = performance.now();
+  const res = await inWorker({ type: "battery", drives: cols, options: { bias_s: hdrOptions().bias_s ?? null } }, transfer);
+  button.disabled = false;
+  if (res.error) {
+    $("battery-status").textContent = res.error;
+    $("battery-result").replaceChildren();
+    return;
+  }
+  const b = res.data;
+  const s = b.added;
+  const skipped = b.skipped.length ? ` · ${b.skipped.length} skipped (${b.skipped[0][1]})` : "";
+  $("battery-status").textContent =
+    `${s.n_cases} cases in ${((performance.now() - t0) / 1000).toFixed(1)} s: the pipeline within 1.25× the best other + 0.05 on ${s.n_within}, ` +
+    `worse than 2× on ${s.n_over_2x}, worse than raw by > 10 % on ${s.n_worse_than_raw}; worst ${fmt(s.worst_ratio, 2)}× (${s.worst})${skipped}`;
+  const details = document.createElement("details");
+  details.innerHTML = `<summary>every case (${b.cases.length})</summary>`;
+  details.append(casesTable(b));
+  $("battery-result").replaceChildren(summaryTable(b), details);
+}
+
+/** Per method: mean NE_psi, and the cases within 1.25x / worse than 2x the best of its others. */
+function summaryTable(b) {
+  const s = b.added;
+  const t = document.createElement("table");
+  t.id = "battery-summary";
+  t.innerHTML = `<thead><tr><th></th>${b.methods.map((m) => `<th>${m}</th>`).join("")}</tr></thead><tbody></tbody>`;
+  const body = t.querySelector("tbody");
+  const row = (label, cells) => {
+    const tr = document.createElement("tr");
+    for (const c of [label, ...cells]) {
+      const td = document.createElement("td");
+      td.textContent = c;
+      tr.append(td);
+    }
+    body.append(tr);
+  };
+  row("mean NE_ψ (deg/min)", s.mean.map((v) => fmt(v, 3)));
+  row("within 1.25× / worse than 2× the best of the others", s.each_within.map((w, i) => `${w} / ${s.each_over_2x[i]}`));
+  return t;
+}
+
+/** Every case: its profile, each method's NE_psi (the best causal one marked), the ratio. */
+function casesTable(b) {
+  const t = document.createElement("table");
+  t.id = "battery-cases";
+  const smoothed = b.methods.indexOf("smoothed");
+  t.innerHTML = `<thead><tr><th>drive / profile</th>${b.methods.map((m) => `<th>${m}</th>`).join("")}<th>pipeline / best other</th></tr></thead><tbody></tbody>`;
+  const body = t.querySelector("tbody");
+  for (const c of b.cases) {
+    const tr = document.createElement("tr");
+    const best = Math.min(...c.ne_psi.filter((_, i) => i !== smoothed));
+    const cells = [`${c.base} / ${c.profile}`, ...c.ne_psi.map((v) => fmt(v, 3)), `${fmt(c.ratio, 2)}×${c.within ? "" : " !"}`];
+    cells.forEach((v, i) => {
+      const td = document.createElement("td");
+      td.textContent = v;
+      if (i >= 1 && i <= c.ne_psi.length && c.ne_psi[i - 1] === best) td.className = "best";
+      tr.append(td);
+    });
+    body.append(tr);
+  }
+  return t;
+}
