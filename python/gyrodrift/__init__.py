@@ -2,8 +2,8 @@
 
 The Rust core of the CLI and the wasm package, for Python: HDR, Gyrodometry, gyro
 calibration, Allan deviation, the recommended drift-reduction pipeline, comparison and
-tuning, the recipe import and the simulator. Results are dicts with the CLI's ``--json``
-keys; series are float64 numpy arrays; bad input raises ValueError naming the file, line
+tuning, the robustness battery on your drives, the recipe import and the simulator.
+Results are dicts with the CLI's ``--json`` keys; series are float64 numpy arrays; bad input raises ValueError naming the file, line
 and column. ``gyrodrift.fleet`` runs a folder of drives on Dask.
 """
 
@@ -13,6 +13,7 @@ from ._core import (
     HdrEstimator,
     Log,
     allan,
+    battery,
     calibrate,
     check,
     compare,
@@ -51,6 +52,7 @@ __all__ = [
     "HdrEstimator",
     "Log",
     "allan",
+    "battery",
     "calibrate",
     "check",
     "compare",

@@ -193,6 +193,18 @@ fn compare<'py>(py: Python<'py>, logs: Vec<PyRef<'py, PyLog>>, settings: Option<
     result_dict(py, &c)
 }
 
+/// The robustness battery's error profiles on these drives (core's `battery::on_drives`):
+/// `{methods, cases, scoring, added, skipped}`, each case's `ne_psi` in the order of
+/// `methods`, as the CLI's `battery --logs --json` but without its tuned-HDR peer.
+#[pyfunction]
+#[pyo3(signature = (logs, settings=None))]
+fn battery<'py>(py: Python<'py>, logs: Vec<PyRef<'py, PyLog>>, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    let p: PipelineParams = crate::settings("pipeline", settings)?;
+    let named = logs_of(&logs);
+    let b = py.detach(|| gyrodrift::battery::on_drives(&borrowed(&named), &p)).map_err(value_err)?;
+    result_dict(py, &b)
+}
+
 /// Table II ("report") or the comparison ("compare") as "markdown", "csv" or "text".
 #[pyfunction]
 #[pyo3(signature = (logs, table="report", format="markdown", settings=None))]
@@ -357,6 +369,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(oadev, m)?)?;
     m.add_function(wrap_pyfunction!(report, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;
+    m.add_function(wrap_pyfunction!(battery, m)?)?;
     m.add_function(wrap_pyfunction!(table, m)?)?;
     m.add_function(wrap_pyfunction!(tune, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;

@@ -40,6 +40,24 @@ def test_hdr_pipeline_report_equal_the_cli(cli, samples):
     assert g.table(logs, "compare", "csv") == cli("report", "--compare", "--csv", *files)
 
 
+def test_battery_on_a_users_drive_equals_the_clis_battery_logs(cli, samples):
+    """Each case's NE_psi per method as the CLI's ``battery --logs`` (whose seventh column,
+    the tuned-HDR peer, Python has not: it is tuned on the battery's training bases)."""
+    city = str(samples / "test" / "city-3.csv")
+    log = g.read_log(city)
+    b = g.battery([log])
+    native = cli("battery", "--logs", city, "--minutes", "2", "--split", "scoring", "--json")
+    mine = [c for c in native["cases"] if c["base"] == log.name]
+    assert len(mine) > 20 and len(b["cases"]) == len(mine)
+    assert b["methods"] == native["methods"][:6]
+    assert b["added"]["n_cases"] == len(mine) and b["training"] is None
+    for c, n in zip(b["cases"], mine):
+        assert c["profile"] == n["profile"] and not c["training"]
+        close(c["ne_psi"], n["ne_psi"][:6])
+    with pytest.raises(ValueError, match="ref_heading_deg"):
+        g.battery([g.Log.parse("time_s,gyro_dps\n0,0.1\n1,0.1\n2,0.1\n")])
+
+
 def test_robot_turntable_and_static_methods_equal_the_cli(cli, samples):
     square = str(samples / "robot" / "square.csv")
     close(g.gyrodometry(g.read_log(square)), cli("gyrodometry", square, "--json"))
