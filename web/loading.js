@@ -53,6 +53,12 @@ const WORKER_BYTES = 4 << 20;
 let worker = null;
 let jobs = 0;
 
+/** Entries' logs as named columns for the worker, with the buffers to transfer (copies: the page keeps its logs). */
+export function driveColumns(entries) {
+  const cols = entries.map((e) => ({ ...e.log.toColumns(), name: e.name }));
+  return { cols, transfer: cols.flatMap((c) => [c.line.buffer, ...Object.values(c.columns).map((a) => a.buffer)]) };
+}
+
 /** Runs a job in the worker; `onProgress(fraction)` as it goes; resolves with {data | error}. */
 export function inWorker(message, transfer, onProgress) {
   worker ||= new Worker(new URL("./worker.js", import.meta.url), { type: "module" });

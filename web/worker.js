@@ -21,6 +21,15 @@ function buffers(v, out = []) {
   return out;
 }
 
+/** Logs rebuilt from the page's columns, named as the page names them. */
+function logsOf(columns) {
+  return columns.map((c) => {
+    const log = Log.fromColumns(c);
+    log.name = c.name;
+    return log;
+  });
+}
+
 function progressReporter(id) {
   let last = -1;
   return (f) => {
@@ -36,22 +45,14 @@ self.onmessage = async (ev) => {
   const { id, type } = ev.data;
   try {
     if (type === "tune") {
-      const logs = ev.data.train.map((c) => {
-        const log = Log.fromColumns(c);
-        log.name = c.name;
-        return log;
-      });
+      const logs = logsOf(ev.data.train);
       const report = tune(logs, undefined, ev.data.options || {}, progressReporter(id));
       for (const l of logs) l.free();
       self.postMessage({ id, data: report });
       return;
     }
     if (type === "battery") {
-      const logs = ev.data.drives.map((c) => {
-        const log = Log.fromColumns(c);
-        log.name = c.name;
-        return log;
-      });
+      const logs = logsOf(ev.data.drives);
       try {
         self.postMessage({ id, data: battery(logs, ev.data.options || {}) });
       } finally {

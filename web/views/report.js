@@ -4,7 +4,7 @@ import { $, fmt, state, hdrOptions, COLORS, PALETTE } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
 import { chart, timeRange } from "../charts.js";
 import { showError, render } from "../render.js";
-import { inWorker } from "../loading.js";
+import { inWorker, driveColumns } from "../loading.js";
 
 /** The loaded drives the Report view tabulates. */
 export function reportDrives() {
@@ -93,8 +93,7 @@ export async function runTune() {
   bar.hidden = false;
   bar.value = 0;
   $("tune-status").textContent = "tuning in a worker…";
-  const train = drives.map((e) => ({ ...e.log.toColumns(), name: e.name }));
-  const transfer = train.flatMap((c) => [c.line.buffer, ...Object.values(c.columns).map((a) => a.buffer)]);
+  const { cols: train, transfer } = driveColumns(drives);
   const t0 = performance.now();
   const res = await inWorker({ type: "tune", train, options: {} }, transfer, (f) => {
     bar.value = f;

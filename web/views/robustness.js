@@ -1,7 +1,7 @@
 // The Report view's robustness battery: the battery's error profiles on the loaded drives,
 // run in the worker (core's battery::on_drives); the summary per method and every case.
 import { $, fmt, state, hdrOptions } from "../state.js";
-import { inWorker } from "../loading.js";
+import { inWorker, driveColumns } from "../loading.js";
 
 /** Runs the battery on every loaded drive and shows it. */
 export async function runBattery() {
@@ -10,8 +10,7 @@ export async function runBattery() {
   const button = $("battery");
   button.disabled = true;
   $("battery-status").textContent = "running in a worker…";
-  const cols = drives.map((e) => ({ ...e.log.toColumns(), name: e.name }));
-  const transfer = cols.flatMap((c) => [c.line.buffer, ...Object.values(c.columns).map((a) => a.buffer)]);
+  const { cols, transfer } = driveColumns(drives);
   const t0 = performance.now();
   const res = await inWorker({ type: "battery", drives: cols, options: { bias_s: hdrOptions().bias_s ?? null } }, transfer);
   button.disabled = false;
