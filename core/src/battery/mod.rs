@@ -67,7 +67,7 @@ pub fn added_base(name: &str, log: DriveLog) -> Result<Base> {
 /// tuned-HDR peer (tuned on the battery's training bases, which these are not): how each
 /// method would fare on these roads with a worse gyro. What the dashboard runs.
 pub fn on_drives(drives: &[(String, &DriveLog)], params: &PipelineParams) -> Result<Battery> {
-    let bases = drives.iter().map(|(n, l)| added_base(n, (*l).clone())).collect::<Result<Vec<Base>>>()?;
+    let bases = drives.iter().map(|(n, l)| added_base(n, (*l).clone()).map_err(|e| e.within(n))).collect::<Result<Vec<Base>>>()?;
     run(&bases, &profiles(), Split::All, params, None)
 }
 

@@ -199,8 +199,10 @@ fn an_added_drive_is_scored_and_summarised_apart() {
     assert!(recorded_base("pixel6a-20230806_144805", drive.clone()).training);
     let kept = drive.columns().into_iter().filter(|(c, _)| *c != crate::Column::RefHeadingDeg).map(|(c, v)| (c, v.to_vec())).collect();
     let no_ref = DriveLog::from_columns(drive.meta.clone(), drive.line.clone(), kept).unwrap();
-    let e = added_base("x", no_ref).unwrap_err().to_string();
+    let e = added_base("x", no_ref.clone()).unwrap_err().to_string();
     assert!(e.contains("ref_heading_deg"), "{e}");
+    let e = on_drives(&[("good".to_string(), &drive), ("bare drive".to_string(), &no_ref)], &PipelineParams::default()).unwrap_err();
+    assert!(e.to_string().starts_with("bare drive: ") && e.to_string().contains("ref_heading_deg"), "{e}");
 
     let keep = ["as-is", "bias -1.5 cut", "bias -3"];
     let profiles: Vec<Profile> = profiles().into_iter().filter(|p| keep.contains(&p.name.as_str())).collect();
