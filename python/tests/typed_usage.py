@@ -19,3 +19,9 @@ def heading_errors(path: str) -> float:
     rows: List[Dict[str, Any]] = g.score_files([path], jobs=2)
     taus, adev = g.oadev(log)
     return float(result["NE_psi_hdr_deg_per_min"]) + float(trace[0] + psi[0] + taus[0] + adev[0]) * 0 + len(rows) * 0
+
+
+def robustness(paths: List[str]) -> int:
+    logs = [g.read_log(p) for p in paths]
+    b: Dict[str, Any] = g.battery(logs, {"warm_sigma_dps": 0.3})
+    return int(b["added"]["n_within"])
