@@ -297,7 +297,8 @@ fn score_case(log: &DriveLog, params: &PipelineParams, tuned: Option<HdrParams>)
 /// Runs every (base, profile) case of the split.
 pub fn run(bases: &[Base], profiles: &[Profile], split: Split, params: &PipelineParams, tuned: Option<&TunedHdr>) -> Result<Battery> {
     params.validate()?;
-    if let Some((_, b)) = bases.iter().enumerate().find(|(i, b)| bases[..*i].iter().any(|a| a.name == b.name)) {
+    let mut names = std::collections::HashSet::new();
+    if let Some(b) = bases.iter().find(|b| !names.insert(b.name.as_str())) {
         return Err(Error::data(format!(
             "two battery bases are named \"{}\": a case is named by its base, so rename one (`# name:` in a log)",
             b.name
