@@ -786,6 +786,12 @@ test("the robustness battery runs on the loaded drives in the worker, with the C
     [...document.querySelectorAll("#battery-cases tbody tr")].map((tr) => [...tr.cells].map((td) => td.textContent)).find((c) => c[0] === "City 1 / bias +0.5"),
   );
   assert.deepEqual(cells.slice(1, 7), row.ne_psi.slice(0, 6).map((v) => v.toFixed(3)), String(cells));
+  // The cell marked best is the lowest causal one (not the smoothed mode's, column 6 here).
+  const marked = await page.evaluate(() =>
+    [...[...document.querySelectorAll("#battery-cases tbody tr")].find((tr) => tr.cells[0].textContent === "City 1 / bias +0.5").cells].map((td) => td.className === "best"),
+  );
+  const causal = cells.slice(1, 7).map(Number).filter((_, j) => j !== 5);
+  assert.deepEqual(marked.slice(1, 7).map((m, j) => m && j !== 5), cells.slice(1, 7).map((v, j) => j !== 5 && Number(v) === Math.min(...causal)), String(cells));
   await page.screenshot({ path: join(ARTIFACTS, "battery.png"), fullPage: true });
   await page.locator("#tabs button[data-view=hdr]").click();
 });

@@ -316,6 +316,9 @@ test("battery on the user's drives gives the CLI's `battery --logs` cases, metho
     assert.equal(c.profile, mine[i].profile);
     assert.equal(c.training, false);
     assert.deepEqual(c.ne_psi, mine[i].ne_psi.slice(0, 6), c.profile);
+    // The best causal column is core's: the smoothed mode (column 5) is never it.
+    assert.notEqual(c.best, 5, c.profile);
+    assert.equal(c.ne_psi[c.best], Math.min(...c.ne_psi.filter((_, j) => j !== 5)), c.profile);
   });
   assert.match(gd.batteryMarkdown([log], {}), /\| added \(\d+\) \|/);
   // A log without a reference heading is refused with core's reason; the module keeps working.

@@ -63,7 +63,7 @@ const gapLine: number = split.gaps[0]?.line ?? 0;
 export { e, h, psi, st, rep, t, tcv, trec, sim, c0, rows, pe, stops, smoothed, ps, cm, badRecipe, chk, fix, gap, badCode, split, part, gapLine, why, ver, tables };
 const bat: Battery = battery([log], { warm_sigma_dps: 0.3 });
 const firstCase: BatteryCase | undefined = bat.cases[0];
-const within: number = (bat.added?.n_within ?? 0) + (firstCase?.ne_psi[0] ?? 0);
+const within: number = (bat.added?.n_within ?? 0) + (firstCase?.ne_psi[firstCase.best] ?? 0);
 const goalHolds: boolean = bat.added?.goals[0]?.holds ?? false;
 const batMd: string = batteryMarkdown([log], {});
 // @ts-expect-error: the battery's summary is typed, no such key

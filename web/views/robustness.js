@@ -56,17 +56,15 @@ function summaryTable(b) {
 function casesTable(b) {
   const t = document.createElement("table");
   t.id = "battery-cases";
-  const smoothed = b.methods.indexOf("smoothed");
   t.innerHTML = `<thead><tr><th>drive / profile</th>${b.methods.map((m) => `<th>${m}</th>`).join("")}<th>pipeline / best other</th></tr></thead><tbody></tbody>`;
   const body = t.querySelector("tbody");
   for (const c of b.cases) {
     const tr = document.createElement("tr");
-    const best = Math.min(...c.ne_psi.filter((_, i) => i !== smoothed));
     const cells = [`${c.base} / ${c.profile}`, ...c.ne_psi.map((v) => fmt(v, 3)), `${fmt(c.ratio, 2)}×${c.within ? "" : " !"}`];
     cells.forEach((v, i) => {
       const td = document.createElement("td");
       td.textContent = v;
-      if (i >= 1 && i <= c.ne_psi.length && c.ne_psi[i - 1] === best) td.className = "best";
+      if (i >= 1 && i <= c.ne_psi.length && c.ne_psi[i - 1] === c.ne_psi[c.best]) td.className = "best";
       tr.append(td);
     });
     body.append(tr);

@@ -1,6 +1,6 @@
 //! The battery as Markdown: the summaries, the goals with their verdicts, every case.
 
-use super::{best_peer, Battery, Summary, PIPELINE};
+use super::{Battery, Summary};
 use std::fmt::Write;
 
 impl Battery {
@@ -76,7 +76,7 @@ impl Battery {
             let _ = writeln!(s);
             head(&mut s, "case (T = training)", Some("pipeline / best other"));
             for c in &self.cases {
-                let best = best_peer(&c.ne_psi).min(c.ne_psi[PIPELINE]);
+                let best = c.ne_psi[c.best];
                 let _ = write!(s, "| {}{} / {} |", if c.training { "T " } else { "" }, c.base, c.profile);
                 for v in &c.ne_psi {
                     if *v == best {

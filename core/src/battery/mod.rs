@@ -254,6 +254,9 @@ pub struct CaseRow {
     pub ratio: f64,
     /// pipeline - 1.25 best peer - 0.05 <= 0 (the "within 1.25x + 0.05").
     pub within: bool,
+    /// Column of the best causal method of the case, the pipeline included (the smoothed
+    /// mode is not causal); the first of equals.
+    pub best: usize,
 }
 
 impl CaseRow {
@@ -261,7 +264,8 @@ impl CaseRow {
     /// (NE_psi per method, in [`method_names`]' columns).
     pub fn new(base: String, profile: String, training: bool, simulated: bool, duration_min: f64, ne_psi: Vec<f64>) -> CaseRow {
         let (pipe, best) = (ne_psi[PIPELINE], best_peer(&ne_psi));
-        CaseRow { base, profile, training, simulated, duration_min, ratio: pipe / best, within: pipe <= 1.25 * best + 0.05, ne_psi }
+        let (ratio, within) = (pipe / best, pipe <= 1.25 * best + 0.05);
+        CaseRow { base, profile, training, simulated, duration_min, ratio, within, best: summary::best_causal(&ne_psi), ne_psi }
     }
 }
 

@@ -39,6 +39,12 @@ pub fn best_peer(ne: &[f64]) -> f64 {
     best_other_than(ne, PIPELINE)
 }
 
+/// Column of the best causal method of a row (every column but the smoothed mode's; the
+/// first of equals).
+pub fn best_causal(ne: &[f64]) -> usize {
+    (0..ne.len()).filter(|&i| i != SMOOTHED).fold(0, |b, i| if ne[i] < ne[b] { i } else { b })
+}
+
 /// Means, ratios and the worst case over some cases (None if there are none).
 pub fn summarize(cases: &[&CaseRow]) -> Option<Summary> {
     let first = cases.first()?;

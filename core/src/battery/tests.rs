@@ -92,6 +92,16 @@ fn each_method_is_counted_against_the_best_of_its_others_hand_worked() {
     assert_eq!((s.each_within[PIPELINE], s.each_over_2x[PIPELINE]), (s.n_within, s.n_over_2x));
 }
 
+#[test]
+fn a_cases_best_column_is_its_best_causal_method_hand_worked() {
+    let row = |ne: [f64; 6]| CaseRow::new("b".into(), "p".into(), true, false, 1.0, ne.to_vec());
+    // The smoothed mode (0.1) is lower but not causal: the pipeline (0.4) is the best.
+    assert_eq!(row([1.0, 0.5, 2.0, 3.0, 0.4, 0.1]).best, PIPELINE);
+    // Raw and ZARU tie at 0.2: the first of equals.
+    assert_eq!(row([0.2, 0.29, 0.3, 0.2, 0.5, 0.6]).best, 0);
+    assert_eq!(row([0.3, 0.29, 0.25, 0.26, 0.5, 0.6]).best, 2);
+}
+
 /// The goals on three hand-worked rows (columns: raw, HDR, Fusion, ZARU,
 /// pipeline, smoothed).
 #[test]

@@ -153,6 +153,8 @@ export interface BatteryCase {
   ratio: number;
   /** Within 1.25x the best other + 0.05 deg/min. */
   within: boolean;
+  /** Column of the best causal method (the pipeline included, the smoothed mode not). */
+  best: number;
 }
 /** One of the robustness issue's goals, measured. */
 export interface BatteryGoal {
