@@ -93,24 +93,36 @@ pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option
     let mut trace_err = None;
     let mut one = |i: usize, drive: &DriveLog| {
         let run = hdr::run(drive, &opts)?;
-        if let Some(path) = trace.map(|t| part_path(t, i)) {
-            let written = std::fs::File::create(&path)
-                .map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))
-                .and_then(|f| run.trace.write_csv(f).map_err(|e| fail(&path, e)));
-            if let Err(e) = written {
-                trace_err.get_or_insert(e);
-            }
-        }
+        write_trace(trace, i, &mut trace_err, |f| run.trace.write_csv(f));
         run.result
     };
     let printed = per_part(log, &parts, json, &mut one, |r| output::hdr_table(log, &opts, r));
     trace_err.map_or(printed, Err)
 }
 
-pub fn pipeline(log: &Path, set: &[String], json: bool, input: Input) -> Result<(), Failure> {
+pub fn pipeline(log: &Path, set: &[String], json: bool, trace: Option<&Path>, input: Input) -> Result<(), Failure> {
     let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
     let parts = read_checked(log, input, params.bias_s)?;
-    per_part(log, &parts, json, |_, d| gyrodrift::pipeline::run(d, &params).and_then(|r| r.result), |r| output::pipeline_table(log, r))
+    let mut trace_err = None;
+    let mut one = |i: usize, drive: &DriveLog| {
+        let run = gyrodrift::pipeline::run(drive, &params)?;
+        write_trace(trace, i, &mut trace_err, |f| run.trace.write_csv(f));
+        run.result
+    };
+    let printed = per_part(log, &parts, json, &mut one, |r| output::pipeline_table(log, r));
+    trace_err.map_or(printed, Err)
+}
+
+/// Writes part `i`'s trace when a trace file was asked for; the first failure is kept in
+/// `err` (the results are still printed).
+fn write_trace(trace: Option<&Path>, i: usize, err: &mut Option<Failure>, write: impl FnOnce(std::fs::File) -> gyrodrift::Result<()>) {
+    let Some(path) = trace.map(|t| part_path(t, i)) else { return };
+    let written = std::fs::File::create(&path)
+        .map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))
+        .and_then(|f| write(f).map_err(|e| fail(&path, e)));
+    if let Err(e) = written {
+        err.get_or_insert(e);
+    }
 }
 
 pub fn gyrodometry(log: &Path, set: &[String], json: bool, input: Input) -> Result<(), Failure> {

@@ -82,6 +82,10 @@ enum Cmd {
         set: Vec<String>,
         #[arg(long)]
         json: bool,
+        /// Write the per-block (1 s) trace (CSV) to this file: the causal heading and its
+        /// sigma from the bias model, the smoothed heading, the bias, the stops.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<PathBuf>,
     },
     /// Gyrodometry on a robot log with wheel travel.
     Gyrodometry {
@@ -364,7 +368,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
     let input = commands::Input { gaps, ignore_check: cli.ignore_check };
     match cli.cmd {
         Cmd::Hdr { log, no_resample, set, json, trace } => c::hdr(&log, !no_resample, &set, json, trace.as_deref(), input),
-        Cmd::Pipeline { log, set, json } => c::pipeline(&log, &set, json, input),
+        Cmd::Pipeline { log, set, json, trace } => c::pipeline(&log, &set, json, trace.as_deref(), input),
         Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json, input),
         Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json),
         Cmd::Report { batch: BatchArgs { dir: Some(dir), jobs, out }, set, json, .. }

@@ -104,6 +104,32 @@ fn hdr_set_no_resample_and_trace() {
     assert!(text.contains("E_psi (deg)") && text.contains("improvement"), "{text}");
 }
 
+/// `pipeline --trace`: one row per 1 s block, the causal heading's sigma from the bias
+/// model non-negative and finite; a trace that cannot be written fails the command with
+/// the file named, after the results are printed.
+#[test]
+fn pipeline_trace() {
+    let p = write("drive-pipe.csv", &drive_csv());
+    let trace = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("pipe-trace.csv");
+    let out = run(&["pipeline", p.to_str().unwrap(), "--json", "--trace", trace.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let t = std::fs::read_to_string(&trace).unwrap();
+    let mut lines = t.lines();
+    assert_eq!(
+        lines.next(),
+        Some("time_s,heading_deg,heading_sigma_deg,heading_smoothed_deg,bias_dps,bias_sigma_dps,bias_smoothed_dps,stop")
+    );
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|c| c.parse().unwrap()).collect()).collect();
+    // 0 to 600 s at 10 Hz: a block per second, the last one holding the single row at 600 s.
+    assert_eq!(rows.len(), 601);
+    assert!(rows.iter().all(|r| r.len() == 8 && r[2].is_finite() && r[2] >= 0.0 && (r[7] == 0.0 || r[7] == 1.0)));
+    let bad = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("no-such-dir").join("t.csv");
+    let out = run(&["pipeline", p.to_str().unwrap(), "--trace", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains(&format!("{}: cannot create", bad.display())));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("pipeline"));
+}
+
 #[test]
 fn bad_cell_exits_2_with_file_line_column() {
     let p = write("bad.csv", "time_s,gyro_dps\n0,1\n0.1,1.2.3\n");

@@ -90,6 +90,7 @@ fn run_pipeline<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, 
         vec![
             ("time_s", t.time_s),
             ("heading_deg", t.heading_deg),
+            ("heading_sigma_deg", t.heading_sigma_deg),
             ("heading_smoothed_deg", t.heading_smoothed_deg),
             ("bias_dps", t.bias_dps),
             ("bias_sigma_dps", t.bias_sigma_dps),

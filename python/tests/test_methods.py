@@ -99,6 +99,18 @@ def test_runs_give_float64_series_of_one_length(samples):
     assert set(r["trace"]) == {"time_s", "heading_odo_deg", "heading_gyro_deg", "heading_gyrodometry_deg", "used_gyro"}
 
 
+def test_run_pipeline_trace_equals_the_clis_pipeline_trace(cli, samples, tmp_path):
+    """The per-block trace, the causal heading's sigma from the bias model included."""
+    city = str(samples / "train" / "city-1.csv")
+    out = tmp_path / "trace.csv"
+    cli("pipeline", city, "--trace", str(out))
+    native = np.genfromtxt(out, delimiter=",", names=True)
+    t = g.run_pipeline(g.read_log(city))["trace"]
+    for name in ("time_s", "heading_deg", "heading_sigma_deg", "heading_smoothed_deg"):
+        assert np.array_equal(t[name], native[name]), name
+    assert np.all(t["heading_sigma_deg"] >= 0)
+
+
 def test_a_log_without_reference_runs_but_has_no_result(samples):
     run = g.run_hdr(g.read_log(str(samples / "static" / "static-2h.csv")))
     assert run["result"] is None and "ref_heading_deg" in run["error"]

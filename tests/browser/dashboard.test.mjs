@@ -179,6 +179,9 @@ test("a tooltip at the cursor lists every shown series with core's value there, 
   assert.deepEqual(r.cells, r.want);
   assert.match(r.head, /^t = \d+\.\d\d min$/);
   await page.screenshot({ path: join(ARTIFACTS, "tooltip.png") });
+  // The readout gives the pipeline's heading with its sigma from the bias model.
+  const sigma = (await page.locator("#hdr-readout").innerText()).match(/pipeline -?[\d.]+ ± ([\d.]+) deg \(1σ, bias\)/);
+  assert.ok(sigma && Number(sigma[1]) > 0, await page.locator("#hdr-readout").innerText());
   // A hidden series leaves the tooltip.
   await page.locator("#legend-c-error button.key", { hasText: /^raw$/ }).click();
   await page.locator("#c-error").scrollIntoViewIfNeeded();

@@ -87,6 +87,23 @@ test("typed arrays, not JS arrays, for sample series", () => {
   assert.equal(run.trace.time_s.length, run.result.n_processed);
 });
 
+test("runPipeline's trace equals the CLI's `pipeline --trace`, the heading's sigma included", () => {
+  const file = join(SAMPLES, "train", "city-1.csv");
+  const out = join(mkdtempSync(join(tmpdir(), "gd-")), "trace.csv");
+  cli("pipeline", file, "--trace", out);
+  const [head, ...rows] = readFileSync(out, "utf8").trim().split("\n");
+  const cols = head.split(",");
+  const log = gd.Log.parse(readFileSync(file, "utf8"));
+  const run = gd.runPipeline(log, {});
+  assert.equal(run.trace.heading_sigma_deg.length, rows.length);
+  for (const name of ["time_s", "heading_deg", "heading_sigma_deg", "heading_smoothed_deg", "bias_dps"]) {
+    const j = cols.indexOf(name);
+    assert.deepEqual(Array.from(run.trace[name]), rows.map((r) => Number(r.split(",")[j])), name);
+  }
+  assert.ok(run.trace.heading_sigma_deg.every((s) => Number.isFinite(s) && s >= 0));
+  log.free();
+});
+
 test("pipeline equals the native CLI; importLog reads a real-log recipe from Node Buffers", () => {
   for (const file of drives.slice(0, 4)) {
     const log = gd.Log.parse(readFileSync(file, "utf8"));

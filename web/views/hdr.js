@@ -197,10 +197,13 @@ export function readout() {
     el.textContent = "";
     return;
   }
-  const { run } = lastHdr;
+  const { run, pipe } = lastHdr;
   const t = state.cursor;
   const v = (x, y) => fmt(gd.valueAt(x, y, t), 3);
   const tr = run.trace;
   const ref = run.reference ? v(run.reference.time_s, run.reference.heading_deg) : "–";
-  el.textContent = `t = ${fmt(t, 1)} s · reference ${ref} deg · raw ${v(tr.time_s, tr.heading_raw_deg)} deg · HDR ${v(tr.time_s, tr.heading_hdr_deg)} deg · ω ${v(tr.time_s, tr.rate_corrected_dps)} deg/s · −I ${v(tr.time_s, tr.drift_estimate_dps)} deg/s`;
+  const pt = pipe.trace;
+  // The pipeline's heading with its sigma from the bias model (not the gyro's scale or noise).
+  const p = pt ? ` · pipeline ${v(pt.time_s, pt.heading_deg)} ± ${v(pt.time_s, pt.heading_sigma_deg)} deg (1σ, bias)` : "";
+  el.textContent = `t = ${fmt(t, 1)} s · reference ${ref} deg · raw ${v(tr.time_s, tr.heading_raw_deg)} deg · HDR ${v(tr.time_s, tr.heading_hdr_deg)} deg${p} · ω ${v(tr.time_s, tr.rate_corrected_dps)} deg/s · −I ${v(tr.time_s, tr.drift_estimate_dps)} deg/s`;
 }

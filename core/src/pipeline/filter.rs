@@ -40,6 +40,11 @@ pub struct PipelineOutput {
     pub bias_dps: f64,
     /// Its standard deviation, deg/s.
     pub bias_sigma_dps: f64,
+    /// The heading's standard deviation from the bias alone (deg): each hypothesis'
+    /// uncertainty about the integral of the bias since the start, and its distance from the
+    /// integral the heading has taken off, mixed with the weights. Not the gyro's noise, its
+    /// scale error, or a bias the model does not describe.
+    pub heading_sigma_deg: f64,
     /// The block brought stop evidence (possibly of an earlier, delayed stop block).
     pub stop: bool,
     /// The block was straight-road evidence.
@@ -56,6 +61,8 @@ pub struct Pipeline {
     last_time_s: Option<f64>,
     lead_in_end_s: f64,
     heading_deg: f64,
+    /// The raw rate integrated (deg): less the heading, the bias integral the heading took off.
+    rate_integral_deg: f64,
     evidence: Evidence,
     /// This stop's evidence so far as one change: the bias change, the walk model's integral
     /// correction, and the heading correction applied (deg/s, deg, deg).
@@ -111,6 +118,7 @@ impl Pipeline {
                     logw: if !any || params.identifiable(w, r) { 0.0 } else { f64::NEG_INFINITY },
                     h: 0.0,
                     p_hx: Vector3::zeros(),
+                    p_hh: 0.0,
                 }
             })
             .collect();
@@ -120,6 +128,7 @@ impl Pipeline {
             last_time_s: None,
             lead_in_end_s,
             heading_deg: 0.0,
+            rate_integral_deg: 0.0,
             evidence: Evidence::default(),
             stop_change: (0.0, 0.0, 0.0),
             recorded: Vec::new(),
@@ -177,6 +186,14 @@ impl Pipeline {
         (self.p.bounded_bias_dps(b), p)
     }
 
+    /// Variance of the heading's error from the bias (deg^2), with weights `w`: each
+    /// hypothesis' posterior of the bias integral, N(h, p_hh), about the integral the heading
+    /// took off (the moment-matched mixture).
+    fn heading_variance(&self, w: &[f64]) -> f64 {
+        let taken = self.rate_integral_deg - self.heading_deg;
+        self.models.iter().zip(w).filter(|(_, wi)| **wi > 0.0).map(|(m, wi)| wi * (m.p_hh.max(0.0) + (m.h - taken).powi(2))).sum()
+    }
+
     /// One block: its end time, mean raw rate, and whether the vehicle stood.
     pub fn update(&mut self, time_s: f64, rate_dps: f64, still: bool) -> Result<PipelineOutput> {
         if !(time_s.is_finite() && rate_dps.is_finite()) || self.last_time_s.is_some_and(|t| !(time_s > t)) {
@@ -189,6 +206,7 @@ impl Pipeline {
         }
         let (b_before, p_before) = self.bias();
         self.heading_deg += (rate_dps - b_before) * dt;
+        self.rate_integral_deg += rate_dps * dt;
         // Predict: each hypothesis' random walk and the road rate; weights forget toward equal.
         let lam = libm::exp(-dt / self.p.forget_s);
         let a = libm::exp(-dt / self.p.road_corr_s);
@@ -239,6 +257,7 @@ impl Pipeline {
             heading_deg: self.heading_deg,
             bias_dps: b_before,
             bias_sigma_dps: p_before.sqrt(),
+            heading_sigma_deg: self.heading_variance(&w).sqrt(),
             stop: !stops.is_empty(),
             straight,
             reopened,

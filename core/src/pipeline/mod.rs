@@ -30,6 +30,8 @@ pub struct PipelineTrace {
     pub time_s: Vec<f64>,
     /// Causal heading (aligned to the reference when the log has one).
     pub heading_deg: Vec<f64>,
+    /// The causal heading's standard deviation from the bias model ([`PipelineOutput`]).
+    pub heading_sigma_deg: Vec<f64>,
     /// Smoothed heading: uses the whole log, not available live (aligned likewise).
     pub heading_smoothed_deg: Vec<f64>,
     pub bias_dps: Vec<f64>,
@@ -37,6 +39,32 @@ pub struct PipelineTrace {
     pub bias_smoothed_dps: Vec<f64>,
     /// The block brought stop evidence.
     pub stop: Vec<bool>,
+}
+
+impl PipelineTrace {
+    /// Writes the per-block trace as CSV: the causal heading and its sigma, the smoothed
+    /// heading (non-causal), the bias (causal, its sigma, smoothed) and the stop flag (0/1).
+    pub fn write_csv<W: std::io::Write>(&self, out: W) -> Result<()> {
+        use std::io::Write as _;
+        let mut out = std::io::BufWriter::new(out);
+        writeln!(out, "time_s,heading_deg,heading_sigma_deg,heading_smoothed_deg,bias_dps,bias_sigma_dps,bias_smoothed_dps,stop")?;
+        for i in 0..self.time_s.len() {
+            writeln!(
+                out,
+                "{},{},{},{},{},{},{},{}",
+                self.time_s[i],
+                self.heading_deg[i],
+                self.heading_sigma_deg[i],
+                self.heading_smoothed_deg[i],
+                self.bias_dps[i],
+                self.bias_sigma_dps[i],
+                self.bias_smoothed_dps[i],
+                u8::from(self.stop[i])
+            )?;
+        }
+        out.flush()?;
+        Ok(())
+    }
 }
 
 /// Runs the filter over the blocks from bias 0 +- the prior, then the smoother
@@ -48,6 +76,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     for i in 0..n {
         let o = f.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
         tr.heading_deg.push(o.heading_deg);
+        tr.heading_sigma_deg.push(o.heading_sigma_deg);
         tr.bias_dps.push(o.bias_dps);
         tr.bias_sigma_dps.push(o.bias_sigma_dps);
         tr.stop.push(o.stop);

@@ -23,6 +23,8 @@ pub(super) struct Model {
     /// heading through the heading-bias covariance).
     pub(super) h: f64,
     pub(super) p_hx: Vector3<f64>,
+    /// The variance of that integral (deg^2).
+    pub(super) p_hh: f64,
 }
 
 pub(super) const H_STOP: RowVector3<f64> = RowVector3::new(1.0, 1.0, 0.0);
@@ -39,6 +41,7 @@ impl Model {
     pub(super) fn predict(&mut self, dt: f64, a: f64) -> Vector3<f64> {
         // The integral takes the bias before the block (as the heading integrates it).
         let pb = self.p.row(0) + self.p.row(1);
+        self.p_hh += dt * (2.0 * (self.p_hx[0] + self.p_hx[1]) + dt * (pb[0] + pb[1]));
         self.h += dt * (self.x[0] + self.x[1]);
         self.p_hx += dt * pb.transpose();
         let f = self.transition(dt, a);
@@ -66,6 +69,7 @@ impl Model {
         if correct_integral {
             let k_h = hp / s;
             self.h += k_h * nu;
+            self.p_hh -= k_h * hp;
             self.p_hx -= k_h * ph;
         } else {
             self.p_hx -= hp * k;
@@ -127,6 +131,7 @@ mod tests {
             logw: 0.0,
             h: 0.0,
             p_hx: Vector3::zeros(),
+            p_hh: 0.0,
         };
         let mut m = fresh();
         for _ in 0..10 {
@@ -134,9 +139,13 @@ mod tests {
         }
         assert!((m.p[(0, 0)] - 10.0 * q).abs() < 1e-15);
         assert!((m.p_hx[0] - 45.0 * q).abs() < 1e-15);
+        // The integral's variance: h = sum_j w_j (9 - j), so q (1 + 4 + ... + 81) = 285 q.
+        assert!((m.p_hh - 285.0 * q).abs() < 1e-15, "{}", m.p_hh);
         m.update(H_STOP, 0.2, 0.0, true);
         assert!((m.x[0] - 0.2).abs() < 1e-12);
         assert!((m.h - 0.9).abs() < 1e-12, "{}", m.h);
+        // Given the bias now, what is left of it: 285 q - (45 q)^2 / (10 q) = 82.5 q.
+        assert!((m.p_hh - 82.5 * q).abs() < 1e-15, "{}", m.p_hh);
         let mut n = fresh();
         for _ in 0..10 {
             n.predict(1.0, 0.0);
@@ -144,6 +153,8 @@ mod tests {
         n.update(H_ROAD, 0.2, 0.0, false);
         assert!((n.x[0] - 0.2).abs() < 1e-12);
         assert_eq!(n.h, 0.0);
+        // The integral's mean is not corrected, so neither is its variance.
+        assert!((n.p_hh - 285.0 * q).abs() < 1e-15);
         // Its covariance with the state follows the update: the bias is now known exactly.
         assert!(n.p_hx[0].abs() < 1e-15);
     }

@@ -339,7 +339,7 @@ proptest::proptest! {
         for (dt, rate, still) in blocks {
             t += dt;
             let o = f.update(t, rate, still).unwrap();
-            proptest::prop_assert!(o.heading_deg.is_finite() && o.bias_sigma_dps.is_finite());
+            proptest::prop_assert!(o.heading_deg.is_finite() && o.bias_sigma_dps.is_finite() && o.heading_sigma_deg.is_finite() && o.heading_sigma_deg >= 0.0);
             proptest::prop_assert!(o.bias_dps.abs() <= p.max_bias_dps, "bias {} at {t} s", o.bias_dps);
         }
         for b in f.smoothed_bias() {

@@ -22,6 +22,7 @@ pub fn run_pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOp
     let trace = object_of(&[
         ("time_s", f64s(&t.time_s)),
         ("heading_deg", f64s(&t.heading_deg)),
+        ("heading_sigma_deg", f64s(&t.heading_sigma_deg)),
         ("heading_smoothed_deg", f64s(&t.heading_smoothed_deg)),
         ("bias_dps", f64s(&t.bias_dps)),
         ("bias_sigma_dps", f64s(&t.bias_sigma_dps)),

@@ -113,6 +113,9 @@ export interface PipelineRun {
   trace: {
     time_s: Float64Array;
     heading_deg: Float64Array;
+    /** The causal heading's standard deviation from the bias model (deg): the gyro's
+     * noise, scale error and biases the model does not describe are not in it. */
+    heading_sigma_deg: Float64Array;
     /** Offline smoothed heading (non-causal). */
     heading_smoothed_deg: Float64Array;
     bias_dps: Float64Array;

@@ -1,0 +1,106 @@
+//! How well the pipeline's heading sigma describes its heading error, on the battery's
+//! cases: at every scored reference sample, the aligned causal heading's error against the
+//! reference over the causal heading's sigma; the share of samples within 1 and 2 sigma (a
+//! Gaussian's 68 % and 95 %), over all samples and per case, and the cases that miss most.
+//! Nothing in the sigma was chosen on these cases (it has no constant of its own).
+//!
+//! `cargo run --release --example heading_coverage -- RECORDED.csv ...` (the battery's
+//! recorded bases, imported by their recipes, as for `bank_ceiling`); `SPLIT=scoring` for
+//! the scoring cases (default: training).
+use gyrodrift::battery::{self, Base, Profile};
+use gyrodrift::eval::Prepared;
+use gyrodrift::metrics::{error_series, score};
+use gyrodrift::pipeline::{Pipeline, PipelineParams};
+
+/// One case: its label, whether its base is simulated, and per scored sample |error| and sigma.
+struct Case {
+    label: String,
+    simulated: bool,
+    abs_err: Vec<f64>,
+    sigma: Vec<f64>,
+}
+
+impl Case {
+    fn within(&self, k: f64) -> usize {
+        self.abs_err.iter().zip(&self.sigma).filter(|(e, s)| **e <= k * **s).count()
+    }
+}
+
+fn main() {
+    let scoring = std::env::var("SPLIT").is_ok_and(|s| s == "scoring");
+    let mut bases: Vec<Base> = std::env::args()
+        .skip(1)
+        .map(|f| {
+            let log = gyrodrift::parse_log(std::fs::File::open(&f).expect("a CSV v1 log")).expect("a CSV v1 log");
+            let stem = std::path::Path::new(&f).file_stem().unwrap().to_string_lossy().into_owned();
+            battery::recorded_base(&stem, log)
+        })
+        .collect();
+    bases.extend(battery::simulated_bases(20.0));
+    let profiles = battery::profiles();
+    let cases: Vec<Case> = bases
+        .iter()
+        .flat_map(|b| profiles.iter().map(move |p| (b, p)))
+        .filter(|(b, p)| (b.training && p.training) != scoring)
+        .filter_map(|(b, p)| run_case(b, p))
+        .collect();
+    let split = if scoring { "scoring" } else { "training" };
+    println!("| {split} cases | cases | samples | within 1 sigma | within 2 sigma | cases with >= 90 % within 2 sigma | cases with < 50 % |");
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    for (label, pick) in [("all", None), ("recorded", Some(false)), ("simulated", Some(true))] {
+        let some: Vec<&Case> = cases.iter().filter(|c| pick.is_none_or(|s| c.simulated == s)).collect();
+        summary_row(label, &some);
+    }
+    worst_cases(&cases);
+}
+
+/// The case's causal heading and sigma at the scored reference samples (None without a reference).
+fn run_case(b: &Base, pr: &Profile) -> Option<Case> {
+    let params = PipelineParams::default();
+    let log = gyrodrift::sim::inject(&b.log, &pr.errors).unwrap();
+    let prep = Prepared::new(&log, None, &params.still).unwrap();
+    let reference = prep.reference().ok()?;
+    let bl = &prep.blocks;
+    let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, prep.lead_in_end_s()).unwrap();
+    let (mut psi, mut sig) = (Vec::new(), Vec::new());
+    for i in 0..bl.len() {
+        let o = f.update(bl.time_s[i], bl.rate_dps[i], bl.still[i]).unwrap();
+        psi.push(o.heading_deg);
+        sig.push(o.heading_sigma_deg);
+    }
+    let shift = score(&bl.time_s, &psi, reference).ok()?.shift_deg;
+    let aligned: Vec<f64> = psi.iter().map(|p| p + shift).collect();
+    let (_, err) = error_series(&bl.time_s, &aligned, reference);
+    // The sigma at the same samples: the series of (sigma - reference) plus the reference.
+    let (_, s_minus_r) = error_series(&bl.time_s, &sig, reference);
+    let (_, minus_r) = error_series(&bl.time_s, &vec![0.0; bl.len()], reference);
+    Some(Case {
+        label: format!("{} / {}", b.name, pr.name),
+        simulated: b.simulated,
+        abs_err: err.iter().map(|e| e.abs()).collect(),
+        sigma: s_minus_r.iter().zip(&minus_r).map(|(a, b)| a - b).collect(),
+    })
+}
+
+fn summary_row(label: &str, cases: &[&Case]) {
+    let n: usize = cases.iter().map(|c| c.abs_err.len()).sum();
+    let (in1, in2): (usize, usize) = (cases.iter().map(|c| c.within(1.0)).sum(), cases.iter().map(|c| c.within(2.0)).sum());
+    let share = |c: &&Case| c.within(2.0) as f64 / c.abs_err.len() as f64;
+    let good = cases.iter().filter(|c| share(c) >= 0.9).count();
+    let bad = cases.iter().filter(|c| share(c) < 0.5).count();
+    let pct = |k: usize| 100.0 * k as f64 / n as f64;
+    println!("| {label} | {} | {n} | {:.1} % | {:.1} % | {good} | {bad} |", cases.len(), pct(in1), pct(in2));
+}
+
+/// The 15 cases with the fewest samples within 2 sigma.
+fn worst_cases(cases: &[Case]) {
+    let mut by: Vec<(f64, &Case)> = cases.iter().map(|c| (c.within(2.0) as f64 / c.abs_err.len() as f64, c)).collect();
+    by.sort_by(|a, b| a.0.total_cmp(&b.0));
+    println!("\n| case | within 2 sigma | mean abs error (deg) | median sigma (deg) |\n|---|---:|---:|---:|");
+    for (share, c) in by.iter().take(15) {
+        let mut s = c.sigma.clone();
+        s.sort_by(f64::total_cmp);
+        let mean = c.abs_err.iter().sum::<f64>() / c.abs_err.len() as f64;
+        println!("| {} | {:.0} % | {mean:.2} | {:.2} |", c.label, 100.0 * share, s[s.len() / 2]);
+    }
+}
