@@ -45,7 +45,9 @@ fn main() {
         .filter_map(|(b, p)| run_case(b, p))
         .collect();
     let split = if scoring { "scoring" } else { "training" };
-    println!("| {split} cases | cases | samples | within 1 sigma | within 2 sigma | cases with >= 90 % within 2 sigma | cases with < 50 % |");
+    println!(
+        "| {split} cases | cases | samples | within 1 sigma | within 2 sigma | cases with >= 90 % within 2 sigma | cases with < 50 % |"
+    );
     println!("|---|---:|---:|---:|---:|---:|---:|");
     for (label, pick) in [("all", None), ("recorded", Some(false)), ("simulated", Some(true))] {
         let some: Vec<&Case> = cases.iter().filter(|c| pick.is_none_or(|s| c.simulated == s)).collect();

@@ -24,23 +24,31 @@ pub fn check_bias_s(bias_s: Option<f64>) -> Result<()> {
 /// Settings from a JSON object (missing fields take their defaults), validated. An unknown
 /// field or a value of the wrong type is an error naming the field.
 pub fn from_json<T: Settings>(value: Value) -> Result<T> {
+    // The generic part is the parse alone; the rest is written once for every settings
+    // struct (it was instantiated for each: 5 KB of the browser's size-budgeted module).
+    let parse = |v: Value| serde_json::from_value::<T>(v).map_err(|e| e.to_string());
+    let mut out = None;
+    checked_object(value, &mut |v| parse(v).map(|t| out = Some(t)))?;
+    let t = out.unwrap_or_default();
+    t.validate()?;
+    Ok(t)
+}
+
+/// Parses `value` (null: the defaults, left to the caller) with `parse`; on failure names
+/// the field: the first one that fails on its own.
+fn checked_object(value: Value, parse: &mut dyn FnMut(Value) -> std::result::Result<(), String>) -> Result<()> {
     let obj = match value {
-        Value::Null => return Ok(T::default()),
+        Value::Null => return Ok(()),
         Value::Object(o) => o,
         other => return Err(Error::param("options", format!("expected an object, not {other}"))),
     };
-    let t: T = serde_json::from_value(Value::Object(obj.clone())).map_err(|e| {
-        // Name the field: the first one that fails on its own.
-        for (k, v) in &obj {
-            let single = Map::from_iter([(k.clone(), v.clone())]);
-            if let Err(e1) = serde_json::from_value::<T>(Value::Object(single)) {
-                return Error::param(k, e1.to_string());
-            }
+    let Err(e) = parse(Value::Object(obj.clone())) else { return Ok(()) };
+    for (k, v) in &obj {
+        if let Err(e1) = parse(Value::Object(Map::from_iter([(k.clone(), v.clone())]))) {
+            return Err(Error::param(k, e1));
         }
-        Error::param("options", e.to_string())
-    })?;
-    t.validate()?;
-    Ok(t)
+    }
+    Err(Error::param("options", e))
 }
 
 /// Settings from `key=value` pairs on top of the defaults (the CLI's `--set`): a key is a
