@@ -3,6 +3,7 @@
 use crate::{array, result_dict, value_err, values};
 use gyrodrift::gyrodometry;
 use gyrodrift::hdr::{self, Hdr, HdrParams};
+use gyrodrift::pipeline::{PipelineParams, PipelineStream};
 use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -95,7 +96,60 @@ impl GyrodometryEstimator {
     }
 }
 
+/// The recommended pipeline, streaming: `update(time_s, rate_raw_dps, speed_mps)` per row
+/// returns the heading (deg, from 0); speed NaN when the row has none (then no block is
+/// still). `state()` is the last closed 1 s block's output (bias, sigmas, stop).
+#[pyclass(module = "gyrodrift")]
+pub struct PipelineEstimator {
+    inner: PipelineStream,
+}
+
+#[pymethods]
+impl PipelineEstimator {
+    /// The pipeline's settings as a dict (`bias_s`: the stationary lead-in from the first
+    /// row, 20 s when missing).
+    #[new]
+    #[pyo3(signature = (settings=None))]
+    fn new(settings: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+        let p: PipelineParams = crate::settings("PipelineEstimator", settings)?;
+        Ok(PipelineEstimator { inner: PipelineStream::new(p).map_err(value_err)? })
+    }
+
+    /// One row; returns the heading. Raises ValueError on a non-finite time or rate or a
+    /// time that does not increase, leaving the state as it was.
+    fn update(&mut self, time_s: f64, rate_raw_dps: f64, speed_mps: f64) -> PyResult<f64> {
+        self.inner.update(time_s, rate_raw_dps, speed_mps).map_err(value_err)
+    }
+
+    /// Many rows at once (float64 arrays of one length; NaN speeds where unknown).
+    fn update_many(
+        &mut self,
+        py: Python<'_>,
+        time_s: PyReadonlyArray1<'_, f64>,
+        rate_raw_dps: PyReadonlyArray1<'_, f64>,
+        speed_mps: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Py<PyAny>> {
+        let (t, w, v) = (values(&time_s, "time_s")?, values(&rate_raw_dps, "rate_raw_dps")?, values(&speed_mps, "speed_mps")?);
+        if w.len() != t.len() || v.len() != t.len() {
+            return Err(value_err("update_many: time_s, rate_raw_dps and speed_mps differ in length"));
+        }
+        let out = (0..t.len()).map(|i| self.inner.update(t[i], w[i], v[i])).collect::<gyrodrift::Result<Vec<f64>>>();
+        Ok(array(py, out.map_err(value_err)?))
+    }
+
+    /// The last closed block's output (None before the first block closes).
+    fn state<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        self.inner.last_block().as_ref().map(|o| result_dict(py, o)).transpose()
+    }
+
+    #[getter]
+    fn heading_deg(&self) -> f64 {
+        self.inner.heading_deg()
+    }
+}
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<HdrEstimator>()?;
-    m.add_class::<GyrodometryEstimator>()
+    m.add_class::<GyrodometryEstimator>()?;
+    m.add_class::<PipelineEstimator>()
 }

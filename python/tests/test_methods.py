@@ -111,6 +111,32 @@ def test_run_pipeline_trace_equals_the_clis_pipeline_trace(cli, samples, tmp_pat
     assert np.all(t["heading_sigma_deg"] >= 0)
 
 
+def test_pipeline_estimator_streams_run_pipelines_blocks(samples):
+    """Rows one by one: each closed 1 s block's heading (less the alignment), bias and
+    heading sigma are run_pipeline's; update_many gives the same headings."""
+    log = g.read_log(str(samples / "train" / "city-1.csv"))
+    t, w, v = (log.column(c) for c in ("time_s", "gyro_dps", "speed_mps"))
+    tr = g.run_pipeline(log)["trace"]
+    est = g.PipelineEstimator()
+    blocks = []
+    k = np.floor(t - t[0])
+    psi = []
+    for i in range(len(t)):
+        psi.append(est.update(t[i], w[i], v[i]))
+        if i > 0 and k[i] != k[i - 1]:
+            blocks.append(est.state())
+    assert len(blocks) == len(tr["time_s"]) - 1
+    shift = tr["heading_deg"][0]
+    for j, s in enumerate(blocks):
+        assert s["heading_deg"] + shift == tr["heading_deg"][j], j
+        assert s["bias_dps"] == tr["bias_dps"][j] and s["heading_sigma_deg"] == tr["heading_sigma_deg"][j]
+    assert np.array_equal(g.PipelineEstimator().update_many(t, w, v), np.array(psi))
+    with pytest.raises(ValueError, match="time must be finite and increase"):
+        est.update(t[0], 0.0, 0.0)
+    with pytest.raises(ValueError, match="differ in length"):
+        est.update_many(t[:2], w[:1], v[:2])
+
+
 def test_a_log_without_reference_runs_but_has_no_result(samples):
     run = g.run_hdr(g.read_log(str(samples / "static" / "static-2h.csv")))
     assert run["result"] is None and "ref_heading_deg" in run["error"]

@@ -25,3 +25,12 @@ def robustness(paths: List[str]) -> int:
     logs = [g.read_log(p) for p in paths]
     b: Dict[str, Any] = g.battery(logs, {"warm_sigma_dps": 0.3})
     return int(b["added"]["n_within"])
+
+
+def live_heading(path: str) -> float:
+    log = g.read_log(path)
+    est = g.PipelineEstimator({"bias_s": 20.0})
+    psi: npt.NDArray[np.float64] = est.update_many(log.column("time_s"), log.column("gyro_dps"), log.column("speed_mps"))
+    state = est.state()
+    sigma = float(state["heading_sigma_deg"]) if state is not None else 0.0
+    return float(psi[-1]) + est.heading_deg * 0 + sigma * 0

@@ -104,6 +104,33 @@ test("runPipeline's trace equals the CLI's `pipeline --trace`, the heading's sig
   log.free();
 });
 
+test("PipelineEstimator, fed the rows one by one, gives runPipeline's block headings, bias and sigma", () => {
+  const log = gd.Log.parse(readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8"));
+  const [t, w, v] = ["time_s", "gyro_dps", "speed_mps"].map((c) => log.column(c));
+  const tr = gd.runPipeline(log, {}).trace;
+  const est = new gd.PipelineEstimator({});
+  const blocks = [];
+  const block = (i) => Math.floor(t[i] - t[0]); // the batch path's 1 s blocks
+  for (let i = 0; i < t.length; i++) {
+    est.update(t[i], w[i], v[i]);
+    // The first row of a block closes the one before: its output is the state now.
+    if (i > 0 && block(i) !== block(i - 1)) blocks.push(est.state());
+  }
+  assert.equal(blocks.length, tr.time_s.length - 1);
+  assert.ok(blocks.length > 100);
+  const shift = tr.heading_deg[0]; // the stream starts at 0; the trace is aligned to the reference
+  blocks.forEach((s, j) => {
+    assert.equal(s.heading_deg + shift, tr.heading_deg[j], `block ${j}`);
+    assert.equal(s.bias_dps, tr.bias_dps[j]);
+    assert.equal(s.heading_sigma_deg, tr.heading_sigma_deg[j]);
+  });
+  assert.throws(() => est.update(t[0], 0, 0), /time must be finite and increase/);
+  assert.throws(() => est.updateMany([1e9], [0, 1], [0]), /differ in length/);
+  assert.throws(() => new gd.PipelineEstimator({ no_such_setting: 1 }), /no_such_setting/);
+  est.free();
+  log.free();
+});
+
 test("pipeline equals the native CLI; importLog reads a real-log recipe from Node Buffers", () => {
   for (const file of drives.slice(0, 4)) {
     const log = gd.Log.parse(readFileSync(file, "utf8"));

@@ -1,6 +1,6 @@
 // Compiled with `tsc --noEmit`: the package's types describe options and results (no `any`).
-import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, isDriveLog, pipeline, runPipeline, compare, checkLog, battery, batteryMarkdown } from "gyrodrift";
-import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, PipelineResult, PipelineRun, Compare, CheckReport, CheckFinding, GapSplit, Battery, BatteryCase } from "gyrodrift";
+import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, isDriveLog, pipeline, runPipeline, compare, checkLog, battery, batteryMarkdown, PipelineEstimator } from "gyrodrift";
+import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, PipelineResult, PipelineRun, Compare, CheckReport, CheckFinding, GapSplit, Battery, BatteryCase, PipelineState } from "gyrodrift";
 
 const log: Log = Log.parse("time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1,0\n");
 const opts: HdrOptions = { i_c_dps: 0.0422, tau_s: 0.75, resample: true };
@@ -68,3 +68,11 @@ const goalHolds: boolean = bat.added?.goals[0]?.holds ?? false;
 const batMd: string = batteryMarkdown([log], {});
 // @ts-expect-error: the battery's summary is typed, no such key
 bat.added?.n_cases_within;
+
+const live = new PipelineEstimator({ bias_s: 20 });
+const livePsi: number = live.update(0, 0.1, 0) + live.updateMany(new Float64Array([1]), new Float64Array([0.1]), new Float64Array([NaN]))[0]!;
+const liveState: PipelineState | null = live.state();
+const liveSigma: number = (liveState?.heading_sigma_deg ?? 0) + live.headingSigmaDeg + live.headingDeg;
+// @ts-expect-error: the speed is an argument of every row
+live.update(0, 0.1);
+export { livePsi, liveSigma };

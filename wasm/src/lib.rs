@@ -7,7 +7,7 @@
 
 // A build with only some features (scripts/lib.sh builds the parts) leaves helpers unused.
 #![cfg_attr(
-    not(all(feature = "core", feature = "import", feature = "plot", feature = "tune", feature = "sim")),
+    not(all(feature = "core", feature = "import", feature = "plot", feature = "tune", feature = "sim", feature = "live")),
     allow(dead_code, unused_imports)
 )]
 
@@ -26,6 +26,8 @@ mod log_builder;
 mod plot;
 #[cfg(feature = "core")]
 mod streaming;
+#[cfg(feature = "live")]
+mod streaming_pipeline;
 mod types;
 #[cfg(feature = "core")]
 mod view;
@@ -40,6 +42,8 @@ pub use log::Log;
 pub use log_builder::*;
 #[cfg(feature = "core")]
 pub use streaming::*;
+#[cfg(feature = "live")]
+pub use streaming_pipeline::*;
 #[cfg(feature = "core")]
 pub use view::reduce_series;
 

@@ -31,7 +31,7 @@ use crate::error::{Error, Result};
 use nalgebra::{Matrix3, Vector3};
 
 /// What one block did.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct PipelineOutput {
     /// Heading from (rate - bias) integrated with the bias known before each block, and
     /// corrected at stops by what the stop says about the bias since (causal), deg.

@@ -81,6 +81,21 @@ export interface HdrState {
   attenuation: number;
 }
 
+/** The last closed 1 s block of the streaming pipeline (`PipelineEstimator`, full module). */
+export interface PipelineState {
+  /** Heading at the block's end, deg (from 0 at the first row; corrected at stops). */
+  heading_deg: number;
+  /** Bias used for the block and its sigma, deg/s. */
+  bias_dps: number;
+  bias_sigma_dps: number;
+  /** The heading's sigma from the bias model, deg (not the gyro's scale or noise). */
+  heading_sigma_deg: number;
+  /** The block brought stop evidence; was straight-road evidence; a guard re-opened the bias. */
+  stop: boolean;
+  straight: boolean;
+  reopened: boolean;
+}
+
 export interface GyrodometryOptions {
   /** Threshold rate, deg/s (1.25 = 0.125 deg per 0.1 s). */
   thres_rate_dps?: number;
