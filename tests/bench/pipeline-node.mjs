@@ -6,7 +6,7 @@
 import { readFileSync } from "node:fs";
 import { fileURLToPath } from "node:url";
 import { dirname, join } from "node:path";
-import { Log, runPipeline, runHdr } from "gyrodrift";
+import { Log, runPipeline, runHdr, PipelineEstimator } from "gyrodrift";
 
 const root = join(dirname(fileURLToPath(import.meta.url)), "..", "..");
 const log = Log.parse(readFileSync(join(root, "sample-logs", "train", "highway-1.csv"), "utf8"));
@@ -20,3 +20,10 @@ function time(name, f, n) {
 }
 time("runPipeline (Highway 1)", () => runPipeline(log, {}), 10);
 time("runHdr (Highway 1)", () => runHdr(log, {}), 20);
+// The same drive streamed row by row through the live estimator (all its rows at once).
+const [t, w, v] = ["time_s", "gyro_dps", "speed_mps"].map((c) => log.column(c));
+time(`PipelineEstimator (${t.length} rows)`, () => {
+  const est = new PipelineEstimator({});
+  est.updateMany(t, w, v);
+  est.free();
+}, 10);

@@ -32,8 +32,10 @@ pub struct PipelineStream {
     filter: Option<Pipeline>,
     t0_s: f64,
     open: Open,
-    /// The last closed block's output and stamp.
+    /// The last closed block's output and stamp, and the bias after it (what the open block
+    /// is integrated with: the batch path's bias before that block).
     last: Option<(PipelineOutput, f64)>,
+    bias_dps: f64,
     heading_deg: f64,
 }
 
@@ -42,7 +44,7 @@ impl PipelineStream {
     /// from the first row, None = 20 s).
     pub fn new(params: PipelineParams) -> Result<Self> {
         params.validate()?;
-        Ok(PipelineStream { params, filter: None, t0_s: 0.0, open: Open::default(), last: None, heading_deg: 0.0 })
+        Ok(PipelineStream { params, filter: None, t0_s: 0.0, open: Open::default(), last: None, bias_dps: 0.0, heading_deg: 0.0 })
     }
 
     /// One row: time (s, increasing), raw yaw rate (deg/s) and speed (m/s; NaN when the row
@@ -83,6 +85,7 @@ impl PipelineStream {
         if let Some(filter) = self.filter.as_mut() {
             let out = filter.update(o.last_s, o.sum_dps / o.n as f64, still)?;
             self.last = Some((out, o.last_s));
+            self.bias_dps = filter.bias().0;
         }
         self.open.n = 0;
         Ok(())
@@ -90,9 +93,9 @@ impl PipelineStream {
 
     /// The last closed block's heading, moved by the open block's mean rate less the bias.
     fn provisional_heading_deg(&self) -> f64 {
-        let (o, bias) = (&self.open, self.filter.as_ref().map_or(0.0, |f| f.bias().0));
+        let o = &self.open;
         match self.last {
-            Some((out, stamp_s)) => out.heading_deg + (o.sum_dps / o.n as f64 - bias) * (o.last_s - stamp_s),
+            Some((out, stamp_s)) => out.heading_deg + (o.sum_dps / o.n as f64 - self.bias_dps) * (o.last_s - stamp_s),
             None => 0.0,
         }
     }
@@ -126,9 +129,13 @@ mod tests {
         let (w, v) = (log.column(crate::Column::GyroDps).unwrap(), log.column(crate::Column::SpeedMps).unwrap());
         let mut s = PipelineStream::new(params).unwrap();
         let mut closed = Vec::new();
+        let mut at_last_row = Vec::new();
         for i in 0..t.len() {
             let before = s.last.map(|(_, stamp)| stamp);
-            s.update(t[i], w[i], v[i]).unwrap();
+            let psi = s.update(t[i], w[i], v[i]).unwrap();
+            if i + 1 < t.len() && (t[i + 1] - t[0]).floor() != (t[i] - t[0]).floor() {
+                at_last_row.push(psi);
+            }
             if let Some((o, stamp)) = s.last.filter(|(_, stamp)| Some(*stamp) != before) {
                 closed.push((stamp, o));
             }
@@ -141,6 +148,11 @@ mod tests {
             assert_eq!(o.heading_sigma_deg, batch.heading_sigma_deg[j]);
         }
         assert!(batch.stop.iter().any(|&s| s), "the drive has stops");
+        // Row by row: at a block's last row the heading is the batch heading of that block
+        // where the block brought no stop (whose correction comes with the block's close).
+        for (j, psi) in at_last_row.iter().enumerate().skip(1).filter(|(j, _)| !batch.stop[*j]) {
+            assert!((psi - batch.heading_deg[j]).abs() < 1e-9, "block {j}: {psi} against {}", batch.heading_deg[j]);
+        }
     }
 
     /// Before any block closes the heading is 0; a bad row is refused and changes nothing.
