@@ -155,6 +155,30 @@ mod tests {
         }
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(100))]
+        /// Any rows (irregular steps, rates far beyond a bias, speeds missing, negative or
+        /// infinite, bad rows in between): no panic, a bad row refused, every heading finite.
+        #[test]
+        fn any_rows_give_finite_headings_or_a_refusal(
+            rows in proptest::collection::vec((-0.5f64..3.0, -400.0f64..400.0, proptest::prelude::any::<f64>()), 1..600),
+        ) {
+            let mut s = PipelineStream::new(PipelineParams::default()).unwrap();
+            let mut t = 0.0;
+            for (dt, rate, speed) in rows {
+                t += dt;
+                match s.update(t, rate, speed) {
+                    Ok(psi) => proptest::prop_assert!(psi.is_finite()),
+                    Err(_) => proptest::prop_assert!(dt <= 0.0),
+                }
+                if dt <= 0.0 {
+                    t -= dt; // the refused row's time is not the stream's
+                }
+            }
+            proptest::prop_assert!(s.last_block().is_none_or(|o| o.heading_sigma_deg.is_finite()));
+        }
+    }
+
     /// Before any block closes the heading is 0; a bad row is refused and changes nothing.
     #[test]
     fn bad_rows_are_refused_and_leave_the_state() {
