@@ -72,12 +72,18 @@ pub fn blocks_1hz(time_s: &[f64]) -> impl Iterator<Item = std::ops::Range<usize>
     let mut start = 0;
     std::iter::from_fn(move || {
         let &first = time_s.get(start)?;
-        let k = (first - t0).floor();
-        let len = time_s[start + 1..].iter().take_while(|&&t| (t - t0).floor() == k).count();
+        let k = block_index(first, t0);
+        let len = time_s[start + 1..].iter().take_while(|&&t| block_index(t, t0) == k).count();
         let block = start..start + 1 + len;
         start = block.end;
         Some(block)
     })
+}
+
+/// The 1 Hz block of a row at `time_s` in a log starting at `t0_s`: floor(t - t0) (detail
+/// 2; also the live pipeline's, `pipeline::PipelineStream`).
+pub fn block_index(time_s: f64, t0_s: f64) -> f64 {
+    (time_s - t0_s).floor()
 }
 
 /// 1 Hz block averaging (detail 2): rate = mean of a block's non-empty gyro cells; stamp =

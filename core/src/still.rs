@@ -20,6 +20,14 @@ pub struct StillOptions {
     pub still_gyro_factor: f64,
 }
 
+impl StillOptions {
+    /// Standing by speed: the block has speeds and every one is below `still_speed_mps`
+    /// (`speed_max_mps` the largest |speed| of the block).
+    pub fn still_by_speed(&self, speeds: usize, speed_max_mps: f64) -> bool {
+        speeds > 0 && speed_max_mps < self.still_speed_mps
+    }
+}
+
 impl Default for StillOptions {
     fn default() -> Self {
         StillOptions { still_speed_mps: 0.2, still_travel_m: 0.05, still_gyro_factor: 1.5 }
@@ -140,7 +148,7 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
         }
         let mean = a.sum / a.n as f64;
         let still = match source {
-            StillSource::Speed => a.speed_n > 0 && a.speed_max < opts.still_speed_mps,
+            StillSource::Speed => opts.still_by_speed(a.speed_n, a.speed_max),
             StillSource::Odometry => match (a.odo_first, a.odo_last) {
                 (Some(f), Some(l)) => (l.0 - f.0).abs() + (l.1 - f.1).abs() < opts.still_travel_m,
                 _ => false,

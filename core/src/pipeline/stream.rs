@@ -59,7 +59,7 @@ impl PipelineStream {
             self.filter = Some(Pipeline::new(self.params, 0.0, self.params.prior_bias_sigma_dps, lead_in_end_s)?);
             self.t0_s = time_s;
         }
-        let k = (time_s - self.t0_s).floor();
+        let k = crate::preprocess::block_index(time_s, self.t0_s);
         if self.open.n > 0 && k != self.open.k {
             self.close()?;
         }
@@ -81,7 +81,7 @@ impl PipelineStream {
     /// Closes the open block: the pipeline's update on it.
     fn close(&mut self) -> Result<()> {
         let o = self.open;
-        let still = o.speeds > 0 && o.speed_max_mps < self.params.still.still_speed_mps;
+        let still = self.params.still.still_by_speed(o.speeds, o.speed_max_mps);
         if let Some(filter) = self.filter.as_mut() {
             let out = filter.update(o.last_s, o.sum_dps / o.n as f64, still)?;
             self.last = Some((out, o.last_s));
