@@ -76,10 +76,10 @@ impl Battery {
             let _ = writeln!(s);
             head(&mut s, "case (T = training)", Some("pipeline / best other"));
             for c in &self.cases {
-                let best = c.ne_psi[c.best];
+                let best = c.ne_psi.get(c.best).copied();
                 let _ = write!(s, "| {}{} / {} |", if c.training { "T " } else { "" }, c.base, c.profile);
                 for v in &c.ne_psi {
-                    if *v == best {
+                    if Some(*v) == best {
                         let _ = write!(s, " **{v:.3}** |");
                     } else {
                         let _ = write!(s, " {v:.3} |");
