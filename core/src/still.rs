@@ -26,6 +26,22 @@ impl StillOptions {
     pub fn still_by_speed(&self, speeds: usize, speed_max_mps: f64) -> bool {
         speeds > 0 && speed_max_mps < self.still_speed_mps
     }
+
+    /// Standing by the gyro alone: the block has 5 rows or more (`n` rows summing to `sum`,
+    /// their squares to `sum2`) and its standard deviation is at most `still_gyro_factor`
+    /// times the lead-in's (`lead_std`, from [`lead_in_std`]).
+    pub fn still_by_gyro(&self, n: usize, sum: f64, sum2: f64, lead_std: f64) -> bool {
+        let mean = sum / n as f64;
+        let var = (sum2 / n as f64 - mean * mean).max(0.0);
+        n >= 5 && var.sqrt() <= self.still_gyro_factor * lead_std
+    }
+}
+
+/// The lead-in's gyro spread for the gyro-only detector: its standard deviation when the
+/// lead-in has 10 finite rows or more and they are not all equal, else None (never still).
+pub fn lead_in_std(lead_dps: &[f64]) -> Option<f64> {
+    let std = crate::metrics::mean_std(lead_dps).1;
+    (lead_dps.len() >= 10 && std > 0.0).then_some(std)
 }
 
 impl Default for StillOptions {
@@ -128,12 +144,12 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
         Some(&t0) => t.iter().zip(gyro).take_while(|(&ti, _)| ti - t0 < bias_s).filter(|(_, g)| g.is_finite()).map(|(_, &g)| g).collect(),
         None => Vec::new(),
     };
-    let lead_std = crate::metrics::mean_std(&lead).1;
+    let lead_std = lead_in_std(&lead);
     let source = if speed.is_some_and(|s| s.iter().any(|v| v.is_finite())) {
         StillSource::Speed
     } else if odo.is_some() {
         StillSource::Odometry
-    } else if lead.len() >= 10 && lead_std > 0.0 {
+    } else if lead_std.is_some() {
         StillSource::Gyro
     } else {
         StillSource::None
@@ -146,21 +162,17 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
         if a.n == 0 {
             return;
         }
-        let mean = a.sum / a.n as f64;
         let still = match source {
             StillSource::Speed => opts.still_by_speed(a.speed_n, a.speed_max),
             StillSource::Odometry => match (a.odo_first, a.odo_last) {
                 (Some(f), Some(l)) => (l.0 - f.0).abs() + (l.1 - f.1).abs() < opts.still_travel_m,
                 _ => false,
             },
-            StillSource::Gyro => {
-                let var = (a.sum2 / a.n as f64 - mean * mean).max(0.0);
-                a.n >= 5 && var.sqrt() <= opts.still_gyro_factor * lead_std
-            }
+            StillSource::Gyro => lead_std.is_some_and(|s| opts.still_by_gyro(a.n, a.sum, a.sum2, s)),
             StillSource::None => false,
         };
         out.time_s.push(stamp);
-        out.rate_dps.push(mean);
+        out.rate_dps.push(a.sum / a.n as f64);
         out.temp_c.push(if a.temp_n > 0 { a.temp_sum / a.temp_n as f64 } else { f64::NAN });
         out.still.push(still);
     };

@@ -97,8 +97,10 @@ impl GyrodometryEstimator {
 }
 
 /// The recommended pipeline, streaming: `update(time_s, rate_raw_dps, speed_mps)` per row
-/// returns the heading (deg, from 0); speed NaN when the row has none (then no block is
-/// still). `state()` is the last closed 1 s block's output (bias, sigmas, stop).
+/// returns the heading (deg, from 0); speed NaN when the row has none (until a row brings a
+/// speed, stops are judged by the gyro against the declared lead-in, as the batch path does
+/// for a log without speed). `state()` is the last closed 1 s block's output (bias, sigmas,
+/// stop).
 #[pyclass(module = "gyrodrift")]
 pub struct PipelineEstimator {
     inner: PipelineStream,

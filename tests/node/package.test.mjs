@@ -104,15 +104,15 @@ test("runPipeline's trace equals the CLI's `pipeline --trace`, the heading's sig
   log.free();
 });
 
-test("PipelineEstimator, fed the rows one by one, gives runPipeline's block headings, bias and sigma", () => {
-  const log = gd.Log.parse(readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8"));
-  const [t, w, v] = ["time_s", "gyro_dps", "speed_mps"].map((c) => log.column(c));
+/** Feeds `log`'s rows (NaN speeds when it has none) to a PipelineEstimator and checks every
+ *  closed block's state against runPipeline's trace; returns how many blocks were stops. */
+function streamEqualsBatch(log, t, w, v) {
   const tr = gd.runPipeline(log, {}).trace;
   const est = new gd.PipelineEstimator({});
   const blocks = [];
   const block = (i) => Math.floor(t[i] - t[0]); // the batch path's 1 s blocks
   for (let i = 0; i < t.length; i++) {
-    est.update(t[i], w[i], v[i]);
+    est.update(t[i], w[i], v ? v[i] : NaN);
     // The first row of a block closes the one before: its output is the state now.
     if (i > 0 && block(i) !== block(i - 1)) blocks.push(est.state());
   }
@@ -123,12 +123,31 @@ test("PipelineEstimator, fed the rows one by one, gives runPipeline's block head
     assert.equal(s.heading_deg + shift, tr.heading_deg[j], `block ${j}`);
     assert.equal(s.bias_dps, tr.bias_dps[j]);
     assert.equal(s.heading_sigma_deg, tr.heading_sigma_deg[j]);
+    assert.equal(s.stop, tr.stop[j] === 1, `block ${j}`);
   });
   assert.throws(() => est.update(t[0], 0, 0), /time must be finite and increase/);
   assert.throws(() => est.updateMany([1e9], [0, 1], [0]), /differ in length/);
-  assert.throws(() => new gd.PipelineEstimator({ no_such_setting: 1 }), /no_such_setting/);
   est.free();
+  return blocks.filter((s) => s.stop).length;
+}
+
+test("PipelineEstimator, fed the rows one by one, gives runPipeline's block headings, bias and sigma", () => {
+  const text = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const log = gd.Log.parse(text);
+  const [t, w, v] = ["time_s", "gyro_dps", "speed_mps"].map((c) => log.column(c));
+  const stops = streamEqualsBatch(log, t, w, v);
+  assert.ok(stops > 30, `${stops} stop blocks by speed`);
+  assert.throws(() => new gd.PipelineEstimator({ no_such_setting: 1 }), /no_such_setting/);
   log.free();
+  // The same drive with its gyro alone: stops are judged by the gyro against the lead-in.
+  const lines = text.split("\n");
+  const header = lines.findIndex((l) => l.startsWith("time_s"));
+  const keep = lines[header].split(",").map((c, j) => (["time_s", "gyro_dps"].includes(c) ? j : -1)).filter((j) => j >= 0);
+  const gyroOnly = lines.map((l, i) => (i < header || !l ? l : keep.map((j) => l.split(",")[j]).join(","))).join("\n");
+  const bare = gd.Log.parse(gyroOnly);
+  assert.deepEqual(bare.columns(), ["time_s", "gyro_dps"]);
+  assert.ok(streamEqualsBatch(bare, t, w, null) > 30, "stop blocks by the gyro");
+  bare.free();
 });
 
 test("pipeline equals the native CLI; importLog reads a real-log recipe from Node Buffers", () => {

@@ -9,8 +9,10 @@ use js_sys::Float64Array;
 use wasm_bindgen::prelude::*;
 
 /// Streaming pipeline: `update(time_s, rate_raw_dps, speed_mps)` per row returns the heading
-/// (deg, from 0); `speed_mps` NaN when the row has none (then no block is still). The state
-/// is the last closed 1 s block's: bias, sigmas, stop. Call `free()` when done.
+/// (deg, from 0); `speed_mps` NaN when the row has none (until a row brings a speed, stops
+/// are judged by the gyro against the declared lead-in, as the batch path does for a log
+/// without speed). The state is the last closed 1 s block's: bias, sigmas, stop. Call
+/// `free()` when done.
 #[wasm_bindgen]
 pub struct PipelineEstimator {
     inner: PipelineStream,

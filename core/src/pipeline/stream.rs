@@ -1,25 +1,32 @@
 //! The pipeline live: rows in (time, raw yaw rate, speed), the heading out per row. Rows
 //! are gathered into the batch path's 1 Hz blocks (block k holds the rows with
 //! floor(t - t0) = k, stamped with its last row: `preprocess::blocks_1hz`), a block is
-//! still when every speed in it is below `still_speed_mps` (as `still::blocks` decides from
-//! a speed column), and each block updates the [`Pipeline`] when the first row of the next
-//! one arrives. Between block ends the heading moves with the open block's mean rate so far
-//! less the bias; each closed block's output (heading, bias, their sigmas, stop) is the
-//! batch pipeline's at that block, bit for bit (tested).
+//! judged still as `still::blocks` judges it, and each block updates the [`Pipeline`] when
+//! the first row of the next one arrives. Between block ends the heading moves with the
+//! open block's mean rate so far less the bias; each closed block's output (heading, bias,
+//! their sigmas, stop) is the batch pipeline's at that block, bit for bit (tested).
 //!
-//! Without any speed no block is still and only straight-road evidence and the declared
-//! lead-in teach the bias; the batch path can also judge stillness from wheel travel or from
-//! the gyro against its lead-in, which need the whole lead-in first.
+//! Stillness: once a row has brought a speed, by speed (every speed of the block below
+//! `still_speed_mps`; a block without one is moving), as the batch path does for a log with
+//! a speed column. Before that, by the gyro alone, as the batch path does for a log without
+//! speed or wheels: a block is still when its spread is at most `still_gyro_factor` times
+//! the declared lead-in's. That spread is known when the lead-in ends, so the lead-in's own
+//! blocks are taken as still (the lead-in is declared stationary); the batch path judges
+//! them against the whole lead-in, which on a lead-in that was stationary is the same.
+//! Without a lead-in (or one of fewer than 10 rows) and without speeds no block is still,
+//! as in the batch path. (The batch path's third source, wheel travel, is not streamed.)
 
 use super::{Pipeline, PipelineOutput, PipelineParams};
 use crate::error::{Error, Result};
 
-/// The open block: its index, rows, sum of rates, the largest |speed| and how many speeds.
+/// The open block: its index, rows, sum of rates and of their squares, the largest |speed|
+/// and how many speeds.
 #[derive(Debug, Clone, Copy, Default)]
 struct Open {
     k: f64,
     n: usize,
     sum_dps: f64,
+    sum2: f64,
     last_s: f64,
     speed_max_mps: f64,
     speeds: usize,
@@ -37,6 +44,12 @@ pub struct PipelineStream {
     last: Option<(PipelineOutput, f64)>,
     bias_dps: f64,
     heading_deg: f64,
+    /// The lead-in's rates while it lasts; then its spread for the gyro-only detector
+    /// (`Some(None)`: no usable lead-in, never still by the gyro).
+    lead_dps: Vec<f64>,
+    lead_std: Option<Option<f64>>,
+    /// A row has brought a finite speed: stillness is judged by speed from then on.
+    speed_seen: bool,
 }
 
 impl PipelineStream {
@@ -44,7 +57,18 @@ impl PipelineStream {
     /// from the first row, None = 20 s).
     pub fn new(params: PipelineParams) -> Result<Self> {
         params.validate()?;
-        Ok(PipelineStream { params, filter: None, t0_s: 0.0, open: Open::default(), last: None, bias_dps: 0.0, heading_deg: 0.0 })
+        Ok(PipelineStream {
+            params,
+            filter: None,
+            t0_s: 0.0,
+            open: Open::default(),
+            last: None,
+            bias_dps: 0.0,
+            heading_deg: 0.0,
+            lead_dps: Vec::new(),
+            lead_std: None,
+            speed_seen: false,
+        })
     }
 
     /// One row: time (s, increasing), raw yaw rate (deg/s) and speed (m/s; NaN when the row
@@ -59,6 +83,15 @@ impl PipelineStream {
             self.filter = Some(Pipeline::new(self.params, 0.0, self.params.prior_bias_sigma_dps, lead_in_end_s)?);
             self.t0_s = time_s;
         }
+        if self.lead_std.is_none() {
+            if time_s - self.t0_s < self.params.bias_s.unwrap_or(crate::log::DEFAULT_BIAS_S) {
+                self.lead_dps.push(rate_dps);
+            } else {
+                self.lead_std = Some(crate::still::lead_in_std(&self.lead_dps));
+                self.lead_dps = Vec::new();
+            }
+        }
+        self.speed_seen |= speed_mps.is_finite();
         let k = crate::preprocess::block_index(time_s, self.t0_s);
         if self.open.n > 0 && k != self.open.k {
             self.close()?;
@@ -69,6 +102,7 @@ impl PipelineStream {
         }
         o.n += 1;
         o.sum_dps += rate_dps;
+        o.sum2 += rate_dps * rate_dps;
         o.last_s = time_s;
         if speed_mps.is_finite() {
             o.speed_max_mps = o.speed_max_mps.max(speed_mps.abs());
@@ -81,7 +115,12 @@ impl PipelineStream {
     /// Closes the open block: the pipeline's update on it.
     fn close(&mut self) -> Result<()> {
         let o = self.open;
-        let still = self.params.still.still_by_speed(o.speeds, o.speed_max_mps);
+        let opts = &self.params.still;
+        let still = match self.lead_std {
+            _ if self.speed_seen => opts.still_by_speed(o.speeds, o.speed_max_mps),
+            Some(lead_std) => lead_std.is_some_and(|s| opts.still_by_gyro(o.n, o.sum_dps, o.sum2, s)),
+            None => true, // within the declared lead-in
+        };
         if let Some(filter) = self.filter.as_mut() {
             let out = filter.update(o.last_s, o.sum_dps / o.n as f64, still)?;
             self.last = Some((out, o.last_s));
@@ -116,23 +155,23 @@ mod tests {
     use super::*;
     use crate::eval::Prepared;
 
-    /// On a simulated drive (a speed in every row, stops, a declared lead-in), every closed
-    /// block's output equals the batch trace's (unaligned) at that block, bit for bit.
-    #[test]
-    fn the_stream_gives_the_batch_pipelines_headings() {
-        let log =
-            crate::sim::drive::simulate_drive(&crate::sim::DriveConfig { scenario: crate::sim::Scenario::City, minutes: 6.0, seed: 3 });
+    /// Streams `log` (NaN speed where it has no speed column) and checks that every closed
+    /// block's output equals the batch trace's (unaligned) at that block, bit for bit, and,
+    /// at a block's last row, the heading where the block brought no stop. Returns the batch
+    /// path's still source.
+    fn assert_stream_equals_batch(log: &crate::DriveLog) -> crate::still::StillSource {
         let params = PipelineParams { bias_s: Some(log.bias_s(None)), ..Default::default() };
-        let prep = Prepared::new(&log, params.bias_s, &params.still).unwrap();
+        let prep = Prepared::new(log, params.bias_s, &params.still).unwrap();
         let batch = prep.pipeline_trace(&params).unwrap();
         let t = log.time_s();
-        let (w, v) = (log.column(crate::Column::GyroDps).unwrap(), log.column(crate::Column::SpeedMps).unwrap());
+        let w = log.column(crate::Column::GyroDps).unwrap();
+        let v = log.column(crate::Column::SpeedMps);
         let mut s = PipelineStream::new(params).unwrap();
         let mut closed = Vec::new();
         let mut at_last_row = Vec::new();
         for i in 0..t.len() {
             let before = s.last.map(|(_, stamp)| stamp);
-            let psi = s.update(t[i], w[i], v[i]).unwrap();
+            let psi = s.update(t[i], w[i], v.map_or(f64::NAN, |v| v[i])).unwrap();
             if i + 1 < t.len() && (t[i + 1] - t[0]).floor() != (t[i] - t[0]).floor() {
                 at_last_row.push(psi);
             }
@@ -146,13 +185,58 @@ mod tests {
             assert_eq!(o.heading_deg, batch.heading_deg[j], "block {j}");
             assert_eq!(o.bias_dps, batch.bias_dps[j]);
             assert_eq!(o.heading_sigma_deg, batch.heading_sigma_deg[j]);
+            assert_eq!(o.stop, batch.stop[j], "block {j}");
         }
-        assert!(batch.stop.iter().any(|&s| s), "the drive has stops");
-        // Row by row: at a block's last row the heading is the batch heading of that block
-        // where the block brought no stop (whose correction comes with the block's close).
+        let lead_in_blocks = batch.time_s.iter().filter(|&&b| b < prep.lead_in_end_s()).count();
+        assert!(batch.stop.iter().skip(lead_in_blocks).any(|&s| s), "the drive has stops after its lead-in");
         for (j, psi) in at_last_row.iter().enumerate().skip(1).filter(|(j, _)| !batch.stop[*j]) {
             assert!((psi - batch.heading_deg[j]).abs() < 1e-9, "block {j}: {psi} against {}", batch.heading_deg[j]);
         }
+        prep.source
+    }
+
+    fn city(minutes: f64) -> crate::DriveLog {
+        crate::sim::drive::simulate_drive(&crate::sim::DriveConfig { scenario: crate::sim::Scenario::City, minutes, seed: 3 })
+    }
+
+    /// On a simulated drive (a speed in every row, stops, a declared lead-in) the stream
+    /// judges stillness by speed and gives the batch pipeline's headings.
+    #[test]
+    fn the_stream_gives_the_batch_pipelines_headings() {
+        assert_eq!(assert_stream_equals_batch(&city(6.0)), crate::still::StillSource::Speed);
+    }
+
+    /// The same drive with its gyro alone: both judge stillness by the gyro against the
+    /// lead-in's spread, and still agree (the stops are found by the gyro).
+    #[test]
+    fn without_speed_the_stream_judges_stops_by_the_gyro_as_the_batch_path_does() {
+        let full = city(6.0);
+        let mut log = crate::DriveLog::with_columns(&[crate::Column::GyroDps]);
+        log.meta.bias_s = full.meta.bias_s;
+        for (&t, &w) in full.time_s().iter().zip(full.column(crate::Column::GyroDps).unwrap()) {
+            log.push_row(&[(crate::Column::TimeS, t), (crate::Column::GyroDps, w)]);
+        }
+        assert_eq!(assert_stream_equals_batch(&log), crate::still::StillSource::Gyro);
+    }
+
+    /// Rows without speed and no lead-in: nothing to judge stillness by, never a stop
+    /// (the batch path's `StillSource::None`).
+    #[test]
+    fn without_speed_or_lead_in_no_block_is_still() {
+        let mut s = PipelineStream::new(PipelineParams { bias_s: Some(0.0), ..Default::default() }).unwrap();
+        for i in 0..200 {
+            s.update(i as f64 * 0.1, 0.3, f64::NAN).unwrap();
+            assert!(s.last_block().is_none_or(|o| !o.stop), "row {i}");
+        }
+        // The same rows with a 5 s lead-in: after it, the steady gyro reads as standing.
+        let mut s = PipelineStream::new(PipelineParams { bias_s: Some(5.0), ..Default::default() }).unwrap();
+        let mut stops = 0;
+        for i in 0..200 {
+            let w = 0.3 + if i % 2 == 0 { 0.01 } else { -0.01 };
+            s.update(i as f64 * 0.1, w, f64::NAN).unwrap();
+            stops += s.last_block().is_some_and(|o| o.stop && i > 70) as usize;
+        }
+        assert!(stops > 0);
     }
 
     proptest::proptest! {
