@@ -8,6 +8,8 @@
 //! training bases, imported by their recipes) prints the table; with `CEILING_JSON=FILE`
 //! it also writes every case: `ne`, each hypothesis' NE_psi alone, and `share`, its mean
 //! weight in the whole bank over the log.
+mod common;
+
 use gyrodrift::battery::{self, best_peer, summarize, CaseRow, PIPELINE};
 use gyrodrift::eval::{standard_methods, Prepared};
 use gyrodrift::pipeline::{Pipeline, PipelineParams, N_MODELS};
@@ -20,15 +22,7 @@ struct Case {
 }
 
 fn main() {
-    let mut bases: Vec<battery::Base> = std::env::args()
-        .skip(1)
-        .map(|f| {
-            let log = gyrodrift::parse_log(std::fs::File::open(&f).expect("a CSV v1 log")).expect("a CSV v1 log");
-            let stem = std::path::Path::new(&f).file_stem().unwrap().to_string_lossy().into_owned();
-            battery::recorded_base(&stem, log)
-        })
-        .collect();
-    bases.extend(battery::simulated_bases(20.0));
+    let bases = common::bases_from_args();
     let tuned = battery::TunedHdr::from_result(&battery::tune_hdr(&bases).expect("tuning"));
     let params = PipelineParams::default();
     let kept: Vec<usize> = (0..N_MODELS)

@@ -7,6 +7,8 @@
 //! `cargo run --release --example heading_coverage -- RECORDED.csv ...` (the battery's
 //! recorded bases, imported by their recipes, as for `bank_ceiling`); `SPLIT=scoring` for
 //! the scoring cases (default: training).
+mod common;
+
 use gyrodrift::battery::{self, Base, Profile};
 use gyrodrift::eval::Prepared;
 use gyrodrift::metrics::{error_series, score};
@@ -28,15 +30,7 @@ impl Case {
 
 fn main() {
     let scoring = std::env::var("SPLIT").is_ok_and(|s| s == "scoring");
-    let mut bases: Vec<Base> = std::env::args()
-        .skip(1)
-        .map(|f| {
-            let log = gyrodrift::parse_log(std::fs::File::open(&f).expect("a CSV v1 log")).expect("a CSV v1 log");
-            let stem = std::path::Path::new(&f).file_stem().unwrap().to_string_lossy().into_owned();
-            battery::recorded_base(&stem, log)
-        })
-        .collect();
-    bases.extend(battery::simulated_bases(20.0));
+    let bases = common::bases_from_args();
     let profiles = battery::profiles();
     let cases: Vec<Case> = bases
         .iter()
