@@ -26,6 +26,14 @@ impl Case {
     fn within(&self, k: f64) -> usize {
         self.abs_err.iter().zip(&self.sigma).filter(|(e, s)| **e <= k * **s).count()
     }
+
+    /// The median of |error| / sigma over the samples with a sigma (a Gaussian's is 0.674):
+    /// far below, the sigma is too wide for this case; far above, too narrow.
+    fn median_z(&self) -> f64 {
+        let mut z: Vec<f64> = self.abs_err.iter().zip(&self.sigma).filter(|(_, s)| **s > 0.0).map(|(e, s)| e / s).collect();
+        z.sort_by(f64::total_cmp);
+        z.get(z.len() / 2).copied().unwrap_or(f64::NAN)
+    }
 }
 
 fn main() {
@@ -47,7 +55,28 @@ fn main() {
         let some: Vec<&Case> = cases.iter().filter(|c| pick.is_none_or(|s| c.simulated == s)).collect();
         summary_row(label, &some);
     }
+    widths(&cases);
     worst_cases(&cases);
+}
+
+/// How many cases have a sigma too wide or too narrow for their errors, by the median of
+/// |error| / sigma against a Gaussian's 0.674: over 3x too wide (median below 0.225), 1.5-3x
+/// too wide, within 1.5x, 1.5-3x too narrow, over 3x too narrow.
+fn widths(cases: &[Case]) {
+    let g = 0.674;
+    let edges = [g / 3.0, g / 1.5, g * 1.5, g * 3.0];
+    println!("\n| cases: the sigma against the errors (median of abs error / sigma; a Gaussian 0.674) | all | recorded | simulated |\n|---|---:|---:|---:|");
+    let labels = ["over 3x too wide", "1.5-3x too wide", "within 1.5x", "1.5-3x too narrow", "over 3x too narrow"];
+    for (k, label) in labels.iter().enumerate() {
+        let count = |pick: Option<bool>| {
+            cases
+                .iter()
+                .filter(|c| pick.is_none_or(|s| c.simulated == s))
+                .filter(|c| edges.iter().filter(|&&e| c.median_z() >= e).count() == k)
+                .count()
+        };
+        println!("| {label} | {} | {} | {} |", count(None), count(Some(false)), count(Some(true)));
+    }
 }
 
 /// The case's causal heading and sigma at the scored reference samples (None without a reference).
