@@ -137,6 +137,30 @@ def test_pipeline_estimator_streams_run_pipelines_blocks(samples):
         est.update_many(t[:2], w[:1], v[:2])
 
 
+def test_pipeline_estimator_without_speed_judges_stops_by_the_gyro(samples):
+    """Rows without speed: the stream judges stops by the gyro against the lead-in, as the
+    batch pipeline does for a log without a speed column, block for block."""
+    df = g.to_pandas(g.read_log(str(samples / "train" / "city-1.csv")))[["time_s", "gyro_dps", "ref_heading_deg"]]
+    log = g.from_pandas(df, {"name": "City 1, gyro only", "bias_s": 20})
+    t, w = log.column("time_s"), log.column("gyro_dps")
+    run = g.run_pipeline(log)
+    tr = run["trace"]
+    assert run["still_source"] == "gyro"
+    est = g.PipelineEstimator({"bias_s": 20})
+    k = np.floor(t - t[0])
+    blocks = []
+    for i in range(len(t)):
+        est.update(t[i], w[i], float("nan"))
+        if i > 0 and k[i] != k[i - 1]:
+            blocks.append(est.state())
+    assert len(blocks) == len(tr["time_s"]) - 1
+    shift = tr["heading_deg"][0]
+    for j, s in enumerate(blocks):
+        assert s["heading_deg"] + shift == tr["heading_deg"][j], j
+        assert s["stop"] == bool(tr["stop"][j]), j
+    assert sum(s["stop"] for s in blocks) > 30
+
+
 def test_a_log_without_reference_runs_but_has_no_result(samples):
     run = g.run_hdr(g.read_log(str(samples / "static" / "static-2h.csv")))
     assert run["result"] is None and "ref_heading_deg" in run["error"]
