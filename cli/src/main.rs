@@ -307,7 +307,31 @@ fn fail(path: &Path, e: Error) -> Failure {
 
 fn read_log(path: &Path) -> Result<DriveLog, Failure> {
     let file = std::fs::File::open(path).map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
-    gyrodrift::parse_log(file).map_err(|e| fail(path, e))
+    gyrodrift::parse_log(file).map_err(|e| {
+        let mut f = fail(path, e);
+        if let Some(hint) = import_hint(path) {
+            f.0 += &format!("; {hint}");
+        }
+        f
+    })
+}
+
+/// For a file that is not a v1 log but a logger's raw export a preset reads (core's
+/// `import_hint`): the `import` command that makes a v1 log of it, as the dashboard imports
+/// such files when they are dropped on it.
+fn import_hint(path: &Path) -> Option<String> {
+    let h = gyrodrift::import::import_hint(path)?;
+    let quoted = |p: &PathBuf| match p.display().to_string() {
+        s if s.contains(char::is_whitespace) => format!("'{s}'"),
+        s => s,
+    };
+    let files: Vec<String> = h.files.iter().map(quoted).collect();
+    Some(format!(
+        "it looks like a file of {} (import preset {}): `gyrodrift import {} --out drive.csv` makes a v1 drive log of it",
+        h.title,
+        h.preset,
+        files.join(" ")
+    ))
 }
 
 /// Splits `key=value` and parses the value as a number.

@@ -362,3 +362,24 @@ fn import_without_recipe_detects_says_and_prints_a_reusable_recipe() {
         assert!(!o.status.success() && err.contains("Usage") && err.contains("--recipe"), "{err}");
     }
 }
+
+/// A logger's raw export given to a method: the error names the file and line, and the
+/// import command that makes a v1 log of it, with the files beside it that the preset uses;
+/// a table no preset reads gets the error alone.
+#[test]
+fn a_raw_export_given_to_a_method_is_answered_with_the_import_command() {
+    let px4 = wild("px4");
+    let o = run(&["pipeline", &px4[0]]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("line 1: missing required column time_s"), "{err}");
+    assert!(err.contains("(import preset px4): `gyrodrift import"), "{err}");
+    assert!(px4.iter().all(|f| err.contains(f.as_str())), "both files: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    let d = dir("no-preset");
+    let odd = d.join("table.csv");
+    std::fs::write(&odd, "a,b\n1,2\n").unwrap();
+    let o = run(&["hdr", s(&odd)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("missing required column time_s") && !err.contains("import preset"), "{err}");
+}

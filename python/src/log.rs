@@ -50,10 +50,22 @@ fn meta_of(v: serde_json::Value) -> PyResult<gyrodrift::LogMeta> {
 }
 
 /// Reads a log file; an unreadable file is an OSError, a bad cell a ValueError naming the
-/// file, line and column.
+/// file, line and column (and, for a logger's raw export a preset reads, the `import_files`
+/// call that makes a v1 log of it).
 pub(crate) fn read_path(path: &str) -> PyResult<DriveLog> {
     let f = std::fs::File::open(path).map_err(|e| PyOSError::new_err(format!("{path}: cannot open: {e}")))?;
-    gyrodrift::parse_log(std::io::BufReader::new(f)).map_err(|e| value_err(format!("{path}: {e}")))
+    gyrodrift::parse_log(std::io::BufReader::new(f)).map_err(|e| {
+        let hint = gyrodrift::import::import_hint(std::path::Path::new(path)).map_or(String::new(), |h| {
+            let files: Vec<String> = h.files.iter().map(|p| format!("{:?}", p.display().to_string())).collect();
+            format!(
+                "; it looks like a file of {} (import preset {}): gyrodrift.import_files([{}]) makes a v1 drive log of it",
+                h.title,
+                h.preset,
+                files.join(", ")
+            )
+        });
+        value_err(format!("{path}: {e}{hint}"))
+    })
 }
 
 #[pymethods]

@@ -297,3 +297,15 @@ def test_import_refuses_a_link_out_of_the_data_folder(tmp_path):
     with pytest.raises(ValueError, match="refused: a link leads out of the data folder") as e:
         g.import_log(recipe, str(data))
     assert "SECRET" not in str(e.value)
+
+
+def test_a_raw_export_read_as_a_log_names_the_import_that_reads_it(samples):
+    """read_log on a logger's raw export: the error names the file and line, and the
+    import_files call (with the files beside it that the preset uses) that makes a v1 log."""
+    folder = samples / "wild" / "px4"
+    files = sorted(str(p) for p in folder.iterdir())
+    with pytest.raises(ValueError, match=r"line 1: missing required column time_s.*import preset px4") as e:
+        g.read_log(files[0])
+    assert all(repr(f) in str(e.value) or f'"{f}"' in str(e.value) for f in files), str(e.value)
+    log, _, _ = g.import_files(files)
+    assert len(log) > 0

@@ -12,6 +12,7 @@
 
 mod channels;
 mod geo;
+mod hint;
 mod merge;
 mod presets;
 mod recipe;
@@ -22,6 +23,7 @@ mod time;
 mod units;
 
 pub use geo::*;
+pub use hint::{import_hint, ImportHint};
 pub use presets::{detect, detect_and_import, presets, Detection};
 pub use recipe::*;
 pub use recipe_text::*;

@@ -1,0 +1,65 @@
+//! A file given where a v1 drive log was expected that is a logger's raw export one of the
+//! presets reads: which preset, and which files (it and those beside it in its folder) to
+//! import, so a front can answer the parse error with the import that makes a v1 log of it.
+
+use super::{detect, sniff, Sniffed, SNIFF_BYTES};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+/// The preset that reads a raw export, and the files to give it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImportHint {
+    pub preset: &'static str,
+    pub title: &'static str,
+    /// The file given and those beside it that the preset uses, in the preset's order.
+    pub files: Vec<PathBuf>,
+}
+
+/// For a file without a `time_s` column: the preset that reads it, with the files beside it
+/// in its folder (at most 64 looked at), when one does and uses this file; else None.
+pub fn import_hint(path: &Path) -> Option<ImportHint> {
+    let head = |p: &Path| -> Option<Sniffed> {
+        let mut bytes = Vec::new();
+        std::fs::File::open(p).ok()?.take(SNIFF_BYTES as u64).read_to_end(&mut bytes).ok()?;
+        sniff(&p.file_name()?.to_string_lossy(), &bytes).ok()
+    };
+    let me = head(path)?;
+    if me.header.iter().any(|c| c == "time_s") {
+        return None;
+    }
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let mut beside: Vec<PathBuf> = std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.is_file()).collect();
+    beside.sort();
+    let mut sniffed = vec![me];
+    sniffed.extend(beside.iter().filter(|p| p.file_name() != path.file_name()).take(64).filter_map(|p| head(p)));
+    let d = detect(&sniffed).ok()?;
+    let name = path.file_name()?.to_string_lossy();
+    d.used.iter().any(|(_, f)| *f == name).then(|| ImportHint {
+        preset: d.preset,
+        title: d.title,
+        files: d.used.iter().map(|(_, f)| dir.join(f)).collect(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn wild(dir: &str, file: &str) -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/wild").join(dir).join(file)
+    }
+
+    /// A Sensor Logger recording's gyroscope file: the preset, with the gravity and location
+    /// files beside it (and not the accelerometer or metadata it does not use).
+    #[test]
+    fn a_raw_export_names_its_preset_and_the_files_beside_it() {
+        let h = import_hint(&wild("sensor-logger", "Gyroscope.csv")).unwrap();
+        assert_eq!(h.preset, "sensor-logger");
+        let names: Vec<String> = h.files.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
+        assert_eq!(names, ["Gyroscope.csv", "Gravity.csv", "Location.csv"]);
+        // A file of the recording the preset does not use, a v1 log, a missing file: none.
+        assert_eq!(import_hint(&wild("sensor-logger", "Metadata.csv")), None);
+        assert_eq!(import_hint(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/train/city-1.csv")), None);
+        assert_eq!(import_hint(&wild("sensor-logger", "nothing.csv")), None);
+    }
+}
