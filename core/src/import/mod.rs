@@ -12,6 +12,7 @@
 
 mod channels;
 mod geo;
+#[cfg(feature = "fs")]
 mod hint;
 mod merge;
 mod presets;
@@ -23,6 +24,7 @@ mod time;
 mod units;
 
 pub use geo::*;
+#[cfg(feature = "fs")]
 pub use hint::{import_hint, ImportHint};
 pub use presets::{detect, detect_and_import, presets, Detection};
 pub use recipe::*;
