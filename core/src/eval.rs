@@ -106,9 +106,16 @@ impl<'a> Prepared<'a> {
         Samples { time_s: self.blocks.time_s.clone(), rate_dps: self.blocks.rate_dps.clone() }
     }
 
-    /// End of the declared stationary lead-in (absolute time), for the pipeline.
+    /// End of the stationary lead-in (absolute time), for the pipeline: the declared one,
+    /// or earlier the first block in which the speed or the wheels show the vehicle moving
+    /// (a `# bias_s:`, or the 20 s default, longer than the standing is not stop evidence).
     pub fn lead_in_end_s(&self) -> f64 {
-        self.log.time_s().first().map_or(f64::NEG_INFINITY, |t0| t0 + self.bias_s)
+        self.lead_in_end_on(&self.blocks)
+    }
+
+    fn lead_in_end_on(&self, blocks: &Blocks) -> f64 {
+        let declared = self.log.time_s().first().map_or(f64::NEG_INFINITY, |t0| t0 + self.bias_s);
+        blocks.first_moving_s.map_or(declared, |t| declared.min(t))
     }
 
     /// The pipeline's trace (unaligned) on these blocks.
@@ -116,7 +123,7 @@ impl<'a> Prepared<'a> {
         if params.still != self.still_opts {
             // Still flags follow the method's own thresholds.
             let (blocks, _) = still::blocks(self.log, self.bias_s, &params.still)?;
-            return pipeline::run_blocks(&blocks, *params, self.lead_in_end_s());
+            return pipeline::run_blocks(&blocks, *params, self.lead_in_end_on(&blocks));
         }
         pipeline::run_blocks(&self.blocks, *params, self.lead_in_end_s())
     }

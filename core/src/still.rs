@@ -27,6 +27,12 @@ impl StillOptions {
         speeds > 0 && speed_max_mps < self.still_speed_mps
     }
 
+    /// Moving by speed: the block has speeds and one reaches `still_speed_mps` (a block
+    /// without speeds is not standing by speed, but says nothing of moving either).
+    pub fn moving_by_speed(&self, speeds: usize, speed_max_mps: f64) -> bool {
+        speeds > 0 && speed_max_mps >= self.still_speed_mps
+    }
+
     /// Standing by the gyro alone: the block has 5 rows or more (`n` rows summing to `sum`,
     /// their squares to `sum2`) and its standard deviation is at most `still_gyro_factor`
     /// times the lead-in's (`lead_std`, from [`lead_in_std`]).
@@ -84,6 +90,10 @@ pub struct Blocks {
     pub temp_c: Vec<f64>,
     /// The vehicle stood during the whole block.
     pub still: Vec<bool>,
+    /// The stamp of the first block in which the speed or the wheels show the vehicle
+    /// moving (None: they never do, or the log has neither). What ends a declared
+    /// stationary lead-in early for the pipeline.
+    pub first_moving_s: Option<f64>,
 }
 
 impl Blocks {
@@ -162,15 +172,24 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
         if a.n == 0 {
             return;
         }
+        let travel = match (a.odo_first, a.odo_last) {
+            (Some(f), Some(l)) => Some((l.0 - f.0).abs() + (l.1 - f.1).abs()),
+            _ => None,
+        };
         let still = match source {
             StillSource::Speed => opts.still_by_speed(a.speed_n, a.speed_max),
-            StillSource::Odometry => match (a.odo_first, a.odo_last) {
-                (Some(f), Some(l)) => (l.0 - f.0).abs() + (l.1 - f.1).abs() < opts.still_travel_m,
-                _ => false,
-            },
+            StillSource::Odometry => travel.is_some_and(|d| d < opts.still_travel_m),
             StillSource::Gyro => lead_std.is_some_and(|s| opts.still_by_gyro(a.n, a.sum, a.sum2, s)),
             StillSource::None => false,
         };
+        let moving = match source {
+            StillSource::Speed => opts.moving_by_speed(a.speed_n, a.speed_max),
+            StillSource::Odometry => travel.is_some_and(|d| d >= opts.still_travel_m),
+            _ => false,
+        };
+        if moving && out.first_moving_s.is_none() {
+            out.first_moving_s = Some(stamp);
+        }
         out.time_s.push(stamp);
         out.rate_dps.push(a.sum / a.n as f64);
         out.temp_c.push(if a.temp_n > 0 { a.temp_sum / a.temp_n as f64 } else { f64::NAN });
@@ -229,6 +248,8 @@ mod tests {
         // block k holds t in [k, k+1): rows 20 + {k, k+.1, ..., k+.9} -> mean 20 + k + 0.45
         assert!((b.temp_c[3] - 23.45).abs() < 1e-12);
         assert_eq!(b.still, vec![true, true, true, true, true, false, false, false, true, true]);
+        // Moving from t = 5 s: block 5 (rows 5.0-5.9) is the first the speed shows moving.
+        assert_eq!(b.first_moving_s, Some(b.time_s[5]));
     }
 
     #[test]
@@ -237,6 +258,8 @@ mod tests {
         let (b, src) = blocks(&l, 4.0, &StillOptions::default()).unwrap();
         assert_eq!(src, StillSource::Gyro);
         assert_eq!(b.still, vec![true, true, true, true, true, false, false, false, true, true]);
+        // The gyro judges standing against the lead-in, not moving: nothing ends a lead-in.
+        assert_eq!(b.first_moving_s, None);
         // No lead-in: nothing to compare with, never still.
         let (b, src) = blocks(&l, 0.0, &StillOptions::default()).unwrap();
         assert_eq!(src, StillSource::None);

@@ -143,6 +143,12 @@ impl Pipeline {
         })
     }
 
+    /// Ends the declared stationary lead-in at `time_s` if it was to end later: a block
+    /// stamped then or after is not lead-in evidence (the speed showed the vehicle moving).
+    pub fn end_lead_in(&mut self, time_s: f64) {
+        self.lead_in_end_s = self.lead_in_end_s.min(time_s);
+    }
+
     /// Keeps only these hypotheses (indices into the full bank), for the smoother's second
     /// pass: the bank then weighs and mixes only them.
     pub fn restrict(&mut self, hypotheses: &[usize]) {

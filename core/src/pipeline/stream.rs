@@ -15,6 +15,8 @@
 //! them against the whole lead-in, which on a lead-in that was stationary is the same.
 //! Without a lead-in (or one of fewer than 10 rows) and without speeds no block is still,
 //! as in the batch path. (The batch path's third source, wheel travel, is not streamed.)
+//! A declared lead-in ends early at the first block whose speeds show the vehicle moving,
+//! as `Prepared::lead_in_end_s` ends it for the batch path.
 
 use super::{Pipeline, PipelineOutput, PipelineParams};
 use crate::error::{Error, Result};
@@ -122,6 +124,9 @@ impl PipelineStream {
             None => true, // within the declared lead-in
         };
         if let Some(filter) = self.filter.as_mut() {
+            if opts.moving_by_speed(o.speeds, o.speed_max_mps) {
+                filter.end_lead_in(o.last_s);
+            }
             let out = filter.update(o.last_s, o.sum_dps / o.n as f64, still)?;
             self.last = Some((out, o.last_s));
             self.bias_dps = filter.bias().0;
@@ -217,6 +222,18 @@ mod tests {
             log.push_row(&[(crate::Column::TimeS, t), (crate::Column::GyroDps, w)]);
         }
         assert_eq!(assert_stream_equals_batch(&log), crate::still::StillSource::Gyro);
+    }
+
+    /// A declared lead-in (60 s) longer than the standing (20 s): both paths end it at the
+    /// first block the speed shows moving, and still agree.
+    #[test]
+    fn a_declared_lead_in_longer_than_the_standing_ends_where_the_speed_moves() {
+        let mut log = city(6.0);
+        log.meta.bias_s = Some(60.0);
+        let prep = Prepared::new(&log, None, &PipelineParams::default().still).unwrap();
+        let t0 = log.time_s()[0];
+        assert!(prep.lead_in_end_s() < t0 + 25.0, "ends at {}", prep.lead_in_end_s() - t0);
+        assert_eq!(assert_stream_equals_batch(&log), crate::still::StillSource::Speed);
     }
 
     /// Rows without speed and no lead-in: nothing to judge stillness by, never a stop

@@ -208,6 +208,7 @@ fn smoother_of_a_constant_bias_is_constant_and_uses_later_stops() {
         rate_dps: (0..n).map(|i| 0.1 + if i < 300 && (i / 20) % 3 == 2 { 15.0 } else { 0.0 }).collect(),
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| i >= 300).collect(),
+        first_moving_s: None,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), f64::NEG_INFINITY).unwrap();
     let (es, ec) = ((tr.bias_smoothed_dps[3] - 0.1).abs(), (tr.bias_dps[3] - 0.1).abs());
@@ -259,6 +260,7 @@ fn smoother_keeps_a_lead_in_it_agrees_with() {
         rate_dps: (0..n).map(|i| 0.1 + if i >= 20 { 0.1 * ((i as f64) * 0.9).sin() } else { 0.0 }).collect(),
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| i < 20).collect(),
+        first_moving_s: None,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), 20.0).unwrap();
     for k in [0, 1, 10, 19] {
@@ -287,6 +289,7 @@ fn a_step_just_before_a_stop_is_not_spread_over_the_past() {
         rate_dps: (0..n).map(|i| bias(i) + wobble(i)).collect(),
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| !(20..660).contains(&i)).collect(),
+        first_moving_s: None,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), 20.0).unwrap();
     let err = |i: usize| tr.heading_deg[i] - (1..=i).map(wobble).sum::<f64>();
@@ -426,4 +429,37 @@ fn a_drive_without_stops_counts_plus_zero_seconds_of_stops() {
     let r = run(&log, &PipelineParams::default()).unwrap().result.unwrap();
     assert_eq!(r.stop_s, 0.0);
     assert!(r.stop_s.is_sign_positive(), "{}", r.stop_s);
+}
+
+/// A declared 20 s lead-in over a car that stands 5 s (bias 0.1 deg/s) and then drives a
+/// steady 0.25 deg/s curve (within the lead-in's steadiness tolerance, 0.3 deg/s): the
+/// speed ends the lead-in, so the curve is not taken as the bias; with the speed column
+/// gone (nothing says it moved) the whole 20 s is lead-in and the bias is pulled toward
+/// the curve.
+#[test]
+fn the_speed_ends_a_declared_lead_in_that_outlasts_the_standing() {
+    use crate::log::{Column, DriveLog};
+    let build = |with_speed: bool| {
+        let cols: &[Column] = if with_speed { &[Column::GyroDps, Column::SpeedMps] } else { &[Column::GyroDps] };
+        let mut log = DriveLog::with_columns(cols);
+        log.meta.bias_s = Some(20.0);
+        for i in 0..300 {
+            let t = i as f64 * 0.1;
+            let moving = t >= 5.0;
+            let w = 0.1 + if moving { 0.25 } else { 0.0 } + if i % 2 == 0 { 0.01 } else { -0.01 };
+            log.push_row(&[(Column::TimeS, t), (Column::GyroDps, w), (Column::SpeedMps, if moving { 10.0 } else { 0.0 })]);
+        }
+        log
+    };
+    let bias_at_19 = |log: &DriveLog| {
+        let prep = crate::eval::Prepared::new(log, None, &PipelineParams::default().still).unwrap();
+        let tr = prep.pipeline_trace(&PipelineParams::default()).unwrap();
+        (prep.lead_in_end_s(), tr.bias_dps[20])
+    };
+    let (end, b) = bias_at_19(&build(true));
+    assert!((end - 5.9).abs() < 1e-9, "the lead-in ends with block 5 (rows 5.0-5.9): {end}");
+    assert!(b < 0.15, "bias {b}: near the standing's (0.127: the road evidence from 6 s on pulls a little)");
+    let (end, b) = bias_at_19(&build(false));
+    assert_eq!(end, 20.0);
+    assert!(b > 0.2, "bias {b}: the curve taken as standing (0.313)");
 }
