@@ -33,7 +33,7 @@ impl Severity {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Finding {
     pub severity: Severity,
-    /// A stable name: time_unit, gap, heading_unit, gyro_unit, gyro_sign, gyro_scale, bias, outlier.
+    /// A stable name: time_unit, gap, heading_unit, gyro_unit, gyro_sign, gyro_scale, bias, lead_in, outlier.
     pub code: String,
     pub message: String,
     /// The recipe field or setting that fixes it.
@@ -89,10 +89,16 @@ pub fn check(log: &DriveLog) -> CheckReport {
             Some("the CLI and the dashboard split the log there (--gaps split, the default; --gaps error refuses it)"),
         ));
     }
+    let standing_s = lead_in(&mut r, log);
     if let Some(g) = log.column(Column::GyroDps) {
         r.eps0_dps = preprocess::static_bias_dps(t, g, log.bias_s(None)).ok();
         outliers(&mut r, g);
-        let eps0 = r.eps0_dps.unwrap_or(0.0);
+        // Units and sign are judged with the bias of the standing, not of a lead-in that
+        // runs into the drive (which the lead_in finding reports): a turn inside it would
+        // read as a scale error.
+        // Without a lead-in (0 s) the turn-on bias is unmeasured: None, estimated below.
+        let lead_s = standing_s.unwrap_or(log.bias_s(None));
+        let eps0 = (lead_s > 0.0).then(|| preprocess::static_bias_dps(t, g, lead_s).unwrap_or(0.0));
         let k = gyro_over_reference(log, eps0, false);
         r.gyro_over_reference = k;
         // A reference that never leaves +-pi may be radians: see whether the gyro agrees.
@@ -113,7 +119,8 @@ pub fn check(log: &DriveLog) -> CheckReport {
             _ => {}
         }
     }
-    if let Some(b) = r.eps0_dps.filter(|b| b.abs() > 5.0) {
+    // (A lead-in the speed shows running into the drive is reported as that, with its fix.)
+    if let Some(b) = r.eps0_dps.filter(|b| b.abs() > 5.0 && standing_s.is_none()) {
         let message = format!("static bias {b:.2} deg/s over the lead-in: the vehicle may not stand still then");
         r.findings.push(finding(
             Severity::Warning,
@@ -123,6 +130,21 @@ pub fn check(log: &DriveLog) -> CheckReport {
         ));
     }
     r
+}
+
+/// A stationary lead-in the speed (or the wheels) says is not: the first 1 s block they
+/// show moving in starts within it (`still::blocks`, as the pipeline ends its lead-in),
+/// and the standing before it (s, returned) is the lead-in to declare instead.
+fn lead_in(r: &mut CheckReport, log: &DriveLog) -> Option<f64> {
+    let bias_s = log.bias_s(None);
+    let m = (crate::still::blocks(log, bias_s, &Default::default()).ok()?.0.first_moving_s? - log.time_s()[0]).floor();
+    let k = (m - 1.0).max(0.0);
+    (m < bias_s).then(|| {
+        let message = format!("the stationary lead-in (bias_s = {bias_s} s) is not: the speed shows the vehicle moving {m} s in; its static bias is taken over driving");
+        let fix = format!("bias_s = {k}, the standing before it (# bias_s: {k} in the log, or --set bias_s={k})");
+        r.findings.push(finding(Severity::Warning, "lead_in", message, Some(&fix)));
+        k
+    })
 }
 
 /// Time in milliseconds: a median step of 2 s or more on a log spanning days of "seconds".
@@ -152,7 +174,7 @@ fn outliers(r: &mut CheckReport, g: &[f64]) {
 
 /// The ratio of the integrated gyro's heading change to the reference's over the largest
 /// turns (median over 10 s windows), or None without a reference or turns.
-fn gyro_over_reference(log: &DriveLog, eps0_dps: f64, in_radians: bool) -> Option<f64> {
+fn gyro_over_reference(log: &DriveLog, eps0: Option<f64>, in_radians: bool) -> Option<f64> {
     let mut reference = Reference::from_log(log).ok()?;
     if in_radians {
         // Radians wrap at +-pi, which the degree unwrap leaves alone: convert, then unwrap.
@@ -165,7 +187,7 @@ fn gyro_over_reference(log: &DriveLog, eps0_dps: f64, in_radians: bool) -> Optio
         return None;
     }
     // The paper's "without HDR" heading on the blocks.
-    let mut raw = crate::hdr::RawIntegrator::new(eps0_dps);
+    let mut raw = crate::hdr::RawIntegrator::new(eps0.unwrap_or(0.0));
     let psi: Vec<f64> = blocks.time_s.iter().zip(&blocks.rate_dps).map(|(&t, &w)| raw.update(t, w)).collect();
     let at = |t: f64| value_at(&blocks.time_s, &psi, t);
     // 10 s windows between reference samples.
@@ -173,23 +195,24 @@ fn gyro_over_reference(log: &DriveLog, eps0_dps: f64, in_radians: bool) -> Optio
     let mut pairs = Vec::new();
     let mut a = 0;
     for b in 1..rt.len() {
-        if rt[b] - rt[a] >= 10.0 {
-            if rt[b] - rt[a] <= 30.0 {
-                pairs.push((at(rt[b]) - at(rt[a]), rh[b] - rh[a]));
+        let dt = rt[b] - rt[a];
+        if dt >= 10.0 {
+            if dt <= 30.0 {
+                pairs.push((at(rt[b]) - at(rt[a]), rh[b] - rh[a], dt));
             }
             a = b;
         }
     }
-    pairs.retain(|(dg, dr)| dg.is_finite() && dr.is_finite());
+    pairs.retain(|(dg, dr, _)| dg.is_finite() && dr.is_finite());
+    // Without a lead-in the turn-on bias adds to every window: take it off as the median
+    // rate of the windows the reference says are straight (2 deg).
+    let mut straight: Vec<f64> = pairs.iter().filter(|p| p.1.abs() < 2.0).map(|p| p.0 / p.2).collect();
+    let bias = if eps0.is_none() && straight.len() >= 3 { crate::metrics::quantile_mut(&mut straight, 0.5) } else { 0.0 };
     let big = pairs.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
     // Only clear turns (20 deg or more in a window) say anything about scale and sign.
     let min_turn = (0.3 * big).max(20.0);
-    let mut ratios: Vec<f64> = pairs.iter().filter(|p| p.1.abs() >= min_turn).map(|p| p.0 / p.1).collect();
-    if ratios.len() < 3 {
-        return None;
-    }
-    ratios.sort_by(f64::total_cmp);
-    Some(ratios[ratios.len() / 2])
+    let mut ratios: Vec<f64> = pairs.iter().filter(|p| p.1.abs() >= min_turn).map(|p| (p.0 - bias * p.2) / p.1).collect();
+    (ratios.len() >= 3).then(|| crate::metrics::quantile_mut(&mut ratios, 0.5))
 }
 
 /// What a gyro-over-reference ratio says about units and sign.
@@ -331,5 +354,39 @@ mod tests {
         assert_eq!(r.gaps_s.len(), 1, "{}", r.to_text());
         assert!((r.gaps_s[0].1 - 60.0).abs() < 0.2);
         assert!(codes(&gap).contains(&"gap".to_string()));
+    }
+
+    /// A declared lead-in (60 s) longer than the standing (20 s): found with the standing
+    /// as its fix; units and sign are judged with the standing's bias, so the drive's first
+    /// turns inside the lead-in are not read as a scale error.
+    #[test]
+    fn a_lead_in_longer_than_the_standing_is_found_with_the_standing_as_its_fix() {
+        let mut log = city();
+        log.meta.bias_s = Some(60.0);
+        let r = check(&log);
+        assert_eq!(codes(&log), ["lead_in"], "{}", r.to_text());
+        let f = &r.findings.iter().find(|f| f.code == "lead_in").unwrap();
+        assert!(f.fix.as_deref().unwrap().starts_with("bias_s = 19,"), "{}", r.to_text());
+        assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{:?}", r.gyro_over_reference);
+        // As shipped (20 s) or without a speed column, nothing to say.
+        assert!(codes(&city()).is_empty());
+        let kept: Vec<(Column, Vec<f64>)> =
+            log.columns().into_iter().filter(|(c, _)| *c != Column::SpeedMps).map(|(c, v)| (c, v.to_vec())).collect();
+        let no_speed = DriveLog::from_columns(log.meta.clone(), vec![0; log.len()], kept).unwrap();
+        assert!(!codes(&no_speed).contains(&"lead_in".to_string()));
+    }
+
+    /// A turn-on bias of 1.5 deg/s and no lead-in (the robustness battery's "bias -1.5 cut"):
+    /// the straight windows give the bias, so the turns are not read as a 31 % scale error.
+    #[test]
+    fn a_large_bias_without_a_lead_in_is_not_a_scale_error() {
+        let mut log = city();
+        log.meta.bias_s = Some(0.0);
+        // City 1's own bias (1.95 deg/s) out, -1.5 in.
+        let eps0 = check(&city()).eps0_dps.unwrap();
+        log.column_mut(Column::GyroDps).unwrap().iter_mut().for_each(|w| *w -= eps0 + 1.5);
+        let r = check(&log);
+        assert!(codes(&log).is_empty(), "{}", r.to_text());
+        assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{:?}", r.gyro_over_reference);
     }
 }
