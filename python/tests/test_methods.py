@@ -111,16 +111,14 @@ def test_run_pipeline_trace_equals_the_clis_pipeline_trace(cli, samples, tmp_pat
     assert np.all(t["heading_sigma_deg"] >= 0)
 
 
-def test_pipeline_estimator_streams_run_pipelines_blocks(samples):
-    """Rows one by one: each closed 1 s block's heading (less the alignment), bias and
-    heading sigma are run_pipeline's; update_many gives the same headings."""
-    log = g.read_log(str(samples / "train" / "city-1.csv"))
-    t, w, v = (log.column(c) for c in ("time_s", "gyro_dps", "speed_mps"))
+def _stream_equals_run(est, log, v):
+    """Feeds the log's rows (speeds `v`) to `est` and checks every closed 1 s block's heading
+    (less the alignment), bias, heading sigma and stop against run_pipeline's trace;
+    returns the headings and the blocks' states."""
+    t, w = log.column("time_s"), log.column("gyro_dps")
     tr = g.run_pipeline(log)["trace"]
-    est = g.PipelineEstimator()
-    blocks = []
     k = np.floor(t - t[0])
-    psi = []
+    psi, blocks = [], []
     for i in range(len(t)):
         psi.append(est.update(t[i], w[i], v[i]))
         if i > 0 and k[i] != k[i - 1]:
@@ -130,6 +128,17 @@ def test_pipeline_estimator_streams_run_pipelines_blocks(samples):
     for j, s in enumerate(blocks):
         assert s["heading_deg"] + shift == tr["heading_deg"][j], j
         assert s["bias_dps"] == tr["bias_dps"][j] and s["heading_sigma_deg"] == tr["heading_sigma_deg"][j]
+        assert s["stop"] == bool(tr["stop"][j]), j
+    return psi, blocks
+
+
+def test_pipeline_estimator_streams_run_pipelines_blocks(samples):
+    """Rows one by one: each closed 1 s block's heading (less the alignment), bias and
+    heading sigma are run_pipeline's; update_many gives the same headings."""
+    log = g.read_log(str(samples / "train" / "city-1.csv"))
+    t, w, v = (log.column(c) for c in ("time_s", "gyro_dps", "speed_mps"))
+    est = g.PipelineEstimator()
+    psi, _ = _stream_equals_run(est, log, v)
     assert np.array_equal(g.PipelineEstimator().update_many(t, w, v), np.array(psi))
     with pytest.raises(ValueError, match="time must be finite and increase"):
         est.update(t[0], 0.0, 0.0)
@@ -142,22 +151,8 @@ def test_pipeline_estimator_without_speed_judges_stops_by_the_gyro(samples):
     batch pipeline does for a log without a speed column, block for block."""
     df = g.to_pandas(g.read_log(str(samples / "train" / "city-1.csv")))[["time_s", "gyro_dps", "ref_heading_deg"]]
     log = g.from_pandas(df, {"name": "City 1, gyro only", "bias_s": 20})
-    t, w = log.column("time_s"), log.column("gyro_dps")
-    run = g.run_pipeline(log)
-    tr = run["trace"]
-    assert run["still_source"] == "gyro"
-    est = g.PipelineEstimator({"bias_s": 20})
-    k = np.floor(t - t[0])
-    blocks = []
-    for i in range(len(t)):
-        est.update(t[i], w[i], float("nan"))
-        if i > 0 and k[i] != k[i - 1]:
-            blocks.append(est.state())
-    assert len(blocks) == len(tr["time_s"]) - 1
-    shift = tr["heading_deg"][0]
-    for j, s in enumerate(blocks):
-        assert s["heading_deg"] + shift == tr["heading_deg"][j], j
-        assert s["stop"] == bool(tr["stop"][j]), j
+    assert g.run_pipeline(log)["still_source"] == "gyro"
+    _, blocks = _stream_equals_run(g.PipelineEstimator({"bias_s": 20}), log, np.full(len(log), np.nan))
     assert sum(s["stop"] for s in blocks) > 30
 
 
