@@ -34,6 +34,14 @@ struct Open {
     speeds: usize,
 }
 
+/// The declared lead-in for the gyro-only detector: its rates while it lasts, then their
+/// spread (None: no usable lead-in, never still by the gyro).
+#[derive(Debug, Clone)]
+enum Lead {
+    Gathering(Vec<f64>),
+    Spread(Option<f64>),
+}
+
 /// The streaming pipeline on raw rows (see the module's doc).
 #[derive(Debug, Clone)]
 pub struct PipelineStream {
@@ -46,10 +54,7 @@ pub struct PipelineStream {
     last: Option<(PipelineOutput, f64)>,
     bias_dps: f64,
     heading_deg: f64,
-    /// The lead-in's rates while it lasts; then its spread for the gyro-only detector
-    /// (`Some(None)`: no usable lead-in, never still by the gyro).
-    lead_dps: Vec<f64>,
-    lead_std: Option<Option<f64>>,
+    lead: Lead,
     /// A row has brought a finite speed: stillness is judged by speed from then on.
     speed_seen: bool,
 }
@@ -67,8 +72,7 @@ impl PipelineStream {
             last: None,
             bias_dps: 0.0,
             heading_deg: 0.0,
-            lead_dps: Vec::new(),
-            lead_std: None,
+            lead: Lead::Gathering(Vec::new()),
             speed_seen: false,
         })
     }
@@ -81,16 +85,16 @@ impl PipelineStream {
             return Err(Error::data(format!("pipeline row at {time_s} s: rate {rate_dps} deg/s, time must be finite and increase")));
         }
         if self.filter.is_none() {
-            let lead_in_end_s = time_s + self.params.bias_s.unwrap_or(crate::log::DEFAULT_BIAS_S);
+            let lead_in_end_s = time_s + self.lead_in_s();
             self.filter = Some(Pipeline::new(self.params, 0.0, self.params.prior_bias_sigma_dps, lead_in_end_s)?);
             self.t0_s = time_s;
         }
-        if self.lead_std.is_none() {
-            if time_s - self.t0_s < self.params.bias_s.unwrap_or(crate::log::DEFAULT_BIAS_S) {
-                self.lead_dps.push(rate_dps);
+        let in_lead_in = time_s - self.t0_s < self.lead_in_s();
+        if let Lead::Gathering(rates) = &mut self.lead {
+            if in_lead_in {
+                rates.push(rate_dps);
             } else {
-                self.lead_std = Some(crate::still::lead_in_std(&self.lead_dps));
-                self.lead_dps = Vec::new();
+                self.lead = Lead::Spread(crate::still::lead_in_std(rates));
             }
         }
         self.speed_seen |= speed_mps.is_finite();
@@ -114,14 +118,19 @@ impl PipelineStream {
         Ok(self.heading_deg)
     }
 
+    /// The declared stationary lead-in from the first row, s.
+    fn lead_in_s(&self) -> f64 {
+        self.params.bias_s.unwrap_or(crate::log::DEFAULT_BIAS_S)
+    }
+
     /// Closes the open block: the pipeline's update on it.
     fn close(&mut self) -> Result<()> {
         let o = self.open;
         let opts = &self.params.still;
-        let still = match self.lead_std {
+        let still = match self.lead {
             _ if self.speed_seen => opts.still_by_speed(o.speeds, o.speed_max_mps),
-            Some(lead_std) => lead_std.is_some_and(|s| opts.still_by_gyro(o.n, o.sum_dps, o.sum2, s)),
-            None => true, // within the declared lead-in
+            Lead::Spread(lead_std) => lead_std.is_some_and(|s| opts.still_by_gyro(o.n, o.sum_dps, o.sum2, s)),
+            Lead::Gathering(_) => true, // within the declared lead-in
         };
         if let Some(filter) = self.filter.as_mut() {
             if opts.moving_by_speed(o.speeds, o.speed_max_mps) {
