@@ -97,7 +97,7 @@ build_wasm() {
   # charts and the rest (import, tuning, simulation) load as their own modules.
   # Its bindings at "z" (Cargo.toml says why): 4 KB smaller, the same speed. And the csv
   # crates at "z" and "s" here (0.5 KB): the page parses files over 4 MB in the worker's full
-  # module, which keeps them at "s" and 3; this module parses 100 MB in 1.6 s instead of 1.4
+  # module, which keeps them at "s" and 3; this module parses 100 MB in 1.6-2.2 s, not 1.4-1.5
   # (BENCHMARKS.md).
   wasm_part "--no-default-features --features core --config profile.wasm-release.package.gyrodrift-wasm.opt-level='z' --config profile.wasm-release.package.csv.opt-level='z' --config profile.wasm-release.package.csv-core.opt-level='s'" web web/pkg gyrodrift
   wasm_part "--no-default-features --features plot" web web/pkg/plot gyrodrift_plot
