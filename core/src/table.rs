@@ -170,9 +170,11 @@ fn csv_rows(reader: impl Read, delimiter: u8, before: u64, byte0: u64, row: &mut
 fn csv_error(e: csv::Error, before: u64) -> Error {
     let line = e.position().map(|p| p.line() + before);
     let message = match e.kind() {
-        csv::ErrorKind::Io(io) => return Error::Io(io.to_string()),
+        csv::ErrorKind::Io(io) => return Error::Io(crate::error::io_message(io)),
         csv::ErrorKind::Utf8 { .. } => "not valid UTF-8 text".to_string(),
-        _ => e.to_string(),
+        // Not raised by a flexible reader of string records (unequal lengths, seek, serde);
+        // the csv crate's Display would link io::Error's (`io_message`).
+        _ => "a record the CSV reader refused".to_string(),
     };
     match line {
         Some(line) => Error::Line { line, message },
