@@ -14,15 +14,20 @@ pub(super) struct Evidence {
     pending: VecDeque<(f64, f64)>,
     pub(super) stop: StopStats,
     window: VecDeque<(f64, f64)>,
+    /// The declared lead-in's last block rate, evidence or not (None before it).
+    lead_last_dps: Option<f64>,
 }
 
 impl Evidence {
     /// This block's stop evidence: the lead-in's blocks at once, a stop's once they are
     /// `min_still_s` from both of its ends (so delayed); either plausible as a bias and
     /// steady within its stop or lead-in. Never judged by closeness to the estimate.
-    pub(super) fn stops(&mut self, p: &PipelineParams, time_s: f64, rate_dps: f64, still: bool, lead_in: bool) -> Vec<f64> {
+    /// `centre_dps`: the turn-on bias the lead-in showed (0 before and without one).
+    pub(super) fn stops(&mut self, p: &PipelineParams, centre_dps: f64, time_s: f64, rate_dps: f64, still: bool, lead_in: bool) -> Vec<f64> {
         let mut stops: Vec<f64> = Vec::new();
+        let lead_last = self.lead_last_dps;
         if lead_in {
+            self.lead_last_dps = Some(rate_dps);
             stops.push(rate_dps);
         } else if still {
             let start = *self.stop_start_s.get_or_insert(time_s);
@@ -44,13 +49,19 @@ impl Evidence {
             self.stop_start_s = None;
             self.pending.clear();
         }
-        // Plausible as a bias, stop or declared lead-in alike: a faster rate is a turn (a slow
-        // turn with the GPS speed held at zero, a `# bias_s:` that covers a turn). And steady
-        // within the stop or the lead-in: a block far from its mean is a slow turn (a car that
-        // pulls away before the declared lead-in ends).
+        // Plausible as a bias, stop or declared lead-in alike: within max_bias_dps of the
+        // turn-on bias; a faster rate is a turn (a slow turn with the GPS speed held at zero,
+        // a `# bias_s:` that covers a turn). A lead-in block also when the lead-in's block
+        // before agrees with it: a turn-on bias beyond max_bias_dps (an uncalibrated MEMS
+        // part) that the standing shows is learned, as the static bias takes it, not refused
+        // for good (a turn is not that steady). And steady within the stop or the
+        // lead-in: a block far from its mean is a slow turn (a car that pulls away before
+        // the declared lead-in ends).
         let (max, tol) = (p.max_bias_dps, 4.0 * p.stop_sigma_dps + 0.1);
         let (mean, n) = (self.stop.mean, self.stop.n);
-        stops.retain(|&z| z.abs() <= max && (n == 0 || (z - mean).abs() <= tol));
+        stops.retain(|&z| {
+            ((z - centre_dps).abs() <= max || lead_in && lead_last.is_some_and(|l| (z - l).abs() <= tol)) && (n == 0 || (z - mean).abs() <= tol)
+        });
         for &z in &stops {
             self.stop.add(time_s, z);
         }
@@ -58,8 +69,9 @@ impl Evidence {
     }
 
     /// A moving block is straight-road evidence when it is within the gate of the dominant
-    /// rate of the recent moving blocks, and that rate is plausible as a bias.
-    pub(super) fn is_straight(&mut self, p: &PipelineParams, time_s: f64, rate_dps: f64) -> bool {
+    /// rate of the recent moving blocks, and that rate is plausible as a bias (within
+    /// max_bias_dps of the turn-on bias, `centre_dps`).
+    pub(super) fn is_straight(&mut self, p: &PipelineParams, centre_dps: f64, time_s: f64, rate_dps: f64) -> bool {
         self.window.push_back((time_s, rate_dps));
         while self.window.front().is_some_and(|&(t, _)| time_s - t > p.road_window_s) {
             self.window.pop_front();
@@ -73,7 +85,7 @@ impl Evidence {
         // A quantised gyro (one row per block) puts the mode on its lattice: keep the gate
         // two steps wide so the selection stays centred.
         let gate = p.road_gate_dps.max(2.0 * step);
-        mode.abs() <= p.max_bias_dps && (rate_dps - mode).abs() <= gate
+        (mode - centre_dps).abs() <= p.max_bias_dps && (rate_dps - mode).abs() <= gate
     }
 
     /// The dominant rate of the recent moving blocks (where a road vehicle drives

@@ -24,8 +24,9 @@ pub struct PipelineParams {
     pub min_still_s: f64,
     /// Noise of one 1 s stop block as a measurement of the bias (idle vibration), deg/s.
     pub stop_sigma_dps: f64,
-    /// A stop block whose rate exceeds this is not standing (a slow turn with the GPS
-    /// speed held at zero), deg/s. Also the widest bias the filter will accept.
+    /// A stop block whose rate is further than this from the turn-on bias (the lead-in's; 0
+    /// without one) is not standing (a slow turn with the GPS speed held at zero), deg/s.
+    /// Also the widest bias change the filter will accept.
     pub max_bias_dps: f64,
     /// A steady stop this long that disagrees with the bias estimate means the bias has
     /// moved (a step, a re-calibration): the filter re-opens its uncertainty, s.
@@ -133,10 +134,11 @@ impl PipelineParams {
         walk_dps_per_sqrt_s * libm::sqrt(self.road_corr_s) <= 0.5 * road_sigma_dps
     }
 
-    /// A bias projected onto +-max_bias_dps, the widest the filter accepts (causal, smoothed
-    /// and held alike). `max` / `min`: `f64::clamp` links a panic message (BENCHMARKS.md).
-    pub fn bounded_bias_dps(&self, b: f64) -> f64 {
-        b.max(-self.max_bias_dps).min(self.max_bias_dps)
+    /// A bias projected onto the turn-on bias `centre_dps` +- max_bias_dps, the widest the
+    /// filter accepts (causal, smoothed and held alike). `max` / `min`: `f64::clamp` links a
+    /// panic message (BENCHMARKS.md).
+    pub fn bounded_bias_dps(&self, b: f64, centre_dps: f64) -> f64 {
+        b.max(centre_dps - self.max_bias_dps).min(centre_dps + self.max_bias_dps)
     }
 
     /// Every setting finite and in range.

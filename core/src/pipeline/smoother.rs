@@ -40,14 +40,14 @@ pub(super) fn smoothed_bias(
     hold_to_stops(tr, &blocks.rate_dps, &mut bias);
     // Bounded like the causal bias: the hold shifts a span by whatever the causal heading
     // did over it (9.8 deg/s across a lead-in over a turn; pipeline::tests).
-    bias.iter_mut().for_each(|b| *b = params.bounded_bias_dps(*b));
+    bias.iter_mut().for_each(|b| *b = params.bounded_bias_dps(*b, g.centre_dps()));
     Ok(bias)
 }
 
 /// Rauch-Tung-Striebel smoothing of `k` recorded hypotheses (block-major records), mixed
 /// with their weights (renormalised among them) at each block: the bias per block, bounded
 /// like the causal one.
-pub(super) fn rts_mixed(records: &[BlockRecord], weights: &[f64], k: usize, params: &PipelineParams) -> Vec<f64> {
+pub(super) fn rts_mixed(records: &[BlockRecord], weights: &[f64], k: usize, params: &PipelineParams, centre_dps: f64) -> Vec<f64> {
     if k == 0 {
         return Vec::new();
     }
@@ -76,7 +76,7 @@ pub(super) fn rts_mixed(records: &[BlockRecord], weights: &[f64], k: usize, para
             norm[t] += w;
         }
     }
-    out.iter().zip(&norm).map(|(o, w)| params.bounded_bias_dps(if *w > 0.0 { o / w } else { *o / k as f64 })).collect()
+    out.iter().zip(&norm).map(|(o, w)| params.bounded_bias_dps(if *w > 0.0 { o / w } else { *o / k as f64 }, centre_dps)).collect()
 }
 
 /// Holds the smoothed heading to the causal one at every block with stop evidence: between

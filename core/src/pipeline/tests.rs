@@ -327,9 +327,9 @@ proptest::proptest! {
     /// No divergence by construction, whatever the gyro does: on any finite block sequence
     /// (rates far beyond any bias, stops in turns, irregular block times) every output is
     /// finite, and the bias estimate, causal and smoothed, stays within the widest bias the
-    /// filter accepts (it learns only from stops and straight-road modes plausible as a
-    /// bias; without the projection in `bias()` a warm-up term fitted to a fast change
-    /// extrapolated to 10 deg/s here).
+    /// filter accepts about the turn-on bias the lead-in showed (it learns only from stops
+    /// and straight-road modes plausible as a bias; without the projection in `bias()` a
+    /// warm-up term fitted to a fast change extrapolated to 10 deg/s here).
     #[test]
     fn never_diverges_on_any_block_sequence(
         blocks in any_blocks(400),
@@ -341,12 +341,13 @@ proptest::proptest! {
         let mut t = 0.0;
         for (dt, rate, still) in blocks {
             t += dt;
+            let centre = f.centre_dps();
             let o = f.update(t, rate, still).unwrap();
             proptest::prop_assert!(o.heading_deg.is_finite() && o.bias_sigma_dps.is_finite() && o.heading_sigma_deg.is_finite() && o.heading_sigma_deg >= 0.0);
-            proptest::prop_assert!(o.bias_dps.abs() <= p.max_bias_dps, "bias {} at {t} s", o.bias_dps);
+            proptest::prop_assert!((o.bias_dps - centre).abs() <= p.max_bias_dps + 1e-9, "bias {} at {t} s", o.bias_dps);
         }
         for b in f.smoothed_bias() {
-            proptest::prop_assert!(b.is_finite() && b.abs() <= p.max_bias_dps, "smoothed bias {b}");
+            proptest::prop_assert!(b.is_finite() && (b - f.centre_dps()).abs() <= p.max_bias_dps + 1e-9, "smoothed bias {b}");
         }
     }
 
@@ -360,9 +361,12 @@ proptest::proptest! {
         lead_in_s in 0.0f64..30.0,
     ) {
         let p = PipelineParams::default();
-        let tr = run_blocks(&blocks_of(&items), p, lead_in_s).unwrap();
+        let blocks = blocks_of(&items);
+        let tr = run_blocks(&blocks, p, lead_in_s).unwrap();
+        // The turn-on bias is a mean of lead-in blocks: at most their largest rate.
+        let lead_max = blocks.time_s.iter().zip(&blocks.rate_dps).filter(|(t, _)| **t < lead_in_s).map(|(_, r)| r.abs()).fold(0.0, f64::max);
         for (x, h) in tr.bias_smoothed_dps.iter().zip(&tr.heading_smoothed_deg) {
-            proptest::prop_assert!(x.is_finite() && x.abs() <= p.max_bias_dps && h.is_finite(), "smoothed bias {x}, heading {h}");
+            proptest::prop_assert!(x.is_finite() && x.abs() <= p.max_bias_dps + lead_max && h.is_finite(), "smoothed bias {x}, heading {h}");
         }
     }
 }
@@ -462,4 +466,56 @@ fn the_speed_ends_a_declared_lead_in_that_outlasts_the_standing() {
     let (end, b) = bias_at_19(&build(false));
     assert_eq!(end, 20.0);
     assert!(b > 0.2, "bias {b}: the curve taken as standing (0.313)");
+}
+
+/// A turn-on bias beyond `max_bias_dps` (7 deg/s: an uncalibrated MEMS part) that the
+/// declared lead-in shows is learned, as the static bias takes it, and the stops and
+/// straights after it are judged about it. Before, every block was refused as a turn and
+/// the bias stayed 0 (E_psi in the thousands of degrees where raw integration had 33).
+#[test]
+fn a_turn_on_bias_beyond_max_bias_that_the_lead_in_shows_is_learned() {
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 20.0).unwrap();
+    let wiggle = |i: usize| if i % 2 == 0 { 0.02 } else { -0.02 };
+    for i in 0..20 {
+        f.update(i as f64, 7.0 + wiggle(i), true).unwrap();
+    }
+    assert!((f.bias().0 - 7.0).abs() < 0.01 && (f.centre_dps() - 7.0).abs() < 0.01, "bias {:?}, centre {}", f.bias(), f.centre_dps());
+    // 200 s of road at 7.05 (a 0.05 deg/s warm-up), with turns; then a stop at 7.05.
+    for i in 20..220 {
+        let turn = if (i / 15) % 4 == 3 { 12.0 } else { 0.0 };
+        f.update(i as f64, 7.05 + turn + wiggle(i), false).unwrap();
+    }
+    for i in 220..240 {
+        f.update(i as f64, 7.05 + wiggle(i), true).unwrap();
+    }
+    assert!((f.bias().0 - 7.05).abs() < 0.01, "bias {:?}", f.bias());
+}
+
+/// A first lead-in block far beyond any bias (a knock) is not evidence, and does not make
+/// the steady blocks after it so: one block agreeing with nothing before it.
+#[test]
+fn a_knock_at_the_start_of_the_lead_in_is_not_evidence() {
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 10.0).unwrap();
+    for t in 0..9 {
+        f.update(t as f64, if t == 0 { 12.0 } else { 0.4 }, true).unwrap();
+    }
+    assert!((f.bias().0 - 0.4).abs() < 0.01, "bias {:?}", f.bias());
+}
+
+/// On a simulated drive with known truth, a constant added to the gyro that the lead-in
+/// measures changes the pipeline's NE_psi by little, within the old bound (+2 deg/s) and
+/// beyond it (+6 deg/s: a turn-on bias of about 7.5; before, NE_psi went from 0.5 to 160).
+#[test]
+fn a_constant_the_lead_in_measures_barely_changes_the_result() {
+    let cfg = crate::sim::DriveConfig { scenario: crate::sim::Scenario::City, minutes: 8.0, seed: 5 };
+    let ne = |add: f64| {
+        let mut log = crate::sim::drive::simulate_drive(&cfg);
+        log.column_mut(crate::log::Column::GyroDps).unwrap().iter_mut().for_each(|w| *w += add);
+        run(&log, &PipelineParams::default()).unwrap().result.unwrap().NE_psi_pipeline_deg_per_min
+    };
+    let base = ne(0.0);
+    for add in [2.0, -2.0, 6.0, -6.0] {
+        let got = ne(add);
+        assert!((got - base).abs() <= 0.1 * base + 0.02, "+{add} deg/s: NE_psi {got} against {base}");
+    }
 }
