@@ -135,13 +135,16 @@ impl StopStats {
 /// (a quantised gyro's lattice makes many) are not resolved to the lowest: the search goes
 /// on within their span, or, where that span is the whole sample, ends at their mean centre.
 pub fn half_sample_mode(x: &mut [f64]) -> f64 {
+    // Widths within this are equal (deg/s): a constant added to a lattice rounds its
+    // differences apart by 1e-16, and the mode must move with the constant, not jump.
+    const TIE: f64 = 1e-9;
     x.sort_by(f64::total_cmp);
     let mut s = &x[..];
     while s.len() > 3 {
         let h = s.len().div_ceil(2);
         let width = |i: usize| s[i + h - 1] - s[i];
         let min = (0..=s.len() - h).map(width).fold(f64::INFINITY, f64::min);
-        let ties: Vec<usize> = (0..=s.len() - h).filter(|&i| width(i) <= min).collect();
+        let ties: Vec<usize> = (0..=s.len() - h).filter(|&i| width(i) <= min + TIE).collect();
         let (lo, hi) = (ties[0], ties[ties.len() - 1]);
         if lo == hi {
             s = &s[lo..lo + h];
@@ -153,9 +156,10 @@ pub fn half_sample_mode(x: &mut [f64]) -> f64 {
     }
     match s.len() {
         3 => {
-            if s[1] - s[0] < s[2] - s[1] {
+            let d = (s[1] - s[0]) - (s[2] - s[1]);
+            if d < -TIE {
                 (s[0] + s[1]) / 2.0
-            } else if s[1] - s[0] > s[2] - s[1] {
+            } else if d > TIE {
                 (s[1] + s[2]) / 2.0
             } else {
                 s[1]

@@ -519,3 +519,33 @@ fn a_constant_the_lead_in_measures_barely_changes_the_result() {
         assert!((got - base).abs() <= 0.1 * base + 0.02, "+{add} deg/s: NE_psi {got} against {base}");
     }
 }
+
+/// The mode moves with a constant added to the sample (a turn-on bias the lead-in measured
+/// shifts every block alike): equal widths on a quantised lattice must stay equal when the
+/// constant rounds their differences apart by 1e-16. Both samples are cases where the mode
+/// jumped by 0.02-0.07 deg/s (found by search): ties broken by rounding, and the three-value
+/// end compared exactly.
+#[test]
+fn half_sample_mode_moves_with_a_constant_added() {
+    let tied = [0.175, 0.175, 0.025, 0.15, 0.075, 0.05, 0.125, 0.05];
+    let three = [0.05, 0.1, 0.075, 0.175, 0.15];
+    for (x, c) in [(&tied[..], 2.0), (&three[..], -1.0)] {
+        let m = half_sample_mode(&mut x.to_vec());
+        let shifted = half_sample_mode(&mut x.iter().map(|v| v + c).collect::<Vec<_>>()) - c;
+        assert!((shifted - m).abs() < 1e-9, "{x:?} + {c}: {m} against {shifted}");
+    }
+}
+
+proptest::proptest! {
+    /// The same on any sample of a 0.025 deg/s lattice, any constant.
+    #[test]
+    fn half_sample_mode_is_offset_invariant_on_a_lattice(
+        k in proptest::collection::vec(-6i32..6, 1..30),
+        c in -6.0f64..6.0,
+    ) {
+        let x: Vec<f64> = k.iter().map(|&k| 0.1 + 0.025 * k as f64).collect();
+        let m = half_sample_mode(&mut x.clone());
+        let shifted = half_sample_mode(&mut x.iter().map(|v| v + c).collect::<Vec<_>>()) - c;
+        proptest::prop_assert!((shifted - m).abs() < 1e-9, "{:?} + {}: {} against {}", x, c, m, shifted);
+    }
+}
