@@ -91,14 +91,17 @@ pub fn check(log: &DriveLog) -> CheckReport {
     }
     let standing_s = lead_in(&mut r, log);
     if let Some(g) = log.column(Column::GyroDps) {
-        r.eps0_dps = preprocess::static_bias_dps(t, g, log.bias_s(None)).ok();
+        let bias_s = log.bias_s(None);
+        r.eps0_dps = preprocess::static_bias_dps(t, g, bias_s).ok();
         outliers(&mut r, g);
         // Units and sign are judged with the bias of the standing, not of a lead-in that
         // runs into the drive (which the lead_in finding reports): a turn inside it would
         // read as a scale error.
         // Without a lead-in (0 s) the turn-on bias is unmeasured: None, estimated below.
-        let lead_s = standing_s.unwrap_or(log.bias_s(None));
-        let eps0 = (lead_s > 0.0).then(|| preprocess::static_bias_dps(t, g, lead_s).unwrap_or(0.0));
+        let eps0 = match standing_s {
+            Some(s) => (s > 0.0).then(|| preprocess::static_bias_dps(t, g, s).unwrap_or(0.0)),
+            None => (bias_s > 0.0).then(|| r.eps0_dps.unwrap_or(0.0)),
+        };
         let k = gyro_over_reference(log, eps0, false);
         r.gyro_over_reference = k;
         // A reference that never leaves +-pi may be radians: see whether the gyro agrees.
@@ -137,10 +140,12 @@ pub fn check(log: &DriveLog) -> CheckReport {
 /// and the standing before it (s, returned) is the lead-in to declare instead.
 fn lead_in(r: &mut CheckReport, log: &DriveLog) -> Option<f64> {
     let bias_s = log.bias_s(None);
-    let m = (crate::still::blocks(log, bias_s, &Default::default()).ok()?.0.first_moving_s? - log.time_s()[0]).floor();
+    let (blocks, source) = crate::still::blocks(log, bias_s, &Default::default()).ok()?;
+    let m = (blocks.first_moving_s? - log.time_s().first()?).floor();
     let k = (m - 1.0).max(0.0);
+    let by = if source == crate::still::StillSource::Odometry { "wheel travel" } else { "speed" };
     (m < bias_s).then(|| {
-        let message = format!("the stationary lead-in (bias_s = {bias_s} s) is not: the speed shows the vehicle moving {m} s in; its static bias is taken over driving");
+        let message = format!("the stationary lead-in (bias_s = {bias_s} s) is not: the {by} shows the vehicle moving {m} s in; its static bias is taken over driving");
         let fix = format!("bias_s = {k}, the standing before it (# bias_s: {k} in the log, or --set bias_s={k})");
         r.findings.push(finding(Severity::Warning, "lead_in", message, Some(&fix)));
         k
@@ -374,6 +379,24 @@ mod tests {
             log.columns().into_iter().filter(|(c, _)| *c != Column::SpeedMps).map(|(c, v)| (c, v.to_vec())).collect();
         let no_speed = DriveLog::from_columns(log.meta.clone(), vec![0; log.len()], kept).unwrap();
         assert!(!codes(&no_speed).contains(&"lead_in".to_string()));
+        assert!(f.message.contains("the speed shows"), "{}", f.message);
+        // The same drive with wheel travel instead of a speed: the wheels say it moved.
+        let dt = 0.1;
+        let speed = log.column(Column::SpeedMps).unwrap();
+        let travel: Vec<f64> = speed
+            .iter()
+            .scan(0.0, |d, v| {
+                *d += v * dt;
+                Some(*d)
+            })
+            .collect();
+        let mut cols: Vec<(Column, Vec<f64>)> = no_speed.columns().into_iter().map(|(c, v)| (c, v.to_vec())).collect();
+        cols.push((Column::OdoLeftM, travel.clone()));
+        cols.push((Column::OdoRightM, travel));
+        let wheels = DriveLog::from_columns(log.meta.clone(), vec![0; log.len()], cols).unwrap();
+        let r = check(&wheels);
+        let f = r.findings.iter().find(|f| f.code == "lead_in").unwrap_or_else(|| panic!("{}", r.to_text()));
+        assert!(f.message.contains("the wheel travel shows"), "{}", f.message);
     }
 
     /// A turn-on bias of 1.5 deg/s and no lead-in (the robustness battery's "bias -1.5 cut"):
