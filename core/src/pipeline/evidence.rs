@@ -23,7 +23,15 @@ impl Evidence {
     /// `min_still_s` from both of its ends (so delayed); either plausible as a bias and
     /// steady within its stop or lead-in. Never judged by closeness to the estimate.
     /// `centre_dps`: the turn-on bias the lead-in showed (0 before and without one).
-    pub(super) fn stops(&mut self, p: &PipelineParams, centre_dps: f64, time_s: f64, rate_dps: f64, still: bool, lead_in: bool) -> Vec<f64> {
+    pub(super) fn stops(
+        &mut self,
+        p: &PipelineParams,
+        centre_dps: f64,
+        time_s: f64,
+        rate_dps: f64,
+        still: bool,
+        lead_in: bool,
+    ) -> Vec<f64> {
         let mut stops: Vec<f64> = Vec::new();
         let lead_last = self.lead_last_dps;
         if lead_in {
@@ -60,7 +68,8 @@ impl Evidence {
         let (max, tol) = (p.max_bias_dps, 4.0 * p.stop_sigma_dps + 0.1);
         let (mean, n) = (self.stop.mean, self.stop.n);
         stops.retain(|&z| {
-            ((z - centre_dps).abs() <= max || lead_in && lead_last.is_some_and(|l| (z - l).abs() <= tol)) && (n == 0 || (z - mean).abs() <= tol)
+            ((z - centre_dps).abs() <= max || lead_in && lead_last.is_some_and(|l| (z - l).abs() <= tol))
+                && (n == 0 || (z - mean).abs() <= tol)
         });
         for &z in &stops {
             self.stop.add(time_s, z);

@@ -475,7 +475,7 @@ fn the_speed_ends_a_declared_lead_in_that_outlasts_the_standing() {
 #[test]
 fn a_turn_on_bias_beyond_max_bias_that_the_lead_in_shows_is_learned() {
     let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 20.0).unwrap();
-    let wiggle = |i: usize| if i % 2 == 0 { 0.02 } else { -0.02 };
+    let wiggle = |i: usize| if i.is_multiple_of(2) { 0.02 } else { -0.02 };
     for i in 0..20 {
         f.update(i as f64, 7.0 + wiggle(i), true).unwrap();
     }
