@@ -16,22 +16,26 @@ pub(super) struct Evidence {
     window: VecDeque<(f64, f64)>,
     /// The declared lead-in's last block rate, evidence or not (None before it).
     lead_last_dps: Option<f64>,
+    /// The turn-on bias, the centre of the biases accepted: the lead-in's, or where there
+    /// was none, a long standing's beyond the bounds about 0 (0 until then), and whether
+    /// one of them has set it.
+    pub(super) centre_dps: f64,
+    centre_known: bool,
+    /// This stop's steady run of blocks refused only as implausible, while no lead-in set
+    /// the centre.
+    refused: StopStats,
 }
+
+/// A standing this long (s) at a steady rate is the bias, however large: a road vehicle
+/// whose speed or wheels say it stands does not turn at more than `max_bias_dps` for this
+/// long (a slow turn with the GPS speed held at zero lasts seconds).
+const LONG_STANDING_S: f64 = 10.0;
 
 impl Evidence {
     /// This block's stop evidence: the lead-in's blocks at once, a stop's once they are
     /// `min_still_s` from both of its ends (so delayed); either plausible as a bias and
     /// steady within its stop or lead-in. Never judged by closeness to the estimate.
-    /// `centre_dps`: the turn-on bias the lead-in showed (0 before and without one).
-    pub(super) fn stops(
-        &mut self,
-        p: &PipelineParams,
-        centre_dps: f64,
-        time_s: f64,
-        rate_dps: f64,
-        still: bool,
-        lead_in: bool,
-    ) -> Vec<f64> {
+    pub(super) fn stops(&mut self, p: &PipelineParams, time_s: f64, rate_dps: f64, still: bool, lead_in: bool) -> Vec<f64> {
         let mut stops: Vec<f64> = Vec::new();
         let lead_last = self.lead_last_dps;
         if lead_in {
@@ -41,6 +45,7 @@ impl Evidence {
             let start = *self.stop_start_s.get_or_insert(time_s);
             if start == time_s {
                 self.stop = StopStats::default();
+                self.refused = StopStats::default();
             }
             self.pending.push_back((time_s, rate_dps));
             while let Some(&(t, z)) = self.pending.front() {
@@ -66,21 +71,44 @@ impl Evidence {
         // lead-in: a block far from its mean is a slow turn (a car that pulls away before
         // the declared lead-in ends).
         let (max, tol) = (p.max_bias_dps, 4.0 * p.stop_sigma_dps + 0.1);
-        let (mean, n) = (self.stop.mean, self.stop.n);
-        stops.retain(|&z| {
-            ((z - centre_dps).abs() <= max || lead_in && lead_last.is_some_and(|l| (z - l).abs() <= tol))
-                && (n == 0 || (z - mean).abs() <= tol)
-        });
+        let (mean, n, centre) = (self.stop.mean, self.stop.n, self.centre_dps);
+        let plausible = |z: f64| (z - centre).abs() <= max || lead_in && lead_last.is_some_and(|l| (z - l).abs() <= tol);
+        if !lead_in && !self.centre_known {
+            for &z in stops.iter().filter(|z| !plausible(**z)) {
+                self.refuse(time_s, z, tol);
+            }
+        }
+        stops.retain(|&z| plausible(z) && (n == 0 || (z - mean).abs() <= tol));
+        // Without a lead-in, a long steady standing beyond the bounds: its mean rate is the
+        // bias (one block's evidence; the stop's next blocks add theirs).
+        if self.refused.last_s - self.refused.first_s >= LONG_STANDING_S {
+            (self.centre_dps, self.centre_known) = (self.refused.mean, true);
+            stops = vec![self.refused.mean];
+            self.stop = StopStats::default();
+            self.refused = StopStats::default();
+        }
         for &z in &stops {
             self.stop.add(time_s, z);
+        }
+        if lead_in && !stops.is_empty() {
+            (self.centre_dps, self.centre_known) = (self.stop.mean, true);
         }
         stops
     }
 
+    /// A stop block refused only as implausible joins this stop's steady run of such blocks
+    /// (a block far from the run's mean starts a new one).
+    fn refuse(&mut self, time_s: f64, z: f64, tol: f64) {
+        if self.refused.n > 0 && (z - self.refused.mean).abs() > tol {
+            self.refused = StopStats::default();
+        }
+        self.refused.add(time_s, z);
+    }
+
     /// A moving block is straight-road evidence when it is within the gate of the dominant
     /// rate of the recent moving blocks, and that rate is plausible as a bias (within
-    /// max_bias_dps of the turn-on bias, `centre_dps`).
-    pub(super) fn is_straight(&mut self, p: &PipelineParams, centre_dps: f64, time_s: f64, rate_dps: f64) -> bool {
+    /// max_bias_dps of the turn-on bias).
+    pub(super) fn is_straight(&mut self, p: &PipelineParams, time_s: f64, rate_dps: f64) -> bool {
         self.window.push_back((time_s, rate_dps));
         while self.window.front().is_some_and(|&(t, _)| time_s - t > p.road_window_s) {
             self.window.pop_front();
@@ -94,7 +122,7 @@ impl Evidence {
         // A quantised gyro (one row per block) puts the mode on its lattice: keep the gate
         // two steps wide so the selection stays centred.
         let gate = p.road_gate_dps.max(2.0 * step);
-        (mode - centre_dps).abs() <= p.max_bias_dps && (rate_dps - mode).abs() <= gate
+        (mode - self.centre_dps).abs() <= p.max_bias_dps && (rate_dps - mode).abs() <= gate
     }
 
     /// The dominant rate of the recent moving blocks (where a road vehicle drives

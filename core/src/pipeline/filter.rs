@@ -83,9 +83,6 @@ pub struct Pipeline {
     /// The declared lead-in gave stop evidence, and the warm-up prior has been sized by it.
     lead_in_seen: bool,
     warm_up_sized: bool,
-    /// The turn-on bias the lead-in showed (its evidence's mean; 0 before and without one):
-    /// the centre of the biases the filter accepts.
-    centre_dps: f64,
 }
 
 impl Pipeline {
@@ -143,7 +140,6 @@ impl Pipeline {
             last_stop_s: None,
             lead_in_seen: false,
             warm_up_sized: false,
-            centre_dps: 0.0,
         })
     }
 
@@ -166,9 +162,10 @@ impl Pipeline {
         self.recorded = hypotheses.into_iter().filter(|&i| i < self.models.len()).collect();
     }
 
-    /// The turn-on bias the lead-in showed (0 before and without one), deg/s.
+    /// The turn-on bias, the centre of the biases the filter accepts: the lead-in's, or a
+    /// long standing's beyond the bounds where there was no lead-in (0 before), deg/s.
     pub fn centre_dps(&self) -> f64 {
-        self.centre_dps
+        self.evidence.centre_dps
     }
 
     /// Each hypothesis' weight summed over the blocks so far.
@@ -179,7 +176,7 @@ impl Pipeline {
     /// Rauch-Tung-Striebel smoothing of the recorded hypotheses, mixed with their weights
     /// (renormalised among them) at each block: the smoothed bias per recorded block.
     pub fn smoothed_bias(&self) -> Vec<f64> {
-        smoother::rts_mixed(&self.records, &self.record_weights, self.recorded.len(), &self.p, self.centre_dps)
+        smoother::rts_mixed(&self.records, &self.record_weights, self.recorded.len(), &self.p, self.evidence.centre_dps)
     }
 
     /// Normalised hypothesis weights.
@@ -198,7 +195,7 @@ impl Pipeline {
         let w = self.weights();
         let b: f64 = self.models.iter().zip(&w).map(|(m, wi)| wi * m.bias().0).sum();
         let p: f64 = self.models.iter().zip(&w).map(|(m, wi)| wi * (m.bias().1 + (m.bias().0 - b).powi(2))).sum();
-        (self.p.bounded_bias_dps(b, self.centre_dps), p)
+        (self.p.bounded_bias_dps(b, self.evidence.centre_dps), p)
     }
 
     /// Variance of the heading's error from the bias (deg^2), with weights `w`: each
@@ -234,13 +231,10 @@ impl Pipeline {
         }
         // Gather this block's evidence, then the guards, then the updates.
         let lead_in = time_s < self.lead_in_end_s;
-        let stops = self.evidence.stops(&self.p, self.centre_dps, time_s, rate_dps, still, lead_in);
-        if lead_in && !stops.is_empty() {
-            self.lead_in_seen = true;
-            self.centre_dps = self.evidence.stop.mean;
-        }
+        let stops = self.evidence.stops(&self.p, time_s, rate_dps, still, lead_in);
+        self.lead_in_seen |= lead_in && !stops.is_empty();
         let reopened = !stops.is_empty() && !self.evidence.stop.reopened && !lead_in && self.stop_guard();
-        let straight = !still && !lead_in && self.evidence.is_straight(&self.p, self.centre_dps, time_s, rate_dps);
+        let straight = !still && !lead_in && self.evidence.is_straight(&self.p, time_s, rate_dps);
         self.dating_t0_s.get_or_insert(time_s);
         if !still {
             if let Some(t) = self.last_stop_s.take() {

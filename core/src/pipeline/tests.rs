@@ -363,8 +363,8 @@ proptest::proptest! {
         let p = PipelineParams::default();
         let blocks = blocks_of(&items);
         let tr = run_blocks(&blocks, p, lead_in_s).unwrap();
-        // The turn-on bias is a mean of lead-in blocks: at most their largest rate.
-        let lead_max = blocks.time_s.iter().zip(&blocks.rate_dps).filter(|(t, _)| **t < lead_in_s).map(|(_, r)| r.abs()).fold(0.0, f64::max);
+        // The turn-on bias is a mean of lead-in or stop blocks: at most their largest rate.
+        let lead_max = (0..blocks.len()).filter(|&i| blocks.time_s[i] < lead_in_s || blocks.still[i]).map(|i| blocks.rate_dps[i].abs()).fold(0.0, f64::max);
         for (x, h) in tr.bias_smoothed_dps.iter().zip(&tr.heading_smoothed_deg) {
             proptest::prop_assert!(x.is_finite() && x.abs() <= p.max_bias_dps + lead_max && h.is_finite(), "smoothed bias {x}, heading {h}");
         }
@@ -489,6 +489,46 @@ fn a_turn_on_bias_beyond_max_bias_that_the_lead_in_shows_is_learned() {
         f.update(i as f64, 7.05 + wiggle(i), true).unwrap();
     }
     assert!((f.bias().0 - 7.05).abs() < 0.01, "bias {:?}", f.bias());
+}
+
+/// Without a lead-in, a turn-on bias beyond `max_bias_dps` (8 deg/s) is acquired at the
+/// first standing of 10 s or more (a road vehicle does not turn at 8 deg/s for that long
+/// while its speed says it stands), not refused for good; a shorter standing at that rate
+/// (a slow turn with the GPS speed held at zero) is not evidence.
+#[test]
+fn without_a_lead_in_a_long_standing_beyond_max_bias_is_the_bias() {
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, f64::NEG_INFINITY).unwrap();
+    let wiggle = |i: usize| if i.is_multiple_of(2) { 0.02 } else { -0.02 };
+    let mut t = 0.0;
+    let mut drive = |f: &mut Pipeline, n: usize, still: bool| {
+        for i in 0..n {
+            t += 1.0;
+            let turn = if !still && (i / 15) % 4 == 3 { 12.0 } else { 0.0 };
+            f.update(t, 8.0 + turn + wiggle(i), still).unwrap();
+        }
+    };
+    drive(&mut f, 120, false);
+    drive(&mut f, 8, true);
+    assert!(f.bias().0.abs() <= 5.0 && f.centre_dps() == 0.0, "a short standing: {:?}", f.bias());
+    drive(&mut f, 60, false);
+    drive(&mut f, 15, true);
+    assert!((f.bias().0 - 8.0).abs() < 0.02 && (f.centre_dps() - 8.0).abs() < 0.02, "{:?}, centre {}", f.bias(), f.centre_dps());
+}
+
+/// On a simulated drive cut from its lead-in, a constant added that takes the turn-on bias
+/// beyond `max_bias_dps` (+6 deg/s: about 7.5) is acquired at the first long stop: far
+/// better than a zero-rate update at stops (before, the pipeline equalled raw integration,
+/// 224 deg/min on the city drive of the probe).
+#[test]
+fn a_large_bias_without_a_lead_in_is_acquired_on_a_simulated_drive() {
+    let cfg = crate::sim::DriveConfig { scenario: crate::sim::Scenario::City, minutes: 10.0, seed: 5 };
+    let mut log = crate::sim::drive::simulate_drive(&cfg);
+    log.retain_rows(|t| t >= 20.0);
+    log.meta.bias_s = Some(0.0);
+    log.column_mut(crate::log::Column::GyroDps).unwrap().iter_mut().for_each(|w| *w += 6.0);
+    let r = run(&log, &PipelineParams::default()).unwrap().result.unwrap();
+    let (pipe, zaru, raw) = (r.NE_psi_pipeline_deg_per_min, r.NE_psi_zaru_deg_per_min, r.NE_psi_raw_deg_per_min);
+    assert!(pipe < 0.2 * zaru && pipe < 0.05 * raw, "pipeline {pipe}, ZARU {zaru}, raw {raw}");
 }
 
 /// A first lead-in block far beyond any bias (a knock) is not evidence, and does not make
