@@ -8,6 +8,9 @@ use gyrodrift::fleet::{self, DriveRow, FleetOptions};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
+/// At most this many folders of failed files are looked at for an import hint.
+const MAX_HINT_FOLDERS: usize = 20;
+
 /// Every `*.csv` file under `dir`, sorted, links followed; unreadable entries are errors.
 pub fn collect_logs(dir: &Path) -> Result<Vec<PathBuf>, Failure> {
     if !dir.is_dir() {
@@ -78,6 +81,12 @@ pub fn run(dir: &Path, jobs: usize, out: Option<&Path>, opts: &FleetOptions, jso
     }
     for r in rows.iter().filter(|r| r.error.is_some()) {
         eprintln!("{}: {}", r.file, r.error.as_deref().unwrap_or_default());
+    }
+    // Folders of a logger's raw exports: the import that makes v1 logs of them, once each.
+    let failed: Vec<PathBuf> = rows.iter().filter(|r| r.error.is_some()).map(|r| PathBuf::from(&r.file)).collect();
+    for h in gyrodrift::import::folder_hints(&failed, MAX_HINT_FOLDERS) {
+        let dir = h.files.first().and_then(|f| f.parent()).map_or(String::new(), |d| d.display().to_string());
+        eprintln!("{dir}: {}", crate::hint_text(&h, "a recording"));
     }
     let summary = fleet::summarize(&rows);
     if json {

@@ -320,18 +320,23 @@ fn read_log(path: &Path) -> Result<DriveLog, Failure> {
 /// `import_hint`): the `import` command that makes a v1 log of it, as the dashboard imports
 /// such files when they are dropped on it.
 fn import_hint(path: &Path) -> Option<String> {
-    let h = gyrodrift::import::import_hint(path)?;
+    gyrodrift::import::import_hint(path).map(|h| hint_text(&h, "a file"))
+}
+
+/// An import hint in this front's words (`what`: a file, a recording): the `import` command
+/// that makes a v1 log of it.
+fn hint_text(h: &gyrodrift::import::ImportHint, what: &str) -> String {
     let quoted = |p: &PathBuf| match p.display().to_string() {
         s if s.contains(char::is_whitespace) => format!("'{s}'"),
         s => s,
     };
     let files: Vec<String> = h.files.iter().map(quoted).collect();
-    Some(format!(
-        "it looks like a file of {} (import preset {}): `gyrodrift import {} --out drive.csv` makes a v1 drive log of it",
+    format!(
+        "it looks like {what} of {} (import preset {}): `gyrodrift import {} --out drive.csv` makes a v1 drive log of it",
         h.title,
         h.preset,
         files.join(" ")
-    ))
+    )
 }
 
 /// Splits `key=value` and parses the value as a number.

@@ -94,3 +94,17 @@ fn compare_over_a_folder_is_the_same_batch_and_table_options_do_not_mix_with_it(
         assert!(String::from_utf8_lossy(&o.stderr).contains("cannot be used with"), "{extra:?}");
     }
 }
+
+/// A folder of a logger's raw exports: every file an error row, and one import hint per
+/// recording folder (not one per file), naming the preset and the command.
+#[test]
+fn a_folder_of_raw_exports_gets_one_import_hint_per_recording() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/wild");
+    let o = report_dir(&dir, &[]);
+    assert!(o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    let hints: Vec<&str> = err.lines().filter(|l| l.contains("it looks like a recording of")).collect();
+    assert_eq!(hints.len(), 5, "{err}");
+    let sl = hints.iter().find(|l| l.contains("(import preset sensor-logger)")).unwrap();
+    assert!(sl.contains("sensor-logger: ") && sl.contains("gyrodrift import ") && sl.contains("Gyroscope.csv"), "{sl}");
+}

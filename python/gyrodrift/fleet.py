@@ -23,7 +23,7 @@ import os
 import sys
 from typing import Any, Dict, List, Mapping, Optional, Sequence
 
-from ._core import error_row, score_files, score_log, summary_markdown
+from ._core import error_row, folder_hints, score_files, score_log, summary_markdown
 from .frames import from_pandas, rows_to_pandas
 
 #: Small CSV drives are grouped so that a task reads about this many bytes (fewer when the
@@ -171,8 +171,12 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     except (ValueError, OSError) as e:
         print(f"gyrodrift.fleet: {e}", file=sys.stderr)
         return 2
-    for _, r in rows[rows["error"].notna()].iterrows():
+    failed = rows[rows["error"].notna()]
+    for _, r in failed.iterrows():
         print(f"{r['file']}: {r['error']}", file=sys.stderr)
+    # Folders of a logger's raw exports: the import that makes v1 logs of them, once each.
+    for hint in folder_hints(list(failed["file"])):
+        print(hint, file=sys.stderr)
     print(summary(rows))
     return 0
 

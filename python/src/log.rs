@@ -55,17 +55,37 @@ fn meta_of(v: serde_json::Value) -> PyResult<gyrodrift::LogMeta> {
 pub(crate) fn read_path(path: &str) -> PyResult<DriveLog> {
     let f = std::fs::File::open(path).map_err(|e| PyOSError::new_err(format!("{path}: cannot open: {e}")))?;
     gyrodrift::parse_log(std::io::BufReader::new(f)).map_err(|e| {
-        let hint = gyrodrift::import::import_hint(std::path::Path::new(path)).map_or(String::new(), |h| {
-            let files: Vec<String> = h.files.iter().map(|p| format!("{:?}", p.display().to_string())).collect();
-            format!(
-                "; it looks like a file of {} (import preset {}): gyrodrift.import_files([{}]) makes a v1 drive log of it",
-                h.title,
-                h.preset,
-                files.join(", ")
-            )
-        });
+        let hint =
+            gyrodrift::import::import_hint(std::path::Path::new(path)).map_or(String::new(), |h| format!("; {}", hint_text(&h, "a file")));
         value_err(format!("{path}: {e}{hint}"))
     })
+}
+
+/// An import hint in Python's words (`what`: a file, a recording): the `import_files` call
+/// that makes a v1 log of it.
+fn hint_text(h: &gyrodrift::import::ImportHint, what: &str) -> String {
+    let files: Vec<String> = h.files.iter().map(|p| format!("{:?}", p.display().to_string())).collect();
+    format!(
+        "it looks like {what} of {} (import preset {}): gyrodrift.import_files([{}]) makes a v1 drive log of it",
+        h.title,
+        h.preset,
+        files.join(", ")
+    )
+}
+
+/// For files that failed to read as v1 logs (a fleet's error rows): one hint per folder of
+/// a logger's raw exports, as "FOLDER: it looks like a recording of ...", at most
+/// `max_folders` folders looked at (core's `folder_hints`).
+#[pyfunction]
+#[pyo3(signature = (paths, max_folders = 20))]
+fn folder_hints(paths: Vec<std::path::PathBuf>, max_folders: usize) -> Vec<String> {
+    gyrodrift::import::folder_hints(&paths, max_folders)
+        .iter()
+        .map(|h| {
+            let dir = h.files.first().and_then(|f| f.parent()).map_or(String::new(), |d| d.display().to_string());
+            format!("{dir}: {}", hint_text(h, "a recording"))
+        })
+        .collect()
 }
 
 #[pymethods]
@@ -181,5 +201,6 @@ fn check<'py>(py: Python<'py>, log: &PyLog) -> PyResult<Bound<'py, PyDict>> {
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(check, m)?)
+    m.add_function(wrap_pyfunction!(check, m)?)?;
+    m.add_function(wrap_pyfunction!(folder_hints, m)?)
 }

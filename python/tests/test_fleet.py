@@ -116,3 +116,16 @@ def test_options_as_the_command_line_documents_them(folder):
         g.score_files([], options={"pipelin": {}})
     with pytest.raises(ValueError, match="min_still_s"):
         g.score_log(g.read_log(str(next(folder.rglob("city-1.csv")))), options={"pipeline": {"min_still_s": -1}})
+
+
+def test_a_folder_of_raw_exports_gets_one_import_hint_per_recording(samples, tmp_path, capsys):
+    wild = samples / "wild"
+    failed = [str(wild / "sensor-logger" / "Accelerometer.csv"), str(wild / "sensor-logger" / "Gyroscope.csv"), str(wild / "ros" / "imu.csv")]
+    hints = g.folder_hints(failed)
+    assert len(hints) == 2 and "(import preset sensor-logger)" in hints[0] and "(import preset ros)" in hints[1]
+    assert hints[0].startswith(str(wild / "sensor-logger") + ": it looks like a recording of") and "gyrodrift.import_files([" in hints[0]
+    # The fleet job: the files are error rows, the hint is printed once for the recording.
+    shutil.copytree(wild / "sensorlog", tmp_path / "phone")
+    assert fleet.main([str(tmp_path), "--workers", "1"]) == 0
+    err = capsys.readouterr().err
+    assert err.count("it looks like a recording of") == 1 and "(import preset sensorlog)" in err

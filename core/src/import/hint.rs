@@ -15,14 +15,44 @@ pub struct ImportHint {
     pub files: Vec<PathBuf>,
 }
 
+/// The head of a file, sniffed (None when it cannot be read or is not a table).
+fn head(p: &Path) -> Option<Sniffed> {
+    let mut bytes = Vec::new();
+    std::fs::File::open(p).ok()?.take(SNIFF_BYTES as u64).read_to_end(&mut bytes).ok()?;
+    sniff(&p.file_name()?.to_string_lossy(), &bytes).ok()
+}
+
+/// For files that failed to read as v1 logs (a fleet folder of a logger's raw exports): one
+/// hint per folder whose files a preset reads, in the order the folders first appear, at
+/// most `max_folders` folders looked at (each reads the heads of at most 64 files).
+pub fn folder_hints(failed: &[PathBuf], max_folders: usize) -> Vec<ImportHint> {
+    let mut folders: Vec<&Path> = Vec::new();
+    for p in failed {
+        let dir = p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        if !folders.contains(&dir) {
+            folders.push(dir);
+        }
+    }
+    folders.truncate(max_folders);
+    folders
+        .into_iter()
+        .filter_map(|dir| {
+            let mut files: Vec<PathBuf> =
+                std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.is_file()).collect();
+            files.sort();
+            let sniffed: Vec<Sniffed> = files.iter().take(64).filter_map(|p| head(p)).collect();
+            if sniffed.iter().any(|s| s.header.iter().any(|c| c == "time_s")) {
+                return None;
+            }
+            let d = detect(&sniffed).ok()?;
+            Some(ImportHint { preset: d.preset, title: d.title, files: d.used.iter().map(|(_, f)| dir.join(f)).collect() })
+        })
+        .collect()
+}
+
 /// For a file without a `time_s` column: the preset that reads it, with the files beside it
 /// in its folder (at most 64 looked at), when one does and uses this file; else None.
 pub fn import_hint(path: &Path) -> Option<ImportHint> {
-    let head = |p: &Path| -> Option<Sniffed> {
-        let mut bytes = Vec::new();
-        std::fs::File::open(p).ok()?.take(SNIFF_BYTES as u64).read_to_end(&mut bytes).ok()?;
-        sniff(&p.file_name()?.to_string_lossy(), &bytes).ok()
-    };
     let me = head(path)?;
     if me.header.iter().any(|c| c == "time_s") {
         return None;
@@ -61,5 +91,23 @@ mod tests {
         assert_eq!(import_hint(&wild("sensor-logger", "Metadata.csv")), None);
         assert_eq!(import_hint(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/train/city-1.csv")), None);
         assert_eq!(import_hint(&wild("sensor-logger", "nothing.csv")), None);
+    }
+
+    /// A fleet folder of raw exports: one hint per recording folder, in order, whatever file
+    /// of it failed first (the accelerometer file the preset does not use included); a
+    /// folder of v1 logs gives none.
+    #[test]
+    fn failed_files_give_one_hint_per_recording_folder() {
+        let failed = [
+            wild("sensor-logger", "Accelerometer.csv"),
+            wild("sensor-logger", "Gyroscope.csv"),
+            wild("phyphox", "Gyroscope.csv"),
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/train/city-1.csv"),
+        ];
+        let hints = folder_hints(&failed, 10);
+        let presets: Vec<&str> = hints.iter().map(|h| h.preset).collect();
+        assert_eq!(presets, ["sensor-logger", "phyphox"]);
+        assert_eq!(hints[0].files.len(), 3);
+        assert_eq!(folder_hints(&failed, 1).len(), 1);
     }
 }
