@@ -85,8 +85,7 @@ pub fn run(dir: &Path, jobs: usize, out: Option<&Path>, opts: &FleetOptions, jso
     // Folders of a logger's raw exports: the import that makes v1 logs of them, once each.
     let failed: Vec<PathBuf> = rows.iter().filter(|r| r.error.is_some()).map(|r| PathBuf::from(&r.file)).collect();
     for h in gyrodrift::import::folder_hints(&failed, MAX_HINT_FOLDERS) {
-        let dir = h.files.first().and_then(|f| f.parent()).map_or(String::new(), |d| d.display().to_string());
-        eprintln!("{dir}: {}", crate::hint_text(&h, "a recording"));
+        eprintln!("{}: {}", h.folder.display(), crate::hint_text(&h, "a recording"));
     }
     let summary = fleet::summarize(&rows);
     if json {

@@ -81,10 +81,7 @@ fn hint_text(h: &gyrodrift::import::ImportHint, what: &str) -> String {
 fn folder_hints(paths: Vec<std::path::PathBuf>, max_folders: usize) -> Vec<String> {
     gyrodrift::import::folder_hints(&paths, max_folders)
         .iter()
-        .map(|h| {
-            let dir = h.files.first().and_then(|f| f.parent()).map_or(String::new(), |d| d.display().to_string());
-            format!("{dir}: {}", hint_text(h, "a recording"))
-        })
+        .map(|h| format!("{}: {}", h.folder.display(), hint_text(h, "a recording")))
         .collect()
 }
 

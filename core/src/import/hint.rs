@@ -11,6 +11,8 @@ use std::path::{Path, PathBuf};
 pub struct ImportHint {
     pub preset: &'static str,
     pub title: &'static str,
+    /// The folder of the recording.
+    pub folder: PathBuf,
     /// The file given and those beside it that the preset uses, in the preset's order.
     pub files: Vec<PathBuf>,
 }
@@ -22,13 +24,25 @@ fn head(p: &Path) -> Option<Sniffed> {
     sniff(&p.file_name()?.to_string_lossy(), &bytes).ok()
 }
 
+/// The folder a file is in ("." for a bare name).
+fn folder_of(path: &Path) -> &Path {
+    path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."))
+}
+
+/// The files of a folder, sorted (None when it cannot be read).
+fn files_in(dir: &Path) -> Option<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.is_file()).collect();
+    files.sort();
+    Some(files)
+}
+
 /// For files that failed to read as v1 logs (a fleet folder of a logger's raw exports): one
 /// hint per folder whose files a preset reads, in the order the folders first appear, at
 /// most `max_folders` folders looked at (each reads the heads of at most 64 files).
 pub fn folder_hints(failed: &[PathBuf], max_folders: usize) -> Vec<ImportHint> {
     let mut folders: Vec<&Path> = Vec::new();
     for p in failed {
-        let dir = p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let dir = folder_of(p);
         if !folders.contains(&dir) {
             folders.push(dir);
         }
@@ -37,15 +51,11 @@ pub fn folder_hints(failed: &[PathBuf], max_folders: usize) -> Vec<ImportHint> {
     folders
         .into_iter()
         .filter_map(|dir| {
-            let mut files: Vec<PathBuf> =
-                std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.is_file()).collect();
-            files.sort();
-            let sniffed: Vec<Sniffed> = files.iter().take(64).filter_map(|p| head(p)).collect();
+            let sniffed: Vec<Sniffed> = files_in(dir)?.iter().take(64).filter_map(|p| head(p)).collect();
             if sniffed.iter().any(|s| s.header.iter().any(|c| c == "time_s")) {
                 return None;
             }
-            let d = detect(&sniffed).ok()?;
-            Some(ImportHint { preset: d.preset, title: d.title, files: d.used.iter().map(|(_, f)| dir.join(f)).collect() })
+            hint(dir, &sniffed)
         })
         .collect()
 }
@@ -57,16 +67,21 @@ pub fn import_hint(path: &Path) -> Option<ImportHint> {
     if me.header.iter().any(|c| c == "time_s") {
         return None;
     }
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let mut beside: Vec<PathBuf> = std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.is_file()).collect();
-    beside.sort();
+    let dir = folder_of(path);
     let mut sniffed = vec![me];
-    sniffed.extend(beside.iter().filter(|p| p.file_name() != path.file_name()).take(64).filter_map(|p| head(p)));
-    let d = detect(&sniffed).ok()?;
-    let name = path.file_name()?.to_string_lossy();
-    d.used.iter().any(|(_, f)| *f == name).then(|| ImportHint {
+    sniffed.extend(files_in(dir)?.iter().filter(|p| p.file_name() != path.file_name()).take(64).filter_map(|p| head(p)));
+    let h = hint(dir, &sniffed)?;
+    let name = path.file_name()?;
+    h.files.iter().any(|f| f.file_name() == Some(name)).then_some(h)
+}
+
+/// The preset detected from these heads of `dir`'s files, and the files of it the preset uses.
+fn hint(dir: &Path, sniffed: &[Sniffed]) -> Option<ImportHint> {
+    let d = detect(sniffed).ok()?;
+    Some(ImportHint {
         preset: d.preset,
         title: d.title,
+        folder: dir.to_path_buf(),
         files: d.used.iter().map(|(_, f)| dir.join(f)).collect(),
     })
 }
