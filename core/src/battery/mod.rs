@@ -103,10 +103,14 @@ fn p(name: &str, training: bool, errors: GyroErrors) -> Profile {
 }
 
 /// The error profiles: the recorded rate as-is, and each class at training strengths and
-/// at other (scoring) strengths and seeds. "cut" = no stationary lead-in.
+/// at other (scoring) strengths and seeds. "cut" = no stationary lead-in; "gyro-only" =
+/// without the speed and wheel columns (a logger with a gyro alone: standing is judged from
+/// the gyro).
 pub fn profiles() -> Vec<Profile> {
     let e = GyroErrors::default();
     let cut = GyroErrors { cut_lead_in: true, ..e };
+    let go = GyroErrors { gyro_only: true, ..e };
+    let cut_go = GyroErrors { gyro_only: true, ..cut };
     vec![
         p("as-is", true, e),
         // training strengths
@@ -125,6 +129,15 @@ pub fn profiles() -> Vec<Profile> {
             "cheap MEMS A cut",
             true,
             GyroErrors { bias_dps: 1.0, warmup_dps: 0.5, warmup_tau_s: 400.0, walk_dps_per_sqrt_s: 0.003, scale: 0.01, seed: 13, ..cut },
+        ),
+        p("as-is gyro-only", true, go),
+        p("bias +0.5 gyro-only", true, GyroErrors { bias_dps: 0.5, ..go }),
+        p("bias -1.5 cut gyro-only", true, GyroErrors { bias_dps: -1.5, ..cut_go }),
+        p("vibration 0.3 / +0.05 gyro-only", true, GyroErrors { vibration_noise_dps: 0.3, vibration_bias_dps: 0.05, seed: 14, ..go }),
+        p(
+            "cheap MEMS A cut gyro-only",
+            true,
+            GyroErrors { bias_dps: 1.0, warmup_dps: 0.5, warmup_tau_s: 400.0, walk_dps_per_sqrt_s: 0.003, scale: 0.01, seed: 13, ..cut_go },
         ),
         // scoring strengths and seeds
         p("bias -0.1", false, GyroErrors { bias_dps: -0.1, ..e }),
@@ -158,6 +171,25 @@ pub fn profiles() -> Vec<Profile> {
                 lsb_dps: 0.07,
                 seed: 25,
                 ..cut
+            },
+        ),
+        p("bias -1 gyro-only", false, GyroErrors { bias_dps: -1.0, ..go }),
+        p("bias +2 cut gyro-only", false, GyroErrors { bias_dps: 2.0, ..cut_go }),
+        p("warm-up -0.8 (600 s) gyro-only", false, GyroErrors { warmup_dps: -0.8, warmup_tau_s: 600.0, ..go }),
+        p("vibration 0.6 / -0.1 gyro-only", false, GyroErrors { vibration_noise_dps: 0.6, vibration_bias_dps: -0.1, seed: 27, ..go }),
+        p(
+            "cheap MEMS B cut gyro-only",
+            false,
+            GyroErrors {
+                bias_dps: -1.5,
+                warmup_dps: -0.7,
+                warmup_tau_s: 500.0,
+                walk_dps_per_sqrt_s: 0.005,
+                scale: -0.015,
+                noise_dps: 0.2,
+                lsb_dps: 0.07,
+                seed: 25,
+                ..cut_go
             },
         ),
     ]

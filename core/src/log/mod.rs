@@ -171,6 +171,12 @@ impl DriveLog {
     pub fn column_mut(&mut self, c: Column) -> Option<&mut [f64]> {
         self.columns[c.index()].as_deref_mut()
     }
+    /// Removes a column (not time_s): the battery's gyro-only logs drop speed and wheels.
+    pub fn drop_column(&mut self, c: Column) {
+        if c != Column::TimeS {
+            self.columns[c.index()] = None;
+        }
+    }
     /// Keeps only the rows from index `first` on (e.g. to cut a stationary lead-in).
     pub fn drop_first_rows(&mut self, first: usize) {
         let first = first.min(self.len());

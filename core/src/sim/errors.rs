@@ -50,6 +50,9 @@ pub struct GyroErrors {
     /// Cut the stationary lead-in (`# bias_s:` rows) so the drive starts moving, with
     /// bias_s = 0 (no static bias is removed).
     pub cut_lead_in: bool,
+    /// Drop the speed and wheel-odometry columns once the errors are added (a logger with
+    /// a gyro alone), so standing must be judged from the gyro.
+    pub gyro_only: bool,
     pub seed: u64,
 }
 
@@ -70,6 +73,7 @@ impl Default for GyroErrors {
             vibration_bias_dps: 0.0,
             lsb_dps: 0.0,
             cut_lead_in: false,
+            gyro_only: false,
             seed: 1,
         }
     }
@@ -187,6 +191,11 @@ pub fn inject(log: &DriveLog, e: &GyroErrors) -> Result<DriveLog> {
         }
         *g = v;
     }
+    if e.gyro_only {
+        for c in [Column::SpeedMps, Column::OdoLeftM, Column::OdoRightM] {
+            out.drop_column(c);
+        }
+    }
     Ok(out)
 }
 
@@ -282,6 +291,25 @@ mod tests {
         assert_eq!(g.meta.bias_s, Some(0.0));
         assert!(g.column(Column::GyroDps).unwrap().iter().all(|&v| (v - 0.1).abs() < 1e-12));
         assert!(inject(&l, &GyroErrors { bias_dps: f64::NAN, ..Default::default() }).is_err());
+    }
+
+    #[test]
+    fn gyro_only_drops_speed_and_wheels_after_the_speed_driven_errors() {
+        let mut l = DriveLog::with_columns(&[Column::GyroDps, Column::SpeedMps, Column::OdoLeftM, Column::OdoRightM]);
+        for i in 0..3 {
+            let t = i as f64;
+            l.push_row(&[
+                (Column::TimeS, t),
+                (Column::GyroDps, 1.0),
+                (Column::SpeedMps, 15.0),
+                (Column::OdoLeftM, t),
+                (Column::OdoRightM, t),
+            ]);
+        }
+        let g = inject(&l, &GyroErrors { vibration_bias_dps: 0.06, gyro_only: true, ..Default::default() }).unwrap();
+        assert_eq!(g.present_columns(), vec![Column::TimeS, Column::GyroDps]);
+        // The vibration still saw the speed: +0.03 at 15 m/s.
+        assert!(g.column(Column::GyroDps).unwrap().iter().all(|&v| (v - 1.03).abs() < 1e-12));
     }
 
     #[test]
