@@ -16,8 +16,11 @@ pub struct StillOptions {
     /// Standing when the wheels travelled less than this in the block, m (no speed column).
     pub still_travel_m: f64,
     /// Gyro only: standing when the block's standard deviation is at most this times the
-    /// lead-in's (needs 5 rows per block and a lead-in of 10 rows).
+    /// lead-in's (needs 5 rows per block and a lead-in of 10 rows) ...
     pub still_gyro_factor: f64,
+    /// ... and the standard deviation of the last [`AGREE_BLOCKS`] block means at most this
+    /// times the lead-in's block means' ([`GyroStill`]).
+    pub still_agree_factor: f64,
 }
 
 impl StillOptions {
@@ -32,27 +35,72 @@ impl StillOptions {
     pub fn moving_by_speed(&self, speeds: usize, speed_max_mps: f64) -> bool {
         speeds > 0 && speed_max_mps >= self.still_speed_mps
     }
-
-    /// Standing by the gyro alone: the block has 5 rows or more (`n` rows summing to `sum`,
-    /// their squares to `sum2`) and its standard deviation is at most `still_gyro_factor`
-    /// times the lead-in's (`lead_std`, from [`lead_in_std`]).
-    pub fn still_by_gyro(&self, n: usize, sum: f64, sum2: f64, lead_std: f64) -> bool {
-        let mean = sum / n as f64;
-        let var = (sum2 / n as f64 - mean * mean).max(0.0);
-        n >= 5 && var.sqrt() <= self.still_gyro_factor * lead_std
-    }
 }
 
-/// The lead-in's gyro spread for the gyro-only detector: its standard deviation when the
-/// lead-in has 10 finite rows or more and they are not all equal, else None (never still).
-pub fn lead_in_std(lead_dps: &[f64]) -> Option<f64> {
-    let std = crate::metrics::mean_std(lead_dps).1;
-    (lead_dps.len() >= 10 && std > 0.0).then_some(std)
+/// Blocks whose means must agree for the gyro alone to call the last of them still.
+pub const AGREE_BLOCKS: usize = 5;
+
+/// The gyro-only detector, block by block. The declared stationary lead-in's blocks stand
+/// and set the reference; after it a block is still when its spread is at most
+/// `still_gyro_factor` times the lead-in's rows' and the means of the last [`AGREE_BLOCKS`]
+/// blocks agree as the lead-in's block means do: their standard deviation at most
+/// `still_agree_factor` times the lead-in's. The spread alone cannot tell an idling engine
+/// from a smooth drive (an idle shakes the gyro more than a slow turn does); a moving
+/// vehicle's rate wanders from second to second (steering, curves, sway), a standing one's
+/// does not.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct GyroStill {
+    /// The lead-in's rows: count, sum, sum of squares.
+    lead: (usize, f64, f64),
+    /// Block means: the lead-in's, then the last [`AGREE_BLOCKS`] after it.
+    means: Vec<f64>,
+    /// Once the lead-in is over: its rows' and its block means' standard deviations, or
+    /// None when it cannot be used (never still).
+    reference: Option<Option<(f64, f64)>>,
+}
+
+impl GyroStill {
+    /// One block (`n` finite rows summing to `sum`, their squares to `sum2`), within the
+    /// declared lead-in or after it: is it still? A block of fewer than 5 rows after the
+    /// lead-in is not, and restarts the window.
+    pub fn update(&mut self, opts: &StillOptions, lead_in: bool, n: usize, sum: f64, sum2: f64) -> bool {
+        let mean = sum / n as f64;
+        if lead_in {
+            self.lead = (self.lead.0 + n, self.lead.1 + sum, self.lead.2 + sum2);
+            self.means.extend((n >= 5).then_some(mean));
+            return true;
+        }
+        let Some((std, scatter)) = self.reference() else { return false };
+        if n < 5 {
+            self.means.clear();
+            return false;
+        }
+        self.means.push(mean);
+        if self.means.len() > AGREE_BLOCKS {
+            self.means.remove(0);
+        }
+        let agree = self.means.len() == AGREE_BLOCKS && crate::metrics::mean_std(&self.means).1 <= opts.still_agree_factor * scatter;
+        agree && (sum2 / n as f64 - mean * mean).max(0.0).sqrt() <= opts.still_gyro_factor * std
+    }
+
+    /// The lead-in's rows' and block means' standard deviations, fixed at the first call:
+    /// None unless it had 10 rows or more, 3 blocks of 5 rows or more, and neither its rows
+    /// nor its block means were all equal (nothing to compare with). The window starts
+    /// with its last block means (a standing goes on).
+    pub fn reference(&mut self) -> Option<(f64, f64)> {
+        *self.reference.get_or_insert_with(|| {
+            let ((n, sum, sum2), m) = (self.lead, &mut self.means);
+            let std = ((sum2 - sum * sum / n as f64) / (n as f64 - 1.0)).max(0.0).sqrt();
+            let (k, scatter) = (m.len(), crate::metrics::mean_std(m).1);
+            m.drain(..k.saturating_sub(AGREE_BLOCKS - 1));
+            (n >= 10 && k >= 3 && std > 0.0 && scatter > 0.0).then_some((std, scatter))
+        })
+    }
 }
 
 impl Default for StillOptions {
     fn default() -> Self {
-        StillOptions { still_speed_mps: 0.2, still_travel_m: 0.05, still_gyro_factor: 1.5 }
+        StillOptions { still_speed_mps: 0.2, still_travel_m: 0.05, still_gyro_factor: 1.5, still_agree_factor: 2.0 }
     }
 }
 
@@ -149,26 +197,20 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
     let speed = log.column(Column::SpeedMps);
     let odo = log.column(Column::OdoLeftM).zip(log.column(Column::OdoRightM));
     let temp = log.column(Column::TempC);
-    // Lead-in spread for the gyro-only detector.
-    let lead: Vec<f64> = match t.first() {
-        Some(&t0) => t.iter().zip(gyro).take_while(|(&ti, _)| ti - t0 < bias_s).filter(|(_, g)| g.is_finite()).map(|(_, &g)| g).collect(),
-        None => Vec::new(),
-    };
-    let lead_std = lead_in_std(&lead);
-    let source = if speed.is_some_and(|s| s.iter().any(|v| v.is_finite())) {
+    let t0 = t.first().copied().unwrap_or(0.0);
+    let mut gyro_still = GyroStill::default();
+    let mut source = if speed.is_some_and(|s| s.iter().any(|v| v.is_finite())) {
         StillSource::Speed
     } else if odo.is_some() {
         StillSource::Odometry
-    } else if lead_std.is_some() {
-        StillSource::Gyro
     } else {
-        StillSource::None
+        StillSource::Gyro
     };
     let mut out = Blocks::default();
     if t.is_empty() {
         return Err(Error::data("the log has no rows"));
     }
-    let flush = |a: &Acc, stamp: f64, out: &mut Blocks| {
+    let mut flush = |a: &Acc, stamp: f64, lead_in: bool, out: &mut Blocks| {
         if a.n == 0 {
             return;
         }
@@ -179,7 +221,7 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
         let still = match source {
             StillSource::Speed => opts.still_by_speed(a.speed_n, a.speed_max),
             StillSource::Odometry => travel.is_some_and(|d| d < opts.still_travel_m),
-            StillSource::Gyro => lead_std.is_some_and(|s| opts.still_by_gyro(a.n, a.sum, a.sum2, s)),
+            StillSource::Gyro => gyro_still.update(opts, lead_in, a.n, a.sum, a.sum2),
             StillSource::None => false,
         };
         let moving = match source {
@@ -200,10 +242,15 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
         for i in b.clone() {
             acc.add(gyro[i], temp.map(|c| c[i]), speed.map(|c| c[i]), odo.map(|(l, r)| (l[i], r[i])));
         }
-        flush(&acc, t[b.end - 1], &mut out);
+        flush(&acc, t[b.end - 1], crate::preprocess::block_index(t[b.start], t0) < bias_s, &mut out);
     }
     if out.is_empty() {
         return Err(Error::data("the gyro_dps column has no values"));
+    }
+    // No lead-in to compare the gyro with: never still.
+    if source == StillSource::Gyro && gyro_still.reference().is_none() {
+        source = StillSource::None;
+        out.still.fill(false);
     }
     Ok((out, source))
 }
@@ -252,13 +299,82 @@ mod tests {
         assert_eq!(b.first_moving_s, Some(b.time_s[5]));
     }
 
+    /// GyroStill by hand: lead-in blocks of 5 rows with means 1.0, 1.2, 1.4 (scatter 0.2,
+    /// so means agree within 2 x 0.2 = 0.4) and rows 0.1 about them.
     #[test]
-    fn gyro_only_detector_uses_the_lead_in_spread() {
-        let l = log(false);
-        let (b, src) = blocks(&l, 4.0, &StillOptions::default()).unwrap();
+    fn gyro_still_by_hand() {
+        let o = StillOptions::default();
+        // A block of 5 rows: n, sum, sum of squares.
+        let block = |rows: &[f64]| (rows.len(), rows.iter().sum::<f64>(), rows.iter().map(|v| v * v).sum::<f64>());
+        let (mut g, mut lead) = (GyroStill::default(), Vec::new());
+        for m in [1.0, 1.2, 1.4] {
+            let rows: Vec<f64> = [-0.1, 0.1, -0.1, 0.1, 0.0].iter().map(|d| m + d).collect();
+            let (n, s, s2) = block(&rows);
+            assert!(g.update(&o, true, n, s, s2), "the lead-in stands");
+            lead.extend(rows);
+        }
+        let lead_std = crate::metrics::mean_std(&lead).1;
+        let (std, scatter) = g.clone().reference().unwrap();
+        assert!((scatter - 0.2).abs() < 1e-12 && (std - lead_std).abs() < 1e-12, "{std} {scatter}");
+        // A block of 5 rows with mean m and standard deviation sd.
+        let upd = |g: &mut GyroStill, m: f64, sd: f64| g.update(&o, false, 5, 5.0 * m, 5.0 * (m * m + sd * sd));
+        // Window 1.0 1.2 1.4 1.2: four means, not yet five.
+        assert!(!upd(&mut g, 1.2, 0.05));
+        // 1.0 1.2 1.4 1.2 1.2: deviations -.2 0 .2 0 0, std sqrt(.08 / 4) = 0.141 <= 0.4.
+        assert!(upd(&mut g, 1.2, 0.05));
+        // 1.2 1.4 1.2 1.2 2.5: mean 1.5, squares .09 .01 .09 .09 1 -> sqrt(1.28 / 4) = 0.566.
+        assert!(!upd(&mut g, 2.5, 0.05));
+        // Means that agree, but a spread over 1.5 x the lead-in's rows: not still.
+        for _ in 0..4 {
+            upd(&mut g, 1.2, 0.05);
+        }
+        assert!(upd(&mut g, 1.2, 1.4 * lead_std));
+        assert!(!upd(&mut g, 1.2, 1.6 * lead_std));
+        // A block of 4 rows: not still, and the window starts again.
+        assert!(!g.update(&o, false, 4, 4.8, 4.0 * 1.44));
+        assert!((0..4).all(|_| !upd(&mut g, 1.2, 0.05)) && upd(&mut g, 1.2, 0.05));
+        // Lead-ins it cannot use (never still): two blocks; block means all equal.
+        let mut two = GyroStill::default();
+        for m in [1.0, 1.2] {
+            two.update(&o, true, 5, 5.0 * m, 5.0 * (m * m + 0.01));
+        }
+        assert!(two.reference().is_none() && !upd(&mut two, 1.2, 0.05));
+        let mut equal = GyroStill::default();
+        for _ in 0..5 {
+            equal.update(&o, true, 5, 5.0, 5.0 * 1.01);
+        }
+        assert!(equal.reference().is_none());
+    }
+
+    /// A gyro-only log at 10 Hz: `rate(t, row)`, lead-in `bias_s`.
+    fn gyro_log(secs: f64, rate: impl Fn(f64, usize) -> f64) -> DriveLog {
+        let mut l = DriveLog::with_columns(&[Column::GyroDps]);
+        for i in 0..(secs * 10.0) as usize {
+            let t = i as f64 * 0.1;
+            l.push_row(&[(Column::TimeS, t), (Column::GyroDps, rate(t, i))]);
+        }
+        l
+    }
+
+    /// An idling engine shakes the gyro more than a smooth slow turn does (as on WID car
+    /// trial 11): the spread alone calls the turn standing, the block means' wander does not.
+    #[test]
+    fn gyro_only_detector_tells_an_idle_from_a_smooth_turn() {
+        let alt = |i: usize| if i.is_multiple_of(2) { 1.0 } else { -1.0 };
+        let idle = |_: f64, i: usize| 0.3 + 1.8 * alt(i) + 0.02 * (0.37 * i as f64).sin();
+        let turn = |t: f64, i: usize| -4.7 + 0.3 * (std::f64::consts::TAU * t / 6.0).sin() + 0.5 * alt(i);
+        let l = gyro_log(36.0, |t, i| if (6.0..26.0).contains(&t) { turn(t, i) } else { idle(t, i) });
+        let (b, src) = blocks(&l, 6.0, &StillOptions::default()).unwrap();
         assert_eq!(src, StillSource::Gyro);
-        assert_eq!(b.still, vec![true, true, true, true, true, false, false, false, true, true]);
-        // The gyro judges standing against the lead-in, not moving: nothing ends a lead-in.
+        // The turn's blocks spread less than 1.5 x the idle's: spread alone reads them still.
+        let lead: Vec<f64> = (0..60).map(|i| idle(i as f64 * 0.1, i)).collect();
+        let turn_block: Vec<f64> = (100..110).map(|i| turn(i as f64 * 0.1, i)).collect();
+        assert!(crate::metrics::mean_std(&turn_block).1 < 1.5 * crate::metrics::mean_std(&lead).1);
+        // The lead-in stands; the turn and the standing's first 4 blocks (their window holds
+        // turn blocks) do not; the standing does once 5 of its block means agree.
+        let want: Vec<bool> = (0..36).map(|k| !(6..30).contains(&k)).collect();
+        assert_eq!(b.still, want);
+        // The gyro judges standing, not moving: nothing ends a lead-in.
         assert_eq!(b.first_moving_s, None);
         // No lead-in: nothing to compare with, never still.
         let (b, src) = blocks(&l, 0.0, &StillOptions::default()).unwrap();

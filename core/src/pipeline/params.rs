@@ -147,6 +147,7 @@ impl PipelineParams {
             ("still_speed_mps", self.still.still_speed_mps),
             ("still_travel_m", self.still.still_travel_m),
             ("still_gyro_factor", self.still.still_gyro_factor),
+            ("still_agree_factor", self.still.still_agree_factor),
             ("stop_sigma_dps", self.stop_sigma_dps),
             ("max_bias_dps", self.max_bias_dps),
             ("road_sigma_dps", self.road_sigma_dps),

@@ -9,12 +9,10 @@
 //! Stillness: once a row has brought a speed, by speed (every speed of the block below
 //! `still_speed_mps`; a block without one is moving), as the batch path does for a log with
 //! a speed column. Before that, by the gyro alone, as the batch path does for a log without
-//! speed or wheels: a block is still when its spread is at most `still_gyro_factor` times
-//! the declared lead-in's. That spread is known when the lead-in ends, so the lead-in's own
-//! blocks are taken as still (the lead-in is declared stationary); the batch path judges
-//! them against the whole lead-in, which on a lead-in that was stationary is the same.
-//! Without a lead-in (or one of fewer than 10 rows) and without speeds no block is still,
-//! as in the batch path. (The batch path's third source, wheel travel, is not streamed.)
+//! speed or wheels: the declared lead-in's blocks stand, and after it `still::GyroStill`
+//! judges each block against the lead-in (its spread, and the agreement of the last block
+//! means). Without a usable lead-in (see `GyroStill::from_lead_in`) and without speeds no
+//! block after the lead-in is still, as in the batch path. (The batch path's third source, wheel travel, is not streamed.)
 //! A declared lead-in ends early at the first block whose speeds show the vehicle moving,
 //! as `Prepared::lead_in_end_s` ends it for the batch path.
 
@@ -34,14 +32,6 @@ struct Open {
     speeds: usize,
 }
 
-/// The declared lead-in for the gyro-only detector: its rates while it lasts, then their
-/// spread (None: no usable lead-in, never still by the gyro).
-#[derive(Debug, Clone)]
-enum Lead {
-    Gathering(Vec<f64>),
-    Spread(Option<f64>),
-}
-
 /// The streaming pipeline on raw rows (see the module's doc).
 #[derive(Debug, Clone)]
 pub struct PipelineStream {
@@ -54,7 +44,8 @@ pub struct PipelineStream {
     last: Option<(PipelineOutput, f64)>,
     bias_dps: f64,
     heading_deg: f64,
-    lead: Lead,
+    /// The gyro-only detector (before a speed is seen).
+    gyro_still: crate::still::GyroStill,
     /// A row has brought a finite speed: stillness is judged by speed from then on.
     speed_seen: bool,
 }
@@ -72,7 +63,7 @@ impl PipelineStream {
             last: None,
             bias_dps: 0.0,
             heading_deg: 0.0,
-            lead: Lead::Gathering(Vec::new()),
+            gyro_still: Default::default(),
             speed_seen: false,
         })
     }
@@ -88,14 +79,6 @@ impl PipelineStream {
             let lead_in_end_s = time_s + self.lead_in_s();
             self.filter = Some(Pipeline::new(self.params, 0.0, self.params.prior_bias_sigma_dps, lead_in_end_s)?);
             self.t0_s = time_s;
-        }
-        let in_lead_in = time_s - self.t0_s < self.lead_in_s();
-        if let Lead::Gathering(rates) = &mut self.lead {
-            if in_lead_in {
-                rates.push(rate_dps);
-            } else {
-                self.lead = Lead::Spread(crate::still::lead_in_std(rates));
-            }
         }
         self.speed_seen |= speed_mps.is_finite();
         let k = crate::preprocess::block_index(time_s, self.t0_s);
@@ -127,10 +110,9 @@ impl PipelineStream {
     fn close(&mut self) -> Result<()> {
         let o = self.open;
         let opts = &self.params.still;
-        let still = match self.lead {
-            _ if self.speed_seen => opts.still_by_speed(o.speeds, o.speed_max_mps),
-            Lead::Spread(lead_std) => lead_std.is_some_and(|s| opts.still_by_gyro(o.n, o.sum_dps, o.sum2, s)),
-            Lead::Gathering(_) => true, // within the declared lead-in
+        let still = match self.speed_seen {
+            true => opts.still_by_speed(o.speeds, o.speed_max_mps),
+            false => self.gyro_still.update(opts, o.k < self.lead_in_s(), o.n, o.sum_dps, o.sum2),
         };
         if let Some(filter) = self.filter.as_mut() {
             if opts.moving_by_speed(o.speeds, o.speed_max_mps) {
@@ -258,7 +240,7 @@ mod tests {
         let mut s = PipelineStream::new(PipelineParams { bias_s: Some(5.0), ..Default::default() }).unwrap();
         let mut stops = 0;
         for i in 0..200 {
-            let w = 0.3 + if i % 2 == 0 { 0.01 } else { -0.01 };
+            let w = 0.3 + if i % 2 == 0 { 0.01 } else { -0.01 } + 0.005 * (0.37 * i as f64).sin();
             s.update(i as f64 * 0.1, w, f64::NAN).unwrap();
             stops += s.last_block().is_some_and(|o| o.stop && i > 70) as usize;
         }

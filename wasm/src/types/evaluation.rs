@@ -61,7 +61,7 @@ export interface Report {
 
 /** Settings of the pipeline (all optional; defaults chosen on the battery's training cases). */
 export interface PipelineOptions {
-  still?: { still_speed_mps?: number; still_travel_m?: number; still_gyro_factor?: number };
+  still?: { still_speed_mps?: number; still_travel_m?: number; still_gyro_factor?: number; still_agree_factor?: number };
   min_still_s?: number;
   stop_sigma_dps?: number;
   max_bias_dps?: number;
