@@ -10,9 +10,10 @@
 //! `still_speed_mps`; a block without one is moving), as the batch path does for a log with
 //! a speed column. Before that, by the gyro alone, as the batch path does for a log without
 //! speed or wheels: the declared lead-in's blocks stand, and after it `still::GyroStill`
-//! judges each block against the lead-in (its spread, and the agreement of the last block
-//! means). Without a usable lead-in (see `GyroStill::from_lead_in`) and without speeds no
-//! block after the lead-in is still, as in the batch path. (The batch path's third source, wheel travel, is not streamed.)
+//! (the batch path's own) judges each block against the lead-in (its spread, and the
+//! agreement of the last block means). Without a usable lead-in (`GyroStill::reference`)
+//! and without speeds no block after the lead-in is still, as in the batch path. (The
+//! batch path's third source, wheel travel, is not streamed.)
 //! A declared lead-in ends early at the first block whose speeds show the vehicle moving,
 //! as `Prepared::lead_in_end_s` ends it for the batch path.
 
