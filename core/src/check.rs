@@ -33,7 +33,8 @@ impl Severity {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Finding {
     pub severity: Severity,
-    /// A stable name: time_unit, gap, heading_unit, gyro_unit, gyro_sign, gyro_scale, bias, lead_in, outlier.
+    /// A stable name: time_unit, gap, heading_unit, gyro_unit, gyro_sign, gyro_scale, bias,
+    /// lead_in, no_stops, outlier.
     pub code: String,
     pub message: String,
     /// The recipe field or setting that fixes it.
@@ -141,6 +142,11 @@ pub fn check(log: &DriveLog) -> CheckReport {
 fn lead_in(r: &mut CheckReport, log: &DriveLog) -> Option<f64> {
     let bias_s = log.bias_s(None);
     let (blocks, source) = crate::still::blocks(log, bias_s, &Default::default()).ok()?;
+    if source == crate::still::StillSource::None {
+        let message =
+            "no speed, wheel travel or stationary lead-in (3 s at 5 Hz or more): no stops for ZARU and the pipeline (which learns the bias from the road alone)";
+        r.findings.push(finding(Severity::Info, "no_stops", message.into(), Some("a speed column, or # bias_s: N for a standing start")));
+    }
     let m = (blocks.first_moving_s? - log.time_s().first()?).floor();
     let k = (m - 1.0).max(0.0);
     let by = if source == crate::still::StillSource::Odometry { "wheel travel" } else { "speed" };
@@ -397,6 +403,13 @@ mod tests {
         let r = check(&wheels);
         let f = r.findings.iter().find(|f| f.code == "lead_in").unwrap_or_else(|| panic!("{}", r.to_text()));
         assert!(f.message.contains("the wheel travel shows"), "{}", f.message);
+        // Neither speed nor wheels: the gyro against the lead-in finds the stops; without a
+        // lead-in nothing can, which the check says.
+        let info = |l: &DriveLog| check(l).findings.iter().any(|f| f.code == "no_stops" && f.severity == Severity::Info);
+        assert!(!info(&city()) && !info(&no_speed));
+        let mut cut = no_speed.clone();
+        cut.meta.bias_s = Some(0.0);
+        assert!(info(&cut), "{}", check(&cut).to_text());
     }
 
     /// A turn-on bias of 1.5 deg/s and no lead-in (the robustness battery's "bias -1.5 cut"):

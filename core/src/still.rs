@@ -77,7 +77,7 @@ impl GyroStill {
         }
         self.means.push(mean);
         if self.means.len() > AGREE_BLOCKS {
-            self.means.remove(0);
+            self.means.drain(..1);
         }
         let agree = self.means.len() == AGREE_BLOCKS && crate::metrics::mean_std(&self.means).1 <= opts.still_agree_factor * scatter;
         agree && (sum2 / n as f64 - mean * mean).max(0.0).sqrt() <= opts.still_gyro_factor * std
