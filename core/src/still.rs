@@ -111,7 +111,8 @@ pub enum StillSource {
     Speed,
     Odometry,
     Gyro,
-    /// No speed, no wheels, and no lead-in to compare the gyro with: never still.
+    /// No speed, no wheels, and no usable lead-in to compare the gyro with: no block after
+    /// the declared lead-in is still.
     None,
 }
 
@@ -247,10 +248,10 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
     if out.is_empty() {
         return Err(Error::data("the gyro_dps column has no values"));
     }
-    // No lead-in to compare the gyro with: never still.
+    // No usable lead-in to compare the gyro with: no block after the lead-in is still
+    // (`GyroStill::update` says so), and the source says why.
     if source == StillSource::Gyro && gyro_still.reference().is_none() {
         source = StillSource::None;
-        out.still.fill(false);
     }
     Ok((out, source))
 }

@@ -248,6 +248,35 @@ mod tests {
         assert!(stops > 0);
     }
 
+    /// Without speed and with a lead-in too short to judge the gyro against (2 s: 2 blocks,
+    /// 3 needed): the lead-in's blocks stand, none after it, in both paths alike.
+    #[test]
+    fn a_lead_in_too_short_for_the_gyro_gives_the_batch_paths_headings() {
+        let full = city(6.0);
+        let mut log = crate::DriveLog::with_columns(&[crate::Column::GyroDps]);
+        log.meta.bias_s = Some(2.0);
+        for (&t, &w) in full.time_s().iter().zip(full.column(crate::Column::GyroDps).unwrap()) {
+            log.push_row(&[(crate::Column::TimeS, t), (crate::Column::GyroDps, w)]);
+        }
+        let params = PipelineParams { bias_s: Some(2.0), ..Default::default() };
+        let prep = Prepared::new(&log, params.bias_s, &params.still).unwrap();
+        assert_eq!(prep.source, crate::still::StillSource::None);
+        let batch = prep.pipeline_trace(&params).unwrap();
+        let (t, w) = (log.time_s(), log.column(crate::Column::GyroDps).unwrap());
+        let mut s = PipelineStream::new(params).unwrap();
+        let mut j = 0;
+        for i in 0..t.len() {
+            let before = s.last.map(|(_, stamp)| stamp);
+            s.update(t[i], w[i], f64::NAN).unwrap();
+            if let Some((o, _)) = s.last.filter(|(_, stamp)| Some(*stamp) != before) {
+                assert_eq!((o.heading_deg, o.bias_dps, o.stop), (batch.heading_deg[j], batch.bias_dps[j], batch.stop[j]), "block {j}");
+                assert!(!o.stop || j < 2, "block {j} stands after the lead-in");
+                j += 1;
+            }
+        }
+        assert_eq!(j, batch.time_s.len() - 1);
+    }
+
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(100))]
         /// Any rows (irregular steps, rates far beyond a bias, speeds missing, negative or
