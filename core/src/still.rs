@@ -55,7 +55,7 @@ pub struct GyroStill {
     /// Block means: the lead-in's, then the last [`AGREE_BLOCKS`] after it.
     means: Vec<f64>,
     /// Once the lead-in is over: its rows' and its block means' standard deviations, or
-    /// None when it cannot be used (never still).
+    /// None when it cannot be used (no block after the lead-in is still).
     reference: Option<Option<(f64, f64)>>,
 }
 
