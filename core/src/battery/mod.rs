@@ -109,8 +109,24 @@ fn p(name: &str, training: bool, errors: GyroErrors) -> Profile {
 pub fn profiles() -> Vec<Profile> {
     let e = GyroErrors::default();
     let cut = GyroErrors { cut_lead_in: true, ..e };
-    let go = GyroErrors { gyro_only: true, ..e };
-    let cut_go = GyroErrors { gyro_only: true, ..cut };
+    // The gyro-only class repeats these, with the speed and wheel columns dropped.
+    let go = |errors: GyroErrors| GyroErrors { gyro_only: true, ..errors };
+    let vibration_a = GyroErrors { vibration_noise_dps: 0.3, vibration_bias_dps: 0.05, seed: 14, ..e };
+    let vibration_b = GyroErrors { vibration_noise_dps: 0.6, vibration_bias_dps: -0.1, seed: 27, ..e };
+    let warm_up_b = GyroErrors { warmup_dps: -0.8, warmup_tau_s: 600.0, ..e };
+    let mems_a =
+        GyroErrors { bias_dps: 1.0, warmup_dps: 0.5, warmup_tau_s: 400.0, walk_dps_per_sqrt_s: 0.003, scale: 0.01, seed: 13, ..cut };
+    let mems_b = GyroErrors {
+        bias_dps: -1.5,
+        warmup_dps: -0.7,
+        warmup_tau_s: 500.0,
+        walk_dps_per_sqrt_s: 0.005,
+        scale: -0.015,
+        noise_dps: 0.2,
+        lsb_dps: 0.07,
+        seed: 25,
+        ..cut
+    };
     vec![
         p("as-is", true, e),
         // training strengths
@@ -124,28 +140,20 @@ pub fn profiles() -> Vec<Profile> {
         p("rate-dep 1 %", true, GyroErrors { rate_dep: 0.01, ..e }),
         p("g-sens 0.05", true, GyroErrors { g_sens_dps_per_mps2: 0.05, ..e }),
         p("lsb 0.1", true, GyroErrors { lsb_dps: 0.1, ..e }),
-        p("vibration 0.3 / +0.05", true, GyroErrors { vibration_noise_dps: 0.3, vibration_bias_dps: 0.05, seed: 14, ..e }),
-        p(
-            "cheap MEMS A cut",
-            true,
-            GyroErrors { bias_dps: 1.0, warmup_dps: 0.5, warmup_tau_s: 400.0, walk_dps_per_sqrt_s: 0.003, scale: 0.01, seed: 13, ..cut },
-        ),
-        p("as-is gyro-only", true, go),
-        p("bias +0.5 gyro-only", true, GyroErrors { bias_dps: 0.5, ..go }),
-        p("bias -1.5 cut gyro-only", true, GyroErrors { bias_dps: -1.5, ..cut_go }),
-        p("vibration 0.3 / +0.05 gyro-only", true, GyroErrors { vibration_noise_dps: 0.3, vibration_bias_dps: 0.05, seed: 14, ..go }),
-        p(
-            "cheap MEMS A cut gyro-only",
-            true,
-            GyroErrors { bias_dps: 1.0, warmup_dps: 0.5, warmup_tau_s: 400.0, walk_dps_per_sqrt_s: 0.003, scale: 0.01, seed: 13, ..cut_go },
-        ),
+        p("vibration 0.3 / +0.05", true, vibration_a),
+        p("cheap MEMS A cut", true, mems_a),
+        p("as-is gyro-only", true, go(e)),
+        p("bias +0.5 gyro-only", true, go(GyroErrors { bias_dps: 0.5, ..e })),
+        p("bias -1.5 cut gyro-only", true, go(GyroErrors { bias_dps: -1.5, ..cut })),
+        p("vibration 0.3 / +0.05 gyro-only", true, go(vibration_a)),
+        p("cheap MEMS A cut gyro-only", true, go(mems_a)),
         // scoring strengths and seeds
         p("bias -0.1", false, GyroErrors { bias_dps: -0.1, ..e }),
         p("bias +0.3 cut", false, GyroErrors { bias_dps: 0.3, ..cut }),
         p("bias +1 cut", false, GyroErrors { bias_dps: 1.0, ..cut }),
         p("bias -2 cut", false, GyroErrors { bias_dps: -2.0, ..cut }),
         p("bias -3", false, GyroErrors { bias_dps: -3.0, ..e }),
-        p("warm-up -0.8 (600 s)", false, GyroErrors { warmup_dps: -0.8, warmup_tau_s: 600.0, ..e }),
+        p("warm-up -0.8 (600 s)", false, warm_up_b),
         p("warm-up +2 (200 s) cut", false, GyroErrors { warmup_dps: 2.0, warmup_tau_s: 200.0, ..cut }),
         p("walk 0.002", false, GyroErrors { walk_dps_per_sqrt_s: 0.002, seed: 21, ..e }),
         p("walk 0.01 cut", false, GyroErrors { walk_dps_per_sqrt_s: 0.01, seed: 22, ..cut }),
@@ -157,41 +165,13 @@ pub fn profiles() -> Vec<Profile> {
         p("g-sens -0.1", false, GyroErrors { g_sens_dps_per_mps2: -0.1, ..e }),
         p("lsb 0.05", false, GyroErrors { lsb_dps: 0.05, ..e }),
         p("vibration 0.15 / +0.02", false, GyroErrors { vibration_noise_dps: 0.15, vibration_bias_dps: 0.02, seed: 26, ..e }),
-        p("vibration 0.6 / -0.1", false, GyroErrors { vibration_noise_dps: 0.6, vibration_bias_dps: -0.1, seed: 27, ..e }),
-        p(
-            "cheap MEMS B cut",
-            false,
-            GyroErrors {
-                bias_dps: -1.5,
-                warmup_dps: -0.7,
-                warmup_tau_s: 500.0,
-                walk_dps_per_sqrt_s: 0.005,
-                scale: -0.015,
-                noise_dps: 0.2,
-                lsb_dps: 0.07,
-                seed: 25,
-                ..cut
-            },
-        ),
-        p("bias -1 gyro-only", false, GyroErrors { bias_dps: -1.0, ..go }),
-        p("bias +2 cut gyro-only", false, GyroErrors { bias_dps: 2.0, ..cut_go }),
-        p("warm-up -0.8 (600 s) gyro-only", false, GyroErrors { warmup_dps: -0.8, warmup_tau_s: 600.0, ..go }),
-        p("vibration 0.6 / -0.1 gyro-only", false, GyroErrors { vibration_noise_dps: 0.6, vibration_bias_dps: -0.1, seed: 27, ..go }),
-        p(
-            "cheap MEMS B cut gyro-only",
-            false,
-            GyroErrors {
-                bias_dps: -1.5,
-                warmup_dps: -0.7,
-                warmup_tau_s: 500.0,
-                walk_dps_per_sqrt_s: 0.005,
-                scale: -0.015,
-                noise_dps: 0.2,
-                lsb_dps: 0.07,
-                seed: 25,
-                ..cut_go
-            },
-        ),
+        p("vibration 0.6 / -0.1", false, vibration_b),
+        p("cheap MEMS B cut", false, mems_b),
+        p("bias -1 gyro-only", false, go(GyroErrors { bias_dps: -1.0, ..e })),
+        p("bias +2 cut gyro-only", false, go(GyroErrors { bias_dps: 2.0, ..cut })),
+        p("warm-up -0.8 (600 s) gyro-only", false, go(warm_up_b)),
+        p("vibration 0.6 / -0.1 gyro-only", false, go(vibration_b)),
+        p("cheap MEMS B cut gyro-only", false, go(mems_b)),
     ]
 }
 
