@@ -192,6 +192,16 @@ mod tests {
         prep.source
     }
 
+    /// The log's time and gyro alone, with this declared lead-in.
+    fn gyro_alone(full: &crate::DriveLog, bias_s: Option<f64>) -> crate::DriveLog {
+        let mut log = crate::DriveLog::with_columns(&[crate::Column::GyroDps]);
+        log.meta.bias_s = bias_s;
+        for (&t, &w) in full.time_s().iter().zip(full.column(crate::Column::GyroDps).unwrap()) {
+            log.push_row(&[(crate::Column::TimeS, t), (crate::Column::GyroDps, w)]);
+        }
+        log
+    }
+
     fn city(minutes: f64) -> crate::DriveLog {
         crate::sim::drive::simulate_drive(&crate::sim::DriveConfig { scenario: crate::sim::Scenario::City, minutes, seed: 3 })
     }
@@ -208,11 +218,7 @@ mod tests {
     #[test]
     fn without_speed_the_stream_judges_stops_by_the_gyro_as_the_batch_path_does() {
         let full = city(6.0);
-        let mut log = crate::DriveLog::with_columns(&[crate::Column::GyroDps]);
-        log.meta.bias_s = full.meta.bias_s;
-        for (&t, &w) in full.time_s().iter().zip(full.column(crate::Column::GyroDps).unwrap()) {
-            log.push_row(&[(crate::Column::TimeS, t), (crate::Column::GyroDps, w)]);
-        }
+        let log = gyro_alone(&full, full.meta.bias_s);
         assert_eq!(assert_stream_equals_batch(&log), crate::still::StillSource::Gyro);
     }
 
@@ -252,12 +258,7 @@ mod tests {
     /// 3 needed): the lead-in's blocks stand, none after it, in both paths alike.
     #[test]
     fn a_lead_in_too_short_for_the_gyro_gives_the_batch_paths_headings() {
-        let full = city(6.0);
-        let mut log = crate::DriveLog::with_columns(&[crate::Column::GyroDps]);
-        log.meta.bias_s = Some(2.0);
-        for (&t, &w) in full.time_s().iter().zip(full.column(crate::Column::GyroDps).unwrap()) {
-            log.push_row(&[(crate::Column::TimeS, t), (crate::Column::GyroDps, w)]);
-        }
+        let log = gyro_alone(&city(6.0), Some(2.0));
         let params = PipelineParams { bias_s: Some(2.0), ..Default::default() };
         let prep = Prepared::new(&log, params.bias_s, &params.still).unwrap();
         assert_eq!(prep.source, crate::still::StillSource::None);
