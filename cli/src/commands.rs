@@ -190,6 +190,13 @@ pub fn simulate(req: &gyrodrift::sim::SimRequest, out: Option<&Path>) -> Result<
     write_log(&log, out)
 }
 
+/// `inject`: the log with these gyro errors added to its yaw rate, as a v1 log.
+pub fn inject(log: &Path, errors: &gyrodrift::sim::GyroErrors, out: Option<&Path>) -> Result<(), Failure> {
+    let drive = read_log(log)?;
+    let with = gyrodrift::sim::inject(&drive, errors).map_err(|e| fail(log, e))?;
+    write_log(&with, out)
+}
+
 /// Every shipped sample log under `out` (`realisation` > 0: the same set with other seeds).
 pub fn samples(out: &Path, realisation: u64) -> Result<(), Failure> {
     for s in gyrodrift::sim::samples::SAMPLE_LOGS {

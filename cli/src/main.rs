@@ -12,7 +12,7 @@ mod roads_plot;
 static ALLOC: oom::Graceful = oom::Graceful;
 
 use clap::{Parser, Subcommand};
-use gyrodrift::sim::{SimKind, SimRequest};
+use gyrodrift::sim::{GyroErrors, SimKind, SimRequest};
 use gyrodrift::{battery, DriveLog, Error};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -214,6 +214,20 @@ enum Cmd {
         /// Written as `# name:` in the log.
         #[arg(long)]
         name: Option<String>,
+        #[command(flatten)]
+        errors: ErrorArgs,
+        /// Output file (stdout when absent).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Add gyro errors to a log's yaw rate (the robustness battery's classes: turn-on bias,
+    /// warm-up, random walk, steps, scale, rate-dependent bias, g-sensitivity, vibration,
+    /// noise, quantisation, no lead-in, gyro alone), to see how a method copes with a
+    /// worse gyro on your own drive. Every other column is kept.
+    Inject {
+        log: PathBuf,
+        #[command(flatten)]
+        errors: ErrorArgs,
         /// Output file (stdout when absent).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -290,6 +304,21 @@ enum SplitArg {
     All,
 }
 
+/// Gyro errors to add: a battery profile by name, settings on top.
+#[derive(clap::Args)]
+struct ErrorArgs {
+    /// A robustness-battery error profile by name, as `battery --cases` lists them
+    /// (e.g. "cheap MEMS A cut").
+    #[arg(long)]
+    profile: Option<String>,
+    /// A gyro error setting on top (of the profile, or of none): bias_dps, warmup_dps,
+    /// warmup_tau_s, walk_dps_per_sqrt_s, step_dps, step_every_s, scale, rate_dep,
+    /// g_sens_dps_per_mps2, noise_dps, vibration_noise_dps, vibration_bias_dps, lsb_dps,
+    /// cut_lead_in (0/1), gyro_only (0/1), seed.
+    #[arg(long, value_name = "KEY=VALUE")]
+    error: Vec<String>,
+}
+
 #[derive(Clone, Copy, clap::ValueEnum)]
 enum SimKindArg {
     Drive,
@@ -339,17 +368,31 @@ fn hint_text(h: &gyrodrift::import::ImportHint, what: &str) -> String {
     )
 }
 
-/// Splits `key=value` and parses the value as a number.
-fn parse_set(s: &str) -> Result<(String, f64), Failure> {
-    let (k, v) = s.split_once('=').ok_or_else(|| Failure(format!("--set {s}: expected KEY=VALUE")))?;
-    let value: f64 = v.trim().parse().map_err(|_| Failure(format!("--set {s}: \"{v}\" is not a number")))?;
+/// Splits `key=value` (given with `flag`) and parses the value as a number.
+fn parse_set(flag: &str, s: &str) -> Result<(String, f64), Failure> {
+    let (k, v) = s.split_once('=').ok_or_else(|| Failure(format!("{flag} {s}: expected KEY=VALUE")))?;
+    let value: f64 = v.trim().parse().map_err(|_| Failure(format!("{flag} {s}: \"{v}\" is not a number")))?;
     Ok((k.trim().to_string(), value))
 }
 
 /// Settings from the `--set` pairs on top of the defaults, through core's one schema.
 fn settings<T: gyrodrift::options::Settings>(sets: &[String]) -> Result<T, Failure> {
-    let pairs = sets.iter().map(|s| parse_set(s)).collect::<Result<Vec<_>, _>>()?;
+    let pairs = sets.iter().map(|s| parse_set("--set", s)).collect::<Result<Vec<_>, _>>()?;
     gyrodrift::options::from_pairs(&pairs).map_err(|e| Failure(format!("--set: {e}")))
+}
+
+/// The gyro errors of `--profile` (a battery profile by name) with the `--error` pairs on
+/// top (of no errors without a profile); None when neither is given.
+fn gyro_errors(profile: Option<&str>, sets: &[String]) -> Result<Option<GyroErrors>, Failure> {
+    if profile.is_none() && sets.is_empty() {
+        return Ok(None);
+    }
+    let base = match profile {
+        Some(name) => battery::profile(name).map_err(|e| Failure(format!("--profile: {e}")))?.errors,
+        None => GyroErrors::default(),
+    };
+    let pairs = sets.iter().map(|s| parse_set("--error", s)).collect::<Result<Vec<_>, _>>()?;
+    gyrodrift::options::from_pairs_on(&base, &pairs).map(Some).map_err(|e| Failure(format!("--error: {e}")))
 }
 
 /// Reads a recipe (TOML, or JSON by extension) and imports its files from `data` (default:
@@ -411,15 +454,20 @@ fn run(cli: Cli) -> Result<(), Failure> {
             c::report(&files, &set, !no_resample, json, markdown, csv, input)
         }
         Cmd::Tune { train, test, json, markdown } => c::tune(&train, &test, json, markdown, input),
-        Cmd::Simulate { kind, scenario, minutes, seed, name, out } => {
+        Cmd::Simulate { kind, scenario, minutes, seed, name, errors, out } => {
             let kind = match kind {
                 SimKindArg::Drive => SimKind::Drive,
                 SimKindArg::Robot => SimKind::Robot,
                 SimKindArg::Turntable => SimKind::Turntable,
                 SimKindArg::Static => SimKind::Static,
             };
-            c::simulate(&SimRequest { kind, scenario, minutes, seed, name }, out.as_deref())
+            let errors = gyro_errors(errors.profile.as_deref(), &errors.error)?;
+            c::simulate(&SimRequest { kind, scenario, minutes, seed, name, errors }, out.as_deref())
         }
+        Cmd::Inject { log, errors: e, out } => match gyro_errors(e.profile.as_deref(), &e.error)? {
+            Some(errors) => c::inject(&log, &errors, out.as_deref()),
+            None => Err(Failure("inject: name the errors to add (--profile NAME, --error KEY=VALUE or both)".into())),
+        },
         Cmd::Samples { out, realisation } => c::samples(&out, realisation),
         Cmd::Battery { recipes, logs, data, minutes, draw, write_case: Some(case), out, .. } => {
             let given = c::BatteryInput { recipes: &recipes, logs: &logs, data: data.as_deref(), input };

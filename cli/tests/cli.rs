@@ -596,3 +596,45 @@ fn battery_runs_the_profiles_on_a_users_own_log() {
     assert_eq!(training.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&training.stderr).contains("the drives you add are scoring bases"));
 }
+
+/// The column `name` of a v1 log's text (empty cells as NaN).
+fn column(text: &str, name: &str) -> Vec<f64> {
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let i = lines.next().unwrap().split(',').position(|h| h == name).unwrap_or_else(|| panic!("no {name}"));
+    lines.map(|l| l.split(',').nth(i).unwrap().parse().unwrap_or(f64::NAN)).collect()
+}
+
+/// `inject` adds the named errors to the yaw rate and keeps the rest; `simulate` takes the
+/// same flags; the log's description says what was added. Nothing named, an unknown
+/// profile or setting: exit 2 naming them.
+#[test]
+fn inject_and_simulate_add_the_named_gyro_errors() {
+    let log = write("inject-in.csv", &drive_csv());
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("inject-out.csv");
+    let o = run(&["inject", log.to_str().unwrap(), "--error", "bias_dps=0.5", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (before, after) = (drive_csv(), std::fs::read_to_string(&out).unwrap());
+    let (g0, g1) = (column(&before, "gyro_dps"), column(&after, "gyro_dps"));
+    assert_eq!(g0.len(), g1.len());
+    assert!(g0.iter().zip(&g1).all(|(a, b)| (b - a - 0.5).abs() < 1e-9));
+    assert_eq!(column(&before, "speed_mps"), column(&after, "speed_mps"));
+    assert!(after.lines().any(|l| l.starts_with("# description:") && l.ends_with("gyro errors added: bias_dps=0.5")), "{after}");
+
+    let o = run(&["simulate", "drive", "--minutes", "2", "--profile", "bias -1.5 cut", "--error", "gyro_only=1"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("gyro errors added: bias_dps=-1.5, cut_lead_in=1, gyro_only=1"), "{text}");
+    assert!(!text.lines().find(|l| !l.starts_with('#')).unwrap().contains("speed_mps"));
+
+    for (args, says) in [
+        (vec!["inject", log.to_str().unwrap()], "name the errors to add"),
+        (vec!["inject", log.to_str().unwrap(), "--profile", "bias 9"], "\"cheap MEMS A cut\""),
+        (vec!["inject", log.to_str().unwrap(), "--error", "bias=1"], "bias_dps"),
+        (vec!["simulate", "drive", "--error", "noise_dps=-1"], "noise_dps"),
+    ] {
+        let o = run(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says) && err.lines().count() == 1, "{args:?}: {err}");
+    }
+}

@@ -162,10 +162,24 @@ mod tests {
 
     #[test]
     fn compare_matches_the_single_runs_and_means() {
-        let a =
-            simulate(&SimRequest { kind: SimKind::Drive, scenario: Some("city".into()), minutes: Some(4.0), seed: 3, name: None }).unwrap();
-        let b = simulate(&SimRequest { kind: SimKind::Drive, scenario: Some("highway".into()), minutes: Some(4.0), seed: 4, name: None })
-            .unwrap();
+        let a = simulate(&SimRequest {
+            kind: SimKind::Drive,
+            scenario: Some("city".into()),
+            minutes: Some(4.0),
+            seed: 3,
+            name: None,
+            errors: None,
+        })
+        .unwrap();
+        let b = simulate(&SimRequest {
+            kind: SimKind::Drive,
+            scenario: Some("highway".into()),
+            minutes: Some(4.0),
+            seed: 4,
+            name: None,
+            errors: None,
+        })
+        .unwrap();
         let p = PipelineParams::default();
         let c = compare(&[("a".into(), &a), ("b".into(), &b)], &p, Some(HdrParams { i_c_dps: 0.01, ..Default::default() })).unwrap();
         let ra = crate::pipeline::run(&a, &p).unwrap().result.unwrap();

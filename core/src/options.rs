@@ -81,6 +81,30 @@ pub fn from_pairs<T: Settings>(pairs: &[(String, f64)]) -> Result<T> {
     from_json(Value::Object(obj))
 }
 
+/// Settings from `key=value` pairs on top of `base` (a battery profile's gyro errors, say):
+/// a key is a field name (no aliases, nothing nested) and a yes/no field takes 0 or 1.
+/// Validated.
+pub fn from_pairs_on<T: Settings>(base: &T, pairs: &[(String, f64)]) -> Result<T> {
+    let base = serde_json::to_value(base).map_err(|e| Error::param("options", e.to_string()))?;
+    let mut obj = base.as_object().cloned().unwrap_or_default();
+    for (k, v) in pairs {
+        let value = match obj.get(k.as_str()) {
+            None => {
+                let known: Vec<&str> = obj.keys().map(String::as_str).collect();
+                return Err(Error::param(k, format!("unknown setting; the settings are {}", known.join(", "))));
+            }
+            Some(Value::Bool(_)) if *v == 0.0 || *v == 1.0 => Value::Bool(*v == 1.0),
+            Some(Value::Bool(_)) => return Err(Error::param(k, format!("{v} is not 0 (no) or 1 (yes)"))),
+            Some(_) if v.fract() == 0.0 && v.abs() < 9e15 => Value::from(*v as i64),
+            Some(_) => {
+                serde_json::Number::from_f64(*v).map(Value::Number).ok_or_else(|| Error::param(k, format!("{v} is not a finite number")))?
+            }
+        };
+        obj.insert(k.clone(), value);
+    }
+    from_json(Value::Object(obj))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -100,6 +124,23 @@ mod tests {
         assert_eq!(p.still.still_speed_mps, 0.5);
         assert_eq!(p.forget_s, 100.0);
         assert_eq!(p.still.still_travel_m, PipelineParams::default().still.still_travel_m);
+    }
+
+    /// On top of a base, not the defaults: its other fields kept, a field set to its default
+    /// value still set, a yes/no field by 0 or 1; an unknown key or a yes/no of 0.5 refused.
+    #[test]
+    fn pairs_on_a_base_hand_worked() {
+        use crate::sim::GyroErrors;
+        let base = GyroErrors { bias_dps: 1.5, scale: 0.02, cut_lead_in: true, ..GyroErrors::default() };
+        let e: GyroErrors =
+            from_pairs_on(&base, &pairs(&[("bias_dps", 0.0), ("gyro_only", 1.0), ("cut_lead_in", 0.0), ("seed", 7.0)])).unwrap();
+        assert_eq!(e, GyroErrors { bias_dps: 0.0, scale: 0.02, gyro_only: true, seed: 7, ..GyroErrors::default() });
+        let err = from_pairs_on(&base, &pairs(&[("bias", 1.0)])).unwrap_err();
+        assert!(matches!(&err, Error::Param { name, message } if name == "bias" && message.contains("bias_dps")), "{err}");
+        let err = from_pairs_on(&base, &pairs(&[("gyro_only", 0.5)])).unwrap_err();
+        assert!(matches!(&err, Error::Param { name, .. } if name == "gyro_only"), "{err}");
+        let err = from_pairs_on(&base, &pairs(&[("noise_dps", -1.0)])).unwrap_err();
+        assert!(matches!(&err, Error::Param { name, .. } if name == "noise_dps"), "{err}");
     }
 
     #[test]

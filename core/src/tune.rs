@@ -395,6 +395,7 @@ mod cv_tests {
                     minutes: Some(4.0),
                     seed: 40 + i,
                     name: None,
+                    errors: None,
                 })
                 .unwrap();
                 PreparedDrive::new(&format!("d{i}"), &log, None, true).unwrap()

@@ -31,7 +31,7 @@ fn every_kind_simulates_and_parses_back() {
         (SimKind::Turntable, None, LogKind::Turntable),
         (SimKind::Static, None, LogKind::Static),
     ] {
-        let req = SimRequest { kind, scenario: scenario.map(String::from), minutes: Some(3.0), seed: 5, name: None };
+        let req = SimRequest { kind, scenario: scenario.map(String::from), minutes: Some(3.0), seed: 5, name: None, errors: None };
         let log = sim::simulate(&req).unwrap();
         assert_eq!(log.kind(), want);
         let back = parse_log(&csv(&log)[..]).unwrap();
@@ -95,4 +95,37 @@ fn tuning_lands_in_the_known_best_region() {
     assert!(r.params.i_c_dps > 0.005, "{:?}", r.params);
     let table3 = tune::objective(&drives, HdrParams::table_iii()).unwrap();
     assert!(r.objective_tuned_deg_per_min <= table3);
+}
+
+/// A request's gyro errors are the battery's, added to the simulated rate: a static log
+/// with a 1 deg/s turn-on bias reads its error-free twin + 1 on every row, and nothing
+/// else moves. A battery profile by name with a setting on top (its bias set back to 0,
+/// the default value, which must still override the profile's) gives the twin itself.
+#[test]
+fn a_request_with_gyro_errors_adds_them_to_the_simulated_rate() {
+    use gyrodrift::options::from_pairs_on;
+    let plain = SimRequest { kind: SimKind::Static, minutes: Some(2.0), seed: 9, ..Default::default() };
+    let clean = sim::simulate(&plain).unwrap();
+    let errors = sim::GyroErrors { bias_dps: 1.0, ..Default::default() };
+    let biased = sim::simulate(&SimRequest { errors: Some(errors), ..plain.clone() }).unwrap();
+    let (g0, g1) = (clean.column(Column::GyroDps).unwrap(), biased.column(Column::GyroDps).unwrap());
+    assert_eq!(g0.len(), g1.len());
+    assert!(g0.iter().zip(g1).all(|(a, b)| (b - a - 1.0).abs() < 1e-12));
+    assert_eq!(clean.time_s(), biased.time_s());
+    assert!(
+        biased.meta.description.as_deref().is_some_and(|d| d.ends_with("; gyro errors added: bias_dps=1.0")),
+        "{:?}",
+        biased.meta.description
+    );
+    let profile = gyrodrift::battery::profile("bias +0.5").unwrap();
+    assert_eq!(profile.errors.bias_dps, 0.5);
+    let back: sim::GyroErrors = from_pairs_on(&profile.errors, &[("bias_dps".into(), 0.0)]).unwrap();
+    let same = sim::simulate(&SimRequest { errors: Some(back), ..plain.clone() }).unwrap();
+    assert_eq!(csv(&same), csv(&clean));
+    // Bad settings name the field, a bad profile names the profiles.
+    let nan = sim::GyroErrors { scale: f64::NAN, ..Default::default() };
+    let e = sim::simulate(&SimRequest { errors: Some(nan), ..plain }).unwrap_err().to_string();
+    assert!(e.contains("scale"), "{e}");
+    let e = gyrodrift::battery::profile("bias +9").unwrap_err().to_string();
+    assert!(e.contains("bias +9") && e.contains("\"cheap MEMS A cut\""), "{e}");
 }

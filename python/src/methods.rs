@@ -2,14 +2,14 @@
 //! variants add the per-sample series as float64 arrays for plotting.
 
 use crate::log::{read_path, PyLog};
-use crate::{array, flags, from_py, result_dict, series, settings, value_err};
+use crate::{array, flags, from_py, result_dict, series, settings, to_py, value_err};
 use gyrodrift as g;
 use gyrodrift::hdr::HdrOptions;
 use gyrodrift::pipeline::PipelineParams;
 use gyrodrift::DriveLog;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::{PyDict, PyList, PyTuple};
 
 /// `{result, error, ...}` of a run: the Result keys, or None and why there are none.
 fn run_dict<'py, T: serde::Serialize>(py: Python<'py>, r: &gyrodrift::Result<T>) -> PyResult<Bound<'py, PyDict>> {
@@ -274,6 +274,23 @@ fn simulate(py: Python<'_>, request: Option<&Bound<'_, PyAny>>) -> PyResult<PyLo
     py.detach(|| g::sim::simulate(&req)).map(PyLog::new).map_err(value_err)
 }
 
+/// The log with these gyro errors added to its yaw rate, as `gyrodrift inject` (the
+/// battery's classes; `battery_profiles()` for its own): `add_gyro_errors(log, {"bias_dps": 1})`.
+#[pyfunction]
+#[pyo3(signature = (log, errors=None))]
+fn add_gyro_errors(py: Python<'_>, log: &PyLog, errors: Option<&Bound<'_, PyAny>>) -> PyResult<PyLog> {
+    let e: g::sim::GyroErrors = settings("add_gyro_errors", errors)?;
+    let log = log.log.clone();
+    py.detach(|| g::sim::inject(&log, &e)).map(PyLog::new).map_err(value_err)
+}
+
+/// The robustness battery's gyro error profiles: dicts of name, training and errors.
+#[pyfunction]
+fn battery_profiles(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
+    let v = serde_json::to_value(g::battery::profiles()).map_err(value_err)?;
+    to_py(py, &v)?.into_bound(py).cast_into::<PyList>().map_err(|_| value_err("profiles that are not a list"))
+}
+
 /// Imports recorded files by a recipe (a dict, or the path of a TOML or JSON recipe);
 /// files are read from `data_dir` (default: the recipe's folder, or the working folder for
 /// a dict). Returns `(log, summary)`.
@@ -374,6 +391,8 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(table, m)?)?;
     m.add_function(wrap_pyfunction!(tune, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(add_gyro_errors, m)?)?;
+    m.add_function(wrap_pyfunction!(battery_profiles, m)?)?;
     m.add_function(wrap_pyfunction!(import_log, m)?)?;
     m.add_function(wrap_pyfunction!(import_files, m)?)?;
     m.add_function(wrap_pyfunction!(defaults, m)?)?;

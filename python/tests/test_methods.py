@@ -198,6 +198,25 @@ def test_simulate_equals_the_cli(cli):
     assert log.to_csv() == cli("simulate", "drive", "--scenario", "city", "--minutes", "3", "--seed", "7")
 
 
+def test_gyro_errors_equal_the_clis_inject_and_simulate(cli, samples):
+    file = str(samples / "test" / "city-3.csv")
+    log = g.read_log(file)
+    before = log.to_csv()
+    mems = next(p for p in g.battery_profiles() if p["name"] == "cheap MEMS A cut")
+    assert mems["training"] and mems["errors"]["cut_lead_in"] is True
+    worse = g.add_gyro_errors(log, {**mems["errors"], "seed": 4})
+    assert worse.to_csv() == cli("inject", file, "--profile", "cheap MEMS A cut", "--error", "seed=4")
+    sim = g.simulate({"kind": "drive", "scenario": "rural", "minutes": 2, "seed": 3, "errors": {"bias_dps": -1.5, "gyro_only": True}})
+    assert sim.to_csv() == cli(
+        "simulate", "drive", "--scenario", "rural", "--minutes", "2", "--seed", "3", "--error", "bias_dps=-1.5", "--error", "gyro_only=1"
+    )
+    with pytest.raises(ValueError, match="noise_dps"):
+        g.add_gyro_errors(log, {"noise_dps": -1})
+    with pytest.raises(ValueError, match="bias"):
+        g.add_gyro_errors(log, {"bias": 1})
+    assert log.to_csv() == before
+
+
 def test_bad_input_raises_with_file_line_and_column(tmp_path):
     bad = tmp_path / "bad.csv"
     bad.write_text("time_s,gyro_dps,ref_heading_deg\n0,0.1,0\n1,abc,0\n")

@@ -72,6 +72,24 @@ test("simulate in wasm writes the same sample log as the native CLI", () => {
   assert.equal(log.toCsv(), readFileSync(join(SAMPLES, "turntable", "session.csv"), "utf8"));
 });
 
+test("addGyroErrors and simulate's errors equal the native CLI's inject; bad errors name the field", () => {
+  const file = join(SAMPLES, "test", "city-3.csv");
+  const log = gd.Log.parse(readFileSync(file, "utf8"));
+  const before = log.toCsv();
+  const profiles = gd.batteryProfiles();
+  const mems = profiles.find((p) => p.name === "cheap MEMS A cut");
+  assert.ok(mems && mems.training && mems.errors.cut_lead_in, JSON.stringify(mems));
+  const worse = gd.addGyroErrors(log, { ...mems.errors, seed: 4 });
+  assert.equal(worse.toCsv(), cli("inject", file, "--profile", "cheap MEMS A cut", "--error", "seed=4"));
+  const sim = gd.simulate({ kind: "drive", scenario: "rural", minutes: 2, seed: 3, errors: { bias_dps: -1.5, gyro_only: true } });
+  assert.equal(sim.toCsv(), cli("simulate", "drive", "--scenario", "rural", "--minutes", "2", "--seed", "3", "--error", "bias_dps=-1.5", "--error", "gyro_only=1"));
+  assert.throws(() => gd.addGyroErrors(log, { scale: "x" }), /addGyroErrors options: parameter scale/);
+  assert.throws(() => gd.addGyroErrors(log, { noise_dps: -1 }), /noise_dps/);
+  assert.throws(() => gd.simulate({ errors: { bias: 1 } }), /bias/);
+  // The log given is untouched.
+  assert.equal(log.toCsv(), before);
+});
+
 test("the Node fleet example prints the same report as the CLI", () => {
   const dir = join(SAMPLES, "train");
   const out = execFileSync("node", [join(ROOT, "examples", "node", "report.mjs"), dir], { encoding: "utf8" });
@@ -311,7 +329,7 @@ test("the browser's core module is <= 200 KB gzipped and gives the whole package
   assert.equal(typeof mod.pipeline, "function");
   assert.equal(typeof mod.isDriveLog, "function");
   // Import, tuning, simulation and charts are not in it: they are the full and plot modules.
-  for (const f of ["importLog", "detectImport", "tune", "simulate", "drawChart"]) assert.equal(mod[f], undefined, f);
+  for (const f of ["importLog", "detectImport", "tune", "simulate", "addGyroErrors", "batteryProfiles", "drawChart"]) assert.equal(mod[f], undefined, f);
   const full = await import(join(pkg, "full", "gyrodrift.js"));
   assert.equal(typeof full.importLog, "function");
   const plot = await import(join(pkg, "plot", "gyrodrift_plot.js"));

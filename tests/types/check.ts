@@ -1,6 +1,6 @@
 // Compiled with `tsc --noEmit`: the package's types describe options and results (no `any`).
-import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, isDriveLog, pipeline, runPipeline, compare, checkLog, battery, batteryMarkdown, PipelineEstimator } from "gyrodrift";
-import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, PipelineResult, PipelineRun, Compare, CheckReport, CheckFinding, GapSplit, Battery, BatteryCase, PipelineState } from "gyrodrift";
+import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, isDriveLog, pipeline, runPipeline, compare, checkLog, battery, batteryMarkdown, PipelineEstimator, addGyroErrors, batteryProfiles } from "gyrodrift";
+import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, PipelineResult, PipelineRun, Compare, CheckReport, CheckFinding, GapSplit, Battery, BatteryCase, PipelineState, GyroErrors, BatteryProfile } from "gyrodrift";
 
 const log: Log = Log.parse("time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1,0\n");
 const opts: HdrOptions = { i_c_dps: 0.0422, tau_s: 0.75, resample: true };
@@ -15,7 +15,13 @@ const rep: Report = report([log], {});
 const t: TuneReport = tune([log], undefined, { max_iters: 10, cross_validate: true, regularization_deg_per_min: 0.05 });
 const tcv: number | undefined = t.result.cv?.cv_tuned_deg_per_min;
 const trec: boolean = t.result.recommended_is_tuned;
-const sim: Log = simulate({ kind: "drive", scenario: "city", minutes: 5, seed: 1 });
+const sim: Log = simulate({ kind: "drive", scenario: "city", minutes: 5, seed: 1, errors: { bias_dps: 1, cut_lead_in: true } });
+const profiles: BatteryProfile[] = batteryProfiles();
+const mems: GyroErrors = { ...profiles[0].errors, walk_dps_per_sqrt_s: 0.003 };
+const worse: Log = addGyroErrors(sim, mems);
+const cutFlag: boolean = profiles[0].errors.cut_lead_in;
+// @ts-expect-error: gyro errors are typed, a yes/no is not a number
+addGyroErrors(sim, { gyro_only: 1 });
 declare const cal: CalibrationRun;
 const c0: number = cal.C[0][0] + cal.sets[0].w_g_dps;
 // @ts-expect-error: options are typed, a string is not a number

@@ -175,6 +175,15 @@ pub fn profiles() -> Vec<Profile> {
     ]
 }
 
+/// The profile of this name (as the battery lists them), or an error naming them all.
+pub fn profile(name: &str) -> Result<Profile> {
+    let all = profiles();
+    let names: Vec<String> = all.iter().map(|p| format!("\"{}\"", p.name)).collect();
+    all.into_iter()
+        .find(|p| p.name == name.trim())
+        .ok_or_else(|| Error::param("profile", format!("no battery profile \"{name}\"; the profiles are {}", names.join(", "))))
+}
+
 /// One case's log as the battery scores it, named "BASE / PROFILE": the base's log with the
 /// profile's gyro errors added, so a case can be opened in the dashboard or run by any
 /// command (its file reproduces the battery's figures: the CSV keeps every value exactly).

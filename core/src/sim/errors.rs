@@ -79,7 +79,28 @@ impl Default for GyroErrors {
     }
 }
 
+impl crate::options::Settings for GyroErrors {
+    fn validate(&self) -> Result<()> {
+        GyroErrors::validate(self)
+    }
+}
+
 impl GyroErrors {
+    /// The settings that differ from no errors, as `key=value` (what `--error` takes), so a
+    /// log's description says how to make it again.
+    pub fn changed(&self) -> Vec<String> {
+        let (Ok(serde_json::Value::Object(me)), Ok(serde_json::Value::Object(none))) =
+            (serde_json::to_value(self), serde_json::to_value(GyroErrors::default()))
+        else {
+            return Vec::new();
+        };
+        let as_number = |v: &serde_json::Value| match v {
+            serde_json::Value::Bool(b) => u8::from(*b).to_string(),
+            other => other.to_string(),
+        };
+        me.iter().filter(|(k, v)| none.get(k.as_str()) != Some(v)).map(|(k, v)| format!("{k}={}", as_number(v))).collect()
+    }
+
     /// Every setting finite and in range.
     pub fn validate(&self) -> Result<()> {
         let all = [
@@ -195,6 +216,14 @@ pub fn inject(log: &DriveLog, e: &GyroErrors) -> Result<DriveLog> {
         for c in [Column::SpeedMps, Column::OdoLeftM, Column::OdoRightM] {
             out.drop_column(c);
         }
+    }
+    let changed = e.changed();
+    if !changed.is_empty() {
+        let added = format!("gyro errors added: {}", changed.join(", "));
+        out.meta.description = Some(match out.meta.description.take() {
+            Some(d) if !d.is_empty() => format!("{d}; {added}"),
+            _ => added,
+        });
     }
     Ok(out)
 }

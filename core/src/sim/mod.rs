@@ -88,6 +88,9 @@ pub struct SimRequest {
     pub seed: u64,
     /// Name written as `# name:`.
     pub name: Option<String>,
+    /// Gyro errors added to the simulated rate (the battery's classes, `errors::inject`);
+    /// None = the simulated gyro as it is.
+    pub errors: Option<GyroErrors>,
 }
 
 impl crate::options::Settings for SimRequest {
@@ -97,14 +100,14 @@ impl crate::options::Settings for SimRequest {
             Some(m) if !(m.is_finite() && m > 0.0 && m <= 24.0 * 60.0) => {
                 Err(crate::Error::param("minutes", format!("{m} is not a duration in (0, 1440] min")))
             }
-            _ => Ok(()),
+            _ => self.errors.as_ref().map_or(Ok(()), GyroErrors::validate),
         }
     }
 }
 
 impl Default for SimRequest {
     fn default() -> Self {
-        SimRequest { kind: SimKind::Drive, scenario: None, minutes: None, seed: 1, name: None }
+        SimRequest { kind: SimKind::Drive, scenario: None, minutes: None, seed: 1, name: None, errors: None }
     }
 }
 
@@ -130,6 +133,9 @@ pub fn simulate(req: &SimRequest) -> crate::Result<crate::DriveLog> {
         SimKind::Turntable => simulate_turntable(&TurntableConfig { seed: req.seed, ..Default::default() }),
         SimKind::Static => simulate_static(&StaticConfig { minutes: req.minutes.unwrap_or(120.0), seed: req.seed }),
     };
+    if let Some(e) = &req.errors {
+        log = inject(&log, e)?;
+    }
     if let Some(n) = &req.name {
         log.meta.name = Some(n.clone());
     }

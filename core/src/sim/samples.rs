@@ -23,6 +23,7 @@ impl SampleLog {
             minutes: self.minutes,
             seed: self.seed,
             name: Some(self.name.to_string()),
+            errors: None,
         }
     }
 

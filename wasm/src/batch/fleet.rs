@@ -102,3 +102,19 @@ pub fn simulate(#[wasm_bindgen(unchecked_param_type = "SimRequest")] request: Js
     let req: sim::SimRequest = self::options("simulate", request)?;
     sim::simulate(&req).map(Log::new).map_err(err)
 }
+
+/// The log with these gyro errors added to its yaw rate (the CLI's `inject`; the battery's
+/// error classes, `batteryProfiles()` for its own), every other column kept.
+#[cfg(feature = "sim")]
+#[wasm_bindgen(js_name = addGyroErrors)]
+pub fn add_gyro_errors(log: &Log, #[wasm_bindgen(unchecked_param_type = "GyroErrors")] errors: JsValue) -> JsResult<Log> {
+    let e: sim::GyroErrors = self::options("addGyroErrors", errors)?;
+    sim::inject(&log.log, &e).map(Log::new).map_err(err)
+}
+
+/// The robustness battery's gyro error profiles: name, split and errors.
+#[cfg(feature = "sim")]
+#[wasm_bindgen(js_name = batteryProfiles, unchecked_return_type = "BatteryProfile[]")]
+pub fn battery_profiles() -> JsResult<JsValue> {
+    to_js(&gyrodrift::battery::profiles())
+}

@@ -12,6 +12,46 @@ export interface SimRequest {
   minutes?: number | null;
   seed?: number;
   name?: string | null;
+  /** Gyro errors added to the simulated rate (null: the simulated gyro as it is). */
+  errors?: GyroErrors | null;
+}
+/** Gyro errors to add to a log's yaw rate (`addGyroErrors`, `SimRequest.errors`): the
+ * robustness battery's classes; they combine; every field defaults to none. */
+export interface GyroErrors {
+  /** Constant turn-on bias, deg/s. */
+  bias_dps?: number;
+  /** Warm-up: this much extra bias at the start, decaying with warmup_tau_s, deg/s. */
+  warmup_dps?: number;
+  warmup_tau_s?: number;
+  walk_dps_per_sqrt_s?: number;
+  /** Bias steps of this size (random sign), deg/s, every step_every_s on average (0: none). */
+  step_dps?: number;
+  step_every_s?: number;
+  /** Scale-factor error (fraction of the rate). */
+  scale?: number;
+  /** Rate-dependent bias, deg/s per deg/s of |rate|. */
+  rate_dep?: number;
+  /** Bias per m/s^2 of lateral acceleration (needs speed_mps). */
+  g_sens_dps_per_mps2?: number;
+  /** White noise per row, deg/s. */
+  noise_dps?: number;
+  /** Vibration noise and rectified bias at 30 m/s, scaled by speed (needs speed_mps), deg/s. */
+  vibration_noise_dps?: number;
+  vibration_bias_dps?: number;
+  /** Quantisation step, deg/s (0: none). */
+  lsb_dps?: number;
+  /** Cut the stationary lead-in, so the drive starts moving. */
+  cut_lead_in?: boolean;
+  /** Drop the speed and wheel columns (a logger with a gyro alone). */
+  gyro_only?: boolean;
+  seed?: number;
+}
+/** One of the robustness battery's error profiles (`batteryProfiles()`). */
+export interface BatteryProfile {
+  name: string;
+  errors: Required<GyroErrors>;
+  /** A training profile (where choices are made) or a scoring one. */
+  training: boolean;
 }
 /** Import recipe (the CLI's TOML/JSON recipe as an object; see sample-logs/recipes/). */
 export type Sense = "ccw" | "cw";
