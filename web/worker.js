@@ -5,10 +5,11 @@
 // - import: raw logger files by their detected preset (or a given recipe); recipes to and
 //   from TOML;
 // - tune: the HDR parameters over the drives' columns, with progress;
-// - battery: the robustness battery's error profiles on the drives' columns;
+// - battery: the robustness battery's error profiles on the drives' columns; case: one
+//   drive with one profile's errors added (to open a case as a log);
 // - track, pipeline: the slow work on a large log this worker parsed and kept (`key`), so
 //   the page's Track view and pipeline never pause it.
-import init, { Log, tune, battery, detectImport, importLog, recipeToToml, recipeFromToml, track, runPipeline, checkLog } from "./pkg/full/gyrodrift.js";
+import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, importLog, recipeToToml, recipeFromToml, track, runPipeline, checkLog } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 /** Large logs parsed here, kept for later work on them (freed on "forget"). */
@@ -59,6 +60,21 @@ self.onmessage = async (ev) => {
         for (const l of logs) l.free();
       }
       return;
+    }
+    if (type === "case") {
+      const profile = batteryProfiles().find((p) => p.name === ev.data.profile);
+      if (!profile) return self.postMessage({ id, error: `no battery profile "${ev.data.profile}"` });
+      const base = Log.fromColumns(ev.data.drive);
+      let data;
+      try {
+        const log = addGyroErrors(base, profile.errors);
+        data = log.toColumns();
+        log.free();
+      } finally {
+        base.free();
+      }
+      const transfer = [data.line.buffer, ...Object.values(data.columns).map((a) => a.buffer)];
+      return self.postMessage({ id, data }, transfer);
     }
     if (type === "track" || type === "pipeline") {
       const log = kept.get(ev.data.key);

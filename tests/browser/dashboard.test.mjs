@@ -796,6 +796,24 @@ test("the robustness battery runs on the loaded drives in the worker, with the C
   const causal = cells.slice(1, 7).map(Number).filter((_, j) => j !== 5);
   assert.deepEqual(marked.slice(1, 7).map((m, j) => m && j !== 5), cells.slice(1, 7).map((v, j) => j !== 5 && Number(v) === Math.min(...causal)), String(cells));
   await page.screenshot({ path: join(ARTIFACTS, "battery.png"), fullPage: true });
+  // A case opens as a log of its own, in the HDR view: the drive with the profile's errors
+  // added, as the CLI's `battery --write-case` writes it (same raw integration: the HDR
+  // parameters on the page are the tuned ones applied above).
+  const nLogs = await page.locator("#logs li").count();
+  await page.evaluate(() =>
+    [...document.querySelectorAll("#battery-cases tbody tr")].find((tr) => tr.cells[0].textContent === "City 1 / bias +0.5").querySelector("button.open-case").click(),
+  );
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City 1 / bias +0.5"));
+  assert.equal(await page.locator("#logs li").count(), nLogs + 1);
+  assert.equal(await page.evaluate(() => !document.getElementById("view-hdr").hidden), true);
+  const caseFile = join(mkdtempSync(join(tmpdir(), "gd-case-")), "case.csv");
+  cli("battery", "--logs", join(SAMPLES, "train", "city-1.csv"), "--minutes", "2", "--write-case", "City 1 / bias +0.5", "--out", caseFile);
+  const caseHdr = JSON.parse(cli("hdr", caseFile, "--json"));
+  assert.equal(await page.locator("#m-e-raw").innerText(), caseHdr.E_psi_raw_deg.toFixed(2));
+  assert.equal(caseHdr.NE_psi_raw_deg_per_min.toFixed(3), cells[1]);
+  await page.screenshot({ path: join(ARTIFACTS, "battery-case.png"), fullPage: true });
+  await page.locator("#logs li", { hasText: "City 1 / bias +0.5" }).locator("button.remove").click();
+  assert.equal(await page.locator("#logs li").count(), nLogs);
   await page.locator("#tabs button[data-view=hdr]").click();
 });
 

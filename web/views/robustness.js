@@ -1,7 +1,10 @@
 // The Report view's robustness battery: the battery's error profiles on the loaded drives,
-// run in the worker (core's battery::on_drives); the summary per method and every case.
+// run in the worker (core's battery::on_drives); the summary per method and every case,
+// each of which opens as a log of its own (the drive with the profile's errors added).
+import * as gd from "../pkg/gyrodrift.js";
 import { $, fmt, state, hdrOptions } from "../state.js";
-import { inWorker, driveColumns } from "../loading.js";
+import { inWorker, driveColumns, addParsed } from "../loading.js";
+import { renderList, selectEntry } from "../controls.js";
 
 /** Runs the battery on every loaded drive and shows it. */
 export async function runBattery() {
@@ -56,7 +59,7 @@ function summaryTable(b) {
 function casesTable(b) {
   const t = document.createElement("table");
   t.id = "battery-cases";
-  t.innerHTML = `<thead><tr><th>drive / profile</th>${b.methods.map((m) => `<th>${m}</th>`).join("")}<th>pipeline / best other</th></tr></thead><tbody></tbody>`;
+  t.innerHTML = `<thead><tr><th>drive / profile</th>${b.methods.map((m) => `<th>${m}</th>`).join("")}<th>pipeline / best other</th><th></th></tr></thead><tbody></tbody>`;
   const body = t.querySelector("tbody");
   for (const c of b.cases) {
     const tr = document.createElement("tr");
@@ -67,7 +70,45 @@ function casesTable(b) {
       if (i >= 1 && i <= c.ne_psi.length && c.ne_psi[i - 1] === c.ne_psi[c.best]) td.className = "best";
       tr.append(td);
     });
+    const open = document.createElement("button");
+    open.type = "button";
+    open.className = "open-case";
+    open.textContent = "open";
+    open.title = `add "${c.base} / ${c.profile}" to the logs: the drive with the profile's gyro errors (the CLI's battery --write-case)`;
+    open.addEventListener("click", () => openCase(c, open));
+    const td = document.createElement("td");
+    td.append(open);
+    tr.append(td);
     body.append(tr);
   }
   return t;
+}
+
+/** Adds one case as a log of its own, the drive with the profile's errors added in the
+ * worker (core's inject), and shows it in the HDR view; an error leaves everything loaded. */
+async function openCase(c, button) {
+  const name = `${c.base} / ${c.profile}`;
+  const base = state.entries.find((e) => !e.error && e.kind === "drive" && e.name === c.base);
+  if (!base) {
+    $("battery-status").textContent = `${name}: the drive ${c.base} is no longer loaded`;
+    return;
+  }
+  button.disabled = true;
+  const { cols, transfer } = driveColumns([base]);
+  const res = await inWorker({ type: "case", drive: cols[0], profile: c.profile }, transfer);
+  button.disabled = false;
+  if (res.error) {
+    $("battery-status").textContent = `${name}: ${res.error}`;
+    return;
+  }
+  const entry = addParsed(name, () => {
+    const log = gd.Log.fromColumns(res.data);
+    log.name = name;
+    return log;
+  });
+  renderList();
+  if (entry.error) return;
+  state.view = "hdr";
+  selectEntry(state.entries.indexOf(entry));
+  window.scrollTo({ top: 0 });
 }
