@@ -39,6 +39,13 @@ export function renderList() {
         badge.title = e.findings.map((f) => `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}`).join("\n");
         li.append(badge);
       }
+      if (e.info?.length) {
+        const info = document.createElement("div");
+        info.className = "check info";
+        info.textContent = `ℹ ${e.info.map((f) => f.code.replace("_", " ")).join(", ")}`;
+        info.title = e.info.map((f) => `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}`).join("\n");
+        li.append(info);
+      }
       if (e.imported) {
         const imp = document.createElement("div");
         imp.className = "check imported";

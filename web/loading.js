@@ -122,6 +122,8 @@ export function addParsed(name, make, checked = null) {
       // What `gyrodrift check` would say: unit, sign and gap mistakes, each with its fix.
       const findings = parts.length > 1 ? gd.checkLog(log).findings : check.findings;
       entry.findings = findings.filter((f) => f.severity !== "info");
+      // Information (no stops to judge the bias at, a scale to check): a quiet note of its own.
+      entry.info = findings.filter((f) => f.severity === "info");
       return entry;
     });
     state.entries.push(...entries);

@@ -308,6 +308,24 @@ test("a log with a clockwise gyro gets a check badge naming the fix; the shipped
   assert.match(await badge.innerText(), /gyro_sign/);
   assert.match(await badge.getAttribute("title"), /positive = "cw"/);
   await page.screenshot({ path: join(ARTIFACTS, "check-badge.png") });
+  // Information (`check`'s info findings) gets a quiet note of its own: City 1 without its
+  // speed column and its lead-in has nothing that shows when it stands.
+  const bare = join(dir, "city-bare.csv");
+  const v = lines[h].split(",").indexOf("speed_mps");
+  const rows = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").split("\n");
+  writeFileSync(
+    bare,
+    rows
+      .map((l, i) => (l.startsWith("# name:") ? "# name: City bare" : l.startsWith("# bias_s:") ? "# bias_s: 0" : i < h || !l ? l : l.split(",").filter((_, j) => j !== v).join(",")))
+      .join("\n"),
+  );
+  await page.locator("#file-input").setInputFiles([bare]);
+  const info = page.locator("#logs li", { hasText: "City bare" }).locator(".check.info");
+  await info.waitFor();
+  assert.match(await info.innerText(), /no stops/);
+  assert.match(await info.getAttribute("title"), /a speed column, or # bias_s: N/);
+  assert.equal(await page.locator("#logs li", { hasText: "City bare" }).locator(".check.warning, .check.error").count(), 0);
+  await page.locator("#logs li", { hasText: "City bare" }).locator("button.remove").click();
 });
 
 test("a log with a 60 s gap becomes two drives, each marked as split, with the CLI's numbers", async () => {
