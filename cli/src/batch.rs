@@ -1,10 +1,13 @@
 //! `report --dir DIR`: every `*.csv` log under a folder (recursive), scored in parallel
 //! (rayon, `--jobs N`) with a progress bar on a terminal. Each drive is a row of core's
 //! `fleet` (a file that fails is a row with its error; the rest go on); the rows go to
-//! `--out` (Parquet, CSV or JSON by extension), the fleet's Table II to stdout.
+//! `--out` (Parquet, CSV or JSON by extension), the fleet's Table II to stdout. With
+//! `--import`, a logger's raw exports among them are imported and scored, a drive per
+//! recording (core's `import::recordings`).
 
 use crate::{print_json, write_stdout, Failure};
 use gyrodrift::fleet::{self, DriveRow, FleetOptions};
+use gyrodrift::import::Recording;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -36,18 +39,45 @@ fn score_file(path: &Path, opts: &FleetOptions) -> Vec<DriveRow> {
     fleet::score_opened(path, std::fs::File::open(path).map(std::io::BufReader::new), opts)
 }
 
+/// One recording of raw exports imported and scored: its files opened here by name.
+fn score_recording(rec: &Recording, opts: &FleetOptions) -> Vec<DriveRow> {
+    let label = rec.label.display().to_string();
+    let stem = rec.label.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let names: Vec<String> = rec.files.iter().filter_map(|p| p.file_name()).map(|n| n.to_string_lossy().into_owned()).collect();
+    let mut open = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
+        let path = rec.files.iter().find(|p| p.file_name().is_some_and(|n| n.to_string_lossy() == name));
+        let path = path.ok_or_else(|| gyrodrift::Error::File(format!("{name}: not in the recording")))?;
+        std::fs::File::open(path)
+            .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn std::io::Read>)
+            .map_err(|e| gyrodrift::Error::File(format!("{}: cannot open: {e}", path.display())))
+    };
+    fleet::score_import(&label, &stem, &names, &mut open, opts)
+}
+
+/// How the folder is scored: threads, where the rows go, whether raw exports are imported.
+pub struct Batch<'a> {
+    pub jobs: usize,
+    pub out: Option<&'a Path>,
+    pub import: bool,
+}
+
 /// Scores the files on `jobs` threads (0 = one per core), in file order.
 pub fn score_files(files: &[PathBuf], jobs: usize, opts: &FleetOptions) -> Result<Vec<DriveRow>, Failure> {
+    score_units(files, jobs, |p| score_file(p, opts))
+}
+
+/// Scores each unit (a file, a recording) on `jobs` threads, in order, with a progress bar.
+fn score_units<T: Sync>(units: &[T], jobs: usize, score: impl Fn(&T) -> Vec<DriveRow> + Sync) -> Result<Vec<DriveRow>, Failure> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build().map_err(|e| Failure(format!("--jobs {jobs}: {e}")))?;
-    let bar = indicatif::ProgressBar::new(files.len() as u64).with_style(
+    let bar = indicatif::ProgressBar::new(units.len() as u64).with_style(
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} logs, {elapsed} elapsed, about {eta} left")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     let rows: Vec<Vec<DriveRow>> = pool.install(|| {
-        files
+        units
             .par_iter()
             .map(|p| {
-                let r = score_file(p, opts);
+                let r = score(p);
                 bar.inc(1);
                 r
             })
@@ -73,10 +103,22 @@ fn write_rows(out: &Path, rows: &[DriveRow]) -> Result<(), Failure> {
 /// `report --dir`: scores every log under `dir`; prints the summary (Markdown or JSON) and
 /// each error row's message on stderr; writes the rows to `out`. Files that failed are rows,
 /// not a failed command (exit 0): a fleet job keeps what it could score.
-pub fn run(dir: &Path, jobs: usize, out: Option<&Path>, opts: &FleetOptions, json: bool) -> Result<(), Failure> {
+pub fn run(dir: &Path, batch: Batch, opts: &FleetOptions, json: bool) -> Result<(), Failure> {
     let files = collect_logs(dir)?;
-    let rows = score_files(&files, jobs, opts)?;
-    if let Some(out) = out {
+    let mut rows = score_files(&files, batch.jobs, opts)?;
+    if batch.import {
+        // The raw exports among the failed files: each recording's files leave the error
+        // rows, and the recording is scored as a drive of its own.
+        let failed: Vec<PathBuf> = rows.iter().filter(|r| r.error.is_some()).map(|r| PathBuf::from(&r.file)).collect();
+        let recs = gyrodrift::import::recordings(&failed);
+        let taken: std::collections::HashSet<String> =
+            recs.iter().flat_map(|r| r.files.iter().chain(&r.ignored).map(|p| p.display().to_string())).collect();
+        rows.retain(|r| r.error.is_none() || !taken.contains(&r.file));
+        let imported = score_units(&recs, batch.jobs, |r| score_recording(r, opts))?;
+        eprintln!("imported {} recording(s) of raw exports ({} files)", recs.len(), taken.len());
+        rows.extend(imported);
+    }
+    if let Some(out) = batch.out {
         write_rows(out, &rows)?;
     }
     for r in rows.iter().filter(|r| r.error.is_some()) {
@@ -85,7 +127,8 @@ pub fn run(dir: &Path, jobs: usize, out: Option<&Path>, opts: &FleetOptions, jso
     // Folders of a logger's raw exports: the import that makes v1 logs of them, once each.
     let failed: Vec<PathBuf> = rows.iter().filter(|r| r.error.is_some()).map(|r| PathBuf::from(&r.file)).collect();
     for h in gyrodrift::import::folder_hints(&failed, MAX_HINT_FOLDERS) {
-        eprintln!("{}: {}", h.folder.display(), crate::hint_text(&h, "a recording"));
+        let or = if batch.import { "" } else { "; or give report --dir --import, which imports such recordings itself" };
+        eprintln!("{}: {}{or}", h.folder.display(), crate::hint_text(&h, "a recording"));
     }
     let summary = fleet::summarize(&rows);
     if json {

@@ -52,6 +52,11 @@ struct BatchArgs {
     /// With --dir: write the per-drive rows to this .parquet, .csv or .json file.
     #[arg(long, value_name = "FILE", requires = "dir")]
     out: Option<PathBuf>,
+    /// With --dir: a logger's raw exports among the files (SensorLog, Sensor Logger,
+    /// phyphox, PX4 ulog2csv, ROS CSV, comma2k19) are imported by their detected preset and
+    /// scored, a drive per recording (a file, or a folder of several), instead of failing.
+    #[arg(long, requires = "dir")]
+    import: bool,
 }
 
 #[derive(Subcommand)]
@@ -443,10 +448,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Cmd::Pipeline { log, set, json, trace } => c::pipeline(&log, &set, json, trace.as_deref(), input),
         Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json, input),
         Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json),
-        Cmd::Report { batch: BatchArgs { dir: Some(dir), jobs, out }, set, json, .. }
-        | Cmd::Compare { batch: BatchArgs { dir: Some(dir), jobs, out }, set, json, .. } => {
+        Cmd::Report { batch: BatchArgs { dir: Some(dir), jobs, out, import }, set, json, .. }
+        | Cmd::Compare { batch: BatchArgs { dir: Some(dir), jobs, out, import }, set, json, .. } => {
             let opts = gyrodrift::fleet::FleetOptions { input, pipeline: settings(&set)? };
-            batch::run(&dir, jobs, out.as_deref(), &opts, json)
+            batch::run(&dir, batch::Batch { jobs, out: out.as_deref(), import }, &opts, json)
         }
         Cmd::Compare { files, set, json, csv, tune_on, .. } => c::compare(&files, &set, json, csv, &tune_on, input),
         Cmd::Report { files, set, json, csv, compare: true, tune_on, .. } => c::compare(&files, &set, json, csv, &tune_on, input),

@@ -108,3 +108,37 @@ fn a_folder_of_raw_exports_gets_one_import_hint_per_recording() {
     let sl = hints.iter().find(|l| l.contains("(import preset sensor-logger)")).unwrap();
     assert!(sl.contains("sensor-logger: ") && sl.contains("gyrodrift import ") && sl.contains("Gyroscope.csv"), "{sl}");
 }
+
+/// With --import the raw exports are scored instead: a drive per recording (a folder of
+/// several files named by the folder, a one-file export by its file), no error rows, each
+/// as its log imported by `gyrodrift import` scores.
+#[test]
+fn with_import_a_folder_of_raw_exports_is_scored_a_drive_per_recording() {
+    let wild = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/wild");
+    let json = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("wild-rows.json");
+    let o = report_dir(&wild, &["--import", "--out", json.to_str().unwrap()]);
+    let (stdout, stderr) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{stderr}");
+    assert!(stdout.starts_with("5 files, 5 drives scored") && stdout.contains("0 errors"), "{stdout}");
+    assert!(stderr.contains("imported 5 recording(s)") && !stderr.contains("it looks like"), "{stderr}");
+    let rows: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let mut names: Vec<&str> = rows.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    names.sort();
+    assert_eq!(names, ["SensorLog.csv (SensorLog)", "phyphox", "px4", "ros", "sensor-logger"]);
+    // The Sensor Logger folder scores as its imported log does.
+    let one = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("wild-imported");
+    let _ = std::fs::remove_dir_all(&one);
+    std::fs::create_dir_all(&one).unwrap();
+    let sl = wild.join("sensor-logger");
+    let files: Vec<PathBuf> = ["Gyroscope.csv", "Gravity.csv", "Location.csv"].iter().map(|f| sl.join(f)).collect();
+    let imp =
+        Command::new(env!("CARGO_BIN_EXE_gyrodrift")).arg("import").args(&files).arg("--out").arg(one.join("sl.csv")).output().unwrap();
+    assert!(imp.status.success(), "{}", String::from_utf8_lossy(&imp.stderr));
+    let json1 = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("wild-one.json");
+    assert!(report_dir(&one, &["--out", json1.to_str().unwrap()]).status.success());
+    let want: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(&json1).unwrap()).unwrap();
+    let got = rows.iter().find(|r| r["name"] == "sensor-logger").unwrap();
+    for k in ["e_psi_raw_deg", "e_psi_hdr_deg", "e_psi_pipeline_deg", "rows"] {
+        assert_eq!(got[k], want[0][k], "{k}");
+    }
+}

@@ -193,6 +193,23 @@ pub fn score_reader<R: Read>(file: &str, stem: &str, reader: R, opts: &FleetOpti
     }
 }
 
+/// A logger's raw export (an `import::Recording`'s files, opened by name through `files`:
+/// the front opens them) imported by the preset detected from them and scored as a drive
+/// labelled `file`: named by the import (a one-file export's file and preset), or by `stem`
+/// (the folder) when it has several files, whose first file would name every folder alike.
+/// An import that fails is one error row.
+pub fn score_import(file: &str, stem: &str, names: &[String], files: &mut dyn crate::import::Files, opts: &FleetOptions) -> Vec<DriveRow> {
+    match crate::import::detect_and_import(names, files) {
+        Ok((_, mut log, _)) => {
+            if names.len() > 1 {
+                log.meta.name = Some(stem.to_string());
+            }
+            score_log(file, stem, log, opts)
+        }
+        Err(e) => vec![DriveRow::failed(file, e.to_string())],
+    }
+}
+
 /// One method over the fleet.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MethodSummary {

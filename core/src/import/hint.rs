@@ -60,6 +60,62 @@ pub fn folder_hints(failed: &[PathBuf], max_folders: usize) -> Vec<ImportHint> {
         .collect()
 }
 
+/// One recording of a logger's raw export in a fleet folder: the files a preset reads
+/// together, named by the file (an export of one file) or the folder (of several).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Recording {
+    pub preset: &'static str,
+    pub label: PathBuf,
+    /// The files the preset uses, in its order.
+    pub files: Vec<PathBuf>,
+    /// Files of the recording's folder the preset does not use (a Sensor Logger folder's
+    /// accelerometer and metadata files): part of it, not logs that failed.
+    pub ignored: Vec<PathBuf>,
+}
+
+/// The recordings among files that failed to read as v1 logs (`report --dir --import`),
+/// folder by folder in the order they first appear: in each, the preset detected from its
+/// failed files takes the files it uses as one recording, again on the files left, until
+/// none is detected (a Sensor Logger folder is one recording of three files, a folder of
+/// SensorLog exports one per file). A recording of one file is named by it, of several by
+/// the folder, which also takes the folder's files no preset read (`ignored`). Other files
+/// are left out.
+pub fn recordings(failed: &[PathBuf]) -> Vec<Recording> {
+    let mut folders: Vec<&Path> = Vec::new();
+    for p in failed {
+        let dir = folder_of(p);
+        if !folders.contains(&dir) {
+            folders.push(dir);
+        }
+    }
+    let mut out = Vec::new();
+    for dir in folders {
+        let mut left: Vec<(&PathBuf, Sniffed)> = failed
+            .iter()
+            .filter(|p| folder_of(p) == dir)
+            .filter_map(|p| head(p).map(|h| (p, h)))
+            .filter(|(_, h)| !h.header.iter().any(|c| c == "time_s"))
+            .collect();
+        while !left.is_empty() {
+            let heads: Vec<Sniffed> = left.iter().map(|(_, h)| h.clone()).collect();
+            let Ok(d) = detect(&heads) else { break };
+            let used: Vec<&str> = d.used.iter().map(|(_, f)| f.as_str()).collect();
+            let files: Vec<PathBuf> = used.iter().map(|f| dir.join(f)).collect();
+            let label = if files.len() == 1 { files[0].clone() } else { dir.to_path_buf() };
+            let before = left.len();
+            left.retain(|(p, _)| !p.file_name().is_some_and(|n| used.contains(&n.to_string_lossy().as_ref())));
+            if left.len() == before {
+                break; // a detection that uses none of them (never expected): no endless loop
+            }
+            out.push(Recording { preset: d.preset, label, files, ignored: Vec::new() });
+        }
+        if let Some(r) = out.iter_mut().rev().take_while(|r| folder_of(&r.files[0]) == dir).find(|r| r.files.len() > 1) {
+            r.ignored = left.into_iter().map(|(p, _)| p.clone()).collect();
+        }
+    }
+    out
+}
+
 /// For a file without a `time_s` column: the preset that reads it, with the files beside it
 /// in its folder (at most 64 looked at), when one does and uses this file; else None.
 pub fn import_hint(path: &Path) -> Option<ImportHint> {
@@ -89,6 +145,27 @@ fn hint(dir: &Path, sniffed: &[Sniffed]) -> Option<ImportHint> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A fleet of raw exports: the Sensor Logger folder's files one recording (the
+    /// accelerometer and metadata files it does not use left out), the SensorLog file one
+    /// alone, a v1 log none, in the order their folders first appear.
+    #[test]
+    fn failed_files_group_into_recordings() {
+        let all = |dir: &str| -> Vec<PathBuf> { files_in(&wild(dir, "")).unwrap() };
+        let mut failed = all("sensor-logger");
+        failed.extend(all("sensorlog"));
+        failed.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/train/city-1.csv"));
+        let r = recordings(&failed);
+        let names = |v: &[PathBuf]| v.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect::<Vec<_>>();
+        assert_eq!(r.len(), 2, "{r:?}");
+        assert_eq!((r[0].preset, r[0].label.file_name().unwrap().to_str().unwrap()), ("sensor-logger", "sensor-logger"));
+        assert_eq!(names(&r[0].files), ["Gyroscope.csv", "Gravity.csv", "Location.csv"]);
+        assert_eq!(names(&r[0].ignored), ["Accelerometer.csv", "Metadata.csv"]);
+        assert_eq!((r[1].preset, names(&r[1].files)), ("sensorlog", vec!["SensorLog.csv".to_string()]));
+        assert_eq!(r[1].label, wild("sensorlog", "SensorLog.csv"));
+        assert!(r[1].ignored.is_empty());
+        assert!(recordings(&[wild("sensor-logger", "Metadata.csv")]).is_empty());
+    }
 
     fn wild(dir: &str, file: &str) -> PathBuf {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/wild").join(dir).join(file)
