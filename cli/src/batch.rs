@@ -7,7 +7,6 @@
 
 use crate::{print_json, write_stdout, Failure};
 use gyrodrift::fleet::{self, DriveRow, FleetOptions};
-use gyrodrift::import::Recording;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -37,21 +36,6 @@ pub fn collect_logs(dir: &Path) -> Result<Vec<PathBuf>, Failure> {
 /// One file's rows: opened here, read and scored by core.
 fn score_file(path: &Path, opts: &FleetOptions) -> Vec<DriveRow> {
     fleet::score_opened(path, std::fs::File::open(path).map(std::io::BufReader::new), opts)
-}
-
-/// One recording of raw exports imported and scored: its files opened here by name.
-fn score_recording(rec: &Recording, opts: &FleetOptions) -> Vec<DriveRow> {
-    let label = rec.label.display().to_string();
-    let stem = rec.label.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    let names: Vec<String> = rec.files.iter().filter_map(|p| p.file_name()).map(|n| n.to_string_lossy().into_owned()).collect();
-    let mut open = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
-        let path = rec.files.iter().find(|p| p.file_name().is_some_and(|n| n.to_string_lossy() == name));
-        let path = path.ok_or_else(|| gyrodrift::Error::File(format!("{name}: not in the recording")))?;
-        std::fs::File::open(path)
-            .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn std::io::Read>)
-            .map_err(|e| gyrodrift::Error::File(format!("{}: cannot open: {e}", path.display())))
-    };
-    fleet::score_import(&label, &stem, &names, &mut open, opts)
 }
 
 /// How the folder is scored: threads, where the rows go, whether raw exports are imported.
@@ -109,14 +93,10 @@ pub fn run(dir: &Path, batch: Batch, opts: &FleetOptions, json: bool) -> Result<
     if batch.import {
         // The raw exports among the failed files: each recording's files leave the error
         // rows, and the recording is scored as a drive of its own.
-        let failed: Vec<PathBuf> = rows.iter().filter(|r| r.error.is_some()).map(|r| PathBuf::from(&r.file)).collect();
-        let recs = gyrodrift::import::recordings(&failed);
-        let taken: std::collections::HashSet<String> =
-            recs.iter().flat_map(|r| r.files.iter().chain(&r.ignored).map(|p| p.display().to_string())).collect();
-        rows.retain(|r| r.error.is_none() || !taken.contains(&r.file));
-        let imported = score_units(&recs, batch.jobs, |r| score_recording(r, opts))?;
-        eprintln!("imported {} recording(s) of raw exports ({} files)", recs.len(), taken.len());
-        rows.extend(imported);
+        let recs = fleet::take_recordings(&mut rows);
+        let n_files: usize = recs.iter().map(|r| r.files.len() + r.ignored.len()).sum();
+        eprintln!("importing {} recording(s) of raw exports ({n_files} files)", recs.len());
+        rows.extend(score_units(&recs, batch.jobs, |r| fleet::score_recording(r, opts))?);
     }
     if let Some(out) = batch.out {
         write_rows(out, &rows)?;

@@ -120,7 +120,7 @@ fn with_import_a_folder_of_raw_exports_is_scored_a_drive_per_recording() {
     let (stdout, stderr) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert!(o.status.success(), "{stderr}");
     assert!(stdout.starts_with("5 files, 5 drives scored") && stdout.contains("0 errors"), "{stdout}");
-    assert!(stderr.contains("imported 5 recording(s)") && !stderr.contains("it looks like"), "{stderr}");
+    assert!(stderr.contains("importing 5 recording(s) of raw exports (13 files)") && !stderr.contains("it looks like"), "{stderr}");
     let rows: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let mut names: Vec<&str> = rows.iter().map(|r| r["name"].as_str().unwrap()).collect();
     names.sort();

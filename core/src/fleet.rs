@@ -210,6 +210,37 @@ pub fn score_import(file: &str, stem: &str, names: &[String], files: &mut dyn cr
     }
 }
 
+/// The recordings of a logger's raw exports among the files of `rows` that failed
+/// (`import::recordings`), their files' error rows taken out of `rows`: what `--import`
+/// scores instead (`score_recording`).
+#[cfg(feature = "fs")]
+pub fn take_recordings(rows: &mut Vec<DriveRow>) -> Vec<crate::import::Recording> {
+    let failed: Vec<std::path::PathBuf> = rows.iter().filter(|r| r.error.is_some()).map(|r| std::path::PathBuf::from(&r.file)).collect();
+    let recs = crate::import::recordings(&failed);
+    let taken: std::collections::HashSet<String> =
+        recs.iter().flat_map(|r| r.files.iter().chain(&r.ignored).map(|p| p.display().to_string())).collect();
+    rows.retain(|r| r.error.is_none() || !taken.contains(&r.file));
+    recs
+}
+
+/// One recording of raw exports, its files opened by name, imported and scored
+/// (`score_import`); labelled by its file or folder.
+#[cfg(feature = "fs")]
+pub fn score_recording(rec: &crate::import::Recording, opts: &FleetOptions) -> Vec<DriveRow> {
+    let label = rec.label.display().to_string();
+    let stem = rec.label.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name_of = |p: &std::path::PathBuf| p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let names: Vec<String> = rec.files.iter().map(name_of).collect();
+    let mut open = |name: &str| -> Result<Box<dyn Read>> {
+        let path =
+            rec.files.iter().find(|p| name_of(p) == name).ok_or_else(|| crate::Error::File(format!("{name}: not in the recording")))?;
+        std::fs::File::open(path)
+            .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn Read>)
+            .map_err(|e| crate::Error::File(format!("{}: cannot open: {e}", path.display())))
+    };
+    score_import(&label, &stem, &names, &mut open, opts)
+}
+
 /// One method over the fleet.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MethodSummary {

@@ -32,18 +32,30 @@ fn score_file<'py>(py: Python<'py>, path: PathBuf, options: Option<&Bound<'py, P
     rows_list(py, &rows)
 }
 
-/// Many files on `jobs` threads (0 = one per core), rows in file order.
+/// Many files on `jobs` threads (0 = one per core), rows in file order. `import_raw`: a
+/// logger's raw exports among them are imported by their detected preset and scored, a
+/// drive per recording (the CLI's `report --dir --import`), after the logs.
 #[pyfunction]
-#[pyo3(signature = (paths, jobs=0, options=None))]
+#[pyo3(signature = (paths, jobs=0, options=None, import_raw=false))]
 fn score_files<'py>(
     py: Python<'py>,
     paths: Vec<PathBuf>,
     jobs: usize,
     options: Option<&Bound<'py, PyAny>>,
+    import_raw: bool,
 ) -> PyResult<Bound<'py, PyList>> {
     let opts = self::options(options)?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build().map_err(value_err)?;
-    let rows: Vec<DriveRow> = py.detach(|| pool.install(|| paths.par_iter().flat_map_iter(|p| score_path(p, &opts)).collect()));
+    let rows: Vec<DriveRow> = py.detach(|| {
+        pool.install(|| {
+            let mut rows: Vec<DriveRow> = paths.par_iter().flat_map_iter(|p| score_path(p, &opts)).collect();
+            if import_raw {
+                let recs = fleet::take_recordings(&mut rows);
+                rows.extend(recs.par_iter().flat_map_iter(|r| fleet::score_recording(r, &opts)).collect::<Vec<_>>());
+            }
+            rows
+        })
+    });
     rows_list(py, &rows)
 }
 

@@ -129,3 +129,17 @@ def test_a_folder_of_raw_exports_gets_one_import_hint_per_recording(samples, tmp
     assert fleet.main([str(tmp_path), "--workers", "1"]) == 0
     err = capsys.readouterr().err
     assert err.count("it looks like a recording of") == 1 and "(import preset sensorlog)" in err
+
+
+def test_score_files_imports_raw_exports_as_the_cli_does(cli, samples, tmp_path):
+    wild = samples / "wild"
+    paths = sorted(str(p) for p in wild.rglob("*.csv"))
+    assert all(r["error"] for r in g.score_files(paths, 1))
+    rows = g.score_files(paths, 2, import_raw=True)
+    assert sorted(r["name"] for r in rows) == ["SensorLog.csv (SensorLog)", "phyphox", "px4", "ros", "sensor-logger"]
+    assert not any(r["error"] for r in rows)
+    out = tmp_path / "rows.json"
+    cli("report", "--dir", str(wild), "--import", "--out", str(out))
+    want = {r["file"]: r for r in json.loads(out.read_text())}
+    for r in rows:
+        assert r["ne_psi_pipeline_deg_per_min"] == want[r["file"]]["ne_psi_pipeline_deg_per_min"], r["file"]
