@@ -7,7 +7,9 @@ INPUT is a folder of CSV v1 logs (recursive), a glob of them, or a Parquet datas
 drive per file or per hive partition (``drive=KEY/part-0.parquet``) whose columns are named
 as in CSV v1. Without ``--scheduler`` a LocalCluster starts on this machine; with one, the
 same code runs on a real cluster (the workers need this package installed). A drive that
-fails is a row with its ``error``; the job goes on.
+fails is a row with its ``error``; the job goes on. With ``--import`` a logger's raw exports
+among the CSV files are imported by their detected preset and scored, a drive per recording
+(a folder's files stay in one task), as ``gyrodrift report --dir --import``.
 
 The scoring is core's (``score_files``, ``score_log``): nothing is computed here but the
 plumbing. ``score_frame`` is the per-drive function for engines that hand over a pandas
@@ -49,8 +51,8 @@ def _frame_rows(df: Any, key: Optional[str], options: Optional[Mapping[str, Any]
     return score_log(log, key, options)
 
 
-def _score_paths(paths: Sequence[str], options: Optional[Mapping[str, Any]]) -> List[dict]:
-    return score_files(list(paths), 1, options)
+def _score_paths(paths: Sequence[str], options: Optional[Mapping[str, Any]], import_raw: bool = False) -> List[dict]:
+    return score_files(list(paths), 1, options, import_raw)
 
 
 def _score_parquet(path: str, key: str, options: Optional[Mapping[str, Any]]) -> List[dict]:
@@ -84,17 +86,22 @@ def find_inputs(spec: str) -> Dict[str, List[Any]]:
     return {"csv": matched}
 
 
-def chunks(paths: Sequence[str], chunk_bytes: int = CHUNK_BYTES) -> List[List[str]]:
-    """Paths grouped so that each group reads about ``chunk_bytes`` (a big file alone)."""
+def chunks(paths: Sequence[str], chunk_bytes: int = CHUNK_BYTES, keep_folders: bool = False) -> List[List[str]]:
+    """Paths grouped so that each group reads about ``chunk_bytes`` (a big file alone);
+    ``keep_folders``: a folder's files never split between groups (a recording of raw
+    exports is a folder's files together)."""
+    units: Dict[str, List[str]] = {}
+    for p in paths:
+        units.setdefault(os.path.dirname(p) if keep_folders else p, []).append(p)
     out: List[List[str]] = []
     cur: List[str] = []
     size = 0
-    for p in paths:
-        n = os.path.getsize(p) if os.path.exists(p) else 0
+    for unit in units.values():
+        n = sum(os.path.getsize(p) for p in unit if os.path.exists(p))
         if cur and size + n > chunk_bytes:
             out.append(cur)
             cur, size = [], 0
-        cur.append(p)
+        cur.extend(unit)
         size += n
     if cur:
         out.append(cur)
@@ -110,6 +117,7 @@ def run(
     progress: bool = True,
     chunk_bytes: int = CHUNK_BYTES,
     processes: bool = False,
+    import_raw: bool = False,
 ) -> Any:
     """Scores every drive of ``spec`` on Dask; returns the rows as a DataFrame (and writes
     them to ``out`` as Parquet when given). The LocalCluster's workers are threads of this
@@ -131,8 +139,8 @@ def run(
             # At least about 4 tasks per worker thread, so that no worker idles at the end.
             threads = max(1, sum(client.nthreads().values()))
             total = sum(os.path.getsize(p) for p in inputs["csv"] if os.path.exists(p))
-            groups = chunks(inputs["csv"], max(1, min(chunk_bytes, total // (4 * threads))))
-            futures = client.map(_score_paths, groups, options=opts, pure=False)
+            groups = chunks(inputs["csv"], max(1, min(chunk_bytes, total // (4 * threads))), keep_folders=import_raw)
+            futures = client.map(_score_paths, groups, options=opts, import_raw=import_raw, pure=False)
         else:
             paths, keys = zip(*inputs["parquet"])
             futures = client.map(_score_parquet, list(paths), list(keys), options=opts, pure=False)
@@ -163,11 +171,12 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     ap.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster here)")
     ap.add_argument("--workers", type=int, default=2, help="LocalCluster workers (default 2)")
     ap.add_argument("--processes", action="store_true", help="LocalCluster workers as processes (default: threads; core releases the GIL)")
+    ap.add_argument("--import", dest="import_raw", action="store_true", help="import a logger's raw exports among the files (SensorLog, Sensor Logger, phyphox, ...) and score them, a drive per recording")
     ap.add_argument("--options", help='fleet options as JSON, e.g. \'{"input": {"gaps": "error"}, "pipeline": {"min_still_s": 3}}\'')
     args = ap.parse_args(argv)
     try:
         options = json.loads(args.options) if args.options else None
-        rows = run(args.input, args.out, args.scheduler, args.workers, options, processes=args.processes)
+        rows = run(args.input, args.out, args.scheduler, args.workers, options, processes=args.processes, import_raw=args.import_raw)
     except (ValueError, OSError) as e:
         print(f"gyrodrift.fleet: {e}", file=sys.stderr)
         return 2

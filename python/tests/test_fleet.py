@@ -3,6 +3,7 @@ workers) gives the same rows from a folder of CSV logs and from a Parquet datase
 drive is a row with its error."""
 
 import json
+import os
 import shutil
 
 import numpy as np
@@ -143,3 +144,14 @@ def test_score_files_imports_raw_exports_as_the_cli_does(cli, samples, tmp_path)
     want = {r["file"]: r for r in json.loads(out.read_text())}
     for r in rows:
         assert r["ne_psi_pipeline_deg_per_min"] == want[r["file"]]["ne_psi_pipeline_deg_per_min"], r["file"]
+
+
+def test_the_dask_job_imports_raw_exports_with_import(samples, tmp_path, capsys):
+    shutil.copytree(samples / "wild", tmp_path / "wild")
+    assert fleet.main([str(tmp_path / "wild"), "--workers", "2", "--import"]) == 0
+    captured = capsys.readouterr()
+    assert "it looks like a recording of" not in captured.err and "5 drives" not in captured.err
+    assert "| pipeline | 5 |" in captured.out, captured.out
+    # A folder's files stay in one task, however small the chunks.
+    groups = fleet.chunks(sorted(str(p) for p in (tmp_path / "wild").rglob("*.csv")), 1, keep_folders=True)
+    assert len(groups) == 5 and all(len({os.path.dirname(p) for p in g}) == 1 for g in groups)
