@@ -158,28 +158,12 @@ impl Compare {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::{simulate, SimKind, SimRequest};
+    use crate::sim::{simulate, SimRequest};
 
     #[test]
     fn compare_matches_the_single_runs_and_means() {
-        let a = simulate(&SimRequest {
-            kind: SimKind::Drive,
-            scenario: Some("city".into()),
-            minutes: Some(4.0),
-            seed: 3,
-            name: None,
-            errors: None,
-        })
-        .unwrap();
-        let b = simulate(&SimRequest {
-            kind: SimKind::Drive,
-            scenario: Some("highway".into()),
-            minutes: Some(4.0),
-            seed: 4,
-            name: None,
-            errors: None,
-        })
-        .unwrap();
+        let a = simulate(&SimRequest { scenario: Some("city".into()), minutes: Some(4.0), seed: 3, ..Default::default() }).unwrap();
+        let b = simulate(&SimRequest { scenario: Some("highway".into()), minutes: Some(4.0), seed: 4, ..Default::default() }).unwrap();
         let p = PipelineParams::default();
         let c = compare(&[("a".into(), &a), ("b".into(), &b)], &p, Some(HdrParams { i_c_dps: 0.01, ..Default::default() })).unwrap();
         let ra = crate::pipeline::run(&a, &p).unwrap().result.unwrap();

@@ -187,19 +187,11 @@ impl<'a> Prepared<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::{simulate, SimKind, SimRequest};
+    use crate::sim::{simulate, SimRequest};
 
     #[test]
     fn raw_and_hdr_equal_the_paper_run_bit_for_bit() {
-        let log = simulate(&SimRequest {
-            kind: SimKind::Drive,
-            scenario: Some("city".into()),
-            minutes: Some(5.0),
-            seed: 5,
-            name: None,
-            errors: None,
-        })
-        .unwrap();
+        let log = simulate(&SimRequest { scenario: Some("city".into()), minutes: Some(5.0), seed: 5, ..Default::default() }).unwrap();
         let prep = Prepared::new(&log, None, &StillOptions::default()).unwrap();
         let h = hdr::run(&log, &Default::default()).unwrap().result.unwrap();
         assert_eq!(prep.score(&Method::Raw).unwrap().e_psi_deg, h.E_psi_raw_deg);

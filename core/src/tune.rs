@@ -384,20 +384,13 @@ pub fn tune_and_report_with_progress(
 #[cfg(test)]
 mod cv_tests {
     use super::*;
-    use crate::sim::{simulate, SimKind, SimRequest};
+    use crate::sim::{simulate, SimRequest};
 
     fn drives(n: u64) -> Vec<PreparedDrive> {
         (0..n)
             .map(|i| {
-                let log = simulate(&SimRequest {
-                    kind: SimKind::Drive,
-                    scenario: Some("city".into()),
-                    minutes: Some(4.0),
-                    seed: 40 + i,
-                    name: None,
-                    errors: None,
-                })
-                .unwrap();
+                let log = simulate(&SimRequest { scenario: Some("city".into()), minutes: Some(4.0), seed: 40 + i, ..Default::default() })
+                    .unwrap();
                 PreparedDrive::new(&format!("d{i}"), &log, None, true).unwrap()
             })
             .collect()
