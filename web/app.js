@@ -10,7 +10,7 @@ import { buildParams, syncParams, logFor } from "./controls.js";
 import { attachTimeInteraction, csvOf, download, pngOf, timeChartsCsv } from "./charts.js";
 import { render, scheduleRender, showError } from "./render.js";
 import { runTune, reportExports } from "./views/report.js";
-import { runBattery } from "./views/robustness.js";
+import { runBattery, addWorse } from "./views/robustness.js";
 
 // ---------- start ----------
 async function main() {
@@ -94,6 +94,7 @@ function setupExports() {
   });
   $("tune").addEventListener("click", runTune);
   $("battery").addEventListener("click", runBattery);
+  $("worse").addEventListener("click", addWorse);
   reportExports(download);
 }
 

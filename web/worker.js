@@ -6,7 +6,7 @@
 //   from TOML;
 // - tune: the HDR parameters over the drives' columns, with progress;
 // - battery: the robustness battery's error profiles on the drives' columns; case: one
-//   drive with one profile's errors added (to open a case as a log);
+//   drive with one profile's errors added (to open a case as a log); profiles: their names;
 // - track, pipeline: the slow work on a large log this worker parsed and kept (`key`), so
 //   the page's Track view and pipeline never pause it.
 import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, importLog, recipeToToml, recipeFromToml, track, runPipeline, checkLog } from "./pkg/full/gyrodrift.js";
@@ -61,6 +61,7 @@ self.onmessage = async (ev) => {
       }
       return;
     }
+    if (type === "profiles") return self.postMessage({ id, data: batteryProfiles().map((p) => p.name) });
     if (type === "case") {
       const profile = batteryProfiles().find((p) => p.name === ev.data.profile);
       if (!profile) return self.postMessage({ id, error: `no battery profile "${ev.data.profile}"` });

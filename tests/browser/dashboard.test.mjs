@@ -835,6 +835,23 @@ test("the robustness battery runs on the loaded drives in the worker, with the C
   await page.locator("#tabs button[data-view=hdr]").click();
 });
 
+test("one worse gyro: a drive and a profile picked in the Report view add a log equal to the CLI's inject", async () => {
+  await page.locator("#tabs button[data-view=report]").click();
+  await page.waitForFunction(() => document.querySelectorAll("#worse-profile option").length > 10);
+  const nLogs = await page.locator("#logs li").count();
+  await page.locator("#worse-drive").selectOption("Highway 1");
+  await page.locator("#worse-profile").selectOption("bias -1.5 cut");
+  await page.locator("#worse").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Highway 1 / bias -1.5 cut"));
+  assert.equal(await page.locator("#logs li").count(), nLogs + 1);
+  const file = join(mkdtempSync(join(tmpdir(), "gd-worse-")), "worse.csv");
+  cli("inject", join(SAMPLES, "train", "highway-1.csv"), "--profile", "bias -1.5 cut", "--out", file);
+  const native = JSON.parse(cli("hdr", file, "--json"));
+  assert.equal(await page.locator("#m-e-raw").innerText(), native.E_psi_raw_deg.toFixed(2));
+  await page.locator("#logs li", { hasText: "Highway 1 / bias -1.5 cut" }).locator("button.remove").click();
+  assert.equal(await page.locator("#logs li").count(), nLogs);
+});
+
 test("the Allan view marks the minimum with its 68 % band and the flat bottom, with the CLI's numbers", async () => {
   await page.locator("#logs li", { hasText: "Static 2 h" }).locator("button.pick").click();
   await page.locator("#tabs button[data-view=allan]").click();

@@ -5,6 +5,7 @@ import { logFor, syncParams } from "../controls.js";
 import { chart, timeRange } from "../charts.js";
 import { showError, render } from "../render.js";
 import { inWorker, driveColumns } from "../loading.js";
+import { fillWorse } from "./robustness.js";
 
 /** The loaded drives the Report view tabulates. */
 export function reportDrives() {
@@ -38,6 +39,7 @@ export function renderReport() {
   $("report-table").replaceChildren(reportTable(rep));
   const cmp = gd.compare(drives, { bias_s: hdrOptions().bias_s ?? null });
   $("compare-table").replaceChildren(compareTable(cmp));
+  fillWorse();
 }
 
 export function compareTable(cmp) {

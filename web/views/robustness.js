@@ -84,21 +84,27 @@ function casesTable(b) {
   return t;
 }
 
-/** Adds one case as a log of its own, the drive with the profile's errors added in the
- * worker (core's inject), and shows it in the HDR view; an error leaves everything loaded. */
-async function openCase(c, button) {
-  const name = `${c.base} / ${c.profile}`;
-  const base = state.entries.find((e) => !e.error && e.kind === "drive" && e.name === c.base);
+/** Adds one case as a log of its own (its "open" button). */
+function openCase(c, button) {
+  return addWithErrors(c.base, c.profile, button, $("battery-status"));
+}
+
+/** Adds drive `baseName` with profile `profile`'s errors (added in the worker by core's
+ * inject) as a log of its own and shows it in the HDR view; an error is said in `status`
+ * and leaves everything loaded. */
+async function addWithErrors(baseName, profile, button, status) {
+  const name = `${baseName} / ${profile}`;
+  const base = state.entries.find((e) => !e.error && e.kind === "drive" && e.name === baseName);
   if (!base) {
-    $("battery-status").textContent = `${name}: the drive ${c.base} is no longer loaded`;
+    status.textContent = `${name}: the drive ${baseName} is no longer loaded`;
     return;
   }
   button.disabled = true;
   const { cols, transfer } = driveColumns([base]);
-  const res = await inWorker({ type: "case", drive: cols[0], profile: c.profile }, transfer);
+  const res = await inWorker({ type: "case", drive: cols[0], profile }, transfer);
   button.disabled = false;
   if (res.error) {
-    $("battery-status").textContent = `${name}: ${res.error}`;
+    status.textContent = `${name}: ${res.error}`;
     return;
   }
   const entry = addParsed(name, () => {
@@ -111,4 +117,31 @@ async function openCase(c, button) {
   state.view = "hdr";
   selectEntry(state.entries.indexOf(entry));
   window.scrollTo({ top: 0 });
+}
+
+let profileNames = null;
+
+/** Fills the worse-gyro pickers: the loaded drives, and the battery's profiles (asked of
+ * the worker once; the page's own module has no simulator). Keeps what was picked. */
+export async function fillWorse() {
+  const pick = $("worse-drive");
+  const was = pick.value;
+  const drives = state.entries.filter((e) => !e.error && e.kind === "drive").map((e) => e.name);
+  pick.replaceChildren(...drives.map((n) => new Option(n, n, false, n === was)));
+  if (!profileNames) {
+    profileNames = [];
+    const res = await inWorker({ type: "profiles" }, []);
+    if (res.error) return ($("worse-status").textContent = res.error);
+    profileNames = res.data;
+    $("worse-profile").replaceChildren(...profileNames.map((n) => new Option(n, n)));
+  }
+}
+
+/** The worse-gyro button: the picked drive with the picked profile's errors. */
+export function addWorse() {
+  const drive = $("worse-drive").value;
+  const profile = $("worse-profile").value;
+  if (!drive || !profile) return ($("worse-status").textContent = "load a drive first");
+  $("worse-status").textContent = "";
+  return addWithErrors(drive, profile, $("worse"), $("worse-status"));
 }
