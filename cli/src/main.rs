@@ -228,7 +228,8 @@ enum Cmd {
     /// Add gyro errors to a log's yaw rate (the robustness battery's classes: turn-on bias,
     /// warm-up, random walk, steps, scale, rate-dependent bias, g-sensitivity, vibration,
     /// noise, quantisation, no lead-in, gyro alone), to see how a method copes with a
-    /// worse gyro on your own drive. Every other column is kept.
+    /// worse gyro on your own drive. The other columns are kept (cut_lead_in drops the
+    /// lead-in rows, gyro_only the speed and wheel columns).
     Inject {
         log: PathBuf,
         #[command(flatten)]
