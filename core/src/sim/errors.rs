@@ -210,6 +210,13 @@ pub fn inject(log: &DriveLog, e: &GyroErrors) -> Result<DriveLog> {
         if e.lsb_dps > 0.0 {
             v = libm::round(v / e.lsb_dps) * e.lsb_dps;
         }
+        // A log no reader takes back: refused here, not at the next command.
+        if let Some((lo, hi, unit)) = Column::GyroDps.physical_range().filter(|(lo, hi, _)| !(*lo..=*hi).contains(&v)) {
+            return Err(Error::data(format!(
+                "at {} s the gyro errors make the rate {v:?} {unit}, outside the physical range [{lo}, {hi}] {unit}",
+                time_s[i]
+            )));
+        }
         *g = v;
     }
     if e.gyro_only {
@@ -339,6 +346,17 @@ mod tests {
         assert_eq!(g.present_columns(), vec![Column::TimeS, Column::GyroDps]);
         // The vibration still saw the speed: +0.03 at 15 m/s.
         assert!(g.column(Column::GyroDps).unwrap().iter().all(|&v| (v - 1.03).abs() < 1e-12));
+    }
+
+    /// A bias of 2e4 deg/s makes a log no reader takes back: refused at its first row; 9e3
+    /// is still a rate (the log's physical range is +-1e4 deg/s).
+    #[test]
+    fn errors_that_take_the_rate_out_of_range_are_refused_with_the_time() {
+        let l = flat_log(10, 1.0, 0.0, 0.0);
+        let e = GyroErrors { bias_dps: 2e4, ..Default::default() };
+        let msg = inject(&l, &e).unwrap_err().to_string();
+        assert!(msg.contains("at 0 s") && msg.contains("outside the physical range [-10000, 10000] deg/s"), "{msg}");
+        assert!(inject(&l, &GyroErrors { bias_dps: 9e3, ..Default::default() }).is_ok());
     }
 
     #[test]
