@@ -128,7 +128,7 @@ export async function fillWorse() {
   const was = pick.value;
   const drives = state.entries.filter((e) => !e.error && e.kind === "drive").map((e) => e.name);
   pick.replaceChildren(...drives.map((n) => new Option(n, n, false, n === was)));
-  if (!profileNames) {
+  if (!profileNames && window.Worker) {
     profileNames = [];
     const res = await inWorker({ type: "profiles" }, []);
     if (res.error) return ($("worse-status").textContent = res.error);
