@@ -74,8 +74,7 @@ self.onmessage = async (ev) => {
       } finally {
         base.free();
       }
-      const transfer = [data.line.buffer, ...Object.values(data.columns).map((a) => a.buffer)];
-      return self.postMessage({ id, data }, transfer);
+      return self.postMessage({ id, data }, buffers(data));
     }
     if (type === "track" || type === "pipeline") {
       const log = kept.get(ev.data.key);
@@ -103,8 +102,7 @@ self.onmessage = async (ev) => {
       const { log, summary } = importLog(d.recipe, ev.data.files);
       const data = log.toColumns();
       log.free();
-      const transfer = [data.line.buffer, ...Object.values(data.columns).map((a) => a.buffer)];
-      self.postMessage({ id, data, detection: { ...d, summary } }, transfer);
+      self.postMessage({ id, data, detection: { ...d, summary } }, buffers(data));
       return;
     }
     const log = Log.fromBytesWithProgress(new Uint8Array(ev.data.buffer), progressReporter(id));
@@ -112,8 +110,7 @@ self.onmessage = async (ev) => {
     // `gyrodrift check` here too, so the page does not run it on millions of rows.
     const check = checkLog(log);
     kept.set(id, log);
-    const transfer = [data.line.buffer, ...Object.values(data.columns).map((a) => a.buffer)];
-    self.postMessage({ id, data, key: id, check }, transfer);
+    self.postMessage({ id, data, key: id, check }, buffers(data));
   } catch (e) {
     self.postMessage({ id, error: e.message });
   }

@@ -309,22 +309,7 @@ pub fn import(recipe: &Path, data: Option<&Path>, allow_outside: bool, out: Opti
 /// on stderr, then as `import` (or the recipe as TOML with `print_recipe`).
 pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>, json: bool) -> Result<(), Failure> {
     use gyrodrift::import;
-    let mut by_name: std::collections::BTreeMap<String, PathBuf> = std::collections::BTreeMap::new();
-    let mut names = Vec::new();
-    for p in paths {
-        let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| p.display().to_string());
-        if by_name.insert(name.clone(), p.clone()).is_some() {
-            return Err(Failure(format!("{}: two files are named {name}; import one recording at a time", p.display())));
-        }
-        names.push(name);
-    }
-    let mut files = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
-        let path = by_name.get(name).ok_or_else(|| gyrodrift::Error::File(format!("{name}: not among the files given")))?;
-        std::fs::File::open(path)
-            .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn std::io::Read>)
-            .map_err(|e| gyrodrift::Error::File(format!("{}: cannot open: {e}", path.display())))
-    };
-    let (d, log, summary) = import::detect_and_import(&names, &mut files).map_err(|e| Failure(e.to_string()))?;
+    let (d, log, summary) = import::import_paths(paths).map_err(|e| Failure(e.to_string()))?;
     let parts: Vec<String> = d.used.iter().map(|(role, f)| format!("{role} = {f}")).collect();
     let mut note = format!("detected preset {} ({}): {}", d.preset, d.title, parts.join(", "));
     if !d.ignored.is_empty() {

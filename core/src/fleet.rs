@@ -193,23 +193,6 @@ pub fn score_reader<R: Read>(file: &str, stem: &str, reader: R, opts: &FleetOpti
     }
 }
 
-/// A logger's raw export (an `import::Recording`'s files, opened by name through `files`:
-/// the front opens them) imported by the preset detected from them and scored as a drive
-/// labelled `file`: named by the import (a one-file export's file and preset), or by `stem`
-/// (the folder) when it has several files, whose first file would name every folder alike.
-/// An import that fails is one error row.
-pub fn score_import(file: &str, stem: &str, names: &[String], files: &mut dyn crate::import::Files, opts: &FleetOptions) -> Vec<DriveRow> {
-    match crate::import::detect_and_import(names, files) {
-        Ok((_, mut log, _)) => {
-            if names.len() > 1 {
-                log.meta.name = Some(stem.to_string());
-            }
-            score_log(file, stem, log, opts)
-        }
-        Err(e) => vec![DriveRow::failed(file, e.to_string())],
-    }
-}
-
 /// The recordings of a logger's raw exports among the files of `rows` that failed
 /// (`import::recordings`), their files' error rows taken out of `rows`: what `--import`
 /// scores instead (`score_recording`).
@@ -223,22 +206,23 @@ pub fn take_recordings(rows: &mut Vec<DriveRow>) -> Vec<crate::import::Recording
     recs
 }
 
-/// One recording of raw exports, its files opened by name, imported and scored
-/// (`score_import`); labelled by its file or folder.
+/// One recording of raw exports (`import::Recording`) imported by the preset detected
+/// from its files and scored as a drive labelled by its file or folder: named by the import
+/// (a one-file export's file and preset), or by the folder when it has several files, whose
+/// first file would name every folder alike. An import that fails is one error row.
 #[cfg(feature = "fs")]
 pub fn score_recording(rec: &crate::import::Recording, opts: &FleetOptions) -> Vec<DriveRow> {
     let label = rec.label.display().to_string();
     let stem = rec.label.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    let name_of = |p: &std::path::PathBuf| p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let names: Vec<String> = rec.files.iter().map(name_of).collect();
-    let mut open = |name: &str| -> Result<Box<dyn Read>> {
-        let path =
-            rec.files.iter().find(|p| name_of(p) == name).ok_or_else(|| crate::Error::File(format!("{name}: not in the recording")))?;
-        std::fs::File::open(path)
-            .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn Read>)
-            .map_err(|e| crate::Error::File(format!("{}: cannot open: {e}", path.display())))
-    };
-    score_import(&label, &stem, &names, &mut open, opts)
+    match crate::import::import_paths(&rec.files) {
+        Ok((_, mut log, _)) => {
+            if rec.files.len() > 1 {
+                log.meta.name = Some(stem.clone());
+            }
+            score_log(&label, &stem, log, opts)
+        }
+        Err(e) => vec![DriveRow::failed(&label, e.to_string())],
+    }
 }
 
 /// One method over the fleet.

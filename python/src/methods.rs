@@ -321,26 +321,7 @@ fn import_log<'py>(
 /// headers: (log, summary, detection) with detection = {preset, title, recipe, used, ignored}.
 #[pyfunction]
 fn import_files<'py>(py: Python<'py>, paths: Vec<std::path::PathBuf>) -> PyResult<(PyLog, Bound<'py, PyDict>, Bound<'py, PyDict>)> {
-    let mut by_name = std::collections::BTreeMap::new();
-    let mut names = Vec::new();
-    for p in &paths {
-        let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| p.display().to_string());
-        if by_name.insert(name.clone(), p.clone()).is_some() {
-            return Err(value_err(format!("{}: two files are named {name}; import one recording at a time", p.display())));
-        }
-        names.push(name);
-    }
-    let (d, log, summary) = py
-        .detach(|| {
-            let mut files = |name: &str| -> gyrodrift::Result<Box<dyn std::io::Read>> {
-                let path = by_name.get(name).ok_or_else(|| gyrodrift::Error::File(format!("{name}: not among the files given")))?;
-                std::fs::File::open(path)
-                    .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn std::io::Read>)
-                    .map_err(|e| gyrodrift::Error::File(format!("{}: cannot open: {e}", path.display())))
-            };
-            gyrodrift::import::detect_and_import(&names, &mut files)
-        })
-        .map_err(value_err)?;
+    let (d, log, summary) = py.detach(|| gyrodrift::import::import_paths(&paths)).map_err(value_err)?;
     let used: Vec<(String, String)> = d.used.iter().map(|(r, f)| (r.to_string(), f.clone())).collect();
     let detection =
         serde_json::json!({ "preset": d.preset, "title": d.title, "recipe": d.recipe_json, "used": used, "ignored": d.ignored });

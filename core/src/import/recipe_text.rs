@@ -87,6 +87,29 @@ mod files {
         import(recipe, &mut files)
     }
 
+    /// A logger's raw files given by path, imported by the preset detected from them (as
+    /// `detect_and_import`, which names files by their file names): `gyrodrift import
+    /// FILE...`, Python's `import_files`, a fleet's recordings. Two files of one name are
+    /// refused.
+    pub fn import_paths(paths: &[PathBuf]) -> Result<(super::super::Detection, DriveLog, ImportSummary)> {
+        let mut by_name = std::collections::BTreeMap::new();
+        let mut names = Vec::new();
+        for p in paths {
+            let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| p.display().to_string());
+            if by_name.insert(name.clone(), p).is_some() {
+                return Err(Error::File(format!("{}: two files are named {name}; import one recording at a time", p.display())));
+            }
+            names.push(name);
+        }
+        let mut files = |name: &str| -> Result<Box<dyn std::io::Read>> {
+            let path = by_name.get(name).ok_or_else(|| Error::File(format!("{name}: not among the files given")))?;
+            std::fs::File::open(path)
+                .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn std::io::Read>)
+                .map_err(|e| Error::File(format!("{}: cannot open: {e}", path.display())))
+        };
+        super::super::detect_and_import(&names, &mut files)
+    }
+
     /// Imports by the recipe file at `path`, its files from `data` (default: the recipe's
     /// folder). Errors name the recipe.
     pub fn import_recipe_file(path: &Path, data: Option<&Path>, allow_outside: bool) -> Result<(DriveLog, ImportSummary)> {
