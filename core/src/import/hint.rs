@@ -101,7 +101,10 @@ pub fn recordings(failed: &[PathBuf]) -> Vec<Recording> {
             let Ok(d) = detect(&heads) else { break };
             let used: Vec<&str> = d.used.iter().map(|(_, f)| f.as_str()).collect();
             let files: Vec<PathBuf> = used.iter().map(|f| dir.join(f)).collect();
-            let label = if files.len() == 1 { files[0].clone() } else { dir.to_path_buf() };
+            let label = match files.as_slice() {
+                [one] => one.clone(),
+                _ => dir.to_path_buf(),
+            };
             let before = left.len();
             left.retain(|(p, _)| !p.file_name().is_some_and(|n| used.contains(&n.to_string_lossy().as_ref())));
             if left.len() == before {
@@ -109,7 +112,9 @@ pub fn recordings(failed: &[PathBuf]) -> Vec<Recording> {
             }
             out.push(Recording { preset: d.preset, label, files, ignored: Vec::new() });
         }
-        if let Some(r) = out.iter_mut().rev().take_while(|r| folder_of(&r.files[0]) == dir).find(|r| r.files.len() > 1) {
+        if let Some(r) =
+            out.iter_mut().rev().take_while(|r| r.files.first().is_some_and(|f| folder_of(f) == dir)).find(|r| r.files.len() > 1)
+        {
             r.ignored = left.into_iter().map(|(p, _)| p.clone()).collect();
         }
     }
