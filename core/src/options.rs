@@ -51,6 +51,16 @@ fn checked_object(value: Value, parse: &mut dyn FnMut(Value) -> std::result::Res
     Err(Error::param("options", e))
 }
 
+/// A pair's value as JSON: a whole number as an integer (so integer settings take it), any
+/// other finite number as it is.
+fn number(key: &str, v: f64) -> Result<Value> {
+    if v.fract() == 0.0 && v.abs() < 9e15 {
+        Ok(Value::from(v as i64))
+    } else {
+        serde_json::Number::from_f64(v).map(Value::Number).ok_or_else(|| Error::param(key, format!("{v} is not a finite number")))
+    }
+}
+
 /// Settings from `key=value` pairs on top of the defaults (the CLI's `--set`): a key is a
 /// field name or its alias; a key that names a field of a nested settings struct (the
 /// pipeline's still thresholds) goes to that struct. Validated.
@@ -58,11 +68,7 @@ pub fn from_pairs<T: Settings>(pairs: &[(String, f64)]) -> Result<T> {
     let defaults = serde_json::to_value(T::default()).map_err(|e| Error::param("options", e.to_string()))?;
     let mut obj = Map::new();
     for (k, v) in pairs {
-        let num = if v.fract() == 0.0 && v.abs() < 9e15 {
-            Value::from(*v as i64)
-        } else {
-            serde_json::Number::from_f64(*v).map(Value::Number).ok_or_else(|| Error::param(k, format!("{v} is not a finite number")))?
-        };
+        let num = number(k, *v)?;
         let nested = defaults.as_object().and_then(|d| {
             d.iter().find(|(_, inner)| !d.contains_key(k.as_str()) && inner.as_object().is_some_and(|i| i.contains_key(k.as_str())))
         });
@@ -95,10 +101,7 @@ pub fn from_pairs_on<T: Settings>(base: &T, pairs: &[(String, f64)]) -> Result<T
             }
             Some(Value::Bool(_)) if *v == 0.0 || *v == 1.0 => Value::Bool(*v == 1.0),
             Some(Value::Bool(_)) => return Err(Error::param(k, format!("{v} is not 0 (no) or 1 (yes)"))),
-            Some(_) if v.fract() == 0.0 && v.abs() < 9e15 => Value::from(*v as i64),
-            Some(_) => {
-                serde_json::Number::from_f64(*v).map(Value::Number).ok_or_else(|| Error::param(k, format!("{v} is not a finite number")))?
-            }
+            Some(_) => number(k, *v)?,
         };
         obj.insert(k.clone(), value);
     }
