@@ -10,8 +10,15 @@ export function addLog(name, bytes) {
   return addParsed(name, () => gd.Log.fromBytes(bytes));
 }
 
+/** A reference heading to score against: a drive with no GPS course (speed, no
+ * ref_heading_deg) is shown in the HDR view, but not scored, tuned or put in the battery. */
+function hasReference(log) {
+  return log.columns().includes("ref_heading_deg") && log.column("ref_heading_deg").some((v) => !Number.isNaN(v));
+}
+
 export function headline(entry) {
   try {
+    if (entry.kind === "drive" && !entry.scored) return "no reference: not scored";
     if (entry.kind === "drive") return `HDR ${fmt(gd.hdr(entry.log, hdrOptions()).improvement, 1)}x`;
     if (entry.kind === "robot") return `Gyrodometry ${fmt(gd.gyrodometry(entry.log, state.gyro).E_psi_gyrodometry_deg, 2)} deg`;
     if (entry.kind === "turntable") return `360° err ${fmt(gd.calibrate(entry.log, {}).turn360_err_compensated_max_deg, 2)} deg`;
@@ -118,6 +125,7 @@ export function addParsed(name, make, checked = null) {
     }
     const entries = parts.map((log) => {
       const entry = { name: log.name, file: name, log, error: null, kind: log.kind, headline: "", findings: [], note };
+      entry.scored = entry.kind === "drive" && hasReference(log);
       entry.headline = headline(entry);
       // What `gyrodrift check` would say: unit, sign and gap mistakes, each with its fix.
       const findings = parts.length > 1 ? gd.checkLog(log).findings : check.findings;

@@ -87,6 +87,29 @@ fn part_path(path: &Path, i: usize) -> PathBuf {
     path.with_file_name(format!("{stem}.part{}{ext}", i + 1))
 }
 
+/// What `hdr` and `pipeline` print for a drive: its scores, or, for a drive without a
+/// reference heading (no GPS course), why it is not scored and the estimator's own figures.
+#[derive(serde::Serialize)]
+#[serde(untagged)]
+pub enum Outcome<R, S> {
+    Scored(R),
+    Unscored {
+        not_scored: String,
+        #[serde(flatten)]
+        summary: S,
+    },
+}
+
+/// A run's scores, or its summary where the drive has no reference to score against (any
+/// other failure to score stays an error).
+fn outcome<R, S>(drive: &DriveLog, result: gyrodrift::Result<R>, summary: S) -> gyrodrift::Result<Outcome<R, S>> {
+    match result {
+        Ok(r) => Ok(Outcome::Scored(r)),
+        Err(e) if !drive.has_reference() => Ok(Outcome::Unscored { not_scored: e.to_string(), summary }),
+        Err(e) => Err(e),
+    }
+}
+
 pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option<&Path>, input: Input) -> Result<(), Failure> {
     let opts = hdr::HdrOptions { resample, ..settings(set)? };
     let parts = read_checked(log, input, opts.bias_s)?;
@@ -94,9 +117,13 @@ pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option
     let mut one = |i: usize, drive: &DriveLog| {
         let run = hdr::run(drive, &opts)?;
         write_trace(trace, i, &mut trace_err, |f| run.trace.write_csv(f));
-        run.result
+        let summary = run.summary(drive.duration_min());
+        outcome(drive, run.result, summary)
     };
-    let printed = per_part(log, &parts, json, &mut one, |r| output::hdr_table(log, &opts, r));
+    let printed = per_part(log, &parts, json, &mut one, |r| match r {
+        Outcome::Scored(r) => output::hdr_table(log, &opts, r),
+        Outcome::Unscored { not_scored, summary } => output::hdr_unscored(log, not_scored, summary, trace.is_some()),
+    });
     trace_err.map_or(printed, Err)
 }
 
@@ -107,9 +134,13 @@ pub fn pipeline(log: &Path, set: &[String], json: bool, trace: Option<&Path>, in
     let mut one = |i: usize, drive: &DriveLog| {
         let run = gyrodrift::pipeline::run(drive, &params)?;
         write_trace(trace, i, &mut trace_err, |f| run.trace.write_csv(f));
-        run.result
+        let summary = run.summary(drive.duration_min());
+        outcome(drive, run.result, summary)
     };
-    let printed = per_part(log, &parts, json, &mut one, |r| output::pipeline_table(log, r));
+    let printed = per_part(log, &parts, json, &mut one, |r| match r {
+        Outcome::Scored(r) => output::pipeline_table(log, r),
+        Outcome::Unscored { not_scored, summary } => output::pipeline_unscored(log, not_scored, summary, trace.is_some()),
+    });
     trace_err.map_or(printed, Err)
 }
 

@@ -25,6 +25,30 @@ pub fn hdr_table(path: &Path, o: &HdrOptions, r: &HdrResult) -> String {
     s
 }
 
+/// Where an unscored run's headings are: the trace file, or how to ask for one.
+fn trace_hint(traced: bool) -> &'static str {
+    if traced {
+        "per sample in the trace file"
+    } else {
+        "per sample with --trace FILE"
+    }
+}
+
+/// HDR on a drive without a reference heading: why nothing is scored, and the estimator's figures.
+pub fn hdr_unscored(path: &Path, why: &str, s: &gyrodrift::hdr::HdrSummary, traced: bool) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "{}: HDR, {:.1} min, not scored: {why}", path.display(), s.duration_min);
+    let _ = writeln!(out, "  heading turned (from 0 at the start; {})", trace_hint(traced));
+    let _ = writeln!(out, "    without HDR  {:>10.2} deg", s.heading_change_raw_deg);
+    let _ = writeln!(out, "    with HDR     {:>10.2} deg", s.heading_change_hdr_deg);
+    let _ = writeln!(
+        out,
+        "  static bias eps0 {:.4} deg/s; drift estimate -I at the end {:.4} deg/s; {} estimator samples",
+        s.eps0_dps, s.final_drift_estimate_dps, s.n_processed
+    );
+    out
+}
+
 pub fn gyrodometry_table(path: &Path, r: &GyrodometryResult) -> String {
     let mut s = String::new();
     let _ = writeln!(
@@ -207,4 +231,18 @@ pub fn pipeline_table(path: &Path, r: &gyrodrift::pipeline::PipelineResult) -> S
     }
     let _ = writeln!(s, "  final bias {:.4} +- {:.4} deg/s", r.final_bias_dps, r.final_bias_sigma_dps);
     s
+}
+
+/// The pipeline on a drive without a reference heading: why nothing is scored, and the
+/// estimator's figures at the end.
+pub fn pipeline_unscored(path: &Path, why: &str, s: &gyrodrift::pipeline::PipelineSummary, traced: bool) -> String {
+    let mut out = String::new();
+    let _ =
+        writeln!(out, "{}: {:.1} min, stops from {} ({:.0} s counted)", path.display(), s.duration_min, s.still_source.name(), s.stop_s);
+    let _ = writeln!(out, "  not scored: {why}");
+    let _ = writeln!(out, "  heading turned (from 0 at the start; {})", trace_hint(traced));
+    let _ = writeln!(out, "    pipeline            {:>10.2} +- {:.2} deg", s.heading_change_deg, s.heading_change_sigma_deg);
+    let _ = writeln!(out, "    smoothed (offline)  {:>10.2} deg", s.heading_change_smoothed_deg);
+    let _ = writeln!(out, "  final bias {:.4} +- {:.4} deg/s", s.final_bias_dps, s.final_bias_sigma_dps);
+    out
 }

@@ -150,7 +150,6 @@ fn bad_inputs_exit_2_never_panic() {
         ("nan.csv", "time_s,gyro_dps\n0,nan\n", "line 2, column gyro_dps"),
         ("back.csv", "time_s,gyro_dps\n0,1\n1,1\n1,1\n", "line 4, column time_s: time 1 repeats 1 on line 3"),
         ("trunc.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1", "line 3: row has 2 fields"),
-        ("noref.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,\n1,1,\n", "no valid reference heading"),
     ];
     for (name, text, want) in cases {
         let p = write(name, text);
@@ -160,6 +159,11 @@ fn bad_inputs_exit_2_never_panic() {
         assert!(err.contains(want) && err.starts_with(&p.display().to_string()), "{name}: {err}");
         assert_eq!(err.lines().count(), 1, "{name}: {err}");
     }
+    // An empty reference column is a drive without a reference: run, not scored, exit 0.
+    let p = write("noref.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,\n1,1,\n");
+    let out = run(&["hdr", p.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("not scored: no valid reference heading"));
     let out = run(&["hdr", "/nonexistent/x.csv"]);
     assert_eq!(out.status.code(), Some(2));
     let p = write("ok.csv", &drive_csv());
@@ -636,5 +640,67 @@ fn inject_and_simulate_add_the_named_gyro_errors() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(says) && err.lines().count() == 1, "{args:?}: {err}");
+    }
+}
+
+/// A drive without a reference heading (no GPS course; or the column there but empty):
+/// `pipeline` and `hdr` run, write their traces, say why nothing is scored and print the
+/// estimator's figures, exit 0. The heading turned matches the drive's truth.
+#[test]
+fn a_drive_without_a_reference_runs_unscored() {
+    let text = drive_csv();
+    let rows: Vec<Vec<&str>> = text.lines().skip(2).map(|l| l.split(',').collect()).collect();
+    let without: String = rows.iter().map(|r| format!("{},{},{}\n", r[0], r[1], r[3])).collect();
+    let empty: String = rows.iter().map(|r| format!("{},{},,{}\n", r[0], r[1], r[3])).collect();
+    // The truth: 10 deg/s while t % 60 > 51 after 20 s, integrated as drive_csv does.
+    let truth: f64 = (1..=6000).map(|i| i as f64 / 10.0).filter(|t| *t > 20.0 && t % 60.0 > 51.0).map(|_| 1.0).sum();
+    for (name, body) in [
+        ("no-ref.csv", format!("time_s,gyro_dps,speed_mps\n{without}")),
+        ("empty-ref.csv", format!("time_s,gyro_dps,ref_heading_deg,speed_mps\n{empty}")),
+    ] {
+        let p = write(name, &body);
+        let trace = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.trace.csv"));
+        let out = run(&["pipeline", p.to_str().unwrap(), "--json", "--trace", trace.to_str().unwrap()]);
+        assert!(out.status.success(), "{name}: {}", String::from_utf8_lossy(&out.stderr));
+        let json = String::from_utf8_lossy(&out.stdout);
+        let expect = [
+            "not_scored",
+            "duration_min",
+            "still_source",
+            "stop_s",
+            "final_bias_dps",
+            "final_bias_sigma_dps",
+            "heading_change_deg",
+            "heading_change_sigma_deg",
+            "heading_change_smoothed_deg",
+        ];
+        assert_eq!(keys(&json), sorted(&expect), "{name}");
+        let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+        assert!(v["not_scored"].as_str().unwrap().contains("ref_heading_deg"), "{name}: {}", v["not_scored"]);
+        assert_eq!(v["still_source"], "speed");
+        let f = |k: &str| v[k].as_f64().unwrap();
+        // The summary is the trace's end: the heading from 0 at the first block, the bias.
+        let t = std::fs::read_to_string(&trace).unwrap();
+        let (h, b) = (column(&t, "heading_deg"), column(&t, "bias_dps"));
+        // (serde_json reads floats to within an ulp, not round-trip.)
+        assert!((f("heading_change_deg") - (h[h.len() - 1] - h[0])).abs() < 1e-9 && (f("final_bias_dps") - b[b.len() - 1]).abs() < 1e-12);
+        assert!((f("final_bias_dps") - 1.03).abs() < 0.01, "{name}: bias {}", f("final_bias_dps"));
+        assert!((f("heading_change_deg") - truth).abs() < 5.0, "{name}: {} against {truth}", f("heading_change_deg"));
+        let out = run(&["pipeline", p.to_str().unwrap()]);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success() && text.contains("not scored: ") && text.contains("with --trace FILE"), "{text}");
+        let out = run(&["hdr", p.to_str().unwrap(), "--json"]);
+        assert!(out.status.success(), "{name}: {}", String::from_utf8_lossy(&out.stderr));
+        let json = String::from_utf8_lossy(&out.stdout);
+        let expect = [
+            "not_scored",
+            "duration_min",
+            "eps0_dps",
+            "final_drift_estimate_dps",
+            "heading_change_raw_deg",
+            "heading_change_hdr_deg",
+            "n_processed",
+        ];
+        assert_eq!(keys(&json), sorted(&expect), "{name}");
     }
 }

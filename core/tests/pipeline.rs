@@ -53,3 +53,43 @@ fn pipeline_trace_is_aligned_and_stops_pin_the_bias() {
     let s = gyrodrift::metrics::score(&tr.time_s, &tr.heading_deg, &reference).unwrap();
     assert!(s.shift_deg.abs() < 1e-9, "shift {}", s.shift_deg);
 }
+
+/// The summary a drive without a reference prints is the scored run's own end figures, and
+/// the heading it turned is the truth's within the run's score: on City 1 with its
+/// reference and with the reference column dropped.
+#[test]
+fn the_summary_is_the_runs_end_with_or_without_a_reference() {
+    let log = &drives("train")[0];
+    let run = pipeline::run(log, &PipelineParams::default()).unwrap();
+    let (s, r) = (run.summary(log.duration_min()), run.result.as_ref().unwrap());
+    assert_eq!(
+        (s.stop_s, s.final_bias_dps, s.final_bias_sigma_dps, s.still_source),
+        (r.stop_s, r.final_bias_dps, r.final_bias_sigma_dps, r.still_source)
+    );
+    let reference = gyrodrift::metrics::Reference::from_log(log).unwrap();
+    let (t, h) = (&run.trace.time_s, &run.trace.heading_deg);
+    // Over the reference's span (it starts once the car moves) the heading turned is the
+    // truth's within a few times the run's mean error.
+    let (rt, rh) = (&reference.time_s, &reference.heading_deg);
+    let (a, b) = (rt[0], rt[rt.len() - 1].min(t[t.len() - 1]));
+    let at = |x: &[f64], y: &[f64], v: f64| gyrodrift::metrics::value_at(x, y, v);
+    let (turned, truth) = (at(t, h, b) - at(t, h, a), at(rt, rh, b) - at(rt, rh, a));
+    assert!((turned - truth).abs() < 4.0 * r.E_psi_pipeline_deg + 5.0, "{turned} against {truth}");
+    assert!((s.heading_change_deg - (h[h.len() - 1] - h[0])).abs() < 1e-9);
+    // The same drive without its reference: nothing scored, the same estimate.
+    let mut bare = log.clone();
+    bare.drop_column(gyrodrift::log::Column::RefHeadingDeg);
+    assert!(!bare.has_reference() && log.has_reference());
+    let unscored = pipeline::run(&bare, &PipelineParams::default()).unwrap();
+    assert!(unscored.result.is_err());
+    let u = unscored.summary(bare.duration_min());
+    // Equal but for the rounding of the scored trace's alignment shift (an ulp of 562 deg).
+    assert_eq!(
+        (u.stop_s, u.final_bias_dps, u.final_bias_sigma_dps, u.heading_change_sigma_deg),
+        (s.stop_s, s.final_bias_dps, s.final_bias_sigma_dps, s.heading_change_sigma_deg)
+    );
+    assert!(
+        (u.heading_change_deg - s.heading_change_deg).abs() < 1e-9
+            && (u.heading_change_smoothed_deg - s.heading_change_smoothed_deg).abs() < 1e-9
+    );
+}

@@ -37,8 +37,9 @@ fn hdr<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny>>) 
     result_dict(py, &r)
 }
 
-/// HDR with its per-sample series: `{result, error, eps0_dps, trace}`; the trace's arrays
-/// are float64 (turn_switch as 1.0/0.0).
+/// HDR with its per-sample series: `{result, error, eps0_dps, summary, trace}` (summary:
+/// the estimator's end figures, which need no reference); the trace's arrays are float64
+/// (turn_switch as 1.0/0.0).
 #[pyfunction]
 #[pyo3(signature = (log, settings=None))]
 fn run_hdr<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
@@ -46,6 +47,7 @@ fn run_hdr<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny
     let run = py.detach(|| g::hdr::run(&log.log, &opts)).map_err(value_err)?;
     let d = run_dict(py, &run.result)?;
     d.set_item("eps0_dps", run.eps0_dps)?;
+    d.set_item("summary", crate::to_py(py, &serde_json::to_value(run.summary(log.log.duration_min())).map_err(value_err)?)?)?;
     let drift = run.trace.drift_estimate_dps();
     let t = run.trace;
     let trace = series(
@@ -76,7 +78,9 @@ fn pipeline<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAn
     result_dict(py, &r)
 }
 
-/// The pipeline with its per-block series: `{result, error, still_source, trace}`.
+/// The pipeline with its per-block series: `{result, error, still_source, summary, trace}`
+/// (summary: the estimator's end figures, which need no reference: a drive with no GPS
+/// course still gets its bias and heading).
 #[pyfunction]
 #[pyo3(signature = (log, settings=None))]
 fn run_pipeline<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
@@ -84,6 +88,7 @@ fn run_pipeline<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, 
     let run = py.detach(|| gyrodrift::pipeline::run(&log.log, &p)).map_err(value_err)?;
     let d = run_dict(py, &run.result)?;
     d.set_item("still_source", crate::to_py(py, &serde_json::to_value(run.still_source).map_err(value_err)?)?)?;
+    d.set_item("summary", crate::to_py(py, &serde_json::to_value(run.summary(log.log.duration_min())).map_err(value_err)?)?)?;
     let t = run.trace;
     let trace = series(
         py,

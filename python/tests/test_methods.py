@@ -163,6 +163,27 @@ def test_a_log_without_reference_runs_but_has_no_result(samples):
         g.hdr(g.read_log(str(samples / "static" / "static-2h.csv")))
 
 
+def test_a_drive_without_reference_gets_the_clis_summary(cli, samples, tmp_path):
+    """A drive with speed and no GPS course: a drive, not scored, and its summary (bias,
+    heading turned) is the CLI's unscored JSON, key for key."""
+    df = g.to_pandas(g.read_log(str(samples / "train" / "city-1.csv")))[["time_s", "gyro_dps", "speed_mps"]]
+    log = g.from_pandas(df, {"name": "City 1 without GPS", "bias_s": 20})
+    assert log.kind == "drive"
+    path = tmp_path / "no-gps.csv"
+    path.write_text(log.to_csv())
+    for run, command in ((g.run_pipeline(log), "pipeline"), (g.run_hdr(log), "hdr")):
+        assert run["result"] is None and "ref_heading_deg" in run["error"]
+        native = cli(command, str(path), "--json")
+        assert native.pop("not_scored") == run["error"]
+        assert run["summary"].keys() == native.keys(), command
+        for k, v in native.items():
+            assert run["summary"][k] == (v if isinstance(v, str) else pytest.approx(v, rel=1e-12)), (command, k)
+    # Scored or not, the pipeline's summary is its result's end figures.
+    scored = g.run_pipeline(g.read_log(str(samples / "train" / "city-1.csv")))
+    assert scored["summary"]["final_bias_dps"] == scored["result"]["final_bias_dps"]
+    assert scored["summary"]["stop_s"] == scored["result"]["stop_s"]
+
+
 def test_pandas_round_trip_scores_the_same(samples):
     log = g.read_log(str(samples / "train" / "city-1.csv"))
     df = g.to_pandas(log)

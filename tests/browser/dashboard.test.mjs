@@ -343,6 +343,42 @@ test("a log with a 60 s gap becomes two drives, each marked as split, with the C
   assert.equal(await page.locator("#m-e-hdr").innerText(), native[0].E_psi_hdr_deg.toFixed(2));
 });
 
+test("a drive without a reference heading is shown, not scored: the HDR view says so, the Report skips it", async () => {
+  // City 1 with its GPS course dropped: speed and gyro only, a drive with no reference.
+  const dir = mkdtempSync(join(tmpdir(), "gd-noref-"));
+  const file = join(dir, "city-no-gps.csv");
+  const lines = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").split("\n");
+  const h = lines.findIndex((l) => l.startsWith("time_s"));
+  const r = lines[h].split(",").indexOf("ref_heading_deg");
+  writeFileSync(file, lines.map((l, i) => (l.startsWith("# name:") ? "# name: City no GPS" : i < h || !l ? l : l.split(",").filter((_, j) => j !== r).join(","))).join("\n"));
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#file-input").setInputFiles([file]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City no GPS"));
+  const item = page.locator("#logs li", { hasText: "City no GPS" });
+  assert.match(await item.innerText(), /drive · 19\.4 min · no reference: not scored/);
+  await page.waitForSelector("#m-bias-pipeline");
+  assert.match(await page.locator("#m-unscored").innerText(), /Not scored: missing column ref_heading_deg/);
+  // The pipeline's final bias is the CLI's, which runs the drive unscored too (exit 0).
+  const native = JSON.parse(cli("pipeline", file, "--json"));
+  assert.match(native.not_scored, /ref_heading_deg/);
+  assert.equal(await page.locator("#m-bias-pipeline").innerText(), native.final_bias_dps.toFixed(4));
+  // No error to draw: the chart is hidden, not the last drive's left standing.
+  assert.equal(await page.locator("#c-error").isVisible(), false);
+  assert.equal(await page.locator("#c-heading").isVisible(), true);
+  await page.screenshot({ path: join(ARTIFACTS, "no-reference.png"), fullPage: true });
+  // The Report scores the other drives and names the one it cannot.
+  await page.locator("#tabs button[data-view=report]").click();
+  await page.waitForSelector("#report-table table");
+  assert.match(await page.locator("#report-unscored").innerText(), /Not scored \(no reference heading\): City no GPS\./);
+  assert.equal(await page.locator("#report-table tr", { hasText: "City no GPS" }).count(), 0);
+  assert.ok((await page.locator("#report-table tr", { hasText: "City 1" }).count()) > 0);
+  await item.locator("button.remove").click();
+  assert.equal(await page.locator("#report-unscored").isVisible(), false);
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.waitForSelector("#m-e-hdr");
+  assert.equal(await page.locator("#c-error").isVisible(), true);
+});
+
 test("log management: same name made unique, the same file re-opened, a log removed, an error dismissed", async () => {
   const dir = mkdtempSync(join(tmpdir(), "gd-manage-"));
   const copy = join(dir, "rural-copy.csv");

@@ -410,3 +410,31 @@ test("battery on the user's drives gives the CLI's `battery --logs` cases, metho
   bare.free();
   log.free();
 });
+
+test("a drive with speed and no reference heading is a drive: runPipeline gives its trace and says why it is not scored, as the CLI", () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-noref-"));
+  const lines = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").split("\n");
+  const h = lines.findIndex((l) => l.startsWith("time_s"));
+  const r = lines[h].split(",").indexOf("ref_heading_deg");
+  const text = lines.map((l, i) => (i < h || !l ? l : l.split(",").filter((_, j) => j !== r).join(","))).join("\n");
+  const file = join(dir, "no-gps.csv");
+  writeFileSync(file, text);
+  const log = gd.Log.parse(text);
+  assert.equal(log.kind, "drive");
+  const run = gd.runPipeline(log, {});
+  assert.equal(run.result, null);
+  assert.match(run.error, /missing column ref_heading_deg/);
+  assert.equal(run.errors, null);
+  const native = JSON.parse(cli("pipeline", file, "--json"));
+  assert.equal(native.not_scored, run.error);
+  assert.equal(run.still_source, native.still_source);
+  const t = run.trace;
+  assert.equal(t.heading_deg[0], 0);
+  assert.equal(t.bias_dps[t.bias_dps.length - 1], native.final_bias_dps);
+  assert.equal(t.heading_deg[t.heading_deg.length - 1] - t.heading_deg[0], native.heading_change_deg);
+  // Without a speed either, a gyro alone stays a static session (Allan deviation).
+  const still = gd.Log.parse("time_s,gyro_dps\n0,0.1\n1,0.1\n2,0.1\n");
+  assert.equal(still.kind, "static");
+  still.free();
+  log.free();
+});

@@ -44,6 +44,11 @@ export function renderHdr() {
       <span title="${METRIC_HELP.eps0}">ε<sub>0</sub> <b>${fmt(r.eps0_dps, 4)}</b> deg/s · ${r.n_processed} samples · ${fmt(r.duration_min, 1)} min</span>` +
       (pr ? `<span class="recommended" title="bank of bias Kalman filters: zero-rate updates at stops, HDR's straight-road heuristic around the drive's dominant rate (docs/pipeline.md)">pipeline (recommended): E<sub>ψ</sub> <b id="m-e-pipeline">${fmt(pr.E_psi_pipeline_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_deg_per_min, 3)}</b> deg/min · <b id="m-improvement-pipeline">${fmt(pr.improvement_pipeline, 2)}</b>× · stops ${fmt(pr.stop_s, 0)} s (${pr.still_source})</span>
       <span class="smoothed" title="forward-backward over the whole log: for recorded logs, not available live">smoothed (offline, non-causal): E<sub>ψ</sub> <b id="m-e-smoothed">${fmt(pr.E_psi_pipeline_smoothed_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_smoothed_deg_per_min, 3)}</b> deg/min</span>` : busy);
+  } else if (!run.reference) {
+    // A drive with no GPS course: the estimates run, nothing is scored.
+    const last = (a) => a[a.length - 1];
+    m.innerHTML = `<span id="m-unscored">Not scored: ${esc(run.error)}. The headings below start at 0 deg.</span>` +
+      (pipe.trace ? `<span class="recommended">pipeline (recommended): final bias <b id="m-bias-pipeline">${fmt(last(pipe.trace.bias_dps), 4)}</b> ± ${fmt(last(pipe.trace.bias_sigma_dps), 4)} deg/s (stops from ${pipe.still_source})</span>` : busy);
   } else {
     m.textContent = run.error;
   }
@@ -64,6 +69,8 @@ export function renderHdr() {
   const pe = pipe.errors && reduce(pipe.errors.time_s, [pipe.errors.pipeline_deg, pipe.errors.smoothed_deg], v);
   const cursor = state.cursor;
   chart("c-heading", { title: `${e.name}: heading`, x_label: "time", time_x: true, y_label: "heading (deg)", x_range: xr, series, cursor_x: cursor });
+  // Without a reference there is no error to draw (not the last drive's chart left standing).
+  $("c-error").parentElement.hidden = !run.errors;
   if (run.errors) {
     chart("c-error", {
       title: "heading error (estimate − reference)", x_label: "time", time_x: true, y_label: "error (deg)", x_range: xr, cursor_x: cursor,

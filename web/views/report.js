@@ -7,9 +7,14 @@ import { showError, render } from "../render.js";
 import { inWorker, driveColumns } from "../loading.js";
 import { fillWorse } from "./robustness.js";
 
+/** The loaded drives with a reference heading: the ones the Report view scores. */
+export function scoredDrives() {
+  return state.entries.filter((e) => !e.error && e.scored);
+}
+
 /** The loaded drives the Report view tabulates. */
 export function reportDrives() {
-  return state.entries.filter((e) => !e.error && e.kind === "drive").map((e) => e.log);
+  return scoredDrives().map((e) => e.log);
 }
 
 /** The Report tables as files: Table II and the comparison, CSV or Markdown, from core. */
@@ -33,6 +38,9 @@ export function reportExports(download) {
 }
 
 export function renderReport() {
+  const unscored = state.entries.filter((e) => !e.error && e.kind === "drive" && !e.scored).map((e) => e.name);
+  $("report-unscored").hidden = !unscored.length;
+  $("report-unscored").textContent = `Not scored (no reference heading): ${unscored.join(", ")}.`;
   const drives = reportDrives();
   if (!drives.length) return showError("Load drive logs for the report.");
   const rep = gd.report(drives, hdrOptions());
@@ -87,7 +95,7 @@ export function reportTable(rep) {
 }
 
 export async function runTune() {
-  const drives = state.entries.filter((e) => !e.error && e.kind === "drive");
+  const drives = scoredDrives();
   if (!drives.length) return;
   const button = $("tune");
   const bar = $("tune-progress");

@@ -5,10 +5,11 @@ import * as gd from "../pkg/gyrodrift.js";
 import { $, fmt, state, hdrOptions } from "../state.js";
 import { inWorker, driveColumns, addParsed } from "../loading.js";
 import { renderList, selectEntry } from "../controls.js";
+import { scoredDrives } from "./report.js";
 
 /** Runs the battery on every loaded drive and shows it. */
 export async function runBattery() {
-  const drives = state.entries.filter((e) => !e.error && e.kind === "drive");
+  const drives = scoredDrives();
   if (!drives.length) return;
   const button = $("battery");
   button.disabled = true;
@@ -94,7 +95,7 @@ function openCase(c, button) {
  * and leaves everything loaded. */
 async function addWithErrors(baseName, profile, button, status) {
   const name = `${baseName} / ${profile}`;
-  const base = state.entries.find((e) => !e.error && e.kind === "drive" && e.name === baseName);
+  const base = scoredDrives().find((e) => e.name === baseName);
   if (!base) {
     status.textContent = `${name}: the drive ${baseName} is no longer loaded`;
     return;
@@ -126,7 +127,7 @@ let profileNames = null;
 export async function fillWorse() {
   const pick = $("worse-drive");
   const was = pick.value;
-  const drives = state.entries.filter((e) => !e.error && e.kind === "drive").map((e) => e.name);
+  const drives = scoredDrives().map((e) => e.name);
   pick.replaceChildren(...drives.map((n) => new Option(n, n, false, n === was)));
   if (!profileNames && window.Worker) {
     profileNames = [];

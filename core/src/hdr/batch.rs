@@ -161,7 +161,37 @@ pub struct HdrRun {
     pub result: Result<HdrResult>,
 }
 
+/// What an HDR run says without a reference heading to score against: the estimator's
+/// own figures at the end of the log.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct HdrSummary {
+    pub duration_min: f64,
+    /// Static bias over the lead-in (Eq. 2), deg/s.
+    pub eps0_dps: f64,
+    /// The drift estimate -I at the end, deg/s.
+    pub final_drift_estimate_dps: f64,
+    /// Heading turned from the first sample to the last, raw and with HDR, deg.
+    pub heading_change_raw_deg: f64,
+    pub heading_change_hdr_deg: f64,
+    pub n_processed: usize,
+}
+
 impl HdrRun {
+    /// The estimator's figures at the end of the log (`duration_min`: the log's), with or
+    /// without a reference.
+    pub fn summary(&self, duration_min: f64) -> HdrSummary {
+        let t = &self.trace;
+        let change = |x: &[f64]| x.last().copied().unwrap_or(f64::NAN) - x.first().copied().unwrap_or(f64::NAN);
+        HdrSummary {
+            duration_min,
+            eps0_dps: self.eps0_dps,
+            final_drift_estimate_dps: t.i_dps.last().map_or(f64::NAN, |i| -i),
+            heading_change_raw_deg: change(&t.heading_raw_deg),
+            heading_change_hdr_deg: change(&t.heading_hdr_deg),
+            n_processed: t.time_s.len(),
+        }
+    }
+
     /// For plots: the unwrapped reference and the errors of the raw and HDR headings at the
     /// scored samples; None when there is no result.
     pub fn errors(&self, log: &DriveLog) -> Option<(Reference, metrics::ErrorSeries)> {

@@ -212,6 +212,11 @@ impl DriveLog {
     pub fn has(&self, c: Column) -> bool {
         self.columns[c.index()].is_some()
     }
+    /// Whether there is a reference heading to score against: a `ref_heading_deg` column
+    /// with at least one value. Without one the methods run and nothing is scored.
+    pub fn has_reference(&self) -> bool {
+        self.column(Column::RefHeadingDeg).is_some_and(|h| h.iter().any(|v| !v.is_nan()))
+    }
     pub fn present_columns(&self) -> Vec<Column> {
         Column::ALL.iter().copied().filter(|&c| self.has(c)).collect()
     }
@@ -234,13 +239,15 @@ impl DriveLog {
         }
     }
 
-    /// What kind of log this is, from its columns: turntable, robot, drive or static.
+    /// What kind of log this is, from its columns: turntable, robot, drive or static. A
+    /// speed makes a drive without a reference heading too (a drive with no GPS course: the
+    /// methods run, nothing is scored), not a static session.
     pub fn kind(&self) -> LogKind {
         if self.has(Column::TableRateDps) {
             LogKind::Turntable
         } else if self.has(Column::OdoLeftM) && self.has(Column::OdoRightM) {
             LogKind::Robot
-        } else if self.has(Column::RefHeadingDeg) {
+        } else if self.has(Column::RefHeadingDeg) || self.has(Column::SpeedMps) {
             LogKind::Drive
         } else {
             LogKind::Static

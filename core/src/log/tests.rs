@@ -150,6 +150,7 @@ fn progress_is_reported_on_large_inputs() {
 fn kind_from_columns() {
     assert_eq!(DriveLog::with_columns(&[Column::GyroDps]).kind(), LogKind::Static);
     assert_eq!(DriveLog::with_columns(&[Column::GyroDps, Column::RefHeadingDeg]).kind(), LogKind::Drive);
+    assert_eq!(DriveLog::with_columns(&[Column::GyroDps, Column::SpeedMps]).kind(), LogKind::Drive);
     assert_eq!(DriveLog::with_columns(&[Column::OdoLeftM, Column::OdoRightM]).kind(), LogKind::Robot);
     assert_eq!(DriveLog::with_columns(&[Column::TableRateDps]).kind(), LogKind::Turntable);
 }

@@ -135,7 +135,50 @@ pub struct PipelineRun {
     pub result: Result<PipelineResult>,
 }
 
+/// What a run says without a reference heading to score against (a drive with no GPS
+/// course): the estimator's own figures at the end of the log.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PipelineSummary {
+    pub duration_min: f64,
+    /// Where the still flags came from: speed, odometry, gyro or none.
+    pub still_source: StillSource,
+    /// Time whose stop evidence was used, s.
+    pub stop_s: f64,
+    /// Bias estimate and its standard deviation at the end, deg/s.
+    pub final_bias_dps: f64,
+    pub final_bias_sigma_dps: f64,
+    /// Heading turned from the first block to the last (causal, with its sigma from the
+    /// bias model; and smoothed), deg: unscored headings start at 0.
+    pub heading_change_deg: f64,
+    pub heading_change_sigma_deg: f64,
+    pub heading_change_smoothed_deg: f64,
+}
+
+/// Seconds of the blocks whose stop evidence was used (each block's length from the one
+/// before). `+ 0.0`: an empty float sum is -0 in Rust, which printed as "-0 s".
+fn stop_seconds(time_s: &[f64], stop: &[bool]) -> f64 {
+    (1..time_s.len().min(stop.len())).filter(|&i| stop[i]).map(|i| time_s[i] - time_s[i - 1]).sum::<f64>() + 0.0
+}
+
 impl PipelineRun {
+    /// The estimator's figures at the end of the log (`duration_min`: the log's), with or
+    /// without a reference.
+    pub fn summary(&self, duration_min: f64) -> PipelineSummary {
+        let t = &self.trace;
+        let last = |x: &[f64]| x.last().copied().unwrap_or(f64::NAN);
+        let change = |x: &[f64]| last(x) - x.first().copied().unwrap_or(f64::NAN);
+        PipelineSummary {
+            duration_min,
+            still_source: self.still_source,
+            stop_s: stop_seconds(&t.time_s, &t.stop),
+            final_bias_dps: last(&t.bias_dps),
+            final_bias_sigma_dps: last(&t.bias_sigma_dps),
+            heading_change_deg: change(&t.heading_deg),
+            heading_change_sigma_deg: last(&t.heading_sigma_deg),
+            heading_change_smoothed_deg: change(&t.heading_smoothed_deg),
+        }
+    }
+
     /// For plots: the errors of the causal and smoothed headings at the scored reference
     /// samples; None when there is no result.
     pub fn errors(&self, log: &DriveLog) -> Option<crate::metrics::ErrorSeries> {
@@ -151,9 +194,7 @@ pub fn run(log: &DriveLog, params: &PipelineParams) -> Result<PipelineRun> {
     params.validate()?;
     let prep = Prepared::new(log, params.bias_s, &params.still)?;
     let mut trace = prep.pipeline_trace(params)?;
-    let blocks = &prep.blocks;
-    // + 0: an empty float sum is -0 in Rust, which printed as "-0 s".
-    let stop_s = (1..blocks.len()).filter(|&i| trace.stop[i]).map(|i| blocks.time_s[i] - blocks.time_s[i - 1]).sum::<f64>() + 0.0;
+    let stop_s = stop_seconds(&trace.time_s, &trace.stop);
     let result = prep.reference().and_then(|reference| {
         let pipe = crate::metrics::score(&trace.time_s, &trace.heading_deg, reference)?;
         let smooth = crate::metrics::score(&trace.time_s, &trace.heading_smoothed_deg, reference)?;
