@@ -155,7 +155,9 @@ pub struct PipelineSummary {
 }
 
 /// Seconds of the blocks whose stop evidence was used (each block's length from the one
-/// before). `+ 0.0`: an empty float sum is -0 in Rust, which printed as "-0 s".
+/// before). `+ 0.0`: an empty float sum is -0 in Rust, which printed as "-0 s". (`run`
+/// sums its blocks alike inline: as a call there it cost the browser's size-capped module
+/// 164 bytes gzipped; `tests/pipeline.rs` holds the two equal.)
 fn stop_seconds(time_s: &[f64], stop: &[bool]) -> f64 {
     (1..time_s.len().min(stop.len())).filter(|&i| stop[i]).map(|i| time_s[i] - time_s[i - 1]).sum::<f64>() + 0.0
 }
@@ -194,7 +196,9 @@ pub fn run(log: &DriveLog, params: &PipelineParams) -> Result<PipelineRun> {
     params.validate()?;
     let prep = Prepared::new(log, params.bias_s, &params.still)?;
     let mut trace = prep.pipeline_trace(params)?;
-    let stop_s = stop_seconds(&trace.time_s, &trace.stop);
+    let blocks = &prep.blocks;
+    // + 0: an empty float sum is -0 in Rust, which printed as "-0 s".
+    let stop_s = (1..blocks.len()).filter(|&i| trace.stop[i]).map(|i| blocks.time_s[i] - blocks.time_s[i - 1]).sum::<f64>() + 0.0;
     let result = prep.reference().and_then(|reference| {
         let pipe = crate::metrics::score(&trace.time_s, &trace.heading_deg, reference)?;
         let smooth = crate::metrics::score(&trace.time_s, &trace.heading_smoothed_deg, reference)?;
