@@ -81,9 +81,20 @@ build_python() {
 
 # One wasm build through wasm-bindgen and wasm-opt: $1 cargo feature flags, $2 target
 # (web|nodejs), $3 output folder, $4 module name.
+# Panic locations name their source files: without the crate registry's absolute path
+# (the same names on any machine, and 57 bytes less in the size-capped core module,
+# BENCHMARKS.md). Prints the --config value for the wasm target's rustflags.
+wasm_remap() {
+  local home="${CARGO_HOME:-$HOME/.cargo}" flags="" d
+  for d in "$home"/registry/src/*/; do
+    [ -d "$d" ] && flags="$flags\"--remap-path-prefix=$d=\","
+  done
+  printf 'target.wasm32-unknown-unknown.rustflags=[%s]' "${flags%,}"
+}
+
 wasm_part() {
   # shellcheck disable=SC2086
-  cargo build --profile wasm-release --target wasm32-unknown-unknown -p gyrodrift-wasm $1
+  cargo build --profile wasm-release --target wasm32-unknown-unknown -p gyrodrift-wasm $1 --config "$(wasm_remap)"
   wasm-bindgen --target "$2" --weak-refs --out-dir "$3" --out-name "$4" target/wasm32-unknown-unknown/wasm-release/gyrodrift_wasm.wasm
   wasm-opt -Oz --converge --strip-debug --strip-producers --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
     --enable-mutable-globals --enable-multivalue --enable-reference-types "$3/$4_bg.wasm" -o "$3/$4_bg.wasm"

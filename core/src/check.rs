@@ -87,7 +87,7 @@ pub fn check(log: &DriveLog) -> CheckReport {
             Severity::Warning,
             "gap",
             message,
-            Some("the CLI and the dashboard split the log there (--gaps split, the default; --gaps error refuses it)"),
+            Some("split into parts there (--gaps split, the default; --gaps error refuses the log)"),
         ));
     }
     let standing_s = lead_in(&mut r, log);

@@ -143,6 +143,9 @@ pub struct Blocks {
     /// moving (None: they never do, or the log has neither). What ends a declared
     /// stationary lead-in early for the pipeline.
     pub first_moving_s: Option<f64>,
+    /// The still flags come from the gyro alone (`StillSource::Gyro`): a still block may be
+    /// a steady turn, which the gyro's noise cannot tell from a standing.
+    pub by_gyro: bool,
 }
 
 impl Blocks {
@@ -253,6 +256,7 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
     if source == StillSource::Gyro && gyro_still.reference().is_none() {
         source = StillSource::None;
     }
+    out.by_gyro = source == StillSource::Gyro;
     Ok((out, source))
 }
 

@@ -83,7 +83,14 @@ pub struct Pipeline {
     /// The declared lead-in gave stop evidence, and the warm-up prior has been sized by it.
     lead_in_seen: bool,
     warm_up_sized: bool,
+    /// The still flags come from the gyro alone (`Blocks::by_gyro`; the stream sets it per
+    /// block): see [`Pipeline::update`].
+    pub gyro_stills: bool,
 }
+
+/// Innovations (in standard deviations of a hypothesis' prediction) beyond which a still
+/// block judged by the gyro alone does not move that hypothesis: the step guard's 4.
+const GYRO_STILL_GATE: f64 = 4.0;
 
 impl Pipeline {
     /// Starts from a bias estimate and its standard deviation; blocks stamped before
@@ -140,6 +147,7 @@ impl Pipeline {
             last_stop_s: None,
             lead_in_seen: false,
             warm_up_sized: false,
+            gyro_stills: false,
         })
     }
 
@@ -206,7 +214,14 @@ impl Pipeline {
         self.models.iter().zip(w).filter(|(_, wi)| **wi > 0.0).map(|(m, wi)| wi * (m.p_hh.max(0.0) + (m.h - taken).powi(2))).sum()
     }
 
-    /// One block: its end time, mean raw rate, and whether the vehicle stood.
+    /// One block: its end time, mean raw rate, and whether the vehicle stood. With
+    /// `gyro_stills` (no speed, no wheels: the gyro's noise judged the standing) a steady
+    /// turn can pass for a standing, so after the declared lead-in a still block moves only
+    /// the hypotheses it is plausible for (within 4 sigma of their prediction) and the step
+    /// guard does not re-open any: such a block cannot show a step that a standing judged by
+    /// speed would (on a simulated drive with 10 % of its rows dropped, a 2.4 deg/s curve
+    /// passed as two still blocks and took the bias from -0.26 to 1.94 deg/s). The road's
+    /// dominant rate, never gated, still acquires any bias.
     pub fn update(&mut self, time_s: f64, rate_dps: f64, still: bool) -> Result<PipelineOutput> {
         if !(time_s.is_finite() && rate_dps.is_finite()) || self.last_time_s.is_some_and(|t| !(time_s > t)) {
             return Err(Error::data(format!("pipeline update at {time_s} s: rate {rate_dps} deg/s, time must be finite and increase")));
@@ -233,7 +248,7 @@ impl Pipeline {
         let lead_in = time_s < self.lead_in_end_s;
         let stops = self.evidence.stops(&self.p, time_s, rate_dps, still, lead_in);
         self.lead_in_seen |= lead_in && !stops.is_empty();
-        let reopened = !stops.is_empty() && !self.evidence.stop.reopened && !lead_in && self.stop_guard();
+        let reopened = !stops.is_empty() && !self.evidence.stop.reopened && !lead_in && !self.gyro_stills && self.stop_guard();
         let straight = !still && !lead_in && self.evidence.is_straight(&self.p, time_s, rate_dps);
         self.dating_t0_s.get_or_insert(time_s);
         if !still {
@@ -249,7 +264,7 @@ impl Pipeline {
         let priors: Vec<State> = self.recorded.iter().map(|&i| (self.models[i].x, self.models[i].p)).collect();
         let h_before: Vec<f64> = if stops.is_empty() { Vec::new() } else { self.models.iter().map(|m| m.h).collect() };
         for &z in &stops {
-            self.stop_update(z, !lead_in);
+            self.stop_update(z, !lead_in, self.gyro_stills && !lead_in);
         }
         if straight {
             self.road_update(rate_dps);
@@ -356,11 +371,14 @@ impl Pipeline {
     }
 
     /// Stop evidence (rate = b). Its likelihood weighs the hypotheses; `weigh` = false for
-    /// the declared lead-in (before any hypothesis could differ).
-    fn stop_update(&mut self, z: f64, weigh: bool) {
+    /// the declared lead-in (before any hypothesis could differ). `gate`: a hypothesis the
+    /// evidence is beyond [`GYRO_STILL_GATE`] sigma of is weighed but not moved.
+    fn stop_update(&mut self, z: f64, weigh: bool, gate: bool) {
         let r = self.p.stop_sigma_dps * self.p.stop_sigma_dps;
         for m in &mut self.models {
-            let (nu, s) = m.update(H_STOP, z, r, true);
+            let (b, p) = m.bias();
+            let (nu, s) =
+                if gate && (z - b).abs() > GYRO_STILL_GATE * (p + r).sqrt() { (z - b, p + r) } else { m.update(H_STOP, z, r, true) };
             let ll = log_likelihood(nu, s, self.p.huber_k);
             if weigh {
                 m.logw += ll;

@@ -74,6 +74,7 @@ impl PipelineTrace {
 pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -> Result<PipelineTrace> {
     let n = blocks.len();
     let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
+    f.gyro_stills = blocks.by_gyro;
     let mut tr = PipelineTrace { time_s: blocks.time_s.clone(), ..Default::default() };
     for i in 0..n {
         let o = f.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;

@@ -119,6 +119,7 @@ impl PipelineStream {
             if opts.moving_by_speed(o.speeds, o.speed_max_mps) {
                 filter.end_lead_in(o.last_s);
             }
+            filter.gyro_stills = !self.speed_seen;
             let out = filter.update(o.last_s, o.sum_dps / o.n as f64, still)?;
             self.last = Some((out, o.last_s));
             self.bias_dps = filter.bias().0;

@@ -135,6 +135,31 @@ fn a_large_bias_at_a_stop_is_acquired_not_locked_out() {
 }
 
 #[test]
+fn a_steady_turn_the_gyro_alone_calls_still_does_not_move_the_bias() {
+    // A 20 s lead-in at 0.2 deg/s, straight road at that bias, then a 2.4 deg/s curve whose
+    // 8 blocks the gyro-only detector took for a standing. Judged by the gyro, the stop is
+    // 40 sigma from every hypothesis: weighed, not followed. Judged by speed (certain), the
+    // same blocks are a standing and the bias follows them (no lock-out there).
+    let run = |gyro_stills: bool| {
+        let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 20.0).unwrap();
+        f.gyro_stills = gyro_stills;
+        for t in 0..300 {
+            let (rate, still) = match t {
+                0..20 => (0.2, true),
+                200..208 => (2.6, true),
+                _ => (0.2 + 0.02 * ((t % 5) as f64 - 2.0), false),
+            };
+            f.update(t as f64 + 1.0, rate, still).unwrap();
+        }
+        f.bias().0
+    };
+    let gated = run(true);
+    assert!((gated - 0.2).abs() < 0.02, "gyro-judged: bias {gated}");
+    let by_speed = run(false);
+    assert!(by_speed > 1.0, "speed-judged: bias {by_speed}");
+}
+
+#[test]
 fn a_bias_step_at_a_later_stop_reopens_the_estimate() {
     // A long stop pins the bias at 0 (small P); 5 min later the bias has stepped to 1 deg/s:
     // the next steady stop disagrees far beyond P and re-opens it. One slow hypothesis only,
@@ -209,6 +234,7 @@ fn smoother_of_a_constant_bias_is_constant_and_uses_later_stops() {
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| i >= 300).collect(),
         first_moving_s: None,
+        by_gyro: false,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), f64::NEG_INFINITY).unwrap();
     let (es, ec) = ((tr.bias_smoothed_dps[3] - 0.1).abs(), (tr.bias_dps[3] - 0.1).abs());
@@ -261,6 +287,7 @@ fn smoother_keeps_a_lead_in_it_agrees_with() {
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| i < 20).collect(),
         first_moving_s: None,
+        by_gyro: false,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), 20.0).unwrap();
     for k in [0, 1, 10, 19] {
@@ -290,6 +317,7 @@ fn a_step_just_before_a_stop_is_not_spread_over_the_past() {
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| !(20..660).contains(&i)).collect(),
         first_moving_s: None,
+        by_gyro: false,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), 20.0).unwrap();
     let err = |i: usize| tr.heading_deg[i] - (1..=i).map(wobble).sum::<f64>();
