@@ -133,6 +133,8 @@ pub struct PipelineResult {
 pub struct PipelineRun {
     pub trace: PipelineTrace,
     pub still_source: StillSource,
+    /// Time whose stop evidence was used, s (the result's `stop_s`, and the summary's).
+    pub stop_s: f64,
     pub result: Result<PipelineResult>,
 }
 
@@ -155,14 +157,6 @@ pub struct PipelineSummary {
     pub heading_change_smoothed_deg: f64,
 }
 
-/// Seconds of the blocks whose stop evidence was used (each block's length from the one
-/// before). `+ 0.0`: an empty float sum is -0 in Rust, which printed as "-0 s". (`run`
-/// sums its blocks alike inline: as a call there it cost the browser's size-capped module
-/// 164 bytes gzipped; `tests/pipeline.rs` holds the two equal.)
-fn stop_seconds(time_s: &[f64], stop: &[bool]) -> f64 {
-    (1..time_s.len().min(stop.len())).filter(|&i| stop[i]).map(|i| time_s[i] - time_s[i - 1]).sum::<f64>() + 0.0
-}
-
 impl PipelineRun {
     /// The estimator's figures at the end of the log (`duration_min`: the log's), with or
     /// without a reference.
@@ -173,7 +167,7 @@ impl PipelineRun {
         PipelineSummary {
             duration_min,
             still_source: self.still_source,
-            stop_s: stop_seconds(&t.time_s, &t.stop),
+            stop_s: self.stop_s,
             final_bias_dps: last(&t.bias_dps),
             final_bias_sigma_dps: last(&t.bias_sigma_dps),
             heading_change_deg: change(&t.heading_deg),
@@ -233,7 +227,7 @@ pub fn run(log: &DriveLog, params: &PipelineParams) -> Result<PipelineRun> {
             n_samples: pipe.n_samples,
         })
     });
-    Ok(PipelineRun { trace, still_source: prep.source, result })
+    Ok(PipelineRun { trace, still_source: prep.source, stop_s, result })
 }
 
 #[cfg(test)]
