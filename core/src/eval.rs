@@ -174,13 +174,26 @@ impl<'a> Prepared<'a> {
                 }
                 _ => self.heading(m)?,
             };
-            let s = metrics::score(&t, &psi, reference)?;
-            if !s.e_psi_deg.is_finite() {
-                return Err(Error::data("the heading error is not finite"));
-            }
-            out.push(MethodScore { e_psi_deg: s.e_psi_deg, ne_psi_deg_per_min: metrics::ne_psi(s.e_psi_deg, self.duration_min) });
+            out.push(self.score_heading(&t, &psi, reference)?);
         }
         Ok(out)
+    }
+
+    /// The causal and smoothed headings of a pipeline run already made on these blocks,
+    /// scored as [`Self::score_all`] scores them.
+    pub fn score_trace(&self, trace: &PipelineTrace) -> Result<[MethodScore; 2]> {
+        let reference = self.reference()?;
+        let t = &trace.time_s;
+        Ok([self.score_heading(t, &trace.heading_deg, reference)?, self.score_heading(t, &trace.heading_smoothed_deg, reference)?])
+    }
+
+    #[inline(always)]
+    fn score_heading(&self, t: &[f64], psi: &[f64], reference: &Reference) -> Result<MethodScore> {
+        let s = metrics::score(t, psi, reference)?;
+        if !s.e_psi_deg.is_finite() {
+            return Err(Error::data("the heading error is not finite"));
+        }
+        Ok(MethodScore { e_psi_deg: s.e_psi_deg, ne_psi_deg_per_min: metrics::ne_psi(s.e_psi_deg, self.duration_min) })
     }
 }
 

@@ -8,7 +8,7 @@ use crate::eval::{col, standard_methods, MethodScore, Prepared};
 use crate::log::accept::{accept, InputPolicy};
 use crate::log::DriveLog;
 use crate::metrics::quantile;
-use crate::pipeline::PipelineParams;
+use crate::pipeline::{PipelineParams, PipelineSummary};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 use std::io::Read;
@@ -68,8 +68,20 @@ pub struct DriveRow {
     pub ne_psi_pipeline_deg_per_min: Option<f64>,
     pub e_psi_pipeline_smoothed_deg: Option<f64>,
     pub ne_psi_pipeline_smoothed_deg_per_min: Option<f64>,
+    /// The pipeline's own figures at the end of the drive, scored or not (a drive without
+    /// a reference has only these): heading turned, causal with its sigma and smoothed, deg;
+    /// final bias and its sigma, deg/s; time whose stop evidence was used, s.
+    pub pipeline_heading_change_deg: Option<f64>,
+    pub pipeline_heading_change_sigma_deg: Option<f64>,
+    pub pipeline_heading_change_smoothed_deg: Option<f64>,
+    pub pipeline_final_bias_dps: Option<f64>,
+    pub pipeline_final_bias_sigma_dps: Option<f64>,
+    pub pipeline_stop_s: Option<f64>,
     /// The check's warnings and what splitting did, "; "-separated (empty when none).
     pub warnings: String,
+    /// Why a drive without a reference heading has no scores (not an error: the
+    /// pipeline's figures are there).
+    pub not_scored: Option<String>,
     /// Why this file or part has no scores.
     pub error: Option<String>,
 }
@@ -103,7 +115,14 @@ impl DriveRow {
             ne_psi_pipeline_deg_per_min: None,
             e_psi_pipeline_smoothed_deg: None,
             ne_psi_pipeline_smoothed_deg_per_min: None,
+            pipeline_heading_change_deg: None,
+            pipeline_heading_change_sigma_deg: None,
+            pipeline_heading_change_smoothed_deg: None,
+            pipeline_final_bias_dps: None,
+            pipeline_final_bias_sigma_dps: None,
+            pipeline_stop_s: None,
             warnings: String::new(),
+            not_scored: None,
             error: None,
         }
     }
@@ -130,16 +149,50 @@ impl DriveRow {
         (self.e_psi_pipeline_deg, self.ne_psi_pipeline_deg_per_min) = get(col::PIPELINE);
         (self.e_psi_pipeline_smoothed_deg, self.ne_psi_pipeline_smoothed_deg_per_min) = get(col::SMOOTHED);
     }
+
+    fn set_summary(&mut self, s: &PipelineSummary) {
+        self.pipeline_heading_change_deg = Some(s.heading_change_deg);
+        self.pipeline_heading_change_sigma_deg = Some(s.heading_change_sigma_deg);
+        self.pipeline_heading_change_smoothed_deg = Some(s.heading_change_smoothed_deg);
+        self.pipeline_final_bias_dps = Some(s.final_bias_dps);
+        self.pipeline_final_bias_sigma_dps = Some(s.final_bias_sigma_dps);
+        self.pipeline_stop_s = Some(s.stop_s);
+    }
+
+    /// The pipeline's summary columns in [`CSV_HEADER`] order.
+    fn summary_cells(&self) -> [Option<f64>; 6] {
+        [
+            self.pipeline_heading_change_deg,
+            self.pipeline_heading_change_sigma_deg,
+            self.pipeline_heading_change_smoothed_deg,
+            self.pipeline_final_bias_dps,
+            self.pipeline_final_bias_sigma_dps,
+            self.pipeline_stop_s,
+        ]
+    }
 }
 
-/// Scores one part: the log prepared once, every method on it.
+/// Scores one part: the log prepared once, the pipeline run once (its summary), every
+/// method on it; a part without a reference heading keeps the summary, `not_scored`.
 fn score_part(row: &mut DriveRow, part: &DriveLog, params: &PipelineParams) -> Result<()> {
     let prep = Prepared::new(part, params.bias_s, &params.still)?;
     row.duration_min = Some(prep.duration_min);
     row.static_bias_dps = Some(prep.eps0_dps);
     row.still_source = Some(prep.source.name().to_string());
-    let scores = prep.score_all(&standard_methods(params, None))?;
-    row.set_scores(&scores);
+    let trace = prep.pipeline_trace(params)?;
+    row.set_summary(&trace.summary(prep.source, trace.stop_s(), prep.duration_min));
+    // The pipeline's two columns from the run just made, not a second one.
+    let methods = standard_methods(params, None);
+    let scores = prep.score_all(&methods[..col::PIPELINE]).and_then(|mut s| {
+        s.extend(prep.score_trace(&trace)?);
+        Ok(s)
+    });
+    match scores {
+        Ok(scores) => row.set_scores(&scores),
+        // As the CLI's `pipeline` and `hdr`: no reference value at all is not an error.
+        Err(e) if !part.has_reference() => row.not_scored = Some(e.to_string()),
+        Err(e) => return Err(e),
+    }
     Ok(())
 }
 
@@ -245,6 +298,8 @@ pub struct FleetSummary {
     pub files: usize,
     /// Rows scored (a split log gives one per part).
     pub scored: usize,
+    /// Rows without a reference heading (the pipeline's figures, no scores).
+    pub not_scored: usize,
     /// Rows with an error.
     pub errors: usize,
     pub hours: f64,
@@ -279,6 +334,7 @@ pub fn summarize(rows: &[DriveRow]) -> FleetSummary {
     FleetSummary {
         files: files.len(),
         scored: scored.len(),
+        not_scored: rows.iter().filter(|r| r.error.is_none() && r.not_scored.is_some()).count(),
         errors: rows.iter().filter(|r| r.error.is_some()).count(),
         // + 0: an empty float sum is -0 in Rust ("-0.0 h" when nothing scored).
         hours: (scored.iter().filter_map(|r| r.duration_min).sum::<f64>() + 0.0) / 60.0,
@@ -289,8 +345,9 @@ pub fn summarize(rows: &[DriveRow]) -> FleetSummary {
 impl FleetSummary {
     /// A Markdown table with a line above it saying what was scored.
     pub fn to_markdown(&self) -> String {
+        let unscored = if self.not_scored > 0 { format!(", {} not scored (no reference)", self.not_scored) } else { String::new() };
         let mut s = format!(
-            "{} files, {} drives scored ({:.1} h), {} errors\n\n| method | drives | mean E_psi (deg) | mean NE_psi (deg/min) | median NE_psi | p90 NE_psi | better than raw |\n|---|---:|---:|---:|---:|---:|---:|\n",
+            "{} files, {} drives scored ({:.1} h){unscored}, {} errors\n\n| method | drives | mean E_psi (deg) | mean NE_psi (deg/min) | median NE_psi | p90 NE_psi | better than raw |\n|---|---:|---:|---:|---:|---:|---:|\n",
             self.files, self.scored, self.hours, self.errors
         );
         for m in &self.methods {
@@ -326,7 +383,9 @@ pub fn rows_to_csv(rows: &[DriveRow]) -> String {
             cells.push(num(e));
             cells.push(num(ne));
         }
+        cells.extend(r.summary_cells().map(num));
         cells.push(r.warnings.clone());
+        cells.push(r.not_scored.clone().unwrap_or_default());
         cells.push(r.error.clone().unwrap_or_default());
         s.push_str(&crate::report::csv_line(&r.file, cells));
     }
@@ -338,7 +397,9 @@ pub const CSV_HEADER: &str = "file,part,parts,name,rows,duration_min,still_sourc
 e_psi_raw_deg,ne_psi_raw_deg_per_min,e_psi_hdr_deg,ne_psi_hdr_deg_per_min,\
 e_psi_fusion_offset_deg,ne_psi_fusion_offset_deg_per_min,e_psi_zaru_deg,ne_psi_zaru_deg_per_min,\
 e_psi_pipeline_deg,ne_psi_pipeline_deg_per_min,e_psi_pipeline_smoothed_deg,ne_psi_pipeline_smoothed_deg_per_min,\
-warnings,error";
+pipeline_heading_change_deg,pipeline_heading_change_sigma_deg,pipeline_heading_change_smoothed_deg,\
+pipeline_final_bias_dps,pipeline_final_bias_sigma_dps,pipeline_stop_s,\
+warnings,not_scored,error";
 
 #[cfg(test)]
 mod tests;

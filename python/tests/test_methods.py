@@ -178,6 +178,13 @@ def test_a_drive_without_reference_gets_the_clis_summary(cli, samples, tmp_path)
         assert run["summary"].keys() == native.keys(), command
         for k, v in native.items():
             assert run["summary"][k] == (v if isinstance(v, str) else pytest.approx(v, rel=1e-12)), (command, k)
+    # The fleet's row of it: not an error, not scored, the same figures.
+    (row,) = g.score_file(str(path))
+    assert row["error"] is None and "ref_heading_deg" in row["not_scored"] and row["ne_psi_raw_deg_per_min"] is None
+    summary = g.run_pipeline(log)["summary"]
+    for k in ("heading_change_deg", "heading_change_sigma_deg", "heading_change_smoothed_deg", "final_bias_dps", "final_bias_sigma_dps", "stop_s"):
+        assert row["pipeline_" + k] == pytest.approx(summary[k], rel=1e-12), k
+    assert g.summarize([row])["not_scored"] == 1
     # Scored or not, the pipeline's summary is its result's end figures.
     scored = g.run_pipeline(g.read_log(str(samples / "train" / "city-1.csv")))
     assert scored["summary"]["final_bias_dps"] == scored["result"]["final_bias_dps"]

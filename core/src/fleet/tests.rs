@@ -1,5 +1,6 @@
 use super::*;
 use crate::compare::compare_row;
+use crate::log::Column;
 
 fn city() -> (String, DriveLog) {
     let p = concat!(env!("CARGO_MANIFEST_DIR"), "/../sample-logs/train/city-1.csv");
@@ -26,6 +27,43 @@ fn a_drive_row_holds_the_comparisons_scores() {
     // NE_psi is E_psi per minute of the drive.
     let (e, ne) = r.score(1);
     assert!((e.unwrap() / r.duration_min.unwrap() - ne.unwrap()).abs() < 1e-9);
+}
+
+/// A drive without a reference heading (no GPS course): not an error but `not_scored`, with
+/// the pipeline's own figures, the CLI's `pipeline` summary; a scored drive has them too.
+#[test]
+fn a_drive_without_a_reference_has_the_pipelines_figures_and_no_scores() {
+    let (p, log) = city();
+    let opts = FleetOptions::default();
+    let kept: Vec<(Column, Vec<f64>)> =
+        log.columns().into_iter().filter(|(c, _)| *c != Column::RefHeadingDeg).map(|(c, v)| (c, v.to_vec())).collect();
+    let blind = DriveLog::from_columns(log.meta.clone(), vec![0; log.len()], kept).unwrap();
+    for (drive, scored) in [(&log, true), (&blind, false)] {
+        let want = crate::pipeline::run(drive, &opts.pipeline).unwrap().summary(drive.duration_min());
+        let rows = score_log(&p, "city-1", drive.clone(), &opts);
+        let r = &rows[0];
+        assert_eq!(r.error, None);
+        assert_eq!(r.not_scored.is_none(), scored, "{:?}", r.not_scored);
+        assert_eq!(r.ne_psi_pipeline_deg_per_min.is_some(), scored);
+        let want_cells = [
+            want.heading_change_deg,
+            want.heading_change_sigma_deg,
+            want.heading_change_smoothed_deg,
+            want.final_bias_dps,
+            want.final_bias_sigma_dps,
+            want.stop_s,
+        ];
+        // Equal but for rounding: the scored run's headings are shifted to the reference.
+        for (got, want) in r.summary_cells().iter().zip(want_cells) {
+            assert!((got.unwrap() - want).abs() < 1e-9, "{:?} against {want_cells:?}", r.summary_cells());
+        }
+        assert!(want.stop_s > 60.0 && want.heading_change_deg.abs() > 10.0, "{want:?}");
+    }
+    let rows = score_log("blind.csv", "blind", blind, &opts);
+    assert!(rows[0].not_scored.as_deref().unwrap().contains("ref_heading_deg"), "{:?}", rows[0].not_scored);
+    let s = summarize(&[rows, score_log(&p, "city-1", log, &opts)].concat());
+    assert_eq!((s.scored, s.not_scored, s.errors), (1, 1, 0));
+    assert!(s.to_markdown().starts_with("2 files, 1 drives scored (0.3 h), 1 not scored (no reference), 0 errors"), "{}", s.to_markdown());
 }
 
 #[test]
@@ -90,7 +128,7 @@ fn csv_rows_have_the_header_and_quote_messages() {
     let line = lines.next().unwrap();
     assert!(line.starts_with("\"a,b.csv\",1,1,\"a,b.csv\",0,,,"), "{line}");
     assert!(line.ends_with(",\"line 3, column gyro_dps: \"\"x\"\" is not a number\""), "{line}");
-    assert_eq!(CSV_HEADER.split(',').count(), 22);
+    assert_eq!(CSV_HEADER.split(',').count(), 29);
     // The header names are the JSON keys, in the struct's order.
     let json = serde_json::to_value(&rows[0]).unwrap();
     let keys: Vec<&str> = json.as_object().unwrap().keys().map(|k| k.as_str()).collect();

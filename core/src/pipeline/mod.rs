@@ -67,6 +67,29 @@ impl PipelineTrace {
         out.flush()?;
         Ok(())
     }
+
+    /// Time whose stop evidence was used, s.
+    pub fn stop_s(&self) -> f64 {
+        // + 0: an empty float sum is -0 in Rust, which printed as "-0 s".
+        (1..self.time_s.len()).filter(|&i| self.stop[i]).map(|i| self.time_s[i] - self.time_s[i - 1]).sum::<f64>() + 0.0
+    }
+
+    /// The estimator's figures at the end of the log (`stop_s`: [`Self::stop_s`];
+    /// `duration_min`: the log's), with or without a reference.
+    pub fn summary(&self, still_source: StillSource, stop_s: f64, duration_min: f64) -> PipelineSummary {
+        let last = |x: &[f64]| x.last().copied().unwrap_or(f64::NAN);
+        let change = |x: &[f64]| last(x) - x.first().copied().unwrap_or(f64::NAN);
+        PipelineSummary {
+            duration_min,
+            still_source,
+            stop_s,
+            final_bias_dps: last(&self.bias_dps),
+            final_bias_sigma_dps: last(&self.bias_sigma_dps),
+            heading_change_deg: change(&self.heading_deg),
+            heading_change_sigma_deg: last(&self.heading_sigma_deg),
+            heading_change_smoothed_deg: change(&self.heading_smoothed_deg),
+        }
+    }
 }
 
 /// Runs the filter over the blocks from bias 0 +- the prior, then the smoother
@@ -161,19 +184,7 @@ impl PipelineRun {
     /// The estimator's figures at the end of the log (`duration_min`: the log's), with or
     /// without a reference.
     pub fn summary(&self, duration_min: f64) -> PipelineSummary {
-        let t = &self.trace;
-        let last = |x: &[f64]| x.last().copied().unwrap_or(f64::NAN);
-        let change = |x: &[f64]| last(x) - x.first().copied().unwrap_or(f64::NAN);
-        PipelineSummary {
-            duration_min,
-            still_source: self.still_source,
-            stop_s: self.stop_s,
-            final_bias_dps: last(&t.bias_dps),
-            final_bias_sigma_dps: last(&t.bias_sigma_dps),
-            heading_change_deg: change(&t.heading_deg),
-            heading_change_sigma_deg: last(&t.heading_sigma_deg),
-            heading_change_smoothed_deg: change(&t.heading_smoothed_deg),
-        }
+        self.trace.summary(self.still_source, self.stop_s, duration_min)
     }
 
     /// For plots: the errors of the causal and smoothed headings at the scored reference
@@ -191,9 +202,7 @@ pub fn run(log: &DriveLog, params: &PipelineParams) -> Result<PipelineRun> {
     params.validate()?;
     let prep = Prepared::new(log, params.bias_s, &params.still)?;
     let mut trace = prep.pipeline_trace(params)?;
-    let blocks = &prep.blocks;
-    // + 0: an empty float sum is -0 in Rust, which printed as "-0 s".
-    let stop_s = (1..blocks.len()).filter(|&i| trace.stop[i]).map(|i| blocks.time_s[i] - blocks.time_s[i - 1]).sum::<f64>() + 0.0;
+    let stop_s = trace.stop_s();
     let result = prep.reference().and_then(|reference| {
         let pipe = crate::metrics::score(&trace.time_s, &trace.heading_deg, reference)?;
         let smooth = crate::metrics::score(&trace.time_s, &trace.heading_smoothed_deg, reference)?;
