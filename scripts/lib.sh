@@ -95,7 +95,9 @@ wasm_remap() {
 wasm_part() {
   # shellcheck disable=SC2086
   cargo build --profile wasm-release --target wasm32-unknown-unknown -p gyrodrift-wasm $1 --config "$(wasm_remap)"
-  wasm-bindgen --target "$2" --weak-refs --out-dir "$3" --out-name "$4" target/wasm32-unknown-unknown/wasm-release/gyrodrift_wasm.wasm
+  # TextEncoder.encodeInto only (every browser since 2021, Node 12+): no fallback glue,
+  # 62 bytes gzipped off the core module (BENCHMARKS.md).
+  wasm-bindgen --target "$2" --weak-refs --encode-into always --out-dir "$3" --out-name "$4" target/wasm32-unknown-unknown/wasm-release/gyrodrift_wasm.wasm
   wasm-opt -Oz --converge --strip-debug --strip-producers --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
     --enable-mutable-globals --enable-multivalue --enable-reference-types "$3/$4_bg.wasm" -o "$3/$4_bg.wasm"
 }

@@ -91,6 +91,8 @@ pub fn check(log: &DriveLog) -> CheckReport {
         ));
     }
     let standing_s = lead_in(&mut r, log);
+    // Over this static bias the lead-in is taken to be moving (any, where the reference says so).
+    let mut limit_dps = 5.0;
     if let Some(g) = log.column(Column::GyroDps) {
         let bias_s = log.bias_s(None);
         r.eps0_dps = preprocess::static_bias_dps(t, g, bias_s).ok();
@@ -103,13 +105,22 @@ pub fn check(log: &DriveLog) -> CheckReport {
             Some(s) => (s > 0.0).then(|| preprocess::static_bias_dps(t, g, s).unwrap_or(0.0)),
             None => (bias_s > 0.0).then(|| r.eps0_dps.unwrap_or(0.0)),
         };
-        let k = gyro_over_reference(log, eps0, false);
+        let near_one = |x: f64| (x.abs() - 1.0).abs() < 0.25;
+        let mut k = gyro_over_reference(log, eps0, false);
+        // A lead-in nothing says stands (no speed, no wheels) may be a turn: if its bias
+        // puts the gyro out with the reference and the straight road's rate does not, the
+        // lead-in is wrong (the bias warning below), not the units.
+        if standing_s.is_none() && eps0.is_some() && !k.is_some_and(near_one) {
+            if let Some(k2) = gyro_over_reference(log, None, false).filter(|&x| near_one(x)) {
+                limit_dps = 0.0;
+                k = Some(k2);
+            }
+        }
         r.gyro_over_reference = k;
         // A reference that never leaves +-pi may be radians: see whether the gyro agrees.
         let within_pi =
             log.column(Column::RefHeadingDeg).is_some_and(|h| h.iter().all(|v| v.is_nan() || v.abs() <= std::f64::consts::PI + 1e-3));
         let k_rad = if within_pi { gyro_over_reference(log, eps0, true) } else { None };
-        let near_one = |x: f64| (x.abs() - 1.0).abs() < 0.25;
         match (k, k_rad) {
             (k, Some(kr)) if near_one(kr) && !k.is_some_and(near_one) => {
                 let cw = if kr < 0.0 { ", positive = \"cw\"" } else { "" };
@@ -124,7 +135,7 @@ pub fn check(log: &DriveLog) -> CheckReport {
         }
     }
     // (A lead-in the speed shows running into the drive is reported as that, with its fix.)
-    if let Some(b) = r.eps0_dps.filter(|b| b.abs() > 5.0 && standing_s.is_none()) {
+    if let Some(b) = r.eps0_dps.filter(|b| b.abs() > limit_dps && standing_s.is_none()) {
         let message = format!("static bias {b:.2} deg/s over the lead-in: the vehicle may not stand still then");
         r.findings.push(finding(
             Severity::Warning,
@@ -410,6 +421,30 @@ mod tests {
         let mut cut = no_speed.clone();
         cut.meta.bias_s = Some(0.0);
         assert!(info(&cut), "{}", check(&cut).to_text());
+    }
+
+    /// No speed, and a default lead-in whose gyro reads 4 deg/s more than the bias (a turn):
+    /// the bias warning with its fix, not a scale error; a real 50 % scale error stays one.
+    #[test]
+    fn a_turning_lead_in_without_speed_is_not_a_scale_error() {
+        let log = city();
+        let kept: Vec<(Column, Vec<f64>)> =
+            log.columns().into_iter().filter(|(c, _)| *c != Column::SpeedMps).map(|(c, v)| (c, v.to_vec())).collect();
+        let mut turn = DriveLog::from_columns(log.meta.clone(), vec![0; log.len()], kept).unwrap();
+        let t0 = log.time_s()[0];
+        let lead: Vec<bool> = log.time_s().iter().map(|&t| t - t0 < 20.0).collect();
+        turn.column_mut(Column::GyroDps).unwrap().iter_mut().zip(&lead).for_each(|(w, &l)| *w += if l { 4.0 } else { 0.0 });
+        let r = check(&turn);
+        assert_eq!(codes(&turn), ["bias"], "{}", r.to_text());
+        assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{}", r.to_text());
+        assert!(r.findings[r.findings.len() - 1].fix.as_deref().unwrap().starts_with("bias_s = 0"));
+        // Without the fallback the lead-in's bias reads as a unit or scale mistake.
+        assert!(gyro_over_reference(&turn, r.eps0_dps, false).is_some_and(|k| (k - 1.0).abs() > 0.25));
+        // A 50 % scale error with a standing lead-in: the road's rate does not excuse it.
+        let mut wrong = turn.clone();
+        wrong.column_mut(Column::GyroDps).unwrap().iter_mut().zip(&lead).for_each(|(w, &l)| *w = 1.5 * (*w - if l { 4.0 } else { 0.0 }));
+        let r = check(&wrong);
+        assert_eq!(codes(&wrong), ["gyro_scale"], "{}", r.to_text());
     }
 
     /// A turn-on bias of 1.5 deg/s and no lead-in (the robustness battery's "bias -1.5 cut"):

@@ -2,7 +2,9 @@
 """Probe the methods on logs the battery does not make: random simulated drives with random
 gyro errors (seeds 7000-7059, never used to choose anything), each also written as a user's
 logger might: 1 Hz by sample-and-hold (every 10th row), 1 Hz as 1 s means, 10 % of rows
-dropped, time stamps jittered by +-30 ms, and without its speed column. Prints, per
+dropped, time stamps jittered by +-30 ms, time as Unix epoch seconds, without its
+`# bias_s:` line, without its speed column, and with the speed only every 10th row (cells
+between empty), held between those, or 1.5 s late. Prints, per
 variant, how often the pipeline is within 1.25x the best simple peer (raw, Table-III HDR,
 Fusion offset, ZARU) + 0.05 deg/min, worse than 2x, worse than raw, and the largest ratio.
 
@@ -56,13 +58,20 @@ def variants(lines, rng):
     yield "dropped", meta, cols, [r for i, r in enumerate(rows) if i == 0 or rng.random() > 0.1]
     jit = [rows[0]] + [[f"{float(r[0]) + rng.uniform(-0.03, 0.03):.4f}"] + r[1:] for r in rows[1:]]
     yield "jitter", meta, cols, jit
+    yield "epoch", meta, cols, [[f"{float(r[0]) + 1.7e9:.3f}"] + r[1:] for r in rows]
+    yield "no-header", [l for l in meta if not l.startswith("# bias_s")], cols, rows
     if "speed_mps" in cols:
         j = cols.index("speed_mps")
         yield "no-speed", meta, cols[:j] + cols[j + 1 :], [r[:j] + r[j + 1 :] for r in rows]
+        yield "speed-sparse", meta, cols, [r if i % 10 == 0 else r[:j] + [""] + r[j + 1 :] for i, r in enumerate(rows)]
+        yield "speed-held", meta, cols, [r[:j] + [rows[i - i % 10][j]] + r[j + 1 :] for i, r in enumerate(rows)]
+        yield "speed-lag", meta, cols, [r[:j] + [rows[max(i - 15, 0)][j]] + r[j + 1 :] for i, r in enumerate(rows)]
 
 
 def main():
     OUT.mkdir(parents=True, exist_ok=True)
+    for old in OUT.glob("*"):
+        old.unlink()
     rng = random.Random(5)
     for name, scenario, minutes, seed, errors in drives():
         src = OUT / f"{name}.src"
