@@ -53,6 +53,25 @@ fn read_logs(paths: &[PathBuf], input: Input, bias_s: Option<f64>) -> Result<Vec
     Ok(out)
 }
 
+/// The logs a table scores: those with a reference heading. A drive without one is named on
+/// stderr and left out, as the dashboard's Report leaves it out (its heading is `pipeline`'s
+/// and `hdr`'s unscored summary); none left is an error.
+fn scored_logs(paths: &[PathBuf], input: Input, bias_s: Option<f64>) -> Result<Vec<(String, DriveLog)>, Failure> {
+    let mut logs = read_logs(paths, input, bias_s)?;
+    let n = logs.len();
+    logs.retain(|(name, log)| {
+        let keep = log.has_reference();
+        if !keep {
+            eprintln!("{name}: not scored: no reference heading (ref_heading_deg absent or empty)");
+        }
+        keep
+    });
+    if logs.is_empty() && n > 0 {
+        return Err(Failure("no drive has a reference heading to score against".into()));
+    }
+    Ok(logs)
+}
+
 /// Logs named by their `# name:` or file stem, as core's batch functions take them.
 fn named(logs: &[(String, DriveLog)]) -> Vec<(String, &DriveLog)> {
     logs.iter().map(|(n, l)| (n.clone(), l)).collect()
@@ -175,11 +194,11 @@ pub fn compare(files: &[PathBuf], set: &[String], json: bool, csv: bool, tune_on
     let tuned = if tune_on.is_empty() {
         None
     } else {
-        let train = read_logs(tune_on, input, None)?;
+        let train = scored_logs(tune_on, input, None)?;
         let prepared = tune::prepare_all(&named(&train), &hdr::HdrOptions::default()).map_err(|e| Failure(e.to_string()))?;
         Some(tune::tune(&prepared, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?.recommended)
     };
-    let logs = read_logs(files, input, params.bias_s)?;
+    let logs = scored_logs(files, input, params.bias_s)?;
     let c = gyrodrift::compare::compare(&named(&logs), &params, tuned).map_err(|e| Failure(e.to_string()))?;
     if csv {
         return write_stdout(&c.to_csv());
@@ -198,7 +217,7 @@ pub fn report(
     input: Input,
 ) -> Result<(), Failure> {
     let opts = hdr::HdrOptions { resample, ..settings(set)? };
-    let logs = read_logs(files, input, opts.bias_s)?;
+    let logs = scored_logs(files, input, opts.bias_s)?;
     let report = gyrodrift::report::Report::build(&named(&logs), &opts).map_err(|e| Failure(e.to_string()))?;
     if csv {
         return write_stdout(&report.to_csv());
@@ -209,7 +228,7 @@ pub fn report(
 pub fn tune(train: &[PathBuf], test: &[PathBuf], json: bool, markdown: bool, input: Input) -> Result<(), Failure> {
     let opts = hdr::HdrOptions::default();
     let prep = |paths: &[PathBuf]| -> Result<Vec<tune::PreparedDrive>, Failure> {
-        tune::prepare_all(&named(&read_logs(paths, input, opts.bias_s)?), &opts).map_err(|e| Failure(e.to_string()))
+        tune::prepare_all(&named(&scored_logs(paths, input, opts.bias_s)?), &opts).map_err(|e| Failure(e.to_string()))
     };
     let (train_p, test_p) = (prep(train)?, prep(test)?);
     let rep = tune::tune_and_report(&train_p, &test_p, &tune::TuneOptions::default()).map_err(|e| Failure(e.to_string()))?;

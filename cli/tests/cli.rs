@@ -703,4 +703,21 @@ fn a_drive_without_a_reference_runs_unscored() {
         ];
         assert_eq!(keys(&json), sorted(&expect), "{name}");
     }
+    // Tables over many drives score those with a reference and name the others on stderr.
+    let scored = write("scored.csv", &drive_csv());
+    let no_ref = write("no-ref.csv", &format!("time_s,gyro_dps,speed_mps\n{without}"));
+    for command in [&["report"][..], &["report", "--compare"], &["tune", "--train"]] {
+        let mut args = command.to_vec();
+        args.extend([scored.to_str().unwrap(), no_ref.to_str().unwrap()]);
+        let out = run(&args);
+        let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        assert!(out.status.success(), "{args:?}: {stderr}");
+        assert!(stderr.contains("no-ref: not scored: no reference heading"), "{args:?}: {stderr}");
+        assert!(!stdout.contains("no-ref"), "{args:?}: {stdout}");
+        let mut args = command.to_vec();
+        args.push(no_ref.to_str().unwrap());
+        let out = run(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("no drive has a reference heading to score against"));
+    }
 }
