@@ -134,6 +134,13 @@ impl PyLog {
         crate::to_py(py, &serde_json::to_value(self.log.kind()).map_err(value_err)?)
     }
 
+    /// Whether a reference heading has a value to score against (`report`, `compare` and
+    /// `tune` raise on a drive without one; `run_pipeline` and `run_hdr` give its summary).
+    #[getter]
+    fn has_reference(&self) -> bool {
+        self.log.has_reference()
+    }
+
     /// Last minus first time, minutes.
     #[getter]
     fn duration_min(&self) -> f64 {

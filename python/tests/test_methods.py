@@ -168,7 +168,11 @@ def test_a_drive_without_reference_gets_the_clis_summary(cli, samples, tmp_path)
     heading turned) is the CLI's unscored JSON, key for key."""
     df = g.to_pandas(g.read_log(str(samples / "train" / "city-1.csv")))[["time_s", "gyro_dps", "speed_mps"]]
     log = g.from_pandas(df, {"name": "City 1 without GPS", "bias_s": 20})
-    assert log.kind == "drive"
+    assert log.kind == "drive" and not log.has_reference
+    assert g.read_log(str(samples / "train" / "city-1.csv")).has_reference
+    # Tables over drives raise on it, naming it: filter by has_reference first.
+    with pytest.raises(ValueError, match="City 1 without GPS: missing column ref_heading_deg"):
+        g.report([log])
     path = tmp_path / "no-gps.csv"
     path.write_text(log.to_csv())
     for run, command in ((g.run_pipeline(log), "pipeline"), (g.run_hdr(log), "hdr")):
