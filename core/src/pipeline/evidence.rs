@@ -24,6 +24,8 @@ pub(super) struct Evidence {
     /// This stop's steady run of blocks refused only as implausible, while no lead-in set
     /// the centre.
     refused: StopStats,
+    /// The last block was the declared lead-in's.
+    in_lead: bool,
 }
 
 /// A standing this long (s) at a steady rate is the bias, however large: a road vehicle
@@ -38,12 +40,15 @@ impl Evidence {
     pub(super) fn stops(&mut self, p: &PipelineParams, time_s: f64, rate_dps: f64, still: bool, lead_in: bool) -> Vec<f64> {
         let mut stops: Vec<f64> = Vec::new();
         let lead_last = self.lead_last_dps;
+        let after_lead = std::mem::replace(&mut self.in_lead, lead_in);
         if lead_in {
             self.lead_last_dps = Some(rate_dps);
             stops.push(rate_dps);
         } else if still {
             let start = *self.stop_start_s.get_or_insert(time_s);
-            if start == time_s {
+            // A standing that goes on after the lead-in is steady as the lead-in's blocks
+            // are (its first blocks still trimmed: the declared end may be the pull-away).
+            if start == time_s && !after_lead {
                 self.stop = StopStats::default();
                 self.refused = StopStats::default();
             }

@@ -449,6 +449,29 @@ fn a_declared_lead_in_that_outlasts_the_standing_is_judged_steady_like_a_stop() 
     assert!((b - 0.4).abs() < 0.01, "bias {b}");
 }
 
+/// A standing that goes on after the declared lead-in, the car pulling away into a turn
+/// while the GPS speed still reads zero (the VN-100 circle with the 20 s default lead-in):
+/// the stop's blocks after the lead-in are steady as the lead-in's are, so the turn's
+/// 3.3 deg/s is not a bias. Before, the stop started afresh at the lead-in's end, its one
+/// block left after trimming had nothing to be steady with, and the bias went to 0.86
+/// deg/s (NE_psi 18.5 deg/min where raw integration had 1.8).
+#[test]
+fn a_standing_that_goes_on_after_the_lead_in_is_judged_steady_with_it() {
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 20.0).unwrap();
+    let wiggle = |i: usize| if i.is_multiple_of(2) { 0.01 } else { -0.01 };
+    for i in 0..20 {
+        f.update(i as f64, 0.01 + wiggle(i), true).unwrap();
+    }
+    for (i, w) in [0.3, 3.3, 9.0].into_iter().enumerate() {
+        f.update(20.0 + i as f64, w, true).unwrap();
+    }
+    for i in 23..30 {
+        f.update(i as f64, 14.0, false).unwrap();
+    }
+    let (b, _) = f.bias();
+    assert!(b.abs() < 0.05, "bias {b}");
+}
+
 /// A drive that never stops counts +0 s of stops: an empty float sum is -0 in Rust, which
 /// the CLI printed as "-0 s counted".
 #[test]
