@@ -449,6 +449,16 @@ fn a_declared_lead_in_that_outlasts_the_standing_is_judged_steady_like_a_stop() 
     assert!((b - 0.4).abs() < 0.01, "bias {b}");
 }
 
+/// A pipeline after a declared 20 s lead-in of 1 s blocks at `rate_dps`, alternately
+/// `wiggle_dps` above and below it.
+fn after_lead_in(rate_dps: f64, wiggle_dps: f64) -> Pipeline {
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 20.0).unwrap();
+    for i in 0..20_u32 {
+        f.update(i as f64, rate_dps + if i.is_multiple_of(2) { wiggle_dps } else { -wiggle_dps }, true).unwrap();
+    }
+    f
+}
+
 /// A standing that goes on after the declared lead-in, the car pulling away into a turn
 /// while the GPS speed still reads zero (the VN-100 circle with the 20 s default lead-in):
 /// the stop's blocks after the lead-in are steady as the lead-in's are, so the turn's
@@ -457,11 +467,7 @@ fn a_declared_lead_in_that_outlasts_the_standing_is_judged_steady_like_a_stop() 
 /// deg/s (NE_psi 18.5 deg/min where raw integration had 1.8).
 #[test]
 fn a_standing_that_goes_on_after_the_lead_in_is_judged_steady_with_it() {
-    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 20.0).unwrap();
-    let wiggle = |i: usize| if i.is_multiple_of(2) { 0.01 } else { -0.01 };
-    for i in 0..20 {
-        f.update(i as f64, 0.01 + wiggle(i), true).unwrap();
-    }
+    let mut f = after_lead_in(0.01, 0.01);
     for (i, w) in [0.3, 3.3, 9.0].into_iter().enumerate() {
         f.update(20.0 + i as f64, w, true).unwrap();
     }
@@ -525,11 +531,8 @@ fn the_speed_ends_a_declared_lead_in_that_outlasts_the_standing() {
 /// the bias stayed 0 (E_psi in the thousands of degrees where raw integration had 33).
 #[test]
 fn a_turn_on_bias_beyond_max_bias_that_the_lead_in_shows_is_learned() {
-    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 20.0).unwrap();
+    let mut f = after_lead_in(7.0, 0.02);
     let wiggle = |i: usize| if i.is_multiple_of(2) { 0.02 } else { -0.02 };
-    for i in 0..20 {
-        f.update(i as f64, 7.0 + wiggle(i), true).unwrap();
-    }
     assert!((f.bias().0 - 7.0).abs() < 0.01 && (f.centre_dps() - 7.0).abs() < 0.01, "bias {:?}, centre {}", f.bias(), f.centre_dps());
     // 200 s of road at 7.05 (a 0.05 deg/s warm-up), with turns; then a stop at 7.05.
     for i in 20..220 {
