@@ -333,6 +333,12 @@ mod tests {
         check(log).findings.into_iter().filter(|f| f.severity != Severity::Info).map(|f| f.code).collect()
     }
 
+    /// The log without one of its columns.
+    fn without(log: &DriveLog, c: Column) -> DriveLog {
+        let kept: Vec<(Column, Vec<f64>)> = log.columns().into_iter().filter(|(k, _)| *k != c).map(|(k, v)| (k, v.to_vec())).collect();
+        DriveLog::from_columns(log.meta.clone(), vec![0; log.len()], kept).unwrap()
+    }
+
     fn scaled(log: &DriveLog, c: Column, k: f64) -> DriveLog {
         let mut l = log.clone();
         l.column_mut(c).unwrap().iter_mut().for_each(|v| *v *= k);
@@ -392,9 +398,7 @@ mod tests {
         assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{:?}", r.gyro_over_reference);
         // As shipped (20 s) or without a speed column, nothing to say.
         assert!(codes(&city()).is_empty());
-        let kept: Vec<(Column, Vec<f64>)> =
-            log.columns().into_iter().filter(|(c, _)| *c != Column::SpeedMps).map(|(c, v)| (c, v.to_vec())).collect();
-        let no_speed = DriveLog::from_columns(log.meta.clone(), vec![0; log.len()], kept).unwrap();
+        let no_speed = without(&log, Column::SpeedMps);
         assert!(!codes(&no_speed).contains(&"lead_in".to_string()));
         assert!(f.message.contains("the speed shows"), "{}", f.message);
         // The same drive with wheel travel instead of a speed: the wheels say it moved.
@@ -428,9 +432,7 @@ mod tests {
     #[test]
     fn a_turning_lead_in_without_speed_is_not_a_scale_error() {
         let log = city();
-        let kept: Vec<(Column, Vec<f64>)> =
-            log.columns().into_iter().filter(|(c, _)| *c != Column::SpeedMps).map(|(c, v)| (c, v.to_vec())).collect();
-        let mut turn = DriveLog::from_columns(log.meta.clone(), vec![0; log.len()], kept).unwrap();
+        let mut turn = without(&log, Column::SpeedMps);
         let t0 = log.time_s()[0];
         let lead: Vec<bool> = log.time_s().iter().map(|&t| t - t0 < 20.0).collect();
         turn.column_mut(Column::GyroDps).unwrap().iter_mut().zip(&lead).for_each(|(w, &l)| *w += if l { 4.0 } else { 0.0 });

@@ -187,6 +187,8 @@ impl<'a> Prepared<'a> {
         Ok([self.score_heading(t, &trace.heading_deg, reference)?, self.score_heading(t, &trace.heading_smoothed_deg, reference)?])
     }
 
+    /// One heading's score. Inlined: as a call of its own it cost the size-capped browser
+    /// module 48 bytes gzipped (measured 2026-11-26).
     #[inline(always)]
     fn score_heading(&self, t: &[f64], psi: &[f64], reference: &Reference) -> Result<MethodScore> {
         let s = metrics::score(t, psi, reference)?;

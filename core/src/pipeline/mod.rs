@@ -74,8 +74,9 @@ impl PipelineTrace {
         (1..self.time_s.len()).filter(|&i| self.stop[i]).map(|i| self.time_s[i] - self.time_s[i - 1]).sum::<f64>() + 0.0
     }
 
-    /// The estimator's figures at the end of the log (`stop_s`: [`Self::stop_s`];
-    /// `duration_min`: the log's), with or without a reference.
+    /// The estimator's figures at the end of the log (`stop_s`: [`Self::stop_s`], passed in
+    /// because `run` computes it once for its result too; `duration_min`: the log's), with
+    /// or without a reference.
     pub fn summary(&self, still_source: StillSource, stop_s: f64, duration_min: f64) -> PipelineSummary {
         let last = |x: &[f64]| x.last().copied().unwrap_or(f64::NAN);
         let change = |x: &[f64]| last(x) - x.first().copied().unwrap_or(f64::NAN);
