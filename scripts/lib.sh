@@ -80,7 +80,7 @@ build_python() {
 }
 
 # One wasm build through wasm-bindgen and wasm-opt: $1 cargo feature flags, $2 target
-# (web|nodejs), $3 output folder, $4 module name.
+# (web|nodejs), $3 output folder, $4 module name, $5 wasm-opt's passes (default -Oz --converge).
 # Panic locations name their source files: without the crate registry's absolute path
 # (the same names on any machine, and 57 bytes less in the size-capped core module,
 # BENCHMARKS.md). Prints the --config value for the wasm target's rustflags.
@@ -98,7 +98,8 @@ wasm_part() {
   # TextEncoder.encodeInto only (every browser since 2021, Node 12+): no fallback glue,
   # 62 bytes gzipped off the core module (BENCHMARKS.md).
   wasm-bindgen --target "$2" --weak-refs --encode-into always --out-dir "$3" --out-name "$4" target/wasm32-unknown-unknown/wasm-release/gyrodrift_wasm.wasm
-  wasm-opt -Oz --converge --strip-debug --strip-producers --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
+  # shellcheck disable=SC2086
+  wasm-opt ${5:--Oz --converge} --strip-debug --strip-producers --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
     --enable-mutable-globals --enable-multivalue --enable-reference-types "$3/$4_bg.wasm" -o "$3/$4_bg.wasm"
 }
 
@@ -112,7 +113,10 @@ build_wasm() {
   # crates at "z" and "s" here (0.5 KB): the page parses files over 4 MB in the worker's full
   # module, which keeps them at "s" and 3; this module parses 100 MB in 1.6-2.2 s, not 1.4-1.5
   # (BENCHMARKS.md).
-  wasm_part "--no-default-features --features core --config profile.wasm-release.package.gyrodrift-wasm.opt-level='z' --config profile.wasm-release.package.csv.opt-level='z' --config profile.wasm-release.package.csv-core.opt-level='s'" web web/pkg gyrodrift
+  # wasm-opt restructures its control flow once between -Oz passes (flatten, rereloop): 3.8 KB
+  # raw and 0.6 KB gzipped off this module, the same speed (BENCHMARKS.md).
+  wasm_part "--no-default-features --features core --config profile.wasm-release.package.gyrodrift-wasm.opt-level='z' --config profile.wasm-release.package.csv.opt-level='z' --config profile.wasm-release.package.csv-core.opt-level='s'" web web/pkg gyrodrift \
+    "-Oz --flatten --rereloop -Oz -Oz --converge"
   wasm_part "--no-default-features --features plot" web web/pkg/plot gyrodrift_plot
   # Everything: the Web Worker's module (import, tuning, parsing with progress) and Node's.
   wasm_part "" web web/pkg/full gyrodrift
