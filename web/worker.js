@@ -7,9 +7,9 @@
 // - tune: the HDR parameters over the drives' columns, with progress;
 // - battery: the robustness battery's error profiles on the drives' columns; case: one
 //   drive with one profile's errors added (to open a case as a log); profiles: their names;
-// - track, pipeline: the slow work on a large log this worker parsed and kept (`key`), so
+// - track, pipelineTrack, pipeline: the slow work on a large log this worker parsed and kept (`key`), so
 //   the page's Track view and pipeline never pause it.
-import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, importLog, recipeToToml, recipeFromToml, track, runPipeline, checkLog } from "./pkg/full/gyrodrift.js";
+import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 /** Large logs parsed here, kept for later work on them (freed on "forget"). */
@@ -76,10 +76,11 @@ self.onmessage = async (ev) => {
       }
       return self.postMessage({ id, data }, buffers(data));
     }
-    if (type === "track" || type === "pipeline") {
+    if (type === "track" || type === "pipelineTrack" || type === "pipeline") {
       const log = kept.get(ev.data.key);
       if (!log) return self.postMessage({ id, error: "this log is no longer kept in the worker" });
-      const data = type === "track" ? track(log, ev.data.options) : runPipeline(log, ev.data.options);
+      const run = { track, pipelineTrack, pipeline: runPipeline }[type];
+      const data = run(log, ev.data.options);
       return self.postMessage({ id, data }, buffers(data));
     }
     if (type === "forget") {

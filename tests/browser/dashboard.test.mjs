@@ -455,10 +455,14 @@ test("a large log is parsed in a Web Worker, handed to the page in chunks, and g
     const { gd, state } = window.gyrodrift;
     const e = state.entries.find((x) => x.name === "Long drive");
     const here = gd.track(e.log, { resample: state.resample, ...state.params });
-    const drawn = state.specs["c-track"].series.find((s) => s.name === "HDR");
-    return drawn.x.length === here.hdr.x_m.length && drawn.x.every((v, i) => v === here.hdr.x_m[i]) && drawn.y.every((v, i) => v === here.hdr.y_m[i]);
+    const pipe = gd.pipelineTrack(e.log, { bias_s: state.params.bias_s ?? null });
+    const equal = (name, p) => {
+      const drawn = state.specs["c-track"].series.find((s) => s.name === name);
+      return drawn.x.length === p.x_m.length && drawn.x.every((v, i) => v === p.x_m[i]) && drawn.y.every((v, i) => v === p.y_m[i]);
+    };
+    return [equal("HDR", here.hdr), equal("pipeline (recommended)", pipe.pipeline), equal("smoothed (offline)", pipe.smoothed)];
   });
-  assert.ok(same, "the worker's HDR path is the page module's");
+  assert.deepEqual(same, [true, true, true], "the worker's HDR and pipeline paths are the page module's");
   await page.locator("#tabs button[data-view=hdr]").click();
 });
 
@@ -593,9 +597,11 @@ test("a large raw export is imported in the Web Worker with the CLI's numbers", 
   assert.ok(text.includes(`ARW ${native.arw_deg_per_sqrt_h.toFixed(2)} deg/√h`), text);
 });
 
-test("the Track view has equal metres per pixel across and up", async () => {
+test("the Track view has equal metres per pixel across and up, and the recommended pipeline's paths", async () => {
   await page.locator("#tabs button[data-view=track]").click();
   await page.waitForFunction(() => window.gyrodrift.state.layouts["c-track"]);
+  const names = await page.evaluate(() => window.gyrodrift.state.specs["c-track"].series.map((s) => s.name));
+  assert.deepEqual(names, ["reference heading", "raw", "HDR", "pipeline (recommended)", "smoothed (offline)"]);
   for (const width of [1400, 390]) {
     await page.setViewportSize({ width, height: 1000 });
     await page.waitForTimeout(200);

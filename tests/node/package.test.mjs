@@ -438,3 +438,50 @@ test("a drive with speed and no reference heading is a drive: runPipeline gives 
   still.free();
   log.free();
 });
+
+test("pipelineTrack: the log's speed integrated along runPipeline's headings, with or without a reference; no speed is a clear Error", () => {
+  const text = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const log = gd.Log.parse(text);
+  const time = log.column("time_s"), speed = log.column("speed_mps");
+  /** Dead reckoning written here, apart from core's: the speed at each row, the heading
+   * interpolated at its time (held at the ends). Returns the end point. */
+  const end = (tt, psi) => {
+    let x = 0, y = 0, j = 0, last = null;
+    for (let i = 0; i < time.length; i++) {
+      const t = time[i];
+      if (Number.isNaN(speed[i])) continue;
+      if (last !== null) {
+        while (j + 1 < tt.length && tt[j + 1] <= t) j++;
+        const h = t <= tt[0] ? psi[0] : j + 1 < tt.length ? psi[j] + ((psi[j + 1] - psi[j]) * (t - tt[j])) / (tt[j + 1] - tt[j]) : psi[j];
+        x += speed[i] * (t - last) * Math.cos((h * Math.PI) / 180);
+        y += speed[i] * (t - last) * Math.sin((h * Math.PI) / 180);
+      }
+      last = t;
+    }
+    return [x, y];
+  };
+  const close = (p, e) => Math.hypot(p.x_m.at(-1) - e[0], p.y_m.at(-1) - e[1]) < 1e-6 * Math.hypot(...e) + 1e-6;
+  const run = gd.runPipeline(log, {});
+  const paths = gd.pipelineTrack(log, {});
+  assert.ok(paths.pipeline.x_m instanceof Float64Array && paths.smoothed.y_m instanceof Float64Array);
+  assert.ok(close(paths.pipeline, end(run.trace.time_s, run.trace.heading_deg)), "causal path's end");
+  assert.ok(close(paths.smoothed, end(run.trace.time_s, run.trace.heading_smoothed_deg)), "smoothed path's end");
+  // On City 1 the pipeline's path ends nearer the reference path's end than raw integration's.
+  const tr = gd.track(log, {});
+  const miss = (p) => Math.hypot(p.x_m.at(-1) - tr.reference.x_m.at(-1), p.y_m.at(-1) - tr.reference.y_m.at(-1));
+  assert.ok(miss(paths.pipeline) < miss(tr.raw) / 2, `${miss(paths.pipeline)} m against raw ${miss(tr.raw)} m`);
+  // A drive without a reference heading still has its paths (headings from 0 deg).
+  const lines = text.split("\n");
+  const h = lines.findIndex((l) => l.startsWith("time_s"));
+  const r = lines[h].split(",").indexOf("ref_heading_deg");
+  const noRef = gd.Log.parse(lines.map((l, i) => (i < h || !l ? l : l.split(",").filter((_, k) => k !== r).join(","))).join("\n"));
+  const unscored = gd.runPipeline(noRef, {});
+  assert.equal(unscored.result, null);
+  assert.ok(close(gd.pipelineTrack(noRef, {}).pipeline, end(unscored.trace.time_s, unscored.trace.heading_deg)), "no reference");
+  noRef.free();
+  const noSpeed = gd.Log.parse("time_s,gyro_dps,ref_heading_deg\n" + Array.from({ length: 60 }, (_, i) => `${i},0.1,0`).join("\n"));
+  assert.throws(() => gd.pipelineTrack(noSpeed, {}), /speed_mps/);
+  assert.throws(() => gd.pipelineTrack(log, { bias_s: -1 }), /bias_s/);
+  noSpeed.free();
+  log.free();
+});

@@ -1,6 +1,6 @@
 // Compiled with `tsc --noEmit`: the package's types describe options and results (no `any`).
-import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, isDriveLog, pipeline, runPipeline, compare, checkLog, battery, batteryMarkdown, PipelineEstimator, addGyroErrors, batteryProfiles } from "gyrodrift";
-import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, PipelineResult, PipelineRun, Compare, CheckReport, CheckFinding, GapSplit, Battery, BatteryCase, PipelineState, GyroErrors, BatteryProfile } from "gyrodrift";
+import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, isDriveLog, pipeline, runPipeline, pipelineTrack, track, compare, checkLog, battery, batteryMarkdown, PipelineEstimator, addGyroErrors, batteryProfiles } from "gyrodrift";
+import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, PipelineResult, PipelineRun, PipelineTracks, Tracks, Compare, CheckReport, CheckFinding, GapSplit, Battery, BatteryCase, PipelineState, GyroErrors, BatteryProfile } from "gyrodrift";
 
 const log: Log = Log.parse("time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1,0\n");
 const opts: HdrOptions = { i_c_dps: 0.0422, tau_s: 0.75, resample: true };
@@ -45,6 +45,10 @@ const pe: number = pr.E_psi_pipeline_deg + pr.NE_psi_pipeline_deg_per_min + pr.i
 const prun: PipelineRun = runPipeline(log, {});
 const stops: Uint8Array = prun.trace.stop;
 const smoothed: Float64Array = prun.trace.heading_smoothed_deg;
+const paths: PipelineTracks = pipelineTrack(log, { bias_s: 10 });
+const tracks: Tracks = track(log, {});
+const ends: number = paths.pipeline.x_m[0] + paths.smoothed.y_m[0] + tracks.hdr.x_m[0] + (tracks.reference?.y_m[0] ?? 0);
+void ends;
 const ps: number = pr.NE_psi_pipeline_smoothed_deg_per_min + cmp0().mean.pipeline_smoothed;
 function cmp0(): Compare {
   return compare([log], { warm_sigma_dps: 0.3, max_bias_dps: 5 });

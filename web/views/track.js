@@ -6,12 +6,36 @@ import { chart, timeRange } from "../charts.js";
 import { showError, render } from "../render.js";
 import { background } from "../background.js";
 
+const pipeTracks = new WeakMap(); // log -> { key, data, error }: the pipeline's paths on the page
+
+/** The recommended pipeline's paths: they depend on the log and bias_s only, so HDR's
+ * sliders reuse them; a large log's come from the worker. `{ data, error, pending }`. */
+function pipelineTrackOf(e) {
+  const options = { bias_s: hdrOptions().bias_s ?? null };
+  const bg = background(e, "pipelineTrack", options);
+  if (bg) return bg;
+  const key = JSON.stringify(options);
+  let c = pipeTracks.get(e.log);
+  if (!c || c.key !== key) {
+    c = { key, data: null, error: null };
+    try {
+      c.data = gd.pipelineTrack(e.log, options);
+    } catch (err) {
+      c.error = err.message;
+    }
+    pipeTracks.set(e.log, c);
+  }
+  return c;
+}
+
 export function renderTrack() {
   const e = logFor("track");
   if (!e) return showError("Load a drive log with speed_mps for the Track view.");
   // A large log's paths come from the worker (the page never pauses); small ones are quick here.
   const bg = background(e, "track", hdrOptions());
-  $("track-busy").textContent = bg?.pending ? (bg.stale ? "Updating the track in the background…" : "Computing the track of this large log in the background…") : "";
+  const pt = pipelineTrackOf(e);
+  $("track-busy").textContent = bg?.pending ? (bg.stale ? "Updating the track in the background…" : "Computing the track of this large log in the background…")
+    : pt.pending ? "Computing the pipeline's track in the background…" : pt.error ? `pipeline: ${pt.error}` : "";
   if (bg?.error) return showError(bg.error);
   const tr = bg ? bg.data : gd.track(e.log, hdrOptions());
   if (!tr) return;
@@ -19,6 +43,11 @@ export function renderTrack() {
   if (tr.reference) series.push({ name: "reference heading", color: COLORS.ref, x: tr.reference.x_m, y: tr.reference.y_m, points: false, width: 2 });
   series.push({ name: "raw", color: COLORS.raw, x: tr.raw.x_m, y: tr.raw.y_m, points: false });
   series.push({ name: "HDR", color: COLORS.hdr, x: tr.hdr.x_m, y: tr.hdr.y_m, points: false, width: 2 });
+  const p = pt.data;
+  if (p) {
+    series.push({ name: "pipeline (recommended)", color: COLORS.pipe, x: p.pipeline.x_m, y: p.pipeline.y_m, points: false, width: 2 });
+    series.push({ name: "smoothed (offline)", color: COLORS.smooth, x: p.smoothed.x_m, y: p.smoothed.y_m, points: false });
+  }
   // Equal axes: the same metres per pixel across and up. The plot area inside the canvas
   // (margins for labels) is not square, so its size is read from the last drawing.
   const ext = (key) => {

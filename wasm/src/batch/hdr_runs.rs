@@ -93,22 +93,25 @@ pub fn track(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions")] opt
     let opts: HdrOptions = self::options("track", options)?;
     let run = hdr::run(&log.log, &opts).map_err(err)?;
     let t = &run.trace;
-    let path = |p: gyrodrift::track::Path| -> JsResult<JsValue> {
-        let p = p.for_drawing(TRACK_COLUMNS, TRACK_MAX_POINTS);
-        let o = Object::new();
-        set(&o, "x_m", &f64s(&p.x_m))?;
-        set(&o, "y_m", &f64s(&p.y_m))?;
-        Ok(o.into())
-    };
     let out = Object::new();
-    set(&out, "raw", &path(gyrodrift::track::dead_reckon(&log.log, &t.time_s, &t.heading_raw_deg).map_err(err)?)?)?;
-    set(&out, "hdr", &path(gyrodrift::track::dead_reckon(&log.log, &t.time_s, &t.heading_hdr_deg).map_err(err)?)?)?;
+    set(&out, "raw", &drawn_path(&log.log, &t.time_s, &t.heading_raw_deg)?)?;
+    set(&out, "hdr", &drawn_path(&log.log, &t.time_s, &t.heading_hdr_deg)?)?;
     let reference = match gyrodrift::track::reference_path(&log.log) {
-        Ok(p) => path(p)?,
+        Ok(p) => path_object(p)?,
         Err(_) => JsValue::NULL,
     };
     set(&out, "reference", &reference)?;
     Ok(out.into())
+}
+
+/// The log's speed integrated along a heading trace, reduced for drawing.
+pub(crate) fn drawn_path(log: &DriveLog, time_s: &[f64], heading_deg: &[f64]) -> JsResult<JsValue> {
+    path_object(gyrodrift::track::dead_reckon(log, time_s, heading_deg).map_err(err)?)
+}
+
+fn path_object(p: gyrodrift::track::Path) -> JsResult<JsValue> {
+    let p = p.for_drawing(TRACK_COLUMNS, TRACK_MAX_POINTS);
+    Ok(object_of(&[("x_m", f64s(&p.x_m)), ("y_m", f64s(&p.y_m))])?.into())
 }
 
 /// The per-sample heading trace CSV of methods.md (time_s, heading_raw_deg, heading_hdr_deg).

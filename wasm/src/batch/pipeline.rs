@@ -38,6 +38,19 @@ pub fn run_pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOp
     Ok(out.into())
 }
 
+/// Dead-reckoned paths (m) along the pipeline's causal and smoothed headings, reduced as
+/// `track`'s: `{ pipeline, smoothed }`. Apart from `track` because it depends on the log and
+/// `bias_s` only, not on HDR's sliders: a page computes it once per log.
+#[wasm_bindgen(js_name = pipelineTrack, unchecked_return_type = "PipelineTracks")]
+pub fn pipeline_track(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue) -> JsResult<JsValue> {
+    let p: gyrodrift::pipeline::PipelineParams = self::options("pipeline", options)?;
+    let t = gyrodrift::pipeline::run(&log.log, &p).map_err(err)?.trace;
+    let out = Object::new();
+    set(&out, "pipeline", &drawn_path(&log.log, &t.time_s, &t.heading_deg)?)?;
+    set(&out, "smoothed", &drawn_path(&log.log, &t.time_s, &t.heading_smoothed_deg)?)?;
+    Ok(out.into())
+}
+
 /// Every method side by side (NE_psi per drive): raw, Table-III HDR, the pipeline, peers.
 #[wasm_bindgen(unchecked_return_type = "Compare")]
 pub fn compare(

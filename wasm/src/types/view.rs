@@ -17,6 +17,12 @@ export interface Tracks {
   reference: Path | null;
 }
 
+/** Dead-reckoned paths along the recommended pipeline's causal and smoothed (offline) headings. */
+export interface PipelineTracks {
+  pipeline: Path;
+  smoothed: Path;
+}
+
 /** What a page draws: a time window (null: all) and its width in pixel columns. Series
  * given to a view keep per column the first and last sample and each series' extremes. */
 export interface ChartView {
