@@ -10,15 +10,6 @@ export function addLog(name, bytes) {
   return addParsed(name, () => gd.Log.fromBytes(bytes));
 }
 
-/** A reference heading to score against: a drive with no GPS course (speed, no
- * ref_heading_deg) is shown in the HDR view, but not scored, tuned or put in the battery.
- * By the header alone: reading the column to see whether any cell has a value would copy
- * it out of the module for every drive (80 MB for a 10-million-row log); a column with no
- * value at all is scored, and core's error names it. */
-function hasReference(log) {
-  return log.columns().includes("ref_heading_deg");
-}
-
 export function headline(entry) {
   try {
     if (entry.kind === "drive" && !entry.scored) return "no reference: not scored";
@@ -128,7 +119,9 @@ export function addParsed(name, make, checked = null) {
     }
     const entries = parts.map((log) => {
       const entry = { name: log.name, file: name, log, error: null, kind: log.kind, headline: "", findings: [], note };
-      entry.scored = entry.kind === "drive" && hasReference(log);
+      // A drive with no GPS course (speed, no ref_heading_deg value) is shown in the HDR
+      // view, but not scored, tuned or put in the battery: core's rule.
+      entry.scored = entry.kind === "drive" && log.hasReference;
       entry.headline = headline(entry);
       // What `gyrodrift check` would say: unit, sign and gap mistakes, each with its fix.
       const findings = parts.length > 1 ? gd.checkLog(log).findings : check.findings;

@@ -374,6 +374,17 @@ test("a drive without a reference heading is shown, not scored: the HDR view say
   assert.ok((await page.locator("#report-table tr", { hasText: "City 1" }).count()) > 0);
   await item.locator("button.remove").click();
   assert.equal(await page.locator("#report-unscored").isVisible(), false);
+  // The column there but with no value in it is no reference either (core's rule, as the CLI).
+  const blank = join(dir, "city-blank-gps.csv");
+  writeFileSync(blank, lines.map((l, i) => (l.startsWith("# name:") ? "# name: City blank GPS" : i <= h || !l ? l : l.split(",").map((c, j) => (j === r ? "" : c)).join(","))).join("\n"));
+  await page.locator("#file-input").setInputFiles([blank]);
+  const blankItem = page.locator("#logs li", { hasText: "City blank GPS" });
+  await blankItem.waitFor();
+  assert.match(await blankItem.innerText(), /drive · 19\.4 min · no reference: not scored/);
+  await page.waitForSelector("#report-table table");
+  assert.match(await page.locator("#report-unscored").innerText(), /Not scored \(no reference heading\): City blank GPS\./);
+  assert.match(JSON.parse(cli("pipeline", blank, "--json")).not_scored, /ref_heading_deg column is empty/);
+  await blankItem.locator("button.remove").click();
   await page.locator("#tabs button[data-view=hdr]").click();
   await page.waitForSelector("#m-e-hdr");
   assert.equal(await page.locator("#c-error").isVisible(), true);

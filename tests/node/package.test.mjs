@@ -421,6 +421,13 @@ test("a drive with speed and no reference heading is a drive: runPipeline gives 
   writeFileSync(file, text);
   const log = gd.Log.parse(text);
   assert.equal(log.kind, "drive");
+  // Core's rule, as Python's has_reference: a ref_heading_deg column with a value.
+  assert.equal(log.hasReference, false);
+  const blank = gd.Log.parse("time_s,gyro_dps,ref_heading_deg,speed_mps\n0,0.1,,5\n1,0.1,,5\n");
+  const one = gd.Log.parse("time_s,gyro_dps,ref_heading_deg,speed_mps\n0,0.1,,5\n1,0.1,90,5\n");
+  assert.deepEqual([blank.hasReference, one.hasReference, blank.kind], [false, true, "drive"]);
+  blank.free();
+  one.free();
   const run = gd.runPipeline(log, {});
   assert.equal(run.result, null);
   assert.match(run.error, /missing column ref_heading_deg/);

@@ -45,6 +45,8 @@ const pe: number = pr.E_psi_pipeline_deg + pr.NE_psi_pipeline_deg_per_min + pr.i
 const prun: PipelineRun = runPipeline(log, {});
 const stops: Uint8Array = prun.trace.stop;
 const smoothed: Float64Array = prun.trace.heading_smoothed_deg;
+const scored: boolean = log.hasReference;
+void scored;
 const paths: PipelineTracks = pipelineTrack(log, { bias_s: 10 });
 const tracks: Tracks = track(log, {});
 const ends: number = paths.pipeline.x_m[0] + paths.smoothed.y_m[0] + tracks.hdr.x_m[0] + (tracks.reference?.y_m[0] ?? 0);

@@ -155,6 +155,13 @@ impl Log {
         to_js(&self.log.kind())
     }
 
+    /// Whether a reference heading can score it: a `ref_heading_deg` column with a value
+    /// (core's rule; without one the methods run and nothing is scored).
+    #[wasm_bindgen(getter, js_name = hasReference)]
+    pub fn has_reference(&self) -> bool {
+        self.log.has_reference()
+    }
+
     /// Last minus first time, minutes.
     #[wasm_bindgen(getter, js_name = durationMin)]
     pub fn duration_min(&self) -> f64 {
