@@ -35,6 +35,8 @@ after(async () => {
 test("the built web/ on a plain static host, under a sub-path, opens with City 1 plotted", async () => {
   const errors = [];
   page.on("pageerror", (e) => errors.push(e.message));
+  // Nothing the page asks for is missing or refused.
+  page.on("response", (r) => r.status() >= 400 && errors.push(`${r.status()} ${r.url()}`));
   await page.goto(`http://127.0.0.1:${PORT}/tools-gyro/`);
   await page.waitForFunction(() => document.body.dataset.ready === "1", null, { timeout: 30000 });
   await page.waitForFunction(() => document.querySelectorAll("#logs li").length === 5, null, { timeout: 30000 });
