@@ -146,13 +146,16 @@ pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option
     trace_err.map_or(printed, Err)
 }
 
-pub fn pipeline(log: &Path, set: &[String], json: bool, trace: Option<&Path>, input: Input) -> Result<(), Failure> {
+/// `files`: the trace and the track CSV to write, if asked for.
+pub fn pipeline(log: &Path, set: &[String], json: bool, files: [Option<&Path>; 2], input: Input) -> Result<(), Failure> {
     let params: gyrodrift::pipeline::PipelineParams = settings(set)?;
     let parts = read_checked(log, input, params.bias_s)?;
+    let [trace, track] = files;
     let mut trace_err = None;
     let mut one = |i: usize, drive: &DriveLog| {
         let run = gyrodrift::pipeline::run(drive, &params)?;
         write_trace(trace, i, &mut trace_err, |f| run.trace.write_csv(f));
+        write_trace(track, i, &mut trace_err, |f| gyrodrift::track::Tracks::of(drive, &params)?.write_csv(f));
         let summary = run.summary(drive.duration_min());
         outcome(drive, run.result, summary)
     };

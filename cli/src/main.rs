@@ -91,6 +91,11 @@ enum Cmd {
         /// sigma from the bias model, the smoothed heading, the bias, the stops.
         #[arg(long, value_name = "FILE")]
         trace: Option<PathBuf>,
+        /// Write the dead-reckoned paths (CSV, metres east and north) to this file: the log's
+        /// speed integrated along the raw, Table-III HDR, pipeline and smoothed headings and
+        /// the reference's, at every row with a speed (the dashboard's Track view).
+        #[arg(long, value_name = "FILE")]
+        track: Option<PathBuf>,
     },
     /// Gyrodometry on a robot log with wheel travel.
     Gyrodometry {
@@ -446,7 +451,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
     let input = commands::Input { gaps, ignore_check: cli.ignore_check };
     match cli.cmd {
         Cmd::Hdr { log, no_resample, set, json, trace } => c::hdr(&log, !no_resample, &set, json, trace.as_deref(), input),
-        Cmd::Pipeline { log, set, json, trace } => c::pipeline(&log, &set, json, trace.as_deref(), input),
+        Cmd::Pipeline { log, set, json, trace, track } => c::pipeline(&log, &set, json, [trace.as_deref(), track.as_deref()], input),
         Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json, input),
         Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json),
         Cmd::Report { batch: BatchArgs { dir: Some(dir), jobs, out, import }, set, json, .. }

@@ -646,6 +646,27 @@ fn inject_and_simulate_add_the_named_gyro_errors() {
 /// A drive without a reference heading (no GPS course; or the column there but empty):
 /// `pipeline` and `hdr` run, write their traces, say why nothing is scored and print the
 /// estimator's figures, exit 0. The heading turned matches the drive's truth.
+/// `pipeline --track`: every method's dead-reckoned path at each row with a speed; the
+/// pipeline's ends nearer the reference path's end than raw integration's.
+#[test]
+fn pipeline_track() {
+    let p = write("drive-track.csv", &drive_csv());
+    let track = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("pipe-track.csv");
+    let out = run(&["pipeline", p.to_str().unwrap(), "--track", track.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let t = std::fs::read_to_string(&track).unwrap();
+    assert_eq!(
+        t.lines().next(),
+        Some("time_s,raw_x_m,raw_y_m,hdr_x_m,hdr_y_m,pipeline_x_m,pipeline_y_m,smoothed_x_m,smoothed_y_m,reference_x_m,reference_y_m")
+    );
+    let rows: Vec<Vec<f64>> = t.lines().skip(1).map(|l| l.split(',').map(|c| c.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), drive_csv().lines().skip(2).count());
+    assert!(rows.iter().all(|r| r.len() == 11 && r.iter().all(|v| v.is_finite())));
+    let end = rows.last().unwrap();
+    let miss = |k: usize| (end[k] - end[9]).hypot(end[k + 1] - end[10]);
+    assert!(miss(5) < miss(1), "pipeline {} m, raw {} m from the reference's end", miss(5), miss(1));
+}
+
 #[test]
 fn a_drive_without_a_reference_runs_unscored() {
     let text = drive_csv();

@@ -107,6 +107,23 @@ fn run_pipeline<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, 
     Ok(d)
 }
 
+/// Every method's dead-reckoned path (m east and north) at the rows with a speed:
+/// `{time_s, raw_x_m, raw_y_m, hdr_x_m, ..., reference_y_m}` as the CLI's `pipeline --track`
+/// writes them (the reference's only where the log has one).
+#[pyfunction]
+#[pyo3(signature = (log, settings=None))]
+fn pipeline_track<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    let p: PipelineParams = crate::settings("pipeline", settings)?;
+    let t = py.detach(|| gyrodrift::track::Tracks::of(&log.log, &p)).map_err(value_err)?;
+    let d = PyDict::new(py);
+    d.set_item("time_s", crate::array(py, t.time_s))?;
+    for (name, path) in t.paths {
+        d.set_item(format!("{name}_x_m"), crate::array(py, path.x_m))?;
+        d.set_item(format!("{name}_y_m"), crate::array(py, path.y_m))?;
+    }
+    Ok(d)
+}
+
 /// Gyrodometry on a robot log with wheel travel: the Result keys.
 #[pyfunction]
 #[pyo3(signature = (log, settings=None))]
@@ -366,6 +383,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run_hdr, m)?)?;
     m.add_function(wrap_pyfunction!(pipeline, m)?)?;
     m.add_function(wrap_pyfunction!(run_pipeline, m)?)?;
+    m.add_function(wrap_pyfunction!(pipeline_track, m)?)?;
     m.add_function(wrap_pyfunction!(gyrodometry, m)?)?;
     m.add_function(wrap_pyfunction!(run_gyrodometry, m)?)?;
     m.add_function(wrap_pyfunction!(calibrate, m)?)?;

@@ -1,6 +1,7 @@
 """Every method through Python equals the CLI's --json; arrays are float64 numpy; errors
 are Python exceptions naming file, line and column."""
 
+import csv
 import math
 
 import numpy as np
@@ -355,3 +356,24 @@ def test_a_raw_export_read_as_a_log_names_the_import_that_reads_it(samples):
     assert all(repr(f) in str(e.value) or f'"{f}"' in str(e.value) for f in files), str(e.value)
     log, _, _ = g.import_files(files)
     assert len(log) > 0
+
+
+def test_pipeline_track_is_the_clis_track_csv(cli, samples, tmp_path):
+    """Every method's dead-reckoned path: the CLI's `pipeline --track` CSV, column for column;
+    without a GPS course the same minus the reference's; without a speed a ValueError."""
+    path = samples / "train" / "city-1.csv"
+    tr = g.pipeline_track(g.read_log(str(path)))
+    out = tmp_path / "track.csv"
+    cli("pipeline", str(path), "--json", "--track", str(out))
+    with out.open() as f:
+        rows = list(csv.reader(f))
+    header, body = rows[0], rows[1:]
+    assert list(tr.keys()) == header
+    for j, name in enumerate(header):
+        assert tr[name].dtype == np.float64 and len(tr[name]) == len(body), name
+        assert np.array_equal(tr[name], np.array([float(r[j]) for r in body])), name
+    df = g.to_pandas(g.read_log(str(path)))[["time_s", "gyro_dps", "speed_mps"]]
+    unscored = g.pipeline_track(g.from_pandas(df, {"bias_s": 20}))
+    assert "reference_x_m" not in unscored and len(unscored["pipeline_x_m"]) == len(body)
+    with pytest.raises(ValueError, match="speed_mps"):
+        g.pipeline_track(g.from_pandas(df[["time_s", "gyro_dps"]].assign(ref_heading_deg=0.0)))
