@@ -473,6 +473,14 @@ test("pipelineTrack: the log's speed integrated along runPipeline's headings, wi
   assert.ok(paths.pipeline.x_m instanceof Float64Array && paths.smoothed.y_m instanceof Float64Array);
   assert.ok(close(paths.pipeline, end(run.trace.time_s, run.trace.heading_deg)), "causal path's end");
   assert.ok(close(paths.smoothed, end(run.trace.time_s, run.trace.heading_smoothed_deg)), "smoothed path's end");
+  // The CLI's `pipeline --track` ends where these paths end (drawing keeps the last point).
+  const csv = join(mkdtempSync(join(tmpdir(), "gd-track-")), "track.csv");
+  cli("pipeline", join(SAMPLES, "train", "city-1.csv"), "--track", csv);
+  const rows = readFileSync(csv, "utf8").trim().split("\n");
+  const head = rows[0].split(","), last = rows.at(-1).split(",").map(Number);
+  for (const [k, p] of [["pipeline", paths.pipeline], ["smoothed", paths.smoothed]]) {
+    assert.deepEqual([p.x_m.at(-1), p.y_m.at(-1)], [last[head.indexOf(`${k}_x_m`)], last[head.indexOf(`${k}_y_m`)]], k);
+  }
   // On City 1 the pipeline's path ends nearer the reference path's end than raw integration's.
   const tr = gd.track(log, {});
   const miss = (p) => Math.hypot(p.x_m.at(-1) - tr.reference.x_m.at(-1), p.y_m.at(-1) - tr.reference.y_m.at(-1));
