@@ -155,7 +155,13 @@ pub fn pipeline(log: &Path, set: &[String], json: bool, files: [Option<&Path>; 2
     let mut one = |i: usize, drive: &DriveLog| {
         let run = gyrodrift::pipeline::run(drive, &params)?;
         write_trace(trace, i, &mut trace_err, |f| run.trace.write_csv(f));
-        write_trace(track, i, &mut trace_err, |f| gyrodrift::track::Tracks::of(drive, &params)?.write_csv(f));
+        if track.is_some() {
+            // Computed before the file is created: a log without a speed leaves no empty file.
+            match gyrodrift::track::Tracks::of(drive, &params) {
+                Ok(paths) => write_trace(track, i, &mut trace_err, |f| paths.write_csv(f)),
+                Err(e) => _ = trace_err.get_or_insert(fail(log, e)),
+            }
+        }
         let summary = run.summary(drive.duration_min());
         outcome(drive, run.result, summary)
     };

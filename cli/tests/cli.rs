@@ -665,6 +665,15 @@ fn pipeline_track() {
     let end = rows.last().unwrap();
     let miss = |k: usize| (end[k] - end[9]).hypot(end[k + 1] - end[10]);
     assert!(miss(5) < miss(1), "pipeline {} m, raw {} m from the reference's end", miss(5), miss(1));
+    // Without a speed: the results, then exit 2 naming the log; no empty track file.
+    let text: String = drive_csv().lines().map(|l| l.rsplit_once(',').map_or(l, |(a, _)| a).to_string() + "\n").collect();
+    let p = write("drive-no-speed.csv", &text);
+    let track = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("no-speed-track.csv");
+    let out = run(&["pipeline", p.to_str().unwrap(), "--track", track.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains(&format!("{}: missing column speed_mps", p.display())), "{err}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("pipeline") && !track.exists());
 }
 
 #[test]
