@@ -71,13 +71,16 @@ try {
   const sliderLongest = await longest();
   const t1 = Date.now();
   await page.locator('#tabs button[data-view="track"]').click();
-  // The track is drawn when the worker's paths arrived (or at once, computed on the page).
-  await page.waitForFunction(() => !document.getElementById("track-busy").textContent && Number(document.getElementById("c-track").dataset.drawn || 0) > 0, null, { timeout: 120000 });
-  const track = { longest: await longest(), s: (Date.now() - t1) / 1000 };
+  // The track is drawn when the worker's raw and HDR paths arrived (or at once, computed on
+  // the page); the pipeline's paths (its own run in the worker) are drawn when they arrive.
+  await page.waitForFunction(() => !/the track/.test(document.getElementById("track-busy").textContent) && Number(document.getElementById("c-track").dataset.drawn || 0) > 0, null, { timeout: 120000 });
+  const drawnS = (Date.now() - t1) / 1000;
+  await page.waitForFunction(() => !document.getElementById("track-busy").textContent && window.gyrodrift.state.specs["c-track"].series.some((s) => s.name.startsWith("pipeline")), null, { timeout: 120000 });
+  const track = { longest: await longest(), drawnS, s: (Date.now() - t1) / 1000 };
   console.log(`${mb.toFixed(1)} MB, ${ROWS} rows: opened and plotted in ${loadS.toFixed(1)} s, pipeline shown after ${pipeS.toFixed(1)} s; longest main-thread task while opening ${openLongest.toFixed(0)} ms`);
   console.log(`HDR slider: longest main-thread task ${sliderLongest.toFixed(0)} ms`);
   console.log(`HDR slider -> re-run + redraw: median ${slider.median.toFixed(1)} ms, max ${slider.max.toFixed(1)} ms (goal: median <= 50)`);
-  console.log(`Track view: drawn after ${track.s.toFixed(1)} s, longest main-thread task ${track.longest.toFixed(0)} ms (goal <= 100)`);
+  console.log(`Track view: drawn after ${track.drawnS.toFixed(1)} s, with the pipeline's paths after ${track.s.toFixed(1)} s, longest main-thread task ${track.longest.toFixed(0)} ms (goal <= 100)`);
 } finally {
   await context.close();
   server.kill();
