@@ -196,12 +196,29 @@ fn borrowed(v: &[(String, std::sync::Arc<DriveLog>)]) -> Vec<(String, &DriveLog)
     v.iter().map(|(n, l)| (n.clone(), l.as_ref())).collect()
 }
 
+/// The drives a table can score, as the CLI's `report`, `compare` and `tune` take them: one
+/// without a reference heading (core's `has_reference`) is left out with a UserWarning naming
+/// it (the CLI's stderr line); none left to score is a ValueError.
+fn scored(py: Python<'_>, logs: &[PyRef<'_, PyLog>]) -> PyResult<Vec<(String, std::sync::Arc<DriveLog>)>> {
+    let (named, unscored): (Vec<_>, Vec<_>) = logs_of(logs).into_iter().partition(|(_, log)| log.has_reference());
+    let unscored: Vec<String> = unscored.into_iter().map(|(name, _)| name).collect();
+    for name in &unscored {
+        let msg = std::ffi::CString::new(format!("{name}: not scored: no reference heading (ref_heading_deg absent or empty)"))
+            .map_err(value_err)?;
+        PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &msg, 1)?;
+    }
+    if named.is_empty() && !unscored.is_empty() {
+        return Err(PyValueError::new_err(format!("no drive has a reference heading to score against ({})", unscored.join(", "))));
+    }
+    Ok(named)
+}
+
 /// The HDR paper's Table II over logs (named by `# name:`): the CLI's `report --json`.
 #[pyfunction]
 #[pyo3(signature = (logs, settings=None))]
 fn report<'py>(py: Python<'py>, logs: Vec<PyRef<'py, PyLog>>, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
     let opts: HdrOptions = crate::settings("hdr", settings)?;
-    let named = logs_of(&logs);
+    let named = scored(py, &logs)?;
     let r = py.detach(|| gyrodrift::report::Report::build(&borrowed(&named), &opts)).map_err(value_err)?;
     result_dict(py, &r)
 }
@@ -211,7 +228,7 @@ fn report<'py>(py: Python<'py>, logs: Vec<PyRef<'py, PyLog>>, settings: Option<&
 #[pyo3(signature = (logs, settings=None))]
 fn compare<'py>(py: Python<'py>, logs: Vec<PyRef<'py, PyLog>>, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
     let p: PipelineParams = crate::settings("pipeline", settings)?;
-    let named = logs_of(&logs);
+    let named = scored(py, &logs)?;
     let c = py.detach(|| gyrodrift::compare::compare(&borrowed(&named), &p, None)).map_err(value_err)?;
     result_dict(py, &c)
 }
@@ -238,7 +255,7 @@ fn table<'py>(
     format: &str,
     settings: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<String> {
-    let named = logs_of(&logs);
+    let named = scored(py, &logs)?;
     let drives = borrowed(&named);
     match table {
         "report" => {
@@ -275,7 +292,8 @@ fn tune<'py>(
     settings: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let opts: g::tune::TuneOptions = crate::settings("tune", settings)?;
-    let (train, test) = (logs_of(&train), logs_of(&test));
+    let train = scored(py, &train)?;
+    let test = scored(py, &test)?;
     let rep = py
         .detach(|| {
             let hdr_opts = HdrOptions::default();

@@ -171,8 +171,15 @@ def test_a_drive_without_reference_gets_the_clis_summary(cli, samples, tmp_path)
     log = g.from_pandas(df, {"name": "City 1 without GPS", "bias_s": 20})
     assert log.kind == "drive" and not log.has_reference
     assert g.read_log(str(samples / "train" / "city-1.csv")).has_reference
-    # Tables over drives raise on it, naming it: filter by has_reference first.
-    with pytest.raises(ValueError, match="City 1 without GPS: missing column ref_heading_deg"):
+    # Tables over drives leave it out with a warning naming it, as the CLI does on stderr;
+    # with no drive left to score they raise.
+    city = g.read_log(str(samples / "train" / "city-1.csv"))
+    for table in (g.report, g.compare, lambda logs: g.table(logs, "compare", "csv")):
+        with pytest.warns(UserWarning, match="City 1 without GPS: not scored: no reference heading"):
+            assert table([log, city]) == table([city])
+    with pytest.warns(UserWarning, match="City 1 without GPS"):
+        assert g.tune([city, log], [city])["train"] == g.tune([city], [city])["train"]
+    with pytest.raises(ValueError, match=r"no drive has a reference heading to score against \(City 1 without GPS\)"), pytest.warns(UserWarning):
         g.report([log])
     path = tmp_path / "no-gps.csv"
     path.write_text(log.to_csv())
