@@ -120,7 +120,8 @@ export function addParsed(name, make, checked = null) {
     const entries = parts.map((log) => {
       const entry = { name: log.name, file: name, log, error: null, kind: log.kind, headline: "", findings: [], note };
       // A drive with no GPS course (speed, no ref_heading_deg value) is shown in the HDR
-      // view, but not scored, tuned or put in the battery: core's rule.
+      // view, but not scored, tuned or put in the battery: core's rule, which looks at the
+      // column inside the module (no copy) and stops at its first value.
       entry.scored = entry.kind === "drive" && log.hasReference;
       entry.headline = headline(entry);
       // What `gyrodrift check` would say: unit, sign and gap mistakes, each with its fix.

@@ -7,8 +7,8 @@
 // - tune: the HDR parameters over the drives' columns, with progress;
 // - battery: the robustness battery's error profiles on the drives' columns; case: one
 //   drive with one profile's errors added (to open a case as a log); profiles: their names;
-// - track, pipelineTrack, pipeline: the slow work on a large log this worker parsed and kept (`key`), so
-//   the page's Track view and pipeline never pause it.
+// - track, pipelineTrack, pipeline: the slow work on a large log this worker parsed and
+//   kept (`key`), so the page's Track view and pipeline never pause it.
 import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
