@@ -1,0 +1,325 @@
+//! The command line's arguments (clap): the commands, their options and help texts.
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser)]
+#[command(name = "gyrodrift", version, about = "Heading from a cheap yaw-rate gyro: HDR, Gyrodometry, calibration")]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    pub(crate) cmd: Cmd,
+    /// A gap in time (over 20 median steps, at least 5 s): split the log there into drives of
+    /// their own (parts under 30 s dropped), or refuse it. No method integrates across one.
+    #[arg(long, global = true, value_enum, default_value = "split")]
+    pub(crate) gaps: GapsArg,
+    /// Run a log even when `check` finds an error in it (ms time, radian heading, rad/s or
+    /// clockwise gyro), whose results would otherwise be absurd and are refused.
+    #[arg(long, global = true)]
+    pub(crate) ignore_check: bool,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub(crate) enum GapsArg {
+    Split,
+    Error,
+}
+
+/// A folder of logs scored as a fleet batch (`report --dir`, `compare --dir`).
+#[derive(clap::Args)]
+pub(crate) struct BatchArgs {
+    /// Every *.csv log under this folder (recursive), in parallel: each drive a row with
+    /// every method's E_psi and NE_psi (or its error; the rest go on), the fleet's Table II
+    /// printed. --set takes the pipeline's settings here.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) dir: Option<PathBuf>,
+    /// With --dir: threads (0 = one per core).
+    #[arg(long, default_value_t = 0, requires = "dir")]
+    pub(crate) jobs: usize,
+    /// With --dir: write the per-drive rows to this .parquet, .csv or .json file.
+    #[arg(long, value_name = "FILE", requires = "dir")]
+    pub(crate) out: Option<PathBuf>,
+    /// With --dir: a logger's raw exports among the files (SensorLog, Sensor Logger,
+    /// phyphox, PX4 ulog2csv, ROS CSV, comma2k19) are imported by their detected preset and
+    /// scored, a drive per recording (a file, or a folder of several), instead of failing.
+    #[arg(long, requires = "dir")]
+    pub(crate) import: bool,
+}
+
+#[derive(Subcommand)]
+pub(crate) enum Cmd {
+    /// Heuristic Drift Reduction on a drive log, scored against its reference heading.
+    Hdr {
+        log: PathBuf,
+        /// Run on the raw rows instead of the paper's 1 Hz blocks.
+        #[arg(long)]
+        no_resample: bool,
+        /// Parameter: i_c, tau, theta_w, c1, c2, bias_s (e.g. --set tau=1.0).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Print one JSON object with the Result keys.
+        #[arg(long)]
+        json: bool,
+        /// Write the per-sample heading trace (CSV) to this file.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<PathBuf>,
+    },
+    /// The recommended drift-reduction pipeline (beyond the paper) against raw, Table-III HDR
+    /// and two peers (x-io Fusion offset, zero-rate update at stops).
+    Pipeline {
+        log: PathBuf,
+        /// Setting: a field of the pipeline's settings (min_still_s, road_gate_dps,
+        /// road_sigma_dps, bias_walk_max_dps_per_sqrt_s, still_speed_mps, bias_s, ...).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(long)]
+        json: bool,
+        /// Write the per-block (1 s) trace (CSV) to this file: the causal heading and its
+        /// sigma from the bias model, the smoothed heading, the bias, the stops.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<PathBuf>,
+        /// Write the dead-reckoned paths (CSV, metres east and north) to this file: the log's
+        /// speed integrated along the raw, Table-III HDR, pipeline and smoothed headings and
+        /// the reference's, at every row with a speed (the dashboard's Track view).
+        #[arg(long, value_name = "FILE")]
+        track: Option<PathBuf>,
+    },
+    /// Gyrodometry on a robot log with wheel travel.
+    Gyrodometry {
+        log: PathBuf,
+        /// Parameter: thres_rate, wheelbase_m, bias_s.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Fit the rate x temperature error model to a turntable session.
+    Calibrate {
+        log: PathBuf,
+        /// Parameter: p, q, bias_s.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(long)]
+        json: bool,
+    },
+    /// The HDR paper's Table II for any set of drives.
+    Report {
+        #[arg(required_unless_present = "dir", conflicts_with = "dir")]
+        files: Vec<PathBuf>,
+        #[command(flatten)]
+        batch: BatchArgs,
+        /// Parameter: i_c, tau, theta_w, c1, c2, bias_s.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(long, conflicts_with = "dir")]
+        no_resample: bool,
+        #[arg(long, conflicts_with_all = ["markdown", "csv"])]
+        json: bool,
+        #[arg(long, conflicts_with_all = ["csv", "dir"])]
+        markdown: bool,
+        /// The table as CSV (one row per drive, then the average or mean row).
+        #[arg(long, conflicts_with = "dir")]
+        csv: bool,
+        /// Every method side by side (raw, HDR, pipeline, peers) instead of Table II, as
+        /// Markdown (or --json); the pipeline always runs on the 1 Hz blocks.
+        #[arg(long, conflicts_with = "no_resample")]
+        compare: bool,
+        /// With --compare: tune HDR on these training drives for a "HDR tuned" column.
+        #[arg(long, num_args = 1.., requires = "compare")]
+        tune_on: Vec<PathBuf>,
+    },
+    /// Every method side by side (raw, HDR, pipeline, peers): `report --compare`; with --dir,
+    /// the fleet batch over a folder.
+    Compare {
+        #[arg(required_unless_present = "dir", conflicts_with = "dir")]
+        files: Vec<PathBuf>,
+        #[command(flatten)]
+        batch: BatchArgs,
+        /// Setting of the pipeline (min_still_s, road_gate_dps, ...).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(long, conflicts_with = "csv")]
+        json: bool,
+        #[arg(long, conflicts_with = "dir")]
+        csv: bool,
+        /// Tune HDR on these training drives for a "HDR tuned" column.
+        #[arg(long, num_args = 1.., conflicts_with = "dir")]
+        tune_on: Vec<PathBuf>,
+    },
+    /// The robustness battery: recorded and simulated drives with gyro error classes added;
+    /// every method scored; training and scoring cases reported apart.
+    Battery {
+        /// Recipes of recorded drives (a folder's *.toml or files); none = simulated only.
+        #[arg(long, num_args = 1..)]
+        recipes: Vec<PathBuf>,
+        /// Your own drives as v1 logs with a reference heading: scoring bases whatever their
+        /// names, with every error profile added; their cases are also summarised apart.
+        #[arg(long, num_args = 1..)]
+        logs: Vec<PathBuf>,
+        /// Folder the recipes' files are in (default: each recipe's folder).
+        #[arg(long)]
+        data: Option<PathBuf>,
+        /// training (where choices are made), scoring (only looked at), or all.
+        #[arg(long, value_enum, default_value = "all")]
+        split: SplitArg,
+        /// Length of each simulated drive, min.
+        #[arg(long, default_value_t = 20.0)]
+        minutes: f64,
+        /// Draw the simulated scoring bases afresh: K > 0 gives them seeds 101-106 + 1000 K
+        /// (other roads, drivers and gyro units; the training cases stay as they are).
+        #[arg(long, default_value_t = 0)]
+        draw: u64,
+        /// Print every case, not only the summaries.
+        #[arg(long)]
+        cases: bool,
+        /// Pipeline setting (as for `pipeline`).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        #[arg(long)]
+        json: bool,
+        /// Write one case's log instead ("BASE / PROFILE", as the cases are named), to open
+        /// in the dashboard or run with any command. A scoring case looked at is a look.
+        #[arg(long, value_name = "CASE", conflicts_with_all = ["json", "cases", "set", "split"])]
+        write_case: Option<String>,
+        /// With --write-case: the file (stdout when absent).
+        #[arg(long, requires = "write_case")]
+        out: Option<PathBuf>,
+    },
+    /// Tune the five HDR parameters on training drives; report Table III vs tuned.
+    Tune {
+        #[arg(long, num_args = 1.., required = true)]
+        train: Vec<PathBuf>,
+        #[arg(long, num_args = 1..)]
+        test: Vec<PathBuf>,
+        #[arg(long, conflicts_with = "markdown")]
+        json: bool,
+        #[arg(long)]
+        markdown: bool,
+    },
+    /// Simulate a log with known truth: drive, robot, turntable or static.
+    Simulate {
+        #[arg(value_enum)]
+        kind: SimKindArg,
+        /// Drive: city, downtown, suburbs, rural, highway, mixed. Robot: straight, turns.
+        #[arg(long)]
+        scenario: Option<String>,
+        /// Length in minutes (drive 20, robot 2.33, static 120 by default).
+        #[arg(long)]
+        minutes: Option<f64>,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Written as `# name:` in the log.
+        #[arg(long)]
+        name: Option<String>,
+        #[command(flatten)]
+        errors: ErrorArgs,
+        /// Output file (stdout when absent).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Add gyro errors to a log's yaw rate (the robustness battery's classes: turn-on bias,
+    /// warm-up, random walk, steps, scale, rate-dependent bias, g-sensitivity, vibration,
+    /// noise, quantisation, no lead-in, gyro alone), to see how a method copes with a
+    /// worse gyro on your own drive. The other columns are kept (cut_lead_in drops the
+    /// lead-in rows, gyro_only the speed and wheel columns).
+    Inject {
+        log: PathBuf,
+        #[command(flatten)]
+        errors: ErrorArgs,
+        /// Output file (stdout when absent).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Write every shipped sample log (bit-identical for the same version) under a folder.
+    Samples {
+        #[arg(long, default_value = "sample-logs")]
+        out: PathBuf,
+        /// Another realisation of the same set: every seed + 1000 x K (0 = the shipped logs).
+        /// The simulator's calibration averages over realisations (docs/simulator.md).
+        #[arg(long, default_value_t = 0)]
+        realisation: u64,
+    },
+    /// Import a recorded log in any format into a v1 drive log: by a recipe (TOML or JSON),
+    /// or, given the logger's files, by the preset detected from their names and headers
+    /// (SensorLog, Sensor Logger, phyphox, comma2k19, PX4 ulog2csv, ROS CSV).
+    #[command(group(clap::ArgGroup::new("input").required(true).args(["files", "recipe"])))]
+    Import {
+        /// The logger's files (without --recipe): a preset is detected from them.
+        #[arg(conflicts_with_all = ["recipe", "data", "allow_outside"])]
+        files: Vec<PathBuf>,
+        #[arg(long)]
+        recipe: Option<PathBuf>,
+        /// With FILES: print the detected recipe as TOML (to save, edit and re-use with
+        /// --recipe) instead of importing.
+        #[arg(long, requires = "files")]
+        print_recipe: bool,
+        /// Folder the recipe's `file` paths are relative to (default: the recipe's folder).
+        #[arg(long)]
+        data: Option<PathBuf>,
+        /// Let the recipe read files outside the data folder (absolute paths, `..`, links).
+        #[arg(long)]
+        allow_outside: bool,
+        /// Output file (stdout when absent).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Print what was imported (rows, reference samples, up vector, clock offset) as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Road geometry of the recorded drives (via recipes) against the simulated sample
+    /// drives, per road class: yaw rate while moving, straight runs, slow curvature, curves,
+    /// the yaw-rate spectrum, lane-change-like manoeuvres and loops, and their distances.
+    Roads {
+        #[arg(long, num_args = 1.., default_value = "sample-logs/recipes")]
+        recipes: Vec<PathBuf>,
+        #[arg(long)]
+        data: Option<PathBuf>,
+        #[arg(long)]
+        json: bool,
+        /// Also draw the recorded and simulated distributions and spectra per road class into this SVG
+        #[arg(long)]
+        plot: Option<PathBuf>,
+    },
+    /// What a log looks like before any method runs: rate, gaps, units and sign against the
+    /// reference, bias, outliers; each finding with its fix. Exit 1 when it finds an error.
+    Check {
+        log: PathBuf,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Overlapping Allan deviation of a (static) gyro log.
+    Allan {
+        log: PathBuf,
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub(crate) enum SplitArg {
+    Training,
+    Scoring,
+    All,
+}
+
+/// Gyro errors to add: a battery profile by name, settings on top.
+#[derive(clap::Args)]
+pub(crate) struct ErrorArgs {
+    /// A robustness-battery error profile by name, as `battery --cases` lists them
+    /// (e.g. "cheap MEMS A cut").
+    #[arg(long)]
+    pub(crate) profile: Option<String>,
+    /// A gyro error setting on top (of the profile, or of none): bias_dps, warmup_dps,
+    /// warmup_tau_s, walk_dps_per_sqrt_s, step_dps, step_every_s, scale, rate_dep,
+    /// g_sens_dps_per_mps2, noise_dps, vibration_noise_dps, vibration_bias_dps, lsb_dps,
+    /// cut_lead_in (0/1), gyro_only (0/1), seed.
+    #[arg(long, value_name = "KEY=VALUE")]
+    pub(crate) error: Vec<String>,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub(crate) enum SimKindArg {
+    Drive,
+    Robot,
+    Turntable,
+    Static,
+}
