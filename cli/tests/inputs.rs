@@ -1,0 +1,191 @@
+//! The CLI on bad input: exit 2 with one line naming file, line and column; no panic;
+//! closed pipes, write errors, gaps in time, out of memory, and what `check` refuses.
+
+mod common;
+
+use common::*;
+use std::path::PathBuf;
+use std::process::Command;
+
+#[test]
+fn bad_cell_exits_2_with_file_line_column() {
+    let p = write("bad.csv", "time_s,gyro_dps\n0,1\n0.1,1.2.3\n");
+    let out = run(&["hdr", p.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.trim_end(), format!("{}: line 3, column gyro_dps: \"1.2.3\" is not a number", p.display()));
+    assert!(out.stdout.is_empty());
+}
+
+#[test]
+fn bad_inputs_exit_2_never_panic() {
+    let cases: &[(&str, &str, &str)] = &[
+        ("empty.csv", "", "empty file"),
+        ("header.csv", "time_s,gyro_dps\n", "no data rows"),
+        ("notime.csv", "gyro_dps\n1\n", "missing required column time_s"),
+        ("dup.csv", "time_s,time_s\n1,1\n", "duplicate column time_s"),
+        ("nan.csv", "time_s,gyro_dps\n0,nan\n", "line 2, column gyro_dps"),
+        ("back.csv", "time_s,gyro_dps\n0,1\n1,1\n1,1\n", "line 4, column time_s: time 1 repeats 1 on line 3"),
+        ("trunc.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1", "line 3: row has 2 fields"),
+    ];
+    for (name, text, want) in cases {
+        let p = write(name, text);
+        let out = run(&["hdr", p.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{name}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(err.contains(want) && err.starts_with(&p.display().to_string()), "{name}: {err}");
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+    }
+    // An empty reference column is a drive without a reference: run, not scored, exit 0.
+    let p = write("noref.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,\n1,1,\n");
+    let out = run(&["hdr", p.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("not scored: no valid reference heading"));
+    let out = run(&["hdr", "/nonexistent/x.csv"]);
+    assert_eq!(out.status.code(), Some(2));
+    let p = write("ok.csv", &drive_csv());
+    let out = run(&["hdr", p.to_str().unwrap(), "--set", "tau=-1"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("tau"));
+    let out = run(&["hdr", p.to_str().unwrap(), "--set", "gain=1"]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = run(&["gyrodometry", p.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(err.contains("wheelbase_m"), "{err}");
+}
+
+/// `gyrodrift allan LOG | true`: the reader is gone before the output is written; the
+/// command ends by SIGPIPE (or 0), never with a panic (exit 101).
+#[cfg(unix)]
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::Stdio;
+    let log = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/static/static-2h.csv");
+    let mut child = bin().args(["allan", log.to_str().unwrap()]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    drop(child.stdout.take()); // close the read end at once
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(out.status.success() || out.status.signal() == Some(13), "{:?}", out.status);
+}
+
+/// Output to a full device: exit 2 naming the output, never a panic.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_write_error_exits_2_naming_the_output() {
+    let log = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/static/static-2h.csv");
+    for args in
+        [vec!["allan", log.to_str().unwrap()], vec!["allan", log.to_str().unwrap(), "--json"], vec!["simulate", "drive", "--minutes", "1"]]
+    {
+        let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+        let out = bin().args(&args).stdout(full).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.starts_with("standard output: cannot write") && err.lines().count() == 1, "{err}");
+    }
+}
+
+/// Input that is not a log, one row, a unit mistake: exit 2 with one line, no NaN, no abort.
+#[test]
+fn endless_short_and_absurd_inputs_exit_2() {
+    #[cfg(target_os = "linux")]
+    {
+        let o = run(&["hdr", "/dev/zero"]);
+        assert_eq!(o.status.code(), Some(2));
+        assert!(String::from_utf8_lossy(&o.stderr).contains("a line is longer than"));
+    }
+    let one = write("one-row.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,0\n");
+    for cmd in ["hdr", "pipeline"] {
+        let o = run(&[cmd, one.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{cmd}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains("the log lasts 0 s"));
+    }
+    let big = write("big-gyro.csv", "time_s,gyro_dps\n0,1\n1,1e308\n");
+    let o = run(&["hdr", big.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(err.contains("line 3, column gyro_dps") && err.contains("outside the physical range"), "{err}");
+    let hot = write("hot.csv", "time_s,gyro_dps,temp_c\n0,1,20\n1,1,1e6\n");
+    let o = run(&["pipeline", hot.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("line 3, column temp_c"));
+    for set in ["wheelbase_m=5e-324", "thres_rate=1e300"] {
+        let robot = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/robot/straight.csv");
+        let o = run(&["gyrodometry", robot.to_str().unwrap(), "--set", set]);
+        assert_eq!(o.status.code(), Some(2), "{set}");
+    }
+}
+
+/// A 60 s gap: no method integrates across it. By default the log is split into drives of
+/// their own (said on stderr; JSON an array of the parts); `--gaps error` exits 2 naming the line.
+#[test]
+fn a_gap_in_time_splits_the_log_or_is_refused() {
+    let text: String = drive_csv()
+        .lines()
+        .filter(|l| l.split(',').next().and_then(|t| t.parse::<f64>().ok()).is_none_or(|t| !(300.0..360.0).contains(&t)))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let p = write("gap.csv", &text);
+    let whole = run(&["hdr", p.to_str().unwrap(), "--json", "--gaps", "split"]);
+    assert!(whole.status.success(), "{}", String::from_utf8_lossy(&whole.stderr));
+    let err = String::from_utf8_lossy(&whole.stderr);
+    assert!(err.contains("split at 1 gap(s) (60.1 s at line"), "{err}");
+    let v: serde_json::Value = serde_json::from_slice(&whole.stdout).unwrap();
+    let parts = v.as_array().unwrap();
+    assert_eq!(parts.len(), 2);
+    for part in parts {
+        assert!(part["E_psi_hdr_deg"].as_f64().unwrap() < 5.0, "{part}");
+    }
+    let refused = run(&["pipeline", p.to_str().unwrap(), "--gaps", "error"]);
+    assert_eq!(refused.status.code(), Some(2));
+    let msg = String::from_utf8_lossy(&refused.stderr);
+    assert!(msg.contains("gap.csv: line 3003, column time_s: a gap of 60.1 s"), "{msg}");
+    let report = run(&["report", p.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&report.stdout).unwrap();
+    assert!(v.to_string().contains("test drive (part 2 of 2)"), "{v}");
+}
+
+/// Out of memory (here a 60 MB address-space limit and a 16 MB log) exits 2 with one line,
+/// never an abort with a backtrace (exit 134).
+#[cfg(unix)]
+#[test]
+fn out_of_memory_exits_2_with_one_line() {
+    let mut s = String::from("time_s,gyro_dps,ref_heading_deg,speed_mps\n");
+    for i in 0..600_000 {
+        s.push_str(&format!("{:.1},{:.3},{},10\n", i as f64 / 10.0, 0.5 + (i % 7) as f64 * 0.01, (i / 10) % 360));
+    }
+    let p = write("big.csv", &s);
+    let cmd = format!("ulimit -v 60000; exec '{}' pipeline '{}'", env!("CARGO_BIN_EXE_gyrodrift"), p.display());
+    let out = Command::new("sh").args(["-c", &cmd]).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.starts_with("gyrodrift: out of memory (a request for ") && err.lines().count() == 1, "{err}");
+}
+
+/// A log `check` finds an error in (here a clockwise gyro) is refused by every method with
+/// the finding and its fix, exit 2, rather than given absurd figures; `--ignore-check` runs it.
+#[test]
+fn a_log_check_finds_an_error_in_is_refused_unless_ignored() {
+    let text: String = drive_csv()
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            let mut c: Vec<String> = l.split(',').map(str::to_string).collect();
+            if i > 1 {
+                c[1] = format!("{}", -c[1].parse::<f64>().unwrap());
+            }
+            c.join(",") + "\n"
+        })
+        .collect();
+    let p = write("cw.csv", &text);
+    for cmd in [&["hdr"][..], &["pipeline"], &["report"], &["report", "--compare"]] {
+        let out = run(&[cmd, &[p.to_str().unwrap()]].concat());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{cmd:?}: {err}");
+        assert!(err.contains("check: error [gyro_sign]") && err.contains("positive = \"cw\"") && err.contains("--ignore-check"), "{err}");
+    }
+    let forced = run(&["hdr", p.to_str().unwrap(), "--ignore-check", "--json"]);
+    assert!(forced.status.success());
+    assert!(String::from_utf8_lossy(&forced.stderr).contains("check: error [gyro_sign]"));
+}
