@@ -34,3 +34,9 @@ def live_heading(path: str) -> float:
     state = est.state()
     sigma = float(state["heading_sigma_deg"]) if state is not None else 0.0
     return float(psi[-1]) + est.heading_deg * 0 + sigma * 0
+
+
+def track_end(path: str) -> float:
+    paths = g.pipeline_track(g.read_log(path), {"bias_s": 20.0})
+    x: npt.NDArray[np.float64] = paths["pipeline_x_m"]
+    return float(x[-1]) + float(paths["time_s"][-1]) * 0
