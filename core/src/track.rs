@@ -186,14 +186,10 @@ mod tests {
         assert!((100..=1000).contains(&c.x_m.len()), "{}", c.x_m.len());
         assert_eq!((c.x_m.last(), c.y_m.last()), (p.x_m.last(), p.y_m.last()));
     }
-}
 
-#[cfg(test)]
-mod tracks_tests {
-    use super::*;
-
-    /// 2 m/s for 60 s with a still gyro; a 90 deg turn (9 deg/s for 10 s) after the 20 s
-    /// lead-in where `turn`; the reference heading matches the gyro's where `with_ref`.
+    /// 60 s at 10 Hz with a still gyro: standing for the 20 s lead-in, then 2 m/s; a
+    /// 90 deg turn (9 deg/s from 30 s to 40 s) where `turn`; the reference heading matches
+    /// the gyro's where `with_ref`.
     fn drive(turn: bool, with_ref: bool) -> DriveLog {
         let cols: &[Column] =
             if with_ref { &[Column::GyroDps, Column::SpeedMps, Column::RefHeadingDeg] } else { &[Column::GyroDps, Column::SpeedMps] };
