@@ -80,6 +80,24 @@ pub fn check(log: &DriveLog) -> CheckReport {
         findings: Vec::new(),
     };
     time_unit(&mut r, t);
+    gaps(&mut r, log);
+    let standing_s = lead_in(&mut r, log);
+    let limit_dps = units_and_sign(&mut r, log, standing_s);
+    // (A lead-in the speed shows running into the drive is reported as that, with its fix.)
+    if let Some(b) = r.eps0_dps.filter(|b| b.abs() > limit_dps && standing_s.is_none()) {
+        let message = format!("static bias {b:.2} deg/s over the lead-in: the vehicle may not stand still then");
+        r.findings.push(finding(
+            Severity::Warning,
+            "bias",
+            message,
+            Some("bias_s = 0 when the log starts moving (# bias_s: 0, or --set bias_s=0)"),
+        ));
+    }
+    r
+}
+
+/// The gaps in time (`log::gaps`), the first five as findings.
+fn gaps(r: &mut CheckReport, log: &DriveLog) {
     r.gaps_s = crate::log::gaps::find_gaps(log).iter().map(|g| (g.at_s, g.length_s)).collect();
     for &(at, len) in r.gaps_s.iter().take(5) {
         let message = format!("a gap of {len:.1} s at t = {at:.1} s: no method may integrate across it, so the log is scored in parts");
@@ -90,13 +108,18 @@ pub fn check(log: &DriveLog) -> CheckReport {
             Some("split into parts there (--gaps split, the default; --gaps error refuses the log)"),
         ));
     }
-    let standing_s = lead_in(&mut r, log);
-    // Over this static bias the lead-in is taken to be moving (any, where the reference says so).
+}
+
+/// The static bias, outliers, and the gyro's units and sign against the reference (or the
+/// reference's, in radians). Returns the static bias over which the lead-in is taken to be
+/// moving (any, where the reference says so).
+fn units_and_sign(r: &mut CheckReport, log: &DriveLog, standing_s: Option<f64>) -> f64 {
+    let t = log.time_s();
     let mut limit_dps = 5.0;
     if let Some(g) = log.column(Column::GyroDps) {
         let bias_s = log.bias_s(None);
         r.eps0_dps = preprocess::static_bias_dps(t, g, bias_s).ok();
-        outliers(&mut r, g);
+        outliers(r, g);
         // Units and sign are judged with the bias of the standing, not of a lead-in that
         // runs into the drive (which the lead_in finding reports): a turn inside it would
         // read as a scale error.
@@ -130,21 +153,11 @@ pub fn check(log: &DriveLog) -> CheckReport {
                 let fix = format!("heading.unit = \"rad\"{cw} in the recipe");
                 r.findings.push(finding(Severity::Error, "heading_unit", message, Some(&fix)));
             }
-            (Some(k), _) => units_from_ratio(&mut r, k),
+            (Some(k), _) => units_from_ratio(r, k),
             _ => {}
         }
     }
-    // (A lead-in the speed shows running into the drive is reported as that, with its fix.)
-    if let Some(b) = r.eps0_dps.filter(|b| b.abs() > limit_dps && standing_s.is_none()) {
-        let message = format!("static bias {b:.2} deg/s over the lead-in: the vehicle may not stand still then");
-        r.findings.push(finding(
-            Severity::Warning,
-            "bias",
-            message,
-            Some("bias_s = 0 when the log starts moving (# bias_s: 0, or --set bias_s=0)"),
-        ));
-    }
-    r
+    limit_dps
 }
 
 /// A stationary lead-in the speed (or the wheels) says is not: the first 1 s block they
