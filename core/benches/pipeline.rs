@@ -13,7 +13,7 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("highway-1_52min_31k_rows");
     g.sample_size(20);
     g.bench_function("pipeline_run_all_methods", |b| b.iter(|| pipeline::run(black_box(&log), &p).unwrap()));
-    let (blocks, _) = gyrodrift::still::blocks(&log, 20.0, &p.still).unwrap();
+    let blocks = gyrodrift::still::blocks(&log, 20.0, &p.still).unwrap();
     g.bench_function("pipeline_blocks_only", |b| b.iter(|| pipeline::run_blocks(black_box(&blocks), p, 20.0).unwrap()));
     g.bench_function("hdr_run", |b| b.iter(|| gyrodrift::hdr::run(black_box(&log), &Default::default()).unwrap()));
     g.finish();

@@ -165,15 +165,15 @@ fn units_and_sign(r: &mut CheckReport, log: &DriveLog, standing_s: Option<f64>) 
 /// and the standing before it (s, returned) is the lead-in to declare instead.
 fn lead_in(r: &mut CheckReport, log: &DriveLog) -> Option<f64> {
     let bias_s = log.bias_s(None);
-    let (blocks, source) = crate::still::blocks(log, bias_s, &Default::default()).ok()?;
-    if source == crate::still::StillSource::None {
+    let blocks = crate::still::blocks(log, bias_s, &Default::default()).ok()?;
+    if blocks.source == crate::still::StillSource::None {
         let message =
             "no speed, wheel travel or stationary lead-in (3 s at 5 Hz or more): no stops for ZARU and the pipeline (which learns the bias from the road alone)";
         r.findings.push(finding(Severity::Info, "no_stops", message.into(), Some("a speed column, or # bias_s: N for a standing start")));
     }
     let m = (blocks.first_moving_s? - log.time_s().first()?).floor();
     let k = (m - 1.0).max(0.0);
-    let by = if source == crate::still::StillSource::Odometry { "wheel travel" } else { "speed" };
+    let by = if blocks.source == crate::still::StillSource::Odometry { "wheel travel" } else { "speed" };
     (m < bias_s).then(|| {
         let message = format!("the stationary lead-in (bias_s = {bias_s} s) is not: the {by} shows the vehicle moving {m} s in; its static bias is taken over driving");
         let fix = format!("bias_s = {k}, the standing before it (# bias_s: {k} in the log, or --set bias_s={k})");

@@ -9,7 +9,7 @@ use crate::log::{Column, DriveLog};
 use crate::metrics::{self, Reference};
 use crate::pipeline::{self, PipelineParams, PipelineTrace};
 use crate::preprocess::{self, Samples};
-use crate::still::{self, Blocks, StillOptions, StillSource};
+use crate::still::{self, Blocks, StillOptions};
 use serde::{Deserialize, Serialize};
 
 /// A drift-reduction method as the evaluation runs it.
@@ -70,9 +70,9 @@ pub struct Prepared<'a> {
     pub bias_s: f64,
     /// Static bias over the lead-in (Eq. 2's eps0), deg/s.
     pub eps0_dps: f64,
-    /// The paper's 1 Hz blocks with still flags (HDR, raw, ZARU and the pipeline run on them).
+    /// The paper's 1 Hz blocks with still flags (HDR, raw, ZARU and the pipeline run on
+    /// them), and what the flags were decided from (`blocks.source`).
     pub blocks: Blocks,
-    pub source: StillSource,
     pub duration_min: f64,
     still_opts: StillOptions,
     reference: Result<Reference>,
@@ -84,13 +84,12 @@ impl<'a> Prepared<'a> {
         let gyro = log.require(Column::GyroDps, "needed for the yaw rate")?;
         log.check_span()?;
         let eps0_dps = preprocess::static_bias_dps(log.time_s(), gyro, bias_s)?;
-        let (blocks, source) = still::blocks(log, bias_s, still_opts)?;
+        let blocks = still::blocks(log, bias_s, still_opts)?;
         Ok(Prepared {
             log,
             bias_s,
             eps0_dps,
             blocks,
-            source,
             duration_min: log.duration_min(),
             still_opts: *still_opts,
             reference: Reference::from_log(log),
@@ -122,7 +121,7 @@ impl<'a> Prepared<'a> {
     pub fn pipeline_trace(&self, params: &PipelineParams) -> Result<PipelineTrace> {
         if params.still != self.still_opts {
             // Still flags follow the method's own thresholds.
-            let (blocks, _) = still::blocks(self.log, self.bias_s, &params.still)?;
+            let blocks = still::blocks(self.log, self.bias_s, &params.still)?;
             return pipeline::run_blocks(&blocks, *params, self.lead_in_end_on(&blocks));
         }
         pipeline::run_blocks(&self.blocks, *params, self.lead_in_end_s())

@@ -178,9 +178,9 @@ fn score_part(row: &mut DriveRow, part: &DriveLog, params: &PipelineParams) -> R
     let prep = Prepared::new(part, params.bias_s, &params.still)?;
     row.duration_min = Some(prep.duration_min);
     row.static_bias_dps = Some(prep.eps0_dps);
-    row.still_source = Some(prep.source.name().to_string());
+    row.still_source = Some(prep.blocks.source.name().to_string());
     let trace = prep.pipeline_trace(params)?;
-    row.set_summary(&trace.summary(prep.source, trace.stop_s(), prep.duration_min));
+    row.set_summary(&trace.summary(prep.blocks.source, trace.stop_s(), prep.duration_min));
     // The pipeline's two columns from the run just made, not a second one.
     let methods = standard_methods(params, None);
     let scores = prep.score_all(&methods[..col::PIPELINE]).and_then(|mut s| {

@@ -162,7 +162,7 @@ mod tests {
             temp_c: vec![f64::NAN; 6],
             still: vec![true, true, true, false, false, true],
             first_moving_s: None,
-            by_gyro: false,
+            source: crate::still::StillSource::Speed,
         };
         // Stop blocks 0..2: run 0, 1, 2 s -> only block 2 counts (min 2 s): bias 0.4.
         // Block 3: 1.2 - 0.4 = 0.8; block 4: 5.2 - 0.4 -> 0.8 + 4.8 = 5.6; block 5 held.

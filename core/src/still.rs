@@ -105,7 +105,7 @@ impl Default for StillOptions {
 }
 
 /// What the still flags were decided from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum StillSource {
     Speed,
@@ -113,6 +113,7 @@ pub enum StillSource {
     Gyro,
     /// No speed, no wheels, and no usable lead-in to compare the gyro with: no block after
     /// the declared lead-in is still.
+    #[default]
     None,
 }
 
@@ -143,9 +144,9 @@ pub struct Blocks {
     /// moving (None: they never do, or the log has neither). What ends a declared
     /// stationary lead-in early for the pipeline.
     pub first_moving_s: Option<f64>,
-    /// The still flags come from the gyro alone (`StillSource::Gyro`): a still block may be
-    /// a steady turn, which the gyro's noise cannot tell from a standing.
-    pub by_gyro: bool,
+    /// What the still flags were decided from. From the gyro alone (`StillSource::Gyro`) a
+    /// still block may be a steady turn, which the gyro's noise cannot tell from a standing.
+    pub source: StillSource,
 }
 
 impl Blocks {
@@ -195,7 +196,7 @@ impl Acc {
 
 /// Block-averages a log to 1 Hz (`preprocess::blocks_1hz`, the stamps of
 /// `preprocess::block_average_1hz`) and flags the blocks where the vehicle stood.
-pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Blocks, StillSource)> {
+pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<Blocks> {
     let t = log.time_s();
     let gyro = log.require(Column::GyroDps, "needed for the yaw rate")?;
     let speed = log.column(Column::SpeedMps);
@@ -256,8 +257,8 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<(Block
     if source == StillSource::Gyro && gyro_still.reference().is_none() {
         source = StillSource::None;
     }
-    out.by_gyro = source == StillSource::Gyro;
-    Ok((out, source))
+    out.source = source;
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -292,7 +293,8 @@ mod tests {
     #[test]
     fn blocks_equal_the_block_average_and_flag_stops_by_speed() {
         let l = log(true);
-        let (b, src) = blocks(&l, 4.0, &StillOptions::default()).unwrap();
+        let b = blocks(&l, 4.0, &StillOptions::default()).unwrap();
+        let src = b.source;
         let s = block_average_1hz(l.time_s(), l.column(Column::GyroDps).unwrap());
         assert_eq!(src, StillSource::Speed);
         assert_eq!(b.time_s, s.time_s);
@@ -369,7 +371,8 @@ mod tests {
         let idle = |_: f64, i: usize| 0.3 + 1.8 * alt(i) + 0.02 * (0.37 * i as f64).sin();
         let turn = |t: f64, i: usize| -4.7 + 0.3 * (std::f64::consts::TAU * t / 6.0).sin() + 0.5 * alt(i);
         let l = gyro_log(36.0, |t, i| if (6.0..26.0).contains(&t) { turn(t, i) } else { idle(t, i) });
-        let (b, src) = blocks(&l, 6.0, &StillOptions::default()).unwrap();
+        let b = blocks(&l, 6.0, &StillOptions::default()).unwrap();
+        let src = b.source;
         assert_eq!(src, StillSource::Gyro);
         // The turn's blocks spread less than 1.5 x the idle's: spread alone reads them still.
         let lead: Vec<f64> = (0..60).map(|i| idle(i as f64 * 0.1, i)).collect();
@@ -382,7 +385,8 @@ mod tests {
         // The gyro judges standing, not moving: nothing ends a lead-in.
         assert_eq!(b.first_moving_s, None);
         // No lead-in: nothing to compare with, never still.
-        let (b, src) = blocks(&l, 0.0, &StillOptions::default()).unwrap();
+        let b = blocks(&l, 0.0, &StillOptions::default()).unwrap();
+        let src = b.source;
         assert_eq!(src, StillSource::None);
         assert!(b.still.iter().all(|s| !s));
     }

@@ -83,7 +83,7 @@ pub struct Pipeline {
     /// The declared lead-in gave stop evidence, and the warm-up prior has been sized by it.
     lead_in_seen: bool,
     warm_up_sized: bool,
-    /// The still flags come from the gyro alone (`Blocks::by_gyro`; the stream sets it per
+    /// The still flags come from the gyro alone (`Blocks::source`; the stream sets it per
     /// block): see [`Pipeline::update`].
     pub gyro_stills: bool,
 }

@@ -98,7 +98,7 @@ impl PipelineTrace {
 pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -> Result<PipelineTrace> {
     let n = blocks.len();
     let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
-    f.gyro_stills = blocks.by_gyro;
+    f.gyro_stills = blocks.source == StillSource::Gyro;
     let mut tr = PipelineTrace { time_s: blocks.time_s.clone(), ..Default::default() };
     for i in 0..n {
         let o = f.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
@@ -230,14 +230,14 @@ pub fn run(log: &DriveLog, params: &PipelineParams) -> Result<PipelineRun> {
             E_psi_zaru_deg: zaru.e_psi_deg,
             NE_psi_fusion_offset_deg_per_min: ne(fusion.e_psi_deg),
             NE_psi_zaru_deg_per_min: ne(zaru.e_psi_deg),
-            still_source: prep.source,
+            still_source: prep.blocks.source,
             stop_s,
             final_bias_dps: trace.bias_dps.last().copied().unwrap_or(f64::NAN),
             final_bias_sigma_dps: trace.bias_sigma_dps.last().copied().unwrap_or(f64::NAN),
             n_samples: pipe.n_samples,
         })
     });
-    Ok(PipelineRun { trace, still_source: prep.source, stop_s, result })
+    Ok(PipelineRun { trace, still_source: prep.blocks.source, stop_s, result })
 }
 
 #[cfg(test)]

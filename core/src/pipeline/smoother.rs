@@ -31,7 +31,7 @@ pub(super) fn smoothed_bias(
     order.sort_unstable_by(|&a, &b| sums[b].total_cmp(&sums[a]).then(a.cmp(&b)));
     order.truncate(N_SMOOTHED);
     let mut g = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
-    g.gyro_stills = blocks.by_gyro;
+    g.gyro_stills = blocks.source == crate::still::StillSource::Gyro;
     g.restrict(&order);
     g.record((0..order.len()).collect());
     for i in 0..blocks.len() {

@@ -190,7 +190,7 @@ mod tests {
         for (j, psi) in at_last_row.iter().enumerate().skip(1).filter(|(j, _)| !batch.stop[*j]) {
             assert!((psi - batch.heading_deg[j]).abs() < 1e-9, "block {j}: {psi} against {}", batch.heading_deg[j]);
         }
-        prep.source
+        prep.blocks.source
     }
 
     /// The log's time and gyro alone, with this declared lead-in.
@@ -262,7 +262,7 @@ mod tests {
         let log = gyro_alone(&city(6.0), Some(2.0));
         let params = PipelineParams { bias_s: Some(2.0), ..Default::default() };
         let prep = Prepared::new(&log, params.bias_s, &params.still).unwrap();
-        assert_eq!(prep.source, crate::still::StillSource::None);
+        assert_eq!(prep.blocks.source, crate::still::StillSource::None);
         let batch = prep.pipeline_trace(&params).unwrap();
         let (t, w) = (log.time_s(), log.column(crate::Column::GyroDps).unwrap());
         let mut s = PipelineStream::new(params).unwrap();

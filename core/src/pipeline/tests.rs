@@ -234,7 +234,7 @@ fn smoother_of_a_constant_bias_is_constant_and_uses_later_stops() {
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| i >= 300).collect(),
         first_moving_s: None,
-        by_gyro: false,
+        source: crate::still::StillSource::Speed,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), f64::NEG_INFINITY).unwrap();
     let (es, ec) = ((tr.bias_smoothed_dps[3] - 0.1).abs(), (tr.bias_dps[3] - 0.1).abs());
@@ -287,7 +287,7 @@ fn smoother_keeps_a_lead_in_it_agrees_with() {
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| i < 20).collect(),
         first_moving_s: None,
-        by_gyro: false,
+        source: crate::still::StillSource::Speed,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), 20.0).unwrap();
     for k in [0, 1, 10, 19] {
@@ -317,7 +317,7 @@ fn a_step_just_before_a_stop_is_not_spread_over_the_past() {
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| !(20..660).contains(&i)).collect(),
         first_moving_s: None,
-        by_gyro: false,
+        source: crate::still::StillSource::Speed,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), 20.0).unwrap();
     let err = |i: usize| tr.heading_deg[i] - (1..=i).map(wobble).sum::<f64>();
