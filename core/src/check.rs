@@ -83,6 +83,10 @@ pub fn check(log: &DriveLog) -> CheckReport {
     gaps(&mut r, log);
     let standing_s = lead_in(&mut r, log);
     let limit_dps = units_and_sign(&mut r, log, standing_s);
+    if log.kind() == crate::log::LogKind::Drive && !log.has_reference() {
+        let message = "no reference heading: the methods run, nothing is scored, and the gyro's units and sign go unchecked";
+        r.findings.push(finding(Severity::Info, "no_reference", message.into(), Some("add a ref_heading_deg column (the GPS course)")));
+    }
     // (A lead-in the speed shows running into the drive is reported as that, with its fix.)
     if let Some(b) = r.eps0_dps.filter(|b| b.abs() > limit_dps && standing_s.is_none()) {
         let message = format!("static bias {b:.2} deg/s over the lead-in: the vehicle may not stand still then");
@@ -364,6 +368,22 @@ mod tests {
         assert!(codes(&city()).is_empty(), "{}", r.to_text());
         assert!((r.median_step_s - 0.1).abs() < 1e-9);
         assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{:?}", r.gyro_over_reference);
+    }
+
+    /// A drive without a reference heading: information that nothing is scored and units
+    /// and sign go unchecked; none for a drive with one, or for a static session.
+    #[test]
+    fn a_drive_without_a_reference_is_told_what_goes_unchecked() {
+        let info = |log: &DriveLog| check(log).findings.into_iter().filter(|f| f.code == "no_reference").count();
+        let log = city();
+        assert_eq!(info(&log), 0);
+        let noref = without(&log, Column::RefHeadingDeg);
+        assert_eq!(info(&noref), 1);
+        assert!(codes(&noref).is_empty(), "{}", check(&noref).to_text());
+        let mut blank = log.clone();
+        blank.column_mut(Column::RefHeadingDeg).unwrap().iter_mut().for_each(|v| *v = f64::NAN);
+        assert_eq!(info(&blank), 1);
+        assert_eq!(info(&without(&noref, Column::SpeedMps)), 0, "a gyro alone is a static session");
     }
 
     #[test]
