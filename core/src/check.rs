@@ -34,7 +34,7 @@ impl Severity {
 pub struct Finding {
     pub severity: Severity,
     /// A stable name: time_unit, gap, heading_unit, gyro_unit, gyro_sign, gyro_scale, bias,
-    /// lead_in, no_stops, outlier.
+    /// lead_in, no_stops, no_reference, outlier.
     pub code: String,
     pub message: String,
     /// The recipe field or setting that fixes it.

@@ -66,6 +66,8 @@ const fix: string | null = chk.findings[0]?.fix ?? null;
 const gap: number = chk.gaps_s[0]?.[1] ?? 0;
 // @ts-expect-error: a finding's code is one of the named checks
 const badCode: CheckFinding["code"] = "colour";
+const noRef: CheckFinding["code"] = "no_reference";
+void noRef;
 const ver: string = version();
 const tables: string = compareTable([log], {}, "csv") + reportCsv([log], {});
 const why: string | undefined = checkOptions("hdr", { i_c_dps: -1 });

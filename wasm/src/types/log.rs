@@ -26,7 +26,7 @@ export interface LogColumns {
 /** One finding of `checkLog`, with the recipe field or setting that fixes it. */
 export interface CheckFinding {
   severity: "error" | "warning" | "info";
-  code: "time_unit" | "gap" | "heading_unit" | "gyro_unit" | "gyro_sign" | "gyro_scale" | "bias" | "lead_in" | "no_stops" | "outlier";
+  code: "time_unit" | "gap" | "heading_unit" | "gyro_unit" | "gyro_sign" | "gyro_scale" | "bias" | "lead_in" | "no_stops" | "no_reference" | "outlier";
   message: string;
   fix: string | null;
 }
