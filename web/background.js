@@ -27,6 +27,30 @@ export function background(entry, kind, options) {
   return { data: job.data, error: job.error, pending: job.pending, stale: job.pending && job.data != null };
 }
 
+const pageRuns = new WeakMap(); // log -> Map(kind -> { key, data, error }): work done on the page
+
+/** Work that depends on a log and `options` only (not on sliders): the worker's result for a
+ * log it keeps (`background`), else `compute()` run on the page once per log, kind and
+ * options. `{ data, error, pending, stale }` either way; a thrown error is kept as `error`. */
+export function perLog(entry, kind, options, compute) {
+  const bg = background(entry, kind, options);
+  if (bg) return bg;
+  const key = JSON.stringify(options);
+  let runs = pageRuns.get(entry.log);
+  if (!runs) pageRuns.set(entry.log, (runs = new Map()));
+  let c = runs.get(kind);
+  if (!c || c.key !== key) {
+    c = { key, data: null, error: null, pending: false, stale: false };
+    try {
+      c.data = compute();
+    } catch (err) {
+      c.error = err.message;
+    }
+    runs.set(kind, c);
+  }
+  return c;
+}
+
 /** Forgets a removed log's work and the worker's copy of it. */
 export function forget(entry) {
   if (entry.workerKey == null) return;

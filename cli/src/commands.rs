@@ -135,7 +135,7 @@ pub fn hdr(log: &Path, resample: bool, set: &[String], json: bool, trace: Option
     let mut trace_err = None;
     let mut one = |i: usize, drive: &DriveLog| {
         let run = hdr::run(drive, &opts)?;
-        write_trace(trace, i, &mut trace_err, |f| run.trace.write_csv(f));
+        write_part(trace, i, &mut trace_err, |f| run.trace.write_csv(f));
         let summary = run.summary(drive.duration_min());
         outcome(drive, run.result, summary)
     };
@@ -154,11 +154,11 @@ pub fn pipeline(log: &Path, set: &[String], json: bool, files: [Option<&Path>; 2
     let mut trace_err = None;
     let mut one = |i: usize, drive: &DriveLog| {
         let run = gyrodrift::pipeline::run(drive, &params)?;
-        write_trace(trace, i, &mut trace_err, |f| run.trace.write_csv(f));
+        write_part(trace, i, &mut trace_err, |f| run.trace.write_csv(f));
         if track.is_some() {
             // Computed before the file is created: a log without a speed leaves no empty file.
             match gyrodrift::track::Tracks::of(drive, &params) {
-                Ok(paths) => write_trace(track, i, &mut trace_err, |f| paths.write_csv(f)),
+                Ok(paths) => write_part(track, i, &mut trace_err, |f| paths.write_csv(f)),
                 Err(e) => _ = trace_err.get_or_insert(fail(log, e)),
             }
         }
@@ -172,10 +172,10 @@ pub fn pipeline(log: &Path, set: &[String], json: bool, files: [Option<&Path>; 2
     trace_err.map_or(printed, Err)
 }
 
-/// Writes part `i`'s trace when a trace file was asked for; the first failure is kept in
-/// `err` (the results are still printed).
-fn write_trace(trace: Option<&Path>, i: usize, err: &mut Option<Failure>, write: impl FnOnce(std::fs::File) -> gyrodrift::Result<()>) {
-    let Some(path) = trace.map(|t| part_path(t, i)) else { return };
+/// Writes part `i`'s file (a trace, a track) when one was asked for; the first failure is
+/// kept in `err` (the results are still printed).
+fn write_part(file: Option<&Path>, i: usize, err: &mut Option<Failure>, write: impl FnOnce(std::fs::File) -> gyrodrift::Result<()>) {
+    let Some(path) = file.map(|f| part_path(f, i)) else { return };
     let written = std::fs::File::create(&path)
         .map_err(|e| Failure(format!("{}: cannot create: {}", path.display(), e)))
         .and_then(|f| write(f).map_err(|e| fail(&path, e)));

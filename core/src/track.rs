@@ -112,8 +112,8 @@ impl Tracks {
         let headings = [
             ("raw", &t_blocks, raw),
             ("hdr", &t_blocks, hdr),
-            ("pipeline", &trace.time_s, trace.heading_deg.clone()),
-            ("smoothed", &trace.time_s, trace.heading_smoothed_deg.clone()),
+            ("pipeline", &trace.time_s, trace.heading_deg),
+            ("smoothed", &trace.time_s, trace.heading_smoothed_deg),
         ];
         let mut paths = Vec::with_capacity(5);
         for (name, t, mut psi) in headings {

@@ -4,22 +4,19 @@ import { $, esc, fmt, state, hdrOptions, COLORS, PALETTE, METRIC_HELP } from "..
 import { logFor, syncParams } from "../controls.js";
 import { chart } from "../charts.js";
 import { showError, render } from "../render.js";
-import { background } from "../background.js";
+import { perLog } from "../background.js";
 
 let lastHdr = null;
-const pipeRuns = new WeakMap(); // log -> { key, run }: the pipeline run on the page
 const NO_PIPE = { result: null, trace: null, errors: null, pending: true };
 /** The recommended pipeline beside the paper's method, with the same static-bias window.
  * It depends on the log and bias_s only, so HDR's sliders reuse it; a large log's runs in
  * the worker (seconds on millions of rows) and shows when it arrives. */
 function pipelineOf(e) {
   const options = { bias_s: hdrOptions().bias_s ?? null };
-  const bg = background(e, "pipeline", options);
-  if (bg) return bg.data ? { ...bg.data, pending: bg.pending } : NO_PIPE;
-  const key = JSON.stringify(options);
-  let c = pipeRuns.get(e.log);
-  if (!c || c.key !== key) pipeRuns.set(e.log, (c = { key, run: gd.runPipeline(e.log, options) }));
-  return c.run;
+  const r = perLog(e, "pipeline", options, () => gd.runPipeline(e.log, options));
+  // On the page its error is the view's, as the HDR run's (the worker's shows as pending).
+  if (r.error && e.workerKey == null) throw new Error(r.error);
+  return r.data ? { ...r.data, pending: r.pending } : NO_PIPE;
 }
 
 export function renderHdr() {

@@ -4,28 +4,13 @@ import { $, fmt, state, hdrOptions, COLORS, PALETTE } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
 import { chart, timeRange } from "../charts.js";
 import { showError, render } from "../render.js";
-import { background } from "../background.js";
-
-const pipeTracks = new WeakMap(); // log -> { key, data, error }: the pipeline's paths on the page
+import { background, perLog } from "../background.js";
 
 /** The recommended pipeline's paths: they depend on the log and bias_s only, so HDR's
- * sliders reuse them; a large log's come from the worker. `{ data, error, pending }`. */
+ * sliders reuse them; a large log's come from the worker. */
 function pipelineTrackOf(e) {
   const options = { bias_s: hdrOptions().bias_s ?? null };
-  const bg = background(e, "pipelineTrack", options);
-  if (bg) return bg;
-  const key = JSON.stringify(options);
-  let c = pipeTracks.get(e.log);
-  if (!c || c.key !== key) {
-    c = { key, data: null, error: null };
-    try {
-      c.data = gd.pipelineTrack(e.log, options);
-    } catch (err) {
-      c.error = err.message;
-    }
-    pipeTracks.set(e.log, c);
-  }
-  return c;
+  return perLog(e, "pipelineTrack", options, () => gd.pipelineTrack(e.log, options));
 }
 
 export function renderTrack() {
