@@ -133,21 +133,22 @@ fn units_and_sign(r: &mut CheckReport, log: &DriveLog, standing_s: Option<f64>) 
             None => (bias_s > 0.0).then(|| r.eps0_dps.unwrap_or(0.0)),
         };
         let near_one = |x: f64| (x.abs() - 1.0).abs() < 0.25;
-        let mut k = gyro_over_reference(log, eps0, false);
+        let k = gyro_over_reference(log, eps0, false, true);
         // A lead-in nothing says stands (no speed, no wheels) may be a turn: if its bias
-        // puts the gyro out with the reference and the straight road's rate does not, the
-        // lead-in is wrong (the bias warning below), not the units.
-        if standing_s.is_none() && eps0.is_some() && !k.is_some_and(near_one) {
-            if let Some(k2) = gyro_over_reference(log, None, false).filter(|&x| near_one(x)) {
-                limit_dps = 0.0;
-                k = Some(k2);
-            }
+        // alone puts the gyro out with the reference and the straight road's rate does not,
+        // the lead-in is wrong (the bias warning below), not the units.
+        if standing_s.is_none()
+            && eps0.is_some()
+            && k.is_some_and(near_one)
+            && !gyro_over_reference(log, eps0, false, false).is_some_and(near_one)
+        {
+            limit_dps = 0.0;
         }
         r.gyro_over_reference = k;
         // A reference that never leaves +-pi may be radians: see whether the gyro agrees.
         let within_pi =
             log.column(Column::RefHeadingDeg).is_some_and(|h| h.iter().all(|v| v.is_nan() || v.abs() <= std::f64::consts::PI + 1e-3));
-        let k_rad = if within_pi { gyro_over_reference(log, eps0, true) } else { None };
+        let k_rad = if within_pi { gyro_over_reference(log, eps0, true, true) } else { None };
         match (k, k_rad) {
             (k, Some(kr)) if near_one(kr) && !k.is_some_and(near_one) => {
                 let cw = if kr < 0.0 { ", positive = \"cw\"" } else { "" };
@@ -211,9 +212,22 @@ fn outliers(r: &mut CheckReport, g: &[f64]) {
     }
 }
 
-/// The ratio of the integrated gyro's heading change to the reference's over the largest
-/// turns (median over 10 s windows), or None without a reference or turns.
-fn gyro_over_reference(log: &DriveLog, eps0: Option<f64>, in_radians: bool) -> Option<f64> {
+/// One window between two reference samples: the integrated gyro's and the reference's
+/// heading change (deg), its length and its middle (s).
+struct Window {
+    gyro_deg: f64,
+    ref_deg: f64,
+    dt_s: f64,
+    mid_s: f64,
+}
+
+/// The windows the gyro is compared with the reference on, the gyro less `eps0` (deg/s).
+/// With `steady_ends`, 10-60 s windows that end where the reference heading is steady
+/// (within 1.5 deg over +-2 s), so a window holds whole turns: a lag between the gyro and
+/// the reference (1 s means stamped at their end, a late GPS course) cuts none. Without
+/// (a drive in circles is never steady), 10-30 s windows between any reference samples.
+/// None without a reference or blocks.
+fn windows(log: &DriveLog, eps0: Option<f64>, in_radians: bool, steady_ends: bool) -> Option<Vec<Window>> {
     let mut reference = Reference::from_log(log).ok()?;
     if in_radians {
         // Radians wrap at +-pi, which the degree unwrap leaves alone: convert, then unwrap.
@@ -222,36 +236,65 @@ fn gyro_over_reference(log: &DriveLog, eps0: Option<f64>, in_radians: bool) -> O
     }
     let g = log.column(Column::GyroDps)?;
     let blocks = preprocess::block_average_1hz(log.time_s(), g);
-    if blocks.len() < 20 || reference.time_s.len() < 10 {
+    let (rt, rh) = (&reference.time_s, &reference.heading_deg);
+    if blocks.len() < 20 || rt.len() < 10 {
         return None;
     }
     // The paper's "without HDR" heading on the blocks.
     let mut raw = crate::hdr::RawIntegrator::new(eps0.unwrap_or(0.0));
     let psi: Vec<f64> = blocks.time_s.iter().zip(&blocks.rate_dps).map(|(&t, &w)| raw.update(t, w)).collect();
-    let at = |t: f64| value_at(&blocks.time_s, &psi, t);
-    // 10 s windows between reference samples.
-    let (rt, rh) = (&reference.time_s, &reference.heading_deg);
-    let mut pairs = Vec::new();
-    let mut a = 0;
-    for b in 1..rt.len() {
-        let dt = rt[b] - rt[a];
-        if dt >= 10.0 {
-            if dt <= 30.0 {
-                pairs.push((at(rt[b]) - at(rt[a]), rh[b] - rh[a], dt));
-            }
-            a = b;
+    let (first, last) = (rt[0], rt[rt.len() - 1]);
+    let steady = |t: f64| !steady_ends || (value_at(rt, rh, (t + 2.0).min(last)) - value_at(rt, rh, (t - 2.0).max(first))).abs() < 1.5;
+    let max_s = if steady_ends { 60.0 } else { 30.0 };
+    let mut out = Vec::new();
+    let mut a: Option<usize> = None;
+    for b in 0..rt.len() {
+        if !steady(rt[b]) {
+            continue;
         }
+        if let Some(i) = a {
+            let dt = rt[b] - rt[i];
+            if dt < 10.0 {
+                continue;
+            }
+            let gyro_deg = value_at(&blocks.time_s, &psi, rt[b]) - value_at(&blocks.time_s, &psi, rt[i]);
+            let ref_deg = rh[b] - rh[i];
+            if dt <= max_s && gyro_deg.is_finite() && ref_deg.is_finite() {
+                out.push(Window { gyro_deg, ref_deg, dt_s: dt, mid_s: 0.5 * (rt[b] + rt[i]) });
+            }
+        }
+        a = Some(b);
     }
-    pairs.retain(|(dg, dr, _)| dg.is_finite() && dr.is_finite());
-    // Without a lead-in the turn-on bias adds to every window: take it off as the median
-    // rate of the windows the reference says are straight (2 deg).
-    let mut straight: Vec<f64> = pairs.iter().filter(|p| p.1.abs() < 2.0).map(|p| p.0 / p.2).collect();
-    let bias = if eps0.is_none() && straight.len() >= 3 { crate::metrics::quantile_mut(&mut straight, 0.5) } else { 0.0 };
-    let big = pairs.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    Some(out)
+}
+
+/// The ratio of the integrated gyro's heading change to the reference's over the largest
+/// turns (median), or None without turns. With `road`, each turn first loses the bias the
+/// windows the reference says are straight (2 deg) show within 300 s of it (their median
+/// rate, if 3 or more: a turn-on bias without a lead-in, a warm-up after one); without,
+/// the gyro less the lead-in's bias alone.
+fn turn_ratio(windows: &[Window], road: bool) -> Option<f64> {
+    let big = windows.iter().map(|w| w.ref_deg.abs()).fold(0.0, f64::max);
     // Only clear turns (20 deg or more in a window) say anything about scale and sign.
     let min_turn = (0.3 * big).max(20.0);
-    let mut ratios: Vec<f64> = pairs.iter().filter(|p| p.1.abs() >= min_turn).map(|p| (p.0 - bias * p.2) / p.1).collect();
+    // (Loops, not collects: each collect is code of its own in the size-capped wasm module.)
+    let (mut ratios, mut near) = (Vec::new(), Vec::new());
+    for turn in windows.iter().filter(|w| w.ref_deg.abs() >= min_turn) {
+        near.clear();
+        for w in windows {
+            if road && w.ref_deg.abs() < 2.0 && (w.mid_s - turn.mid_s).abs() <= 300.0 {
+                near.push(w.gyro_deg / w.dt_s);
+            }
+        }
+        let bias = if near.len() >= 3 { crate::metrics::quantile_mut(&mut near, 0.5) } else { 0.0 };
+        ratios.push((turn.gyro_deg - bias * turn.dt_s) / turn.ref_deg);
+    }
     (ratios.len() >= 3).then(|| crate::metrics::quantile_mut(&mut ratios, 0.5))
+}
+
+/// [`turn_ratio`] on the windows with steady ends, else on any (a drive in circles).
+fn gyro_over_reference(log: &DriveLog, eps0: Option<f64>, in_radians: bool, road: bool) -> Option<f64> {
+    [true, false].into_iter().find_map(|steady| turn_ratio(&windows(log, eps0, in_radians, steady)?, road))
 }
 
 /// What a gyro-over-reference ratio says about units and sign.
@@ -474,12 +517,39 @@ mod tests {
         assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{}", r.to_text());
         assert!(r.findings[r.findings.len() - 1].fix.as_deref().unwrap().starts_with("bias_s = 0"));
         // Without the fallback the lead-in's bias reads as a unit or scale mistake.
-        assert!(gyro_over_reference(&turn, r.eps0_dps, false).is_some_and(|k| (k - 1.0).abs() > 0.25));
+        assert!(gyro_over_reference(&turn, r.eps0_dps, false, false).is_some_and(|k| (k - 1.0).abs() > 0.25));
         // A 50 % scale error with a standing lead-in: the road's rate does not excuse it.
         let mut wrong = turn.clone();
         wrong.column_mut(Column::GyroDps).unwrap().iter_mut().zip(&lead).for_each(|(w, &l)| *w = 1.5 * (*w - if l { 4.0 } else { 0.0 }));
         let r = check(&wrong);
         assert_eq!(codes(&wrong), ["gyro_scale"], "{}", r.to_text());
+    }
+
+    /// A gyro warming by 1 deg/s after its lead-in, logged at 1 Hz as 1 s means stamped at
+    /// their end (a lag of half a second on the reference): the straight road near each turn
+    /// takes the warm-up out, and windows between steady headings hold whole turns.
+    #[test]
+    fn a_warm_up_and_lagging_1_hz_means_are_not_a_scale_error() {
+        let log = city();
+        let (t, g) = (log.time_s(), log.column(Column::GyroDps).unwrap());
+        let h = log.column(Column::RefHeadingDeg).unwrap();
+        let t0 = t[0];
+        let mut rows: Vec<[f64; 3]> = Vec::new();
+        for k in (0..t.len() - 9).step_by(10) {
+            let warm = |t: f64| if t - t0 > 20.0 { 1.0 - (-(t - t0 - 20.0) / 300.0).exp() } else { 0.0 };
+            let mean = (k..k + 10).map(|i| g[i] + warm(t[i])).sum::<f64>() / 10.0;
+            let href = (k..k + 10).rev().map(|i| h[i]).find(|v| !v.is_nan()).unwrap_or(f64::NAN);
+            rows.push([t[k + 9], mean, href]);
+        }
+        let col = |j: usize| rows.iter().map(|r| r[j]).collect::<Vec<f64>>();
+        let cols = vec![(Column::TimeS, col(0)), (Column::GyroDps, col(1)), (Column::RefHeadingDeg, col(2))];
+        let one_hz = DriveLog::from_columns(log.meta.clone(), vec![0; rows.len()], cols).unwrap();
+        let r = check(&one_hz);
+        assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.03, "{}", r.to_text());
+        assert!(codes(&one_hz).is_empty(), "{}", r.to_text());
+        // With the lead-in's bias alone the warm-up reads as a scale error.
+        let k = gyro_over_reference(&one_hz, r.eps0_dps, false, false).unwrap();
+        assert!((k - 1.0).abs() > 0.1, "{k}");
     }
 
     /// A turn-on bias of 1.5 deg/s and no lead-in (the robustness battery's "bias -1.5 cut"):
