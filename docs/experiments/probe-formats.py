@@ -9,7 +9,12 @@ variant, how often the pipeline is within 1.25x the best simple peer (raw, Table
 Fusion offset, ZARU) + 0.05 deg/min, worse than 2x, worse than raw, and the largest ratio.
 
     python3 docs/experiments/probe-formats.py [target/release/gyrodrift] [OUT_DIR]
+
+PROBE_DRAW=K (default 0) draws 60 other drives (seeds 7000 + 100 K ..., another choice of
+scenarios and errors), a fresh look for an independent check; PROBE_WORST=N also prints the
+N largest ratios.
 """
+import os
 import csv
 import random
 import subprocess
@@ -22,7 +27,8 @@ PEERS = ["raw", "hdr", "fusion_offset", "zaru"]
 
 
 def drives():
-    rng = random.Random(2611)
+    draw = int(os.environ.get("PROBE_DRAW", "0"))
+    rng = random.Random(2611 + draw)
     for i in range(60):
         scenario = rng.choice(["city", "downtown", "suburbs", "rural", "highway", "mixed"])
         minutes = rng.choice([10, 20, 30, 45])
@@ -37,7 +43,7 @@ def drives():
             e["cut_lead_in"] = 1
         if rng.random() < 0.2:
             e["gyro_only"] = 1
-        yield f"p{i:02d}", scenario, minutes, 7000 + i, e
+        yield f"p{i:02d}", scenario, minutes, 7000 + 100 * draw + i, e
 
 
 def variants(lines, rng):
@@ -85,7 +91,7 @@ def main():
         src.unlink()
     rows_csv = OUT / "rows.csv"
     subprocess.run([CLI, "report", "--dir", str(OUT), "--compare", "--out", str(rows_csv)], check=True, capture_output=True)
-    by = {}
+    by, ratios = {}, []
     for r in csv.DictReader(rows_csv.open()):
         variant = Path(r["file"]).stem.split("_", 1)[1]
         if r["error"]:
@@ -94,6 +100,7 @@ def main():
         ne = {k: float(r[f"ne_psi_{k}_deg_per_min"]) for k in PEERS + ["pipeline"]}
         best = min(ne[k] for k in PEERS)
         by.setdefault(variant, []).append((ne["pipeline"], best, ne["raw"]))
+        ratios.append((ne["pipeline"] / best, Path(r["file"]).stem, ne["pipeline"], best, ne["raw"]))
     print(f"{'variant':<11} {'drives':>6} {'within 1.25x':>12} {'worse 2x':>9} {'worse raw':>10} {'worst':>7} {'errors':>6}")
     for variant, runs in by.items():
         ok = [x for x in runs if x]
@@ -102,6 +109,8 @@ def main():
         raw = sum(p > r for p, _, r in ok)
         worst = max(p / b for p, b, _ in ok)
         print(f"{variant:<11} {len(ok):>6} {within:>12} {over:>9} {raw:>10} {worst:>6.2f}x {len(runs) - len(ok):>6}")
+    for ratio, name, p, b, raw in sorted(ratios, reverse=True)[: int(os.environ.get("PROBE_WORST", "0"))]:
+        print(f"{name:<24} {ratio:6.2f}x  pipeline {p:.3f}  best peer {b:.3f}  raw {raw:.3f}")
 
 
 if __name__ == "__main__":
