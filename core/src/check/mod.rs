@@ -1,0 +1,197 @@
+//! `gyrodrift check`: what a log looks like before any method runs on it. Sample rate and
+//! jitter, gaps, the unit the numbers seem to be in (time in milliseconds, heading in
+//! radians, gyro in rad/s or clockwise, found by comparing the integrated gyro with the
+//! reference heading's change), the static bias, outliers. Each finding says how to fix it.
+
+use crate::log::DriveLog;
+use serde::{Deserialize, Serialize};
+use units::units_and_sign;
+
+#[cfg(test)]
+mod tests;
+mod units;
+
+/// How much a finding matters.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Severity {
+    /// The results would be wrong: fix before using them.
+    Error,
+    /// The results may mislead.
+    Warning,
+    Info,
+}
+
+impl Severity {
+    pub fn name(self) -> &'static str {
+        match self {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+            Severity::Info => "info",
+        }
+    }
+}
+
+/// One thing the check found, and what to do about it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Finding {
+    pub severity: Severity,
+    /// A stable name: time_unit, gap, heading_unit, gyro_unit, gyro_sign, gyro_scale, bias,
+    /// lead_in, no_stops, no_reference, outlier.
+    pub code: String,
+    pub message: String,
+    /// The recipe field or setting that fixes it.
+    pub fix: Option<String>,
+}
+
+/// What the check measured, and its findings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CheckReport {
+    pub rows: usize,
+    pub duration_min: f64,
+    /// Median time step of the gyro rows, s, and its 95th percentile over the median.
+    pub median_step_s: f64,
+    pub jitter_p95: f64,
+    /// Gaps longer than the gap threshold: (start time, length), s.
+    pub gaps_s: Vec<(f64, f64)>,
+    /// Static bias over the lead-in, deg/s (as the methods would take it).
+    pub eps0_dps: Option<f64>,
+    /// Integrated gyro over reference heading change on the largest turns (1 = as expected).
+    pub gyro_over_reference: Option<f64>,
+    pub findings: Vec<Finding>,
+}
+
+fn finding(severity: Severity, code: &str, message: String, fix: Option<&str>) -> Finding {
+    Finding { severity, code: code.into(), message, fix: fix.map(str::to_string) }
+}
+
+/// Checks a parsed log.
+pub fn check(log: &DriveLog) -> CheckReport {
+    let t = log.time_s();
+    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+    steps.sort_by(f64::total_cmp);
+    let pick = |q: f64| steps.get(((steps.len() as f64 - 1.0) * q).round() as usize).copied().unwrap_or(f64::NAN);
+    let (median, p95) = (pick(0.5), pick(0.95));
+    let mut r = CheckReport {
+        rows: log.len(),
+        duration_min: log.duration_min(),
+        median_step_s: median,
+        jitter_p95: p95 / median,
+        gaps_s: Vec::new(),
+        eps0_dps: None,
+        gyro_over_reference: None,
+        findings: Vec::new(),
+    };
+    time_unit(&mut r, t);
+    gaps(&mut r, log);
+    let standing_s = lead_in(&mut r, log);
+    let limit_dps = units_and_sign(&mut r, log, standing_s);
+    if log.kind() == crate::log::LogKind::Drive && !log.has_reference() {
+        let message = "no reference heading: the methods run, nothing is scored, and the gyro's units and sign go unchecked";
+        r.findings.push(finding(Severity::Info, "no_reference", message.into(), Some("add a ref_heading_deg column (the GPS course)")));
+    }
+    // (A lead-in the speed shows running into the drive is reported as that, with its fix.)
+    if let Some(b) = r.eps0_dps.filter(|b| b.abs() > limit_dps && standing_s.is_none()) {
+        let message = format!("static bias {b:.2} deg/s over the lead-in: the vehicle may not stand still then");
+        r.findings.push(finding(
+            Severity::Warning,
+            "bias",
+            message,
+            Some("bias_s = 0 when the log starts moving (# bias_s: 0, or --set bias_s=0)"),
+        ));
+    }
+    r
+}
+
+/// The gaps in time (`log::gaps`), the first five as findings.
+fn gaps(r: &mut CheckReport, log: &DriveLog) {
+    r.gaps_s = crate::log::gaps::find_gaps(log).iter().map(|g| (g.at_s, g.length_s)).collect();
+    for &(at, len) in r.gaps_s.iter().take(5) {
+        let message = format!("a gap of {len:.1} s at t = {at:.1} s: no method may integrate across it, so the log is scored in parts");
+        r.findings.push(finding(
+            Severity::Warning,
+            "gap",
+            message,
+            Some("split into parts there (--gaps split, the default; --gaps error refuses the log)"),
+        ));
+    }
+}
+
+/// A stationary lead-in the speed (or the wheels) says is not: the first 1 s block they
+/// show moving in starts within it (`still::blocks`, as the pipeline ends its lead-in),
+/// and the standing before it (s, returned) is the lead-in to declare instead.
+fn lead_in(r: &mut CheckReport, log: &DriveLog) -> Option<f64> {
+    let bias_s = log.bias_s(None);
+    let blocks = crate::still::blocks(log, bias_s, &Default::default()).ok()?;
+    if blocks.source == crate::still::StillSource::None {
+        let message =
+            "no speed, wheel travel or stationary lead-in (3 s at 5 Hz or more): no stops for ZARU and the pipeline (which learns the bias from the road alone)";
+        r.findings.push(finding(Severity::Info, "no_stops", message.into(), Some("a speed column, or # bias_s: N for a standing start")));
+    }
+    let m = (blocks.first_moving_s? - log.time_s().first()?).floor();
+    let k = (m - 1.0).max(0.0);
+    let by = if blocks.source == crate::still::StillSource::Odometry { "wheel travel" } else { "speed" };
+    (m < bias_s).then(|| {
+        let message = format!("the stationary lead-in (bias_s = {bias_s} s) is not: the {by} shows the vehicle moving {m} s in; its static bias is taken over driving");
+        let fix = format!("bias_s = {k}, the standing before it (# bias_s: {k} in the log, or --set bias_s={k})");
+        r.findings.push(finding(Severity::Warning, "lead_in", message, Some(&fix)));
+        k
+    })
+}
+
+/// Time in milliseconds: a median step of 2 s or more on a log spanning days of "seconds".
+fn time_unit(r: &mut CheckReport, t: &[f64]) {
+    if r.median_step_s >= 2.0 && t.len() > 100 {
+        let message = format!(
+            "time_s steps by {:.0} (median) over {} rows: milliseconds, not seconds? ({:.0} min as seconds)",
+            r.median_step_s, r.rows, r.duration_min
+        );
+        r.findings.push(finding(
+            Severity::Error,
+            "time_unit",
+            message,
+            Some("time.unit = \"ms\" in the recipe (or divide time_s by 1000)"),
+        ));
+    }
+}
+
+/// Gyro cells far beyond a road vehicle's yaw rate.
+fn outliers(r: &mut CheckReport, g: &[f64]) {
+    let n = g.iter().filter(|v| v.abs() > 300.0).count();
+    if n > 0 {
+        let message = format!("{n} gyro value(s) above 300 deg/s: counts or a wrong unit, or spikes");
+        r.findings.push(finding(Severity::Warning, "outlier", message, Some("check yaw_rate.unit and scale in the recipe")));
+    }
+}
+
+impl CheckReport {
+    /// The report as text, a finding a line.
+    pub fn to_text(&self) -> String {
+        let mut s = format!(
+            "{} rows, {:.1} min, median step {:.4} s (95th percentile {:.2}x), {} gap(s)",
+            self.rows,
+            self.duration_min,
+            self.median_step_s,
+            self.jitter_p95,
+            self.gaps_s.len()
+        );
+        if let Some(b) = self.eps0_dps {
+            s.push_str(&format!(", static bias {b:.4} deg/s"));
+        }
+        if let Some(k) = self.gyro_over_reference {
+            s.push_str(&format!(", gyro / reference heading change {k:.3}"));
+        }
+        s.push('\n');
+        if self.findings.is_empty() {
+            s.push_str("no findings\n");
+        }
+        for f in &self.findings {
+            s.push_str(&format!("{} [{}]: {}", f.severity.name(), f.code, f.message));
+            if let Some(fix) = &f.fix {
+                s.push_str(&format!("; fix: {fix}"));
+            }
+            s.push('\n');
+        }
+        s
+    }
+}

@@ -1,0 +1,185 @@
+use super::units::gyro_over_reference;
+use super::*;
+use crate::log::{parse_log, Column};
+
+fn city() -> DriveLog {
+    let p = concat!(env!("CARGO_MANIFEST_DIR"), "/../sample-logs/train/city-1.csv");
+    parse_log(std::fs::File::open(p).unwrap()).unwrap()
+}
+
+fn codes(log: &DriveLog) -> Vec<String> {
+    check(log).findings.into_iter().filter(|f| f.severity != Severity::Info).map(|f| f.code).collect()
+}
+
+/// The log without one of its columns.
+fn without(log: &DriveLog, c: Column) -> DriveLog {
+    let kept: Vec<(Column, Vec<f64>)> = log.columns().into_iter().filter(|(k, _)| *k != c).map(|(k, v)| (k, v.to_vec())).collect();
+    DriveLog::from_columns(log.meta.clone(), vec![0; log.len()], kept).unwrap()
+}
+
+fn scaled(log: &DriveLog, c: Column, k: f64) -> DriveLog {
+    let mut l = log.clone();
+    l.column_mut(c).unwrap().iter_mut().for_each(|v| *v *= k);
+    l
+}
+
+#[test]
+fn the_city_drive_as_shipped_is_clean() {
+    let r = check(&city());
+    assert!(codes(&city()).is_empty(), "{}", r.to_text());
+    assert!((r.median_step_s - 0.1).abs() < 1e-9);
+    assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{:?}", r.gyro_over_reference);
+}
+
+/// A drive without a reference heading: information that nothing is scored and units
+/// and sign go unchecked; none for a drive with one, or for a static session.
+#[test]
+fn a_drive_without_a_reference_is_told_what_goes_unchecked() {
+    let info = |log: &DriveLog| check(log).findings.into_iter().filter(|f| f.code == "no_reference").count();
+    let log = city();
+    assert_eq!(info(&log), 0);
+    let noref = without(&log, Column::RefHeadingDeg);
+    assert_eq!(info(&noref), 1);
+    assert!(codes(&noref).is_empty(), "{}", check(&noref).to_text());
+    let mut blank = log.clone();
+    blank.column_mut(Column::RefHeadingDeg).unwrap().iter_mut().for_each(|v| *v = f64::NAN);
+    assert_eq!(info(&blank), 1);
+    assert_eq!(info(&without(&noref, Column::SpeedMps)), 0, "a gyro alone is a static session");
+}
+
+#[test]
+fn unit_sign_and_gap_mistakes_are_found_with_their_fix() {
+    let log = city();
+    let rad = 1.0 / (180.0 / std::f64::consts::PI);
+    let mut radians = scaled(&log, Column::RefHeadingDeg, rad);
+    // Radians wrap at +-pi.
+    radians
+        .column_mut(Column::RefHeadingDeg)
+        .unwrap()
+        .iter_mut()
+        .for_each(|v| *v = (*v + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI);
+    let cases = [
+        ("time_unit", scaled(&log, Column::TimeS, 1000.0)),
+        ("heading_unit", radians),
+        ("gyro_unit", scaled(&log, Column::GyroDps, rad)),
+        ("gyro_sign", scaled(&log, Column::GyroDps, -1.0)),
+    ];
+    for (want, l) in cases {
+        let r = check(&l);
+        let f = r.findings.iter().find(|f| f.code == want).unwrap_or_else(|| panic!("{want} not found: {}", r.to_text()));
+        assert!(f.fix.is_some());
+    }
+    // A 60 s gap: rows between 300 and 360 s removed.
+    let mut gap = log.clone();
+    gap.retain_rows(|t| !(300.0..360.0).contains(&t));
+    let r = check(&gap);
+    assert_eq!(r.gaps_s.len(), 1, "{}", r.to_text());
+    assert!((r.gaps_s[0].1 - 60.0).abs() < 0.2);
+    assert!(codes(&gap).contains(&"gap".to_string()));
+}
+
+/// A declared lead-in (60 s) longer than the standing (20 s): found with the standing
+/// as its fix; units and sign are judged with the standing's bias, so the drive's first
+/// turns inside the lead-in are not read as a scale error.
+#[test]
+fn a_lead_in_longer_than_the_standing_is_found_with_the_standing_as_its_fix() {
+    let mut log = city();
+    log.meta.bias_s = Some(60.0);
+    let r = check(&log);
+    assert_eq!(codes(&log), ["lead_in"], "{}", r.to_text());
+    let f = &r.findings.iter().find(|f| f.code == "lead_in").unwrap();
+    assert!(f.fix.as_deref().unwrap().starts_with("bias_s = 19,"), "{}", r.to_text());
+    assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{:?}", r.gyro_over_reference);
+    // As shipped (20 s) or without a speed column, nothing to say.
+    assert!(codes(&city()).is_empty());
+    let no_speed = without(&log, Column::SpeedMps);
+    assert!(!codes(&no_speed).contains(&"lead_in".to_string()));
+    assert!(f.message.contains("the speed shows"), "{}", f.message);
+    // The same drive with wheel travel instead of a speed: the wheels say it moved.
+    let dt = 0.1;
+    let speed = log.column(Column::SpeedMps).unwrap();
+    let travel: Vec<f64> = speed
+        .iter()
+        .scan(0.0, |d, v| {
+            *d += v * dt;
+            Some(*d)
+        })
+        .collect();
+    let mut cols: Vec<(Column, Vec<f64>)> = no_speed.columns().into_iter().map(|(c, v)| (c, v.to_vec())).collect();
+    cols.push((Column::OdoLeftM, travel.clone()));
+    cols.push((Column::OdoRightM, travel));
+    let wheels = DriveLog::from_columns(log.meta.clone(), vec![0; log.len()], cols).unwrap();
+    let r = check(&wheels);
+    let f = r.findings.iter().find(|f| f.code == "lead_in").unwrap_or_else(|| panic!("{}", r.to_text()));
+    assert!(f.message.contains("the wheel travel shows"), "{}", f.message);
+    // Neither speed nor wheels: the gyro against the lead-in finds the stops; without a
+    // lead-in nothing can, which the check says.
+    let info = |l: &DriveLog| check(l).findings.iter().any(|f| f.code == "no_stops" && f.severity == Severity::Info);
+    assert!(!info(&city()) && !info(&no_speed));
+    let mut cut = no_speed.clone();
+    cut.meta.bias_s = Some(0.0);
+    assert!(info(&cut), "{}", check(&cut).to_text());
+}
+
+/// No speed, and a default lead-in whose gyro reads 4 deg/s more than the bias (a turn):
+/// the bias warning with its fix, not a scale error; a real 50 % scale error stays one.
+#[test]
+fn a_turning_lead_in_without_speed_is_not_a_scale_error() {
+    let log = city();
+    let mut turn = without(&log, Column::SpeedMps);
+    let t0 = log.time_s()[0];
+    let lead: Vec<bool> = log.time_s().iter().map(|&t| t - t0 < 20.0).collect();
+    turn.column_mut(Column::GyroDps).unwrap().iter_mut().zip(&lead).for_each(|(w, &l)| *w += if l { 4.0 } else { 0.0 });
+    let r = check(&turn);
+    assert_eq!(codes(&turn), ["bias"], "{}", r.to_text());
+    assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{}", r.to_text());
+    assert!(r.findings[r.findings.len() - 1].fix.as_deref().unwrap().starts_with("bias_s = 0"));
+    // Without the fallback the lead-in's bias reads as a unit or scale mistake.
+    assert!(gyro_over_reference(&turn, r.eps0_dps, false, false).is_some_and(|k| (k - 1.0).abs() > 0.25));
+    // A 50 % scale error with a standing lead-in: the road's rate does not excuse it.
+    let mut wrong = turn.clone();
+    wrong.column_mut(Column::GyroDps).unwrap().iter_mut().zip(&lead).for_each(|(w, &l)| *w = 1.5 * (*w - if l { 4.0 } else { 0.0 }));
+    let r = check(&wrong);
+    assert_eq!(codes(&wrong), ["gyro_scale"], "{}", r.to_text());
+}
+
+/// A gyro warming by 1 deg/s after its lead-in, logged at 1 Hz as 1 s means stamped at
+/// their end (a lag of half a second on the reference): the straight road near each turn
+/// takes the warm-up out, and windows between steady headings hold whole turns.
+#[test]
+fn a_warm_up_and_lagging_1_hz_means_are_not_a_scale_error() {
+    let log = city();
+    let (t, g) = (log.time_s(), log.column(Column::GyroDps).unwrap());
+    let h = log.column(Column::RefHeadingDeg).unwrap();
+    let t0 = t[0];
+    let mut rows: Vec<[f64; 3]> = Vec::new();
+    for k in (0..t.len() - 9).step_by(10) {
+        let warm = |t: f64| if t - t0 > 20.0 { 1.0 - (-(t - t0 - 20.0) / 300.0).exp() } else { 0.0 };
+        let mean = (k..k + 10).map(|i| g[i] + warm(t[i])).sum::<f64>() / 10.0;
+        let href = (k..k + 10).rev().map(|i| h[i]).find(|v| !v.is_nan()).unwrap_or(f64::NAN);
+        rows.push([t[k + 9], mean, href]);
+    }
+    let col = |j: usize| rows.iter().map(|r| r[j]).collect::<Vec<f64>>();
+    let cols = vec![(Column::TimeS, col(0)), (Column::GyroDps, col(1)), (Column::RefHeadingDeg, col(2))];
+    let one_hz = DriveLog::from_columns(log.meta.clone(), vec![0; rows.len()], cols).unwrap();
+    let r = check(&one_hz);
+    assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.03, "{}", r.to_text());
+    assert!(codes(&one_hz).is_empty(), "{}", r.to_text());
+    // With the lead-in's bias alone the warm-up reads as a scale error.
+    let k = gyro_over_reference(&one_hz, r.eps0_dps, false, false).unwrap();
+    assert!((k - 1.0).abs() > 0.1, "{k}");
+}
+
+/// A turn-on bias of 1.5 deg/s and no lead-in (the robustness battery's "bias -1.5 cut"):
+/// the straight windows give the bias, so the turns are not read as a 31 % scale error.
+#[test]
+fn a_large_bias_without_a_lead_in_is_not_a_scale_error() {
+    let mut log = city();
+    log.meta.bias_s = Some(0.0);
+    // City 1's own bias (1.95 deg/s) out, -1.5 in.
+    let eps0 = check(&city()).eps0_dps.unwrap();
+    log.column_mut(Column::GyroDps).unwrap().iter_mut().for_each(|w| *w -= eps0 + 1.5);
+    let r = check(&log);
+    assert!(codes(&log).is_empty(), "{}", r.to_text());
+    assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{:?}", r.gyro_over_reference);
+}

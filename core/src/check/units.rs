@@ -1,0 +1,195 @@
+//! Units and sign: the integrated gyro against the reference heading's change on clear
+//! turns says whether the gyro is in rad/s or clockwise, or the heading in radians, and the
+//! gyro's scale error.
+
+use super::{finding, outliers, CheckReport, Severity};
+use crate::log::{Column, DriveLog};
+use crate::metrics::{value_at, Reference};
+use crate::preprocess;
+
+/// The static bias, outliers, and the gyro's units and sign against the reference (or the
+/// reference's, in radians). Returns the static bias over which the lead-in is taken to be
+/// moving (any, where the reference says so).
+pub(super) fn units_and_sign(r: &mut CheckReport, log: &DriveLog, standing_s: Option<f64>) -> f64 {
+    let t = log.time_s();
+    let mut limit_dps = 5.0;
+    if let Some(g) = log.column(Column::GyroDps) {
+        let bias_s = log.bias_s(None);
+        r.eps0_dps = preprocess::static_bias_dps(t, g, bias_s).ok();
+        outliers(r, g);
+        // Units and sign are judged with the bias of the standing, not of a lead-in that
+        // runs into the drive (which the lead_in finding reports): a turn inside it would
+        // read as a scale error.
+        // Without a lead-in (0 s) the turn-on bias is unmeasured: None, estimated below.
+        let eps0 = match standing_s {
+            Some(s) => (s > 0.0).then(|| preprocess::static_bias_dps(t, g, s).unwrap_or(0.0)),
+            None => (bias_s > 0.0).then(|| r.eps0_dps.unwrap_or(0.0)),
+        };
+        let near_one = |x: f64| (x.abs() - 1.0).abs() < 0.25;
+        let k = gyro_over_reference(log, eps0, false, true);
+        // A lead-in nothing says stands (no speed, no wheels) may be a turn: if its bias
+        // alone puts the gyro out with the reference and the straight road's rate does not,
+        // the lead-in is wrong (the bias warning below), not the units.
+        if standing_s.is_none()
+            && eps0.is_some()
+            && k.is_some_and(near_one)
+            && !gyro_over_reference(log, eps0, false, false).is_some_and(near_one)
+        {
+            limit_dps = 0.0;
+        }
+        r.gyro_over_reference = k;
+        // A reference that never leaves +-pi may be radians: see whether the gyro agrees.
+        let within_pi =
+            log.column(Column::RefHeadingDeg).is_some_and(|h| h.iter().all(|v| v.is_nan() || v.abs() <= std::f64::consts::PI + 1e-3));
+        let k_rad = if within_pi { gyro_over_reference(log, eps0, true, true) } else { None };
+        match (k, k_rad) {
+            (k, Some(kr)) if near_one(kr) && !k.is_some_and(near_one) => {
+                let cw = if kr < 0.0 { ", positive = \"cw\"" } else { "" };
+                let message = format!(
+                    "ref_heading_deg stays within +-pi and, read as radians, agrees with the gyro ({kr:.3}): the heading is in radians"
+                );
+                let fix = format!("heading.unit = \"rad\"{cw} in the recipe");
+                r.findings.push(finding(Severity::Error, "heading_unit", message, Some(&fix)));
+            }
+            (Some(k), _) => units_from_ratio(r, k),
+            _ => {}
+        }
+    }
+    limit_dps
+}
+
+/// One window between two reference samples: the integrated gyro's and the reference's
+/// heading change (deg), its length and its middle (s).
+struct Window {
+    gyro_deg: f64,
+    ref_deg: f64,
+    dt_s: f64,
+    mid_s: f64,
+}
+
+/// The windows the gyro is compared with the reference on, the gyro less `eps0` (deg/s).
+/// With `steady_ends`, 10-60 s windows that end where the reference heading is steady
+/// (within 1.5 deg over +-2 s), so a window holds whole turns: a lag between the gyro and
+/// the reference (1 s means stamped at their end, a late GPS course) cuts none. Without
+/// (a drive in circles is never steady), 10-30 s windows between any reference samples.
+/// None without a reference or blocks.
+fn windows(log: &DriveLog, eps0: Option<f64>, in_radians: bool, steady_ends: bool) -> Option<Vec<Window>> {
+    let mut reference = Reference::from_log(log).ok()?;
+    if in_radians {
+        // Radians wrap at +-pi, which the degree unwrap leaves alone: convert, then unwrap.
+        let deg: Vec<f64> = reference.heading_deg.iter().map(|h| h.to_degrees()).collect();
+        reference.heading_deg = crate::metrics::unwrap_deg(&deg);
+    }
+    let g = log.column(Column::GyroDps)?;
+    let blocks = preprocess::block_average_1hz(log.time_s(), g);
+    let (rt, rh) = (&reference.time_s, &reference.heading_deg);
+    if blocks.len() < 20 || rt.len() < 10 {
+        return None;
+    }
+    // The paper's "without HDR" heading on the blocks.
+    let mut raw = crate::hdr::RawIntegrator::new(eps0.unwrap_or(0.0));
+    let psi: Vec<f64> = blocks.time_s.iter().zip(&blocks.rate_dps).map(|(&t, &w)| raw.update(t, w)).collect();
+    let (first, last) = (*rt.first()?, *rt.last()?);
+    let steady = |t: f64| !steady_ends || (value_at(rt, rh, (t + 2.0).min(last)) - value_at(rt, rh, (t - 2.0).max(first))).abs() < 1.5;
+    let max_s = if steady_ends { 60.0 } else { 30.0 };
+    let mut out = Vec::new();
+    // The window's start: time and reference heading.
+    let mut start: Option<(f64, f64)> = None;
+    for (&t, &h) in rt.iter().zip(rh) {
+        if !steady(t) {
+            continue;
+        }
+        if let Some((t0, h0)) = start {
+            let dt = t - t0;
+            if dt < 10.0 {
+                continue;
+            }
+            let gyro_deg = value_at(&blocks.time_s, &psi, t) - value_at(&blocks.time_s, &psi, t0);
+            let ref_deg = h - h0;
+            if dt <= max_s && gyro_deg.is_finite() && ref_deg.is_finite() {
+                out.push(Window { gyro_deg, ref_deg, dt_s: dt, mid_s: 0.5 * (t + t0) });
+            }
+        }
+        start = Some((t, h));
+    }
+    Some(out)
+}
+
+/// The ratio of the integrated gyro's heading change to the reference's over the largest
+/// turns (median), or None without turns. With `road`, each turn first loses the bias the
+/// windows the reference says are straight (2 deg) show within 300 s of it (their median
+/// rate, if 3 or more: a turn-on bias without a lead-in, a warm-up after one); without,
+/// the gyro less the lead-in's bias alone.
+fn turn_ratio(windows: &[Window], road: bool) -> Option<f64> {
+    let big = windows.iter().map(|w| w.ref_deg.abs()).fold(0.0, f64::max);
+    // Only clear turns (20 deg or more in a window) say anything about scale and sign.
+    let min_turn = (0.3 * big).max(20.0);
+    // (Loops, not collects: each collect is code of its own in the size-capped wasm module.)
+    let (mut ratios, mut near) = (Vec::new(), Vec::new());
+    for turn in windows.iter().filter(|w| w.ref_deg.abs() >= min_turn) {
+        near.clear();
+        for w in windows {
+            if road && w.ref_deg.abs() < 2.0 && (w.mid_s - turn.mid_s).abs() <= 300.0 {
+                near.push(w.gyro_deg / w.dt_s);
+            }
+        }
+        let bias = if near.len() >= 3 { crate::metrics::quantile_mut(&mut near, 0.5) } else { 0.0 };
+        ratios.push((turn.gyro_deg - bias * turn.dt_s) / turn.ref_deg);
+    }
+    (ratios.len() >= 3).then(|| crate::metrics::quantile_mut(&mut ratios, 0.5))
+}
+
+/// [`turn_ratio`] on the windows with steady ends, else on any (a drive in circles).
+pub(super) fn gyro_over_reference(log: &DriveLog, eps0: Option<f64>, in_radians: bool, road: bool) -> Option<f64> {
+    [true, false].into_iter().find_map(|steady| turn_ratio(&windows(log, eps0, in_radians, steady)?, road))
+}
+
+/// What a gyro-over-reference ratio says about units and sign.
+fn units_from_ratio(r: &mut CheckReport, k: f64) {
+    let deg = 180.0 / std::f64::consts::PI;
+    let near = |x: f64, want: f64| (x / want - 1.0).abs() < 0.25;
+    let (code, message, fix) = if near(k, 1.0) {
+        if (k - 1.0).abs() > 0.03 {
+            let m = format!("the gyro's heading change is {k:.3} times the reference's: a scale error of {:+.1} %", (k - 1.0) * 100.0);
+            r.findings.push(finding(Severity::Info, "gyro_scale", m, Some("yaw_rate.scale in the recipe, or calibrate")));
+        }
+        return;
+    } else if near(k, -1.0) {
+        (
+            "gyro_sign",
+            "the gyro turns the other way from the reference: clockwise-positive, not counter-clockwise".to_string(),
+            "yaw_rate.positive = \"cw\" in the recipe (or negate gyro_dps)",
+        )
+    } else if near(k, 1.0 / deg) {
+        (
+            "gyro_unit",
+            format!("the gyro's heading change is {k:.4} of the reference's (1/57.3): the gyro is in rad/s"),
+            "yaw_rate.unit = \"rad/s\" in the recipe",
+        )
+    } else if near(k, -1.0 / deg) {
+        (
+            "gyro_unit",
+            format!("the gyro's heading change is {k:.4} of the reference's: rad/s and clockwise"),
+            "yaw_rate.unit = \"rad/s\", positive = \"cw\"",
+        )
+    } else if near(k, deg) {
+        (
+            "heading_unit",
+            format!("the reference changes {:.4} of the gyro's heading (1/57.3): ref_heading_deg is in radians", 1.0 / k),
+            "heading.unit = \"rad\" in the recipe",
+        )
+    } else if near(k, -deg) {
+        (
+            "heading_unit",
+            "ref_heading_deg is in radians and turns the other way (clockwise)".to_string(),
+            "heading.unit = \"rad\", positive = \"cw\"",
+        )
+    } else {
+        (
+            "gyro_scale",
+            format!("the gyro's heading change is {k:.3} times the reference's: a unit or scale mistake"),
+            "yaw_rate.unit and scale in the recipe",
+        )
+    };
+    r.findings.push(finding(Severity::Error, code, message, Some(fix)));
+}
