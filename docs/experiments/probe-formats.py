@@ -12,7 +12,7 @@ Fusion offset, ZARU) + 0.05 deg/min, worse than 2x, worse than raw, and the larg
 
 PROBE_DRAW=K (default 0) draws 60 other drives (seeds 7000 + 100 K ..., another choice of
 scenarios and errors), a fresh look for an independent check; PROBE_WORST=N also prints the
-N largest ratios.
+N largest ratios; PROBE_SET="KEY=VALUE ..." runs the pipeline with those settings.
 """
 import os
 import csv
@@ -90,7 +90,8 @@ def main():
             (OUT / f"{name}_{variant}.csv").write_text(text)
         src.unlink()
     rows_csv = OUT / "rows.csv"
-    subprocess.run([CLI, "report", "--dir", str(OUT), "--compare", "--out", str(rows_csv)], check=True, capture_output=True)
+    sets = [a for kv in os.environ.get("PROBE_SET", "").split() for a in ("--set", kv)]
+    subprocess.run([CLI, "report", "--dir", str(OUT), "--compare", "--out", str(rows_csv)] + sets, check=True, capture_output=True)
     by, ratios = {}, []
     for r in csv.DictReader(rows_csv.open()):
         variant = Path(r["file"]).stem.split("_", 1)[1]
