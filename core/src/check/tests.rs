@@ -135,12 +135,26 @@ fn a_turning_lead_in_without_speed_is_not_a_scale_error() {
     assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{}", r.to_text());
     assert!(r.findings[r.findings.len() - 1].fix.as_deref().unwrap().starts_with("bias_s = 0"));
     // Without the fallback the lead-in's bias reads as a unit or scale mistake.
-    assert!(gyro_over_reference(&turn, r.eps0_dps, false, false).is_some_and(|k| (k - 1.0).abs() > 0.25));
+    assert!(gyro_over_reference(&turn, r.eps0_dps, false, false).is_some_and(|(k, _)| (k - 1.0).abs() > 0.25));
     // A 50 % scale error with a standing lead-in: the road's rate does not excuse it.
     let mut wrong = turn.clone();
     wrong.column_mut(Column::GyroDps).unwrap().iter_mut().zip(&lead).for_each(|(w, &l)| *w = 1.5 * (*w - if l { 4.0 } else { 0.0 }));
     let r = check(&wrong);
     assert_eq!(codes(&wrong), ["gyro_scale"], "{}", r.to_text());
+}
+
+/// A 6 % scale error is told, with its standard error; none is not.
+#[test]
+fn a_scale_error_is_told_with_its_uncertainty() {
+    let scale_info = |l: &DriveLog| check(l).findings.into_iter().find(|f| f.code == "gyro_scale" && f.severity == Severity::Info);
+    assert!(scale_info(&city()).is_none(), "{}", check(&city()).to_text());
+    let eps0 = check(&city()).eps0_dps.unwrap();
+    let mut scaled = city();
+    scaled.column_mut(Column::GyroDps).unwrap().iter_mut().for_each(|w| *w = eps0 + 1.06 * (*w - eps0));
+    let f = scale_info(&scaled).unwrap_or_else(|| panic!("{}", check(&scaled).to_text()));
+    assert!(f.message.contains("a scale error of +") && f.message.contains(" % (+-"), "{}", f.message);
+    let k = check(&scaled).gyro_over_reference.unwrap();
+    assert!((k - 1.06).abs() < 0.01, "{k}");
 }
 
 /// A gyro warming by 1 deg/s after its lead-in, logged at 1 Hz as 1 s means stamped at
@@ -166,7 +180,7 @@ fn a_warm_up_and_lagging_1_hz_means_are_not_a_scale_error() {
     assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.03, "{}", r.to_text());
     assert!(codes(&one_hz).is_empty(), "{}", r.to_text());
     // With the lead-in's bias alone the warm-up reads as a scale error.
-    let k = gyro_over_reference(&one_hz, r.eps0_dps, false, false).unwrap();
+    let (k, _) = gyro_over_reference(&one_hz, r.eps0_dps, false, false).unwrap();
     assert!((k - 1.0).abs() > 0.1, "{k}");
 }
 

@@ -26,14 +26,14 @@ pub(super) fn units_and_sign(r: &mut CheckReport, log: &DriveLog, standing_s: Op
             None => (bias_s > 0.0).then(|| r.eps0_dps.unwrap_or(0.0)),
         };
         let near_one = |x: f64| (x.abs() - 1.0).abs() < 0.25;
-        let k = gyro_over_reference(log, eps0, false, true);
+        let (k, se) = gyro_over_reference(log, eps0, false, true).unzip();
         // A lead-in nothing says stands (no speed, no wheels) may be a turn: if its bias
         // alone puts the gyro out with the reference and the straight road's rate does not,
         // the lead-in is wrong (the bias warning below), not the units.
         if standing_s.is_none()
             && eps0.is_some()
             && k.is_some_and(near_one)
-            && !gyro_over_reference(log, eps0, false, false).is_some_and(near_one)
+            && !gyro_over_reference(log, eps0, false, false).is_some_and(|(k, _)| near_one(k))
         {
             limit_dps = 0.0;
         }
@@ -41,7 +41,7 @@ pub(super) fn units_and_sign(r: &mut CheckReport, log: &DriveLog, standing_s: Op
         // A reference that never leaves +-pi may be radians: see whether the gyro agrees.
         let within_pi =
             log.column(Column::RefHeadingDeg).is_some_and(|h| h.iter().all(|v| v.is_nan() || v.abs() <= std::f64::consts::PI + 1e-3));
-        let k_rad = if within_pi { gyro_over_reference(log, eps0, true, true) } else { None };
+        let k_rad = if within_pi { gyro_over_reference(log, eps0, true, true).map(|(k, _)| k) } else { None };
         match (k, k_rad) {
             (k, Some(kr)) if near_one(kr) && !k.is_some_and(near_one) => {
                 let cw = if kr < 0.0 { ", positive = \"cw\"" } else { "" };
@@ -51,7 +51,7 @@ pub(super) fn units_and_sign(r: &mut CheckReport, log: &DriveLog, standing_s: Op
                 let fix = format!("heading.unit = \"rad\"{cw} in the recipe");
                 r.findings.push(finding(Severity::Error, "heading_unit", message, Some(&fix)));
             }
-            (Some(k), _) => units_from_ratio(r, k),
+            (Some(k), _) => units_from_ratio(r, k, se.unwrap_or(0.0)),
             _ => {}
         }
     }
@@ -116,11 +116,12 @@ fn windows(log: &DriveLog, eps0: Option<f64>, in_radians: bool, steady_ends: boo
 }
 
 /// The ratio of the integrated gyro's heading change to the reference's over the largest
-/// turns (median), or None without turns. With `road`, each turn first loses the bias the
+/// turns (median) and its standard error (from the interquartile range), or None without
+/// turns. With `road`, each turn first loses the bias the
 /// windows the reference says are straight (2 deg) show within 300 s of it (their median
 /// rate, if 3 or more: a turn-on bias without a lead-in, a warm-up after one); without,
 /// the gyro less the lead-in's bias alone.
-fn turn_ratio(windows: &[Window], road: bool) -> Option<f64> {
+fn turn_ratio(windows: &[Window], road: bool) -> Option<(f64, f64)> {
     let big = windows.iter().map(|w| w.ref_deg.abs()).fold(0.0, f64::max);
     // Only clear turns (20 deg or more in a window) say anything about scale and sign.
     let min_turn = (0.3 * big).max(20.0);
@@ -136,21 +137,26 @@ fn turn_ratio(windows: &[Window], road: bool) -> Option<f64> {
         let bias = if near.len() >= 3 { crate::metrics::quantile_mut(&mut near, 0.5) } else { 0.0 };
         ratios.push((turn.gyro_deg - bias * turn.dt_s) / turn.ref_deg);
     }
-    (ratios.len() >= 3).then(|| crate::metrics::quantile_mut(&mut ratios, 0.5))
+    let n = ratios.len() as f64;
+    let mut q = |p: f64| crate::metrics::quantile_mut(&mut ratios, p);
+    // The median's standard error: 1.2533 sigma / sqrt(n), sigma = IQR / 1.349.
+    (n >= 3.0).then(|| (q(0.5), 0.929 * (q(0.75) - q(0.25)) / n.sqrt()))
 }
 
 /// [`turn_ratio`] on the windows with steady ends, else on any (a drive in circles).
-pub(super) fn gyro_over_reference(log: &DriveLog, eps0: Option<f64>, in_radians: bool, road: bool) -> Option<f64> {
+pub(super) fn gyro_over_reference(log: &DriveLog, eps0: Option<f64>, in_radians: bool, road: bool) -> Option<(f64, f64)> {
     [true, false].into_iter().find_map(|steady| turn_ratio(&windows(log, eps0, in_radians, steady)?, road))
 }
 
-/// What a gyro-over-reference ratio says about units and sign.
-fn units_from_ratio(r: &mut CheckReport, k: f64) {
+/// What a gyro-over-reference ratio (standard error `se`) says about units and sign.
+fn units_from_ratio(r: &mut CheckReport, k: f64, se: f64) {
     let deg = 180.0 / std::f64::consts::PI;
     let near = |x: f64, want: f64| (x / want - 1.0).abs() < 0.25;
     let (code, message, fix) = if near(k, 1.0) {
-        if (k - 1.0).abs() > 0.03 {
-            let m = format!("the gyro's heading change is {k:.3} times the reference's: a scale error of {:+.1} %", (k - 1.0) * 100.0);
+        // A scale error only where the turns tell it apart from none (beyond 2 standard errors).
+        if (k - 1.0).abs() > 0.03_f64.max(2.0 * se) {
+            let (e, pm) = ((k - 1.0) * 100.0, 200.0 * se);
+            let m = format!("the gyro's heading change is {k:.3} times the reference's: a scale error of {e:+.1} % (+-{pm:.1} %)");
             r.findings.push(finding(Severity::Info, "gyro_scale", m, Some("yaw_rate.scale in the recipe, or calibrate")));
         }
         return;
