@@ -32,20 +32,10 @@ export function renderList() {
       li.append(b, removeButton(i, `Remove ${e.name}`));
       if (state.view === "hdr" && e.kind === "drive" && e !== shown) li.append(overlayButton(e));
       if (e.findings?.length) {
-        const badge = document.createElement("div");
         const worst = e.findings.some((f) => f.severity === "error") ? "error" : "warning";
-        badge.className = `check ${worst}`;
-        badge.textContent = `⚠ check: ${e.findings.map((f) => f.code).join(", ")}`;
-        badge.title = e.findings.map((f) => `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}`).join("\n");
-        li.append(badge);
+        li.append(checkNote(worst, `⚠ check: ${e.findings.map((f) => f.code).join(", ")}`, said(e.findings)));
       }
-      if (e.info?.length) {
-        const info = document.createElement("div");
-        info.className = "check info";
-        info.textContent = `ℹ ${e.info.map((f) => f.code.replace("_", " ")).join(", ")}`;
-        info.title = e.info.map((f) => `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}`).join("\n");
-        li.append(info);
-      }
+      if (e.info?.length) li.append(checkNote("info", `ℹ ${e.info.map((f) => f.code.replace("_", " ")).join(", ")}`, said(e.info)));
       if (e.imported) {
         const imp = document.createElement("div");
         imp.className = "check imported";
@@ -62,16 +52,25 @@ export function renderList() {
         imp.append(" ", save);
         li.append(imp);
       }
-      if (e.note) {
-        const note = document.createElement("div");
-        note.className = "check split";
-        note.textContent = "✂ split at a gap in time";
-        note.title = e.note;
-        li.append(note);
-      }
+      if (e.note) li.append(checkNote("split", "✂ split at a gap in time", [e.note]));
     }
     ul.append(li);
   });
+}
+
+/** A check's findings as each says them: the message, then its fix. */
+const said = (findings) => findings.map((f) => `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}`);
+
+/** A note on a log: its summary in the list, what it says under it, opened by a click, a tap
+ * or the keyboard (a tooltip alone shows nothing on a phone), and on hover as before. */
+function checkNote(kind, summary, lines) {
+  const note = document.createElement("details");
+  note.className = `check ${kind}`;
+  note.title = lines.join("\n");
+  const head = document.createElement("summary");
+  head.textContent = summary;
+  note.append(head, ...lines.map((l) => Object.assign(document.createElement("p"), { textContent: l })));
+  return note;
 }
 
 /** Overlays a drive on the HDR view's error and column charts (or takes it off). */

@@ -307,7 +307,16 @@ test("a log with a clockwise gyro gets a check badge naming the fix; the shipped
   const badge = page.locator("#logs li .check.error");
   assert.match(await badge.innerText(), /gyro_sign/);
   assert.match(await badge.getAttribute("title"), /positive = "cw"/);
+  // What it says and its fix open under it at a click or a tap (a tooltip shows nothing on a
+  // phone), and close again.
+  const said = badge.locator("p").first();
+  assert.equal(await said.isVisible(), false);
+  await badge.locator("summary").click();
+  assert.equal(await said.isVisible(), true);
+  assert.match(await said.innerText(), /turns the other way.*fix: .*positive = "cw"/);
   await page.screenshot({ path: join(ARTIFACTS, "check-badge.png") });
+  await badge.locator("summary").click();
+  assert.equal(await said.isVisible(), false);
   // Information (`check`'s info findings) gets a quiet note of its own: City 1 without its
   // speed column and its lead-in has nothing that shows when it stands.
   const bare = join(dir, "city-bare.csv");
