@@ -1,7 +1,8 @@
 // The gyrodrift dashboard: loads logs, keeps the view's settings (and the URL) in sync, and
 // asks the wasm package for every number and every chart. No science here. Modules:
 // state.js (settings, URL), loading.js (files, worker), controls.js (list, forms),
-// charts.js (canvases, zoom), render.js (the active view), views/*.js (one per view).
+// charts.js (canvases, zoom), render.js (the active view), views/*.js (one per view),
+// touchtip.js (the tooltips, on a touch screen).
 import init, * as gd from "./pkg/gyrodrift.js";
 import initPlot from "./pkg/plot/gyrodrift_plot.js";
 import { $, state, defaults, readUrl, urlHash, hdrOptions, PARAMS, GYRO_PARAMS, VIEW_KIND } from "./state.js";
@@ -11,6 +12,7 @@ import { attachTimeInteraction, csvOf, download, pngOf, timeChartsCsv } from "./
 import { render, scheduleRender, showError } from "./render.js";
 import { runTune, reportExports } from "./views/report.js";
 import { runBattery, addWorse } from "./views/robustness.js";
+import { setupTouchTips } from "./touchtip.js";
 
 // ---------- start ----------
 async function main() {
@@ -23,6 +25,7 @@ async function main() {
   setupTabs();
   setupExports();
   setupFiles();
+  setupTouchTips();
   // The first-use panel is open until it has been closed once (remembered in this browser).
   const intro = $("first-use");
   intro.open = localStorage.getItem("gyrodrift.intro") !== "closed";

@@ -965,6 +965,32 @@ test("axe-core finds no serious or critical accessibility violation in any view"
   assert.deepEqual(found, []);
 });
 
+test("on a touch screen a tap on a metric, a parameter's name or a note shows what its tooltip says", async () => {
+  const browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--no-sandbox", "--disable-gpu"] });
+  try {
+    const phone = await (await browser.newContext({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true })).newPage();
+    await phone.goto(URL0);
+    await phone.waitForFunction(() => document.body.dataset.ready === "1", null, { timeout: 30000 });
+    const tip = phone.locator("#touch-tip");
+    assert.equal(await tip.isVisible(), false);
+    await phone.locator("#m-e-hdr").tap();
+    assert.equal(await tip.isVisible(), true);
+    assert.match(await tip.innerText(), /mean absolute heading error/);
+    const t = await tip.boundingBox();
+    assert.ok(t.x >= 0 && t.x + t.width <= 391, `the tip inside 390 px: ${JSON.stringify(t)}`);
+    await phone.screenshot({ path: join(ARTIFACTS, "phone-touch-tip.png") });
+    await phone.locator("label[for=p-i_c_dps]").tap();
+    assert.match(await tip.innerText(), /Eq\. 11/);
+    // A tap elsewhere closes it; a control's tap does its own work, no tip.
+    await phone.locator("h1").tap();
+    assert.equal(await tip.isVisible(), false);
+    await phone.locator("#tabs button[data-view=track]").tap();
+    assert.equal(await tip.isVisible(), false);
+  } finally {
+    await browser.close();
+  }
+});
+
 test("at phone width the log list stacks above the views and the charts take the width", async () => {
   await page.setViewportSize({ width: 390, height: 900 });
   try {

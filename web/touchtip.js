@@ -1,0 +1,26 @@
+// A touch screen shows no tooltips, and the page explains its parameters, metrics and notes
+// in them (`title`). A tap on such an explanation-bearing element that is not a control
+// shows its text in a popup under it; the next tap anywhere, a scroll or Escape closes it.
+const CONTROLS = "button, input, select, textarea, a, summary, canvas";
+
+export function setupTouchTips() {
+  const tip = document.createElement("div");
+  tip.id = "touch-tip";
+  tip.setAttribute("role", "tooltip");
+  tip.hidden = true;
+  document.body.append(tip);
+  const hide = () => { tip.hidden = true; };
+  document.addEventListener("pointerdown", (ev) => { if (ev.target !== tip) hide(); }, true);
+  document.addEventListener("scroll", hide, true);
+  document.addEventListener("keydown", (ev) => { if (ev.key === "Escape") hide(); });
+  document.addEventListener("click", (ev) => {
+    if (ev.pointerType !== "touch") return;
+    const el = ev.target instanceof Element ? ev.target.closest("[title]") : null;
+    if (!el || !el.title || ev.target.closest(CONTROLS)) return;
+    tip.textContent = el.title;
+    const r = el.getBoundingClientRect();
+    tip.style.left = `${Math.max(4, Math.min(r.left, window.innerWidth - 4 - Math.min(320, window.innerWidth - 8)))}px`;
+    tip.style.top = `${r.bottom + 4}px`;
+    tip.hidden = false;
+  });
+}
