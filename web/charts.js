@@ -175,11 +175,60 @@ export function attachTimeInteraction(id) {
   });
   attachWheel(c, id, toX, toY);
   attachKeys(c, id);
+  attachTouch(c, id, scale);
   c.addEventListener("mouseleave", () => {
     state.cursor = null;
     tooltip(id, c, null);
     scheduleRender();
   });
+}
+
+/** Touch: one finger dragged sideways pans time, two fingers pinch it (the page still scrolls
+ * up and down: touch-action pan-y); a tap shows the values there, as the mouse's hover does
+ * (the browser's compatibility mouse events). */
+function attachTouch(c, id, scale) {
+  c.style.touchAction = "pan-y";
+  const at = new Map(); // pointer id -> its offsetX now
+  let start = null; // the time range, the layout and the pointers' offsetX when the gesture (re)started
+  const restart = () => {
+    const L = state.layouts[id];
+    start = L && at.size ? { range: state.zoom || [L.x_min, L.x_max], L, from: new Map(at) } : null;
+  };
+  c.addEventListener("pointerdown", (ev) => {
+    if (ev.pointerType !== "touch") return;
+    at.set(ev.pointerId, ev.offsetX);
+    restart();
+  });
+  c.addEventListener("pointermove", (ev) => {
+    if (ev.pointerType !== "touch" || !at.has(ev.pointerId) || !start) return;
+    at.set(ev.pointerId, ev.offsetX);
+    const { range: [r0, r1], L, from } = start;
+    // Fraction of the plot's width at a CSS x, and the time it showed when the gesture began.
+    const u = (px) => (px * scale() - L.left) / (L.right - L.left);
+    const t = (px) => r0 + u(px) * (r1 - r0);
+    const ids = [...at.keys()].filter((k) => from.has(k)).slice(0, 2);
+    if (ids.length === 1) {
+      const [k] = ids;
+      const n0 = t(from.get(k)) - u(at.get(k)) * (r1 - r0);
+      state.zoom = [n0, n0 + (r1 - r0)];
+    } else if (ids.length === 2) {
+      // The two times under the fingers stay under them.
+      const [a, b] = ids;
+      const du = u(at.get(b)) - u(at.get(a));
+      if (Math.abs(du) < 0.02) return;
+      const span = (t(from.get(b)) - t(from.get(a))) / du;
+      if (!(span > 0)) return;
+      const n0 = t(from.get(a)) - u(at.get(a)) * span;
+      state.zoom = [n0, n0 + span];
+    } else return;
+    scheduleRender();
+  });
+  const lift = (ev) => {
+    if (!at.delete(ev.pointerId)) return;
+    restart(); // a finger left: the others go on from where they are
+  };
+  c.addEventListener("pointerup", lift);
+  c.addEventListener("pointercancel", lift);
 }
 
 /** Wheel: zoom time around the cursor; Alt + wheel: this chart's y. */

@@ -991,6 +991,49 @@ test("on a touch screen a tap on a metric, a parameter's name or a note shows wh
   }
 });
 
+test("on a touch screen a time chart pans with one finger, pinches with two and resets at a double tap", async () => {
+  const browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--no-sandbox", "--disable-gpu"] });
+  try {
+    const phone = await (await browser.newContext({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true })).newPage();
+    await phone.goto(URL0);
+    await phone.waitForFunction(() => document.body.dataset.ready === "1", null, { timeout: 30000 });
+    const chart = phone.locator("#c-heading");
+    await chart.scrollIntoViewIfNeeded();
+    const b = await chart.boundingBox();
+    const y = b.y + b.height / 2;
+    const cdp = await phone.context().newCDPSession(phone);
+    const touch = (type, xs) => cdp.send("Input.dispatchTouchEvent", { type, touchPoints: xs.map((x, id) => ({ x, y, id })) });
+    const zoom = () => phone.evaluate(() => window.gyrodrift.state.zoom);
+    const range = await phone.evaluate(() => { const L = window.gyrodrift.state.layouts["c-heading"]; return [L.x_min, L.x_max]; });
+    // One finger from 60 % to 30 % of the chart: later times come into view, the span kept.
+    await touch("touchStart", [b.x + 0.6 * b.width]);
+    for (const f of [0.5, 0.4, 0.3]) await touch("touchMove", [b.x + f * b.width]);
+    await touch("touchEnd", []);
+    const panned = await zoom();
+    assert.ok(panned && panned[0] > range[0] && Math.abs(panned[1] - panned[0] - (range[1] - range[0])) < 1e-6 * (range[1] - range[0]), JSON.stringify({ range, panned }));
+    // Two fingers spread from 40-60 % to 20-80 %: a third of the span.
+    await touch("touchStart", [b.x + 0.4 * b.width, b.x + 0.6 * b.width]);
+    for (const d of [0.15, 0.2, 0.25, 0.3]) await touch("touchMove", [b.x + (0.5 - d) * b.width, b.x + (0.5 + d) * b.width]);
+    await touch("touchEnd", []);
+    const pinched = await zoom();
+    const ratio = (pinched[1] - pinched[0]) / (panned[1] - panned[0]);
+    assert.ok(Math.abs(ratio - 1 / 3) < 0.05, `pinched to ${ratio} of the span`);
+    await phone.waitForTimeout(300);
+    await phone.screenshot({ path: join(ARTIFACTS, "phone-pinched.png") });
+    // The page still scrolls up and down over a chart.
+    assert.equal(await chart.evaluate((c) => getComputedStyle(c).touchAction), "pan-y");
+    // A double tap resets (the browser's dblclick: no double-tap zoom under pan-y).
+    for (let i = 0; i < 2; i++) {
+      await touch("touchStart", [b.x + 0.5 * b.width]);
+      await touch("touchEnd", []);
+      await phone.waitForTimeout(60);
+    }
+    await phone.waitForFunction(() => window.gyrodrift.state.zoom === null);
+  } finally {
+    await browser.close();
+  }
+});
+
 test("at phone width the log list stacks above the views and the charts take the width", async () => {
   await page.setViewportSize({ width: 390, height: 900 });
   try {
