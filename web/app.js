@@ -1,14 +1,16 @@
 // The gyrodrift dashboard: loads logs, keeps the view's settings (and the URL) in sync, and
 // asks the wasm package for every number and every chart. No science here. Modules:
 // state.js (settings, URL), loading.js (files, worker), controls.js (list, forms),
-// charts.js (canvases, zoom), render.js (the active view), views/*.js (one per view),
-// touchtip.js (the tooltips, on a touch screen).
+// charts.js (canvases, legends, exports), chart-input.js (zoom, pan, cursor),
+// render.js (the active view), views/*.js (one per view), touchtip.js (the tooltips, on a
+// touch screen).
 import init, * as gd from "./pkg/gyrodrift.js";
 import initPlot from "./pkg/plot/gyrodrift_plot.js";
 import { $, state, defaults, readUrl, urlHash, hdrOptions, PARAMS, GYRO_PARAMS, VIEW_KIND } from "./state.js";
 import { loadFiles, loadSamples } from "./loading.js";
 import { buildParams, syncParams, logFor } from "./controls.js";
-import { attachTimeInteraction, csvOf, download, pngOf, timeChartsCsv } from "./charts.js";
+import { csvOf, download, pngOf, timeChartsCsv } from "./charts.js";
+import { attachTimeInteraction } from "./chart-input.js";
 import { render, scheduleRender, showError } from "./render.js";
 import { runTune, reportExports } from "./views/report.js";
 import { runBattery, addWorse } from "./views/robustness.js";
