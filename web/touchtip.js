@@ -10,11 +10,17 @@ export function setupTouchTips() {
   tip.hidden = true;
   document.body.append(tip);
   const hide = () => { tip.hidden = true; };
-  document.addEventListener("pointerdown", (ev) => { if (ev.target !== tip) hide(); }, true);
+  // The click's own pointerType where the browser gives one, else its pointerdown's (a
+  // click is not a PointerEvent everywhere).
+  let last = "mouse";
+  document.addEventListener("pointerdown", (ev) => {
+    last = ev.pointerType;
+    if (ev.target !== tip) hide();
+  }, true);
   document.addEventListener("scroll", hide, true);
   document.addEventListener("keydown", (ev) => { if (ev.key === "Escape") hide(); });
   document.addEventListener("click", (ev) => {
-    if (ev.pointerType !== "touch") return;
+    if ((ev.pointerType || last) !== "touch") return;
     const el = ev.target instanceof Element ? ev.target.closest("[title]") : null;
     if (!el || !el.title || ev.target.closest(CONTROLS)) return;
     tip.textContent = el.title;
@@ -22,5 +28,8 @@ export function setupTouchTips() {
     tip.style.left = `${Math.max(4, Math.min(r.left, window.innerWidth - 4 - Math.min(320, window.innerWidth - 8)))}px`;
     tip.style.top = `${r.bottom + 4}px`;
     tip.hidden = false;
+    // Above the element where it would run off the bottom of the screen.
+    const h = tip.offsetHeight;
+    if (r.bottom + 4 + h > window.innerHeight) tip.style.top = `${Math.max(4, r.top - 4 - h)}px`;
   });
 }

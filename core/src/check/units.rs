@@ -117,10 +117,10 @@ fn windows(log: &DriveLog, eps0: Option<f64>, in_radians: bool, steady_ends: boo
 
 /// The ratio of the integrated gyro's heading change to the reference's over the largest
 /// turns (median) and its standard error (from the interquartile range), or None without
-/// turns. With `road`, each turn first loses the bias the
-/// windows the reference says are straight (2 deg) show within 300 s of it (their median
-/// rate, if 3 or more: a turn-on bias without a lead-in, a warm-up after one); without,
-/// the gyro less the lead-in's bias alone.
+/// turns. With `road`, each turn first loses the bias the windows the reference says are
+/// straight (2 deg) show within 300 s of it (their median rate, if 3 or more: a turn-on
+/// bias without a lead-in, a warm-up after one); without, the gyro less the lead-in's bias
+/// alone.
 fn turn_ratio(windows: &[Window], road: bool) -> Option<(f64, f64)> {
     let big = windows.iter().map(|w| w.ref_deg.abs()).fold(0.0, f64::max);
     // Only clear turns (20 deg or more in a window) say anything about scale and sign.
