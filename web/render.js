@@ -1,6 +1,6 @@
 // Rendering: one animation frame per burst of input, the active view, its errors.
 import { $, state, writeUrl } from "./state.js";
-import { renderList } from "./controls.js";
+import { renderList, logFor } from "./controls.js";
 import { renderHdr } from "./views/hdr.js";
 import { renderTrack } from "./views/track.js";
 import { renderGyro } from "./views/gyrodometry.js";
@@ -25,6 +25,20 @@ export function showError(msg) {
   p.textContent = msg || "";
 }
 
+/** A check error in the plotted log, said above the view with its fix: the CLI refuses such
+ * a log (its figures would be absurd, e.g. a clockwise gyro's), the page shows them
+ * flagged. */
+function showCheck(e) {
+  const errors = e?.findings?.filter((f) => f.severity === "error") ?? [];
+  const box = $("view-check");
+  box.hidden = !errors.length;
+  box.replaceChildren();
+  if (!errors.length) return;
+  const head = document.createElement("b");
+  head.textContent = `⚠ ${e.name}: check found an error, so these figures are not to be trusted (the CLI refuses the log until it is fixed)`;
+  box.append(head, ...errors.map((f) => Object.assign(document.createElement("p"), { textContent: `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}` })));
+}
+
 export function render() {
   for (const b of document.querySelectorAll("#tabs button")) {
     const on = b.dataset.view === state.view;
@@ -39,6 +53,7 @@ export function render() {
   }
   writeUrl();
   showError("");
+  showCheck(state.view === "report" ? null : logFor(state.view));
   const t0 = performance.now();
   try {
     ({ hdr: renderHdr, track: renderTrack, gyrodometry: renderGyro, calibration: renderCal, allan: renderAllan, report: renderReport })[state.view]();

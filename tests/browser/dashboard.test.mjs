@@ -317,6 +317,23 @@ test("a log with a clockwise gyro gets a check badge naming the fix; the shipped
   await page.screenshot({ path: join(ARTIFACTS, "check-badge.png") });
   await badge.locator("summary").click();
   assert.equal(await said.isVisible(), false);
+  // Above the view too, while it plots that log: its figures are not to be trusted.
+  const banner = page.locator("#view-check");
+  assert.equal(await banner.isVisible(), true);
+  assert.match(await banner.innerText(), /City CW: check found an error[\s\S]*fix: yaw_rate\.positive = "cw"/);
+  await page.locator("#logs li", { hasText: "City 1" }).first().locator("button.pick").click();
+  assert.equal(await banner.isVisible(), false);
+  await page.locator("#logs li", { hasText: "City CW" }).locator("button.pick").click();
+  assert.equal(await banner.isVisible(), true);
+  // The Report leaves it out of its tables and means, as the CLI's report refuses it.
+  await page.locator("#tabs button[data-view=report]").click();
+  await page.locator("#compare-table table").waitFor();
+  assert.equal(await page.locator("#compare-table tr[data-drive='City CW']").count(), 0);
+  assert.ok((await page.locator("#compare-table tr[data-drive='City 1']").count()) > 0);
+  assert.match(await page.locator("#report-unscored").innerText(), /Left out \(check found an error.*\): City CW\./);
+  assert.equal(await banner.isVisible(), false);
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#logs li", { hasText: "City CW" }).locator("button.remove").click();
   // Information (`check`'s info findings) gets a quiet note of its own: City 1 without its
   // speed column and its lead-in has nothing that shows when it stands.
   const bare = join(dir, "city-bare.csv");

@@ -7,9 +7,14 @@ import { showError, render } from "../render.js";
 import { inWorker, driveColumns } from "../loading.js";
 import { fillWorse } from "./robustness.js";
 
-/** The loaded drives with a reference heading: the ones the Report view scores. */
+/** A log `check` found an error in (time in ms, a radian heading, a rad/s or clockwise
+ * gyro): the CLI refuses it, as its figures would be absurd. */
+const refused = (e) => e.findings?.some((f) => f.severity === "error");
+
+/** The loaded drives with a reference heading and no check error: the ones the Report view
+ * scores, as the CLI's report would. */
 export function scoredDrives() {
-  return state.entries.filter((e) => !e.error && e.scored);
+  return state.entries.filter((e) => !e.error && e.scored && !refused(e));
 }
 
 /** The loaded drives the Report view tabulates. */
@@ -38,9 +43,14 @@ export function reportExports(download) {
 }
 
 export function renderReport() {
-  const unscored = state.entries.filter((e) => !e.error && e.kind === "drive" && !e.scored).map((e) => e.name);
-  $("report-unscored").hidden = !unscored.length;
-  $("report-unscored").textContent = `Not scored (no reference heading): ${unscored.join(", ")}.`;
+  const loaded = state.entries.filter((e) => !e.error && e.kind === "drive");
+  const unscored = loaded.filter((e) => !e.scored).map((e) => e.name);
+  const left = loaded.filter((e) => e.scored && refused(e)).map((e) => e.name);
+  $("report-unscored").hidden = !unscored.length && !left.length;
+  $("report-unscored").textContent = [
+    unscored.length ? `Not scored (no reference heading): ${unscored.join(", ")}.` : "",
+    left.length ? `Left out (check found an error, whose fix its badge says; the CLI refuses such a log): ${left.join(", ")}.` : "",
+  ].filter(Boolean).join(" ");
   const drives = reportDrives();
   if (!drives.length) return showError("Load drive logs for the report.");
   const rep = gd.report(drives, hdrOptions());
