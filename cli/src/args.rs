@@ -43,6 +43,10 @@ pub(crate) struct BatchArgs {
     /// scored, a drive per recording (a file, or a folder of several), instead of failing.
     #[arg(long, requires = "dir")]
     pub(crate) import: bool,
+    /// With --dir: exit 1 when a file could not be scored (after every row is written and
+    /// the summary printed), as a CI job wants; without it a fleet job keeps exit 0.
+    #[arg(long, requires = "dir")]
+    pub(crate) fail_on_error: bool,
 }
 
 #[derive(Subcommand)]

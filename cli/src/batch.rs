@@ -43,6 +43,8 @@ pub struct Batch<'a> {
     pub jobs: usize,
     pub out: Option<&'a Path>,
     pub import: bool,
+    /// Exit 1 when a file could not be scored (`--fail-on-error`).
+    pub fail_on_error: bool,
 }
 
 /// Scores the files on `jobs` threads (0 = one per core), in file order.
@@ -86,7 +88,8 @@ fn write_rows(out: &Path, rows: &[DriveRow]) -> Result<(), Failure> {
 
 /// `report --dir`: scores every log under `dir`; prints the summary (Markdown or JSON) and
 /// each error row's message on stderr; writes the rows to `out`. Files that failed are rows,
-/// not a failed command (exit 0): a fleet job keeps what it could score.
+/// not a failed command (exit 0): a fleet job keeps what it could score; with
+/// `fail_on_error` (a CI job) they make it exit 1 once everything is written.
 pub fn run(dir: &Path, batch: Batch, opts: &FleetOptions, json: bool) -> Result<(), Failure> {
     let files = collect_logs(dir)?;
     let mut rows = score_files(&files, batch.jobs, opts)?;
@@ -112,8 +115,14 @@ pub fn run(dir: &Path, batch: Batch, opts: &FleetOptions, json: bool) -> Result<
     }
     let summary = fleet::summarize(&rows);
     if json {
-        print_json(&summary)
+        print_json(&summary)?;
     } else {
-        write_stdout(&summary.to_markdown())
+        write_stdout(&summary.to_markdown())?;
     }
+    let failed = rows.iter().filter(|r| r.error.is_some()).count();
+    if batch.fail_on_error && failed > 0 {
+        eprintln!("{failed} of {} rows are errors (--fail-on-error)", rows.len());
+        std::process::exit(1);
+    }
+    Ok(())
 }

@@ -45,6 +45,23 @@ fn a_folder_is_scored_with_a_bad_file_as_an_error_row() {
     assert!(lines[3].contains("Highway 3"), "{}", lines[3]);
 }
 
+/// A CI job's exit: 1 with --fail-on-error when a file is an error row (the rows written
+/// all the same), 0 when every file is scored; a fleet job's 0 without the flag (above).
+#[test]
+fn fail_on_error_exits_1_after_writing_every_row() {
+    let dir = fleet_dir("fleet-fail");
+    let csv = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fleet-fail-rows.csv");
+    let o = report_dir(&dir, &["--fail-on-error", "--out", csv.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("1 of 3 rows are errors (--fail-on-error)"), "{stderr}");
+    assert!(String::from_utf8_lossy(&o.stdout).starts_with("3 files, 2 drives scored"));
+    assert_eq!(std::fs::read_to_string(&csv).unwrap().lines().count(), 4);
+    std::fs::remove_file(dir.join("day2/broken.csv")).unwrap();
+    let o = report_dir(&dir, &["--fail-on-error"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 #[test]
 fn one_job_and_two_give_the_same_rows_as_json_and_parquet() {
     let dir = fleet_dir("fleet-b");

@@ -109,6 +109,10 @@ def test_the_command_line(folder, tmp_path, capsys):
     assert captured.out.startswith("20 files, 19 drives scored") and "broken.csv: line 3" in captured.err
     assert fleet.main([str(tmp_path / "nothing-here" / "*.csv")]) == 2
     assert "no file matches" in capsys.readouterr().err
+    # A CI job: exit 1 when a file is an error row, the rows written all the same.
+    assert fleet.main([str(folder), "--out", str(tmp_path / "r2.parquet"), "--workers", "1", "--fail-on-error"]) == 1
+    assert "1 of 20 rows are errors (--fail-on-error)" in capsys.readouterr().err
+    assert len(pd.read_parquet(tmp_path / "r2.parquet")) == 20
 
 
 def test_options_as_the_command_line_documents_them(folder):
