@@ -71,7 +71,7 @@ export function timeRange(t) {
   return state.zoom || [t[0], t[t.length - 1]];
 }
 
-// ---------- interaction on time charts ----------
+// ---------- exports ----------
 /** Every shown series of a chart as CSV, as plotted (core's export through the plot module). */
 export function csvOf(id) {
   return state.specs[id] ? plot.chartCsv(state.specs[id]) : "";
