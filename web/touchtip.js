@@ -22,7 +22,8 @@ export function setupTouchTips() {
   document.addEventListener("click", (ev) => {
     if ((ev.pointerType || last) !== "touch") return;
     const el = ev.target instanceof Element ? ev.target.closest("[title]") : null;
-    if (!el || !el.title || ev.target.closest(CONTROLS)) return;
+    // (A note that opens, `details`, shows its text itself.)
+    if (!el || !el.title || el.tagName === "DETAILS" || ev.target.closest(CONTROLS)) return;
     tip.textContent = el.title;
     const r = el.getBoundingClientRect();
     tip.style.left = `${Math.max(4, Math.min(r.left, window.innerWidth - 4 - Math.min(320, window.innerWidth - 8)))}px`;
