@@ -15,6 +15,7 @@ import { render, scheduleRender, showError } from "./render.js";
 import { runTune, reportExports } from "./views/report.js";
 import { runBattery, addWorse } from "./views/robustness.js";
 import { setupTouchTips } from "./touchtip.js";
+import { attachTrackInteraction } from "./views/track.js";
 
 // ---------- start ----------
 async function main() {
@@ -72,6 +73,7 @@ function setupTabs() {
     b.focus();
   });
   for (const id of ["c-heading", "c-error", "c-rate", "c-columns", "c-gyrodometry"]) attachTimeInteraction(id);
+  attachTrackInteraction();
   window.addEventListener("resize", scheduleRender);
 }
 

@@ -40,6 +40,7 @@ export const state = {
   columns: null, // log columns plotted on the time axis (null: the view's default)
   overlay: new Set(), // names of drive logs overlaid on the HDR charts
   yzoom: {}, // per chart: a y range the user zoomed to (a tall drag box, Alt + wheel)
+  trackView: null, // the Track view zoomed and panned: { name (of the log), xc, yc (m), mpp (m per canvas px) }
   cursor: null,
   layouts: {},
   hidden: {}, // per chart: the series names the user has hidden

@@ -104,6 +104,47 @@ pub fn path(x: &[f64], y: &[f64], min_step: f64) -> (Vec<f64>, Vec<f64>) {
     (ox, oy)
 }
 
+/// A polyline clipped to the rectangle [x0, x1] x [y0, y1] (a zoomed plot): the runs of it
+/// inside, each crossing of the border cut where it crosses (Liang-Barsky), so a line that
+/// leaves the plot ends at its edge instead of being drawn along it.
+pub fn clip_polyline(pts: &[(f64, f64)], (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+    let mut runs: Vec<Vec<(f64, f64)>> = Vec::new();
+    // Whether the last run ends at the last point, inside.
+    let mut open = false;
+    if let [p] = pts {
+        if (x0..=x1).contains(&p.0) && (y0..=y1).contains(&p.1) {
+            runs.push(vec![*p]);
+        }
+    }
+    for w in pts.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        // The segment a + t (b - a), t in [0, 1], within each of the four borders.
+        let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+        let mut visible = dx.is_finite() && dy.is_finite();
+        for (p, q) in [(-dx, a.0 - x0), (dx, x1 - a.0), (-dy, a.1 - y0), (dy, y1 - a.1)] {
+            if p == 0.0 {
+                visible &= q >= 0.0;
+            } else if p < 0.0 {
+                t0 = t0.max(q / p);
+            } else {
+                t1 = t1.min(q / p);
+            }
+        }
+        if !visible || t0 > t1 {
+            open = false;
+            continue;
+        }
+        let at = |t: f64| (a.0 + t * dx, a.1 + t * dy);
+        match runs.last_mut() {
+            Some(run) if open && t0 == 0.0 => run.push(at(t1)),
+            _ => runs.push(vec![at(t0), at(t1)]),
+        }
+        open = t1 == 1.0;
+    }
+    runs
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -168,5 +209,27 @@ mod tests {
         assert_eq!(path(&x, &y, 0.0).0.len(), 11);
         assert_eq!(path(&[0.0, f64::NAN, 2.0], &[0.0, 0.0, 0.0], 1.0).0, vec![0.0, 2.0]);
         assert!(path(&[], &[], 1.0).0.is_empty());
+    }
+
+    /// Hand-worked on the unit square: in from the left, up and out through the top, along
+    /// outside, back in through the right edge.
+    #[test]
+    fn a_polyline_is_cut_where_it_crosses_the_border() {
+        let pts = [(-1.0, 0.5), (0.5, 0.5), (0.5, 2.0), (2.0, 2.0), (0.5, 0.25)];
+        let runs = clip_polyline(&pts, (0.0, 1.0), (0.0, 1.0));
+        assert_eq!(runs.len(), 2, "{runs:?}");
+        assert_eq!(runs[0], vec![(0.0, 0.5), (0.5, 0.5), (0.5, 1.0)]);
+        // (2, 2) -> (0.5, 0.25) enters through x = 1 at t = 2/3: y = 2 - 1.75 * 2/3.
+        let (x, y) = runs[1][0];
+        assert!((x - 1.0).abs() < 1e-12 && (y - (2.0 - 1.75 * 2.0 / 3.0)).abs() < 1e-12, "{runs:?}");
+        assert_eq!(runs[1][1], (0.5, 0.25));
+        // Wholly inside: one run, the points as they are; wholly outside: none.
+        assert_eq!(clip_polyline(&[(0.1, 0.1), (0.9, 0.9)], (0.0, 1.0), (0.0, 1.0)), vec![vec![(0.1, 0.1), (0.9, 0.9)]]);
+        assert!(clip_polyline(&[(2.0, 0.1), (3.0, 0.9)], (0.0, 1.0), (0.0, 1.0)).is_empty());
+        // Through both sides of the square in one segment.
+        assert_eq!(clip_polyline(&[(-1.0, 0.5), (2.0, 0.5)], (0.0, 1.0), (0.0, 1.0)), vec![vec![(0.0, 0.5), (1.0, 0.5)]]);
+        // A NaN point breaks the line.
+        assert_eq!(clip_polyline(&[(0.1, 0.1), (f64::NAN, 0.5), (0.9, 0.9)], (0.0, 1.0), (0.0, 1.0)).len(), 0);
+        assert_eq!(clip_polyline(&[(0.5, 0.5)], (0.0, 1.0), (0.0, 1.0)), vec![vec![(0.5, 0.5)]]);
     }
 }

@@ -648,6 +648,40 @@ test("the Track view has equal metres per pixel across and up, and the recommend
     assert.ok(Math.abs(across / up - 1) < 0.01, `width ${width}: ${across} m/px across, ${up} m/px up`);
   }
   await page.setViewportSize({ width: 1400, height: 1000 });
+  await page.waitForTimeout(200);
+  // The wheel zooms about the cursor (the metres under it stay under it), a drag pans, a
+  // double click resets; the axes stay equal.
+  const layout = () => page.evaluate(() => window.gyrodrift.state.layouts["c-track"]);
+  const canvas = page.locator("#c-track");
+  const box = await canvas.boundingBox();
+  const L0 = await layout();
+  const kc = (await canvas.evaluate((c) => c.width)) / box.width; // canvas pixels per CSS pixel
+  // The metres under CSS pixel (px, py) of the canvas in layout L.
+  const under = (L, px, py) => [
+    L.x_min + (px * kc - L.left) * ((L.x_max - L.x_min) / (L.right - L.left)),
+    L.y_max - (py * kc - L.top) * ((L.y_max - L.y_min) / (L.bottom - L.top)),
+  ];
+  const [px, py] = [box.width * 0.3, box.height * 0.4];
+  const before = under(L0, px, py);
+  await page.mouse.move(box.x + px, box.y + py);
+  await page.mouse.wheel(0, -100);
+  await page.waitForFunction((w) => window.gyrodrift.state.layouts["c-track"].x_max - window.gyrodrift.state.layouts["c-track"].x_min < w, L0.x_max - L0.x_min);
+  const L1 = await layout();
+  assert.ok(Math.abs((L1.x_max - L1.x_min) / (L0.x_max - L0.x_min) - 0.8) < 1e-6, "one wheel step zooms in by 0.8");
+  const after = under(L1, px, py);
+  assert.ok(Math.hypot(after[0] - before[0], after[1] - before[1]) < 2 * (L0.x_max - L0.x_min) / (L0.right - L0.left), `${before} -> ${after}`);
+  const across = (L1.x_max - L1.x_min) / (L1.right - L1.left), up = (L1.y_max - L1.y_min) / (L1.bottom - L1.top);
+  assert.ok(Math.abs(across / up - 1) < 0.01);
+  await page.mouse.down();
+  await page.mouse.move(box.x + px + 100, box.y + py, { steps: 4 });
+  await page.mouse.up();
+  await page.waitForTimeout(100);
+  const L2 = await layout();
+  assert.ok(L2.x_min < L1.x_min && Math.abs(L2.x_max - L2.x_min - (L1.x_max - L1.x_min)) < 1e-6, "a drag to the right pans west");
+  await canvas.dblclick();
+  await page.waitForFunction(() => window.gyrodrift.state.trackView === null);
+  await page.waitForTimeout(100);
+  assert.ok(Math.abs((await layout()).x_max - L0.x_max) < 1e-6, "a double click shows the whole track again");
   await page.locator("#tabs button[data-view=hdr]").click();
 });
 
@@ -1046,6 +1080,22 @@ test("on a touch screen a time chart pans with one finger, pinches with two and 
       await phone.waitForTimeout(60);
     }
     await phone.waitForFunction(() => window.gyrodrift.state.zoom === null);
+    // The Track view: two fingers spread to three times their distance zoom in threefold.
+    await phone.locator("#tabs button[data-view=track]").tap();
+    await phone.waitForFunction(() => window.gyrodrift.state.layouts["c-track"]);
+    const track = phone.locator("#c-track");
+    await track.scrollIntoViewIfNeeded();
+    const tb = await track.boundingBox();
+    const ty = tb.y + tb.height / 2;
+    const mpp = () => phone.evaluate(() => { const L = window.gyrodrift.state.layouts["c-track"]; return (L.x_max - L.x_min) / (L.right - L.left); });
+    const m0 = await mpp();
+    const two = (type, d) => cdp.send("Input.dispatchTouchEvent", { type, touchPoints: type === "touchEnd" ? [] : [{ x: tb.x + tb.width / 2 - d, y: ty, id: 0 }, { x: tb.x + tb.width / 2 + d, y: ty, id: 1 }] });
+    await two("touchStart", 30);
+    for (const d of [45, 60, 75, 90]) await two("touchMove", d);
+    await two("touchEnd", 0);
+    await phone.waitForTimeout(200);
+    assert.ok(Math.abs((await mpp()) / m0 - 1 / 3) < 0.05, `pinched the track to ${(await mpp()) / m0} of its scale`);
+    await phone.screenshot({ path: join(ARTIFACTS, "phone-track-pinched.png") });
   } finally {
     await browser.close();
   }

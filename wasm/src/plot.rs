@@ -356,13 +356,14 @@ fn draw_shade(chart: &mut Chart, sh: &Shade, sc: Scale, x: (f64, f64), cy: (f64,
     Ok(())
 }
 
-/// One series, decimated, as a line or as square markers, with its legend entry.
+/// One series, decimated, as a line or as square markers, with its legend entry; what falls
+/// outside the plot (cx, cy: its ranges as drawn) is cut at its edge, not drawn along it.
 fn draw_line(
     chart: &mut Chart,
     s: &Series,
     (dx, dy): (&[f64], &[f64]),
     sc: Scale,
-    cx: (f64, f64),
+    (cx, cy): ((f64, f64), (f64, f64)),
     px: impl Fn(f64) -> i32,
 ) -> DrawResult<()> {
     let color = parse_color(&s.color);
@@ -377,11 +378,11 @@ fn draw_line(
     let drawn = if s.points {
         // Square markers: a filled rect is far cheaper on a canvas than an arc.
         let r = px(1.5);
-        chart.draw_series(
-            pts.iter().filter(|(x, _)| *x >= cx.0 && *x <= cx.1).map(|&p| EmptyElement::at(p) + Rectangle::new([(-r, -r), (r, r)], style)),
-        )?
+        let inside = |&&(x, y): &&(f64, f64)| x >= cx.0 && x <= cx.1 && y >= cy.0.min(cy.1) && y <= cy.0.max(cy.1);
+        chart.draw_series(pts.iter().filter(inside).map(|&p| EmptyElement::at(p) + Rectangle::new([(-r, -r), (r, r)], style)))?
     } else {
-        chart.draw_series(LineSeries::new(pts, style))?
+        let runs = gyrodrift::decimate::clip_polyline(&pts, cx, (cy.0.min(cy.1), cy.0.max(cy.1)));
+        chart.draw_series(runs.into_iter().map(|run| PathElement::new(run, style)))?
     };
     drawn.label(s.name.as_str()).legend(move |(x, y)| {
         PathElement::new(vec![(x, y), (x + 16, y)], ShapeStyle { color: color.to_rgba(), filled: true, stroke_width: 2 })
@@ -434,7 +435,7 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
         draw_shade(&mut chart, sh, sc, (x0, x1), (cy0, cy1), columns)?;
     }
     for (s, dx, dy) in &decimated {
-        draw_line(&mut chart, s, (dx, dy), sc, (cx0, cx1), px)?;
+        draw_line(&mut chart, s, (dx, dy), sc, ((cx0, cx1), (cy0, cy1)), px)?;
     }
     if let Some(c) = spec.cursor_x {
         if c >= x0 && c <= x1 {
