@@ -81,7 +81,13 @@ function buildForm(sniffed, body) {
   const refSense = select("map-ref-sense", [["cw", "clockwise from north (GPS course)"], ["ccw", "counter-clockwise"]], "cw", "reference sign");
   const latSel = select("map-lat", cols, lat, "latitude column");
   const lonSel = select("map-lon", cols, guess(sniffed, /lon/i), "longitude column");
-  const refRow = row("heading column", ref, refUnit, refSense);
+  // A GPS course means nothing at a standstill: with a speed, headings below this are dropped.
+  const minSpeed = document.createElement("input");
+  Object.assign(minSpeed, { id: "map-ref-min-speed", type: "number", min: 0, max: 50, step: 0.5, value: 5 });
+  minSpeed.setAttribute("aria-label", "reference heading only above this speed, m/s (with a speed column)");
+  minSpeed.title = "reference heading only above this speed, m/s (with a speed column): a GPS course means nothing at a standstill";
+  const above = Object.assign(document.createElement("span"), { textContent: "above (m/s)", className: "map-note" });
+  const refRow = row("heading column", ref, refUnit, refSense, above, minSpeed);
   const posRow = row("latitude, longitude", latSel, lonSel);
   body.append(row("reference", refMode), refRow, posRow);
 
@@ -94,7 +100,7 @@ function buildForm(sniffed, body) {
   lead.setAttribute("aria-label", "stationary lead-in, s");
   body.append(row("speed (optional)", sp, spUnit), row("stationary lead-in, s", lead));
 
-  return { times, mode, rate, axes, acc, rateUnit, sense, oneRow, threeRow, refMode, ref, refUnit, refSense, latSel, lonSel, refRow, posRow, sp, spUnit, lead };
+  return { times, mode, rate, axes, acc, rateUnit, sense, oneRow, threeRow, refMode, ref, refUnit, refSense, minSpeed, latSel, lonSel, refRow, posRow, sp, spUnit, lead };
 }
 
 /** Shows the rows the chosen modes use. */
@@ -107,7 +113,7 @@ function showRows(f) {
 
 /** The recipe the form `f` says for `files`, or an error text. */
 function recipeOf(f, files, sniffed) {
-  const { times, mode, rate, axes, acc, rateUnit, sense, refMode, ref, refUnit, refSense, latSel, lonSel, sp, spUnit, lead } = f;
+  const { times, mode, rate, axes, acc, rateUnit, sense, refMode, ref, refUnit, refSense, minSpeed, latSel, lonSel, sp, spUnit, lead } = f;
   const used = new Set();
   const at = (v) => {
     const k = v.indexOf(":");
@@ -129,7 +135,8 @@ function recipeOf(f, files, sniffed) {
   if (refMode.value === "column" && ref.value) {
     const h = at(ref.value);
     r.heading = { source: "column", ...h, unit: refUnit.value, positive: refSense.value };
-    if (sp.value && at(sp.value).table === h.table) Object.assign(r.heading, { speed_column: at(sp.value).column, speed_unit: spUnit.value, min_speed_mps: 5 });
+    const min = Number(minSpeed.value);
+    if (sp.value && at(sp.value).table === h.table) Object.assign(r.heading, { speed_column: at(sp.value).column, speed_unit: spUnit.value, min_speed_mps: Number.isFinite(min) && min >= 0 ? min : 5 });
   } else if (refMode.value === "positions" && latSel.value && lonSel.value) {
     const p = at(latSel.value);
     r.positions = { table: p.table, kind: "latlon", columns: [p.column, at(lonSel.value).column] };
@@ -151,16 +158,23 @@ function recipeOf(f, files, sniffed) {
 
 /**
  * Opens the panel for `files` ([{name, bytes}]) with `why` (the detection's error).
- * `importer(recipe)` imports in the worker: {data, detection} or {error}. Resolves with the
- * last good import {res, recipe}, or null when cancelled.
+ * `importer(recipe)` imports in the worker: {data, detection} or {error}. `preset` sets
+ * fields by id over the guesses ({"map-rate-sense": "cw"}: a check error's fix), `intro` says
+ * what the panel is for. Resolves with the last good import {res, recipe}, or null when
+ * cancelled.
  */
-export function openMapping(files, why, importer) {
+export function openMapping(files, why, importer, preset = {}, intro = "No preset fits these files. Say which column is what; the preview imports as you choose.") {
   const sniffed = files.map((f) => gd.sniffFile(f.name, f.bytes.subarray(0, 65536)));
   const dlg = $("mapping");
   $("mapping-why").textContent = why;
+  $("mapping-intro").textContent = intro;
   const body = $("mapping-fields");
   body.replaceChildren();
   const form = buildForm(sniffed, body);
+  for (const [id, value] of Object.entries(preset)) {
+    const el = body.querySelector(`#${id}`);
+    if (el) el.value = value;
+  }
   const recipe = () => recipeOf(form, files, sniffed);
 
   let last = null;
@@ -202,8 +216,10 @@ export function openMapping(files, why, importer) {
     $("mapping-preview").textContent = "updating…";
     timer = setTimeout(preview, 250);
   };
-  body.addEventListener("change", schedule);
-  body.addEventListener("input", schedule);
+  // Handlers replaced, not added: the panel is opened again and again, and a listener left
+  // from an earlier opening would preview its own files and enable Add.
+  body.onchange = schedule;
+  body.oninput = schedule;
   $("mapping-save").onclick = () => {
     const r = recipe();
     if (typeof r !== "string") saveRecipe(files[0].name, r);

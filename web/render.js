@@ -1,6 +1,7 @@
 // Rendering: one animation frame per burst of input, the active view, its errors.
 import { $, state, writeUrl } from "./state.js";
 import { renderList, logFor } from "./controls.js";
+import { canRemap, remap } from "./loading.js";
 import { renderHdr } from "./views/hdr.js";
 import { renderTrack } from "./views/track.js";
 import { renderGyro } from "./views/gyrodometry.js";
@@ -37,6 +38,11 @@ function showCheck(e) {
   const head = document.createElement("b");
   head.textContent = `⚠ ${e.name}: check found an error, so these figures are not to be trusted (the CLI refuses the log until it is fixed)`;
   box.append(head, ...errors.map((f) => Object.assign(document.createElement("p"), { textContent: `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}` })));
+  if (canRemap(e)) {
+    const fix = Object.assign(document.createElement("button"), { type: "button", id: "check-remap", textContent: "Open it with the fix in the column mapper…" });
+    fix.addEventListener("click", () => remap(e));
+    box.append(fix);
+  }
 }
 
 export function render() {

@@ -325,6 +325,23 @@ test("a log with a clockwise gyro gets a check badge naming the fix; the shipped
   assert.equal(await banner.isVisible(), false);
   await page.locator("#logs li", { hasText: "City CW" }).locator("button.pick").click();
   assert.equal(await banner.isVisible(), true);
+  // Its fix, filled in the column mapper: the preview, then a log of its own with City 1's
+  // numbers and no check error.
+  const e1 = await page.locator("#logs li", { hasText: "City 1" }).first().locator("button.pick").click().then(() => page.locator("#m-e-hdr").innerText());
+  await page.locator("#logs li", { hasText: "City CW" }).locator("button.pick").click();
+  await page.locator("#check-remap").click();
+  await page.locator("#mapping[open]").waitFor();
+  assert.equal(await page.locator("#map-rate-sense").inputValue(), "cw");
+  assert.equal(await page.locator("#map-lead").inputValue(), "20");
+  await page.waitForFunction(() => !document.getElementById("mapping-add").disabled);
+  await page.screenshot({ path: join(ARTIFACTS, "check-remap.png") });
+  await page.locator("#mapping-add").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City CW (fixed)"));
+  assert.equal(await banner.isVisible(), false);
+  assert.equal(await page.locator("#logs li", { hasText: "City CW (fixed)" }).locator(".check.error").count(), 0);
+  assert.equal(await page.locator("#m-e-hdr").innerText(), e1);
+  await page.locator("#logs li", { hasText: "City CW (fixed)" }).locator("button.remove").click();
+  await page.locator("#logs li", { hasText: "City CW" }).locator("button.pick").click();
   // The Report leaves it out of its tables and means, as the CLI's report refuses it.
   await page.locator("#tabs button[data-view=report]").click();
   await page.locator("#compare-table table").waitFor();
