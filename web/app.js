@@ -3,7 +3,7 @@
 // state.js (settings, URL), loading.js (files, worker), controls.js (list, forms),
 // charts.js (canvases, legends, exports), chart-input.js (zoom, pan, cursor),
 // render.js (the active view), views/*.js (one per view), touchtip.js (the tooltips, on a
-// touch screen).
+// touch screen), remap.js (a check error's fix in the column mapper).
 import init, * as gd from "./pkg/gyrodrift.js";
 import initPlot from "./pkg/plot/gyrodrift_plot.js";
 import { $, state, defaults, readUrl, urlHash, hdrOptions, PARAMS, GYRO_PARAMS, VIEW_KIND } from "./state.js";

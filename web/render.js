@@ -1,7 +1,7 @@
 // Rendering: one animation frame per burst of input, the active view, its errors.
 import { $, state, writeUrl } from "./state.js";
 import { renderList, logFor } from "./controls.js";
-import { canRemap, remap } from "./loading.js";
+import { canRemap, remap } from "./remap.js";
 import { renderHdr } from "./views/hdr.js";
 import { renderTrack } from "./views/track.js";
 import { renderGyro } from "./views/gyrodometry.js";

@@ -1,0 +1,46 @@
+// A log check found an error in, opened again in the column mapper with the fix filled in:
+// the user sees the preview and adds the fixed log beside the one opened.
+import * as gd from "./pkg/gyrodrift.js";
+import { state } from "./state.js";
+import { selectEntry } from "./controls.js";
+import { openMapping } from "./mapping.js";
+import { addParsed, inWorker } from "./loading.js";
+
+/** A check error the column mapper fixes: the form's field and the value that fixes it. */
+const MAPPER_FIX = {
+  gyro_sign: { "map-rate-sense": "cw" },
+  gyro_unit: { "map-rate-unit": "rad/s" },
+  heading_unit: { "map-ref-unit": "rad" },
+  time_unit: { "map-time-unit-0": "ms" },
+};
+
+/** Whether the column mapper can fix `entry`'s check errors (a v1 log opened from a file). */
+export function canRemap(entry) {
+  const errors = entry.findings?.filter((f) => f.severity === "error") ?? [];
+  return !!entry.source && errors.length > 0 && errors.every((f) => MAPPER_FIX[f.code]);
+}
+
+/** Re-imports `entry`'s file with the column mapper, the fix of each check error filled in
+ * (a clockwise gyro: right turn positive) and its lead-in, to look at in the preview and add
+ * as a log of its own; the log as opened stays until removed. */
+export async function remap(entry) {
+  const f = entry.source;
+  const bytes = { [f.name]: new Uint8Array(await f.arrayBuffer()) };
+  const importer = (r) => inWorker({ type: "import", files: bytes, recipe: r, title: "the check's fix" }, [], () => {});
+  const fixes = entry.findings.filter((x) => x.severity === "error");
+  const lead = entry.log.toColumns().meta.bias_s ?? gd.defaultBiasS();
+  // A v1 log's reference is counter-clockwise positive already and kept at any speed (not a
+  // raw GPS course).
+  const preset = Object.assign({ "map-lead": String(lead), "map-ref-sense": "ccw", "map-ref-min-speed": "0" }, ...fixes.map((x) => MAPPER_FIX[x.code]));
+  const why = `${entry.name}: ${fixes.map((x) => x.message).join("; ")}.`;
+  const intro = "The fix is filled in below: check that the gyro, integrated, now follows the reference in the preview, then add the log (the one opened stays until you remove it).";
+  const mapped = await openMapping([{ name: f.name, bytes: bytes[f.name] }], why, importer, preset, intro);
+  if (!mapped) return;
+  const added = addParsed(`${entry.name} (fixed)`, () => {
+    const log = gd.Log.fromColumns(mapped.res.data);
+    log.name = `${entry.name} (fixed)`;
+    return log;
+  });
+  if (!added.error) added.imported = { ...mapped.res.detection, recipe: mapped.recipe };
+  selectEntry(state.entries.indexOf(added));
+}
