@@ -1033,12 +1033,21 @@ test("axe-core finds no serious or critical accessibility violation in any view"
   assert.deepEqual(found, []);
 });
 
-test("on a touch screen a tap on a metric, a parameter's name or a note shows what its tooltip says", async () => {
+/** Runs `fn` on the page opened in a phone's touch context (390 px, touch events). */
+async function onPhone(fn) {
   const browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--no-sandbox", "--disable-gpu"] });
   try {
     const phone = await (await browser.newContext({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true })).newPage();
     await phone.goto(URL0);
     await phone.waitForFunction(() => document.body.dataset.ready === "1", null, { timeout: 30000 });
+    await fn(phone);
+  } finally {
+    await browser.close();
+  }
+}
+
+test("on a touch screen a tap on a metric, a parameter's name or a note shows what its tooltip says", async () => {
+  await onPhone(async (phone) => {
     const tip = phone.locator("#touch-tip");
     assert.equal(await tip.isVisible(), false);
     await phone.locator("#m-e-hdr").tap();
@@ -1054,17 +1063,11 @@ test("on a touch screen a tap on a metric, a parameter's name or a note shows wh
     assert.equal(await tip.isVisible(), false);
     await phone.locator("#tabs button[data-view=track]").tap();
     assert.equal(await tip.isVisible(), false);
-  } finally {
-    await browser.close();
-  }
+  });
 });
 
 test("on a touch screen a time chart pans with one finger, pinches with two and resets at a double tap", async () => {
-  const browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--no-sandbox", "--disable-gpu"] });
-  try {
-    const phone = await (await browser.newContext({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true })).newPage();
-    await phone.goto(URL0);
-    await phone.waitForFunction(() => document.body.dataset.ready === "1", null, { timeout: 30000 });
+  await onPhone(async (phone) => {
     const chart = phone.locator("#c-heading");
     await chart.scrollIntoViewIfNeeded();
     const b = await chart.boundingBox();
@@ -1113,9 +1116,7 @@ test("on a touch screen a time chart pans with one finger, pinches with two and 
     await phone.waitForTimeout(200);
     assert.ok(Math.abs((await mpp()) / m0 - 1 / 3) < 0.05, `pinched the track to ${(await mpp()) / m0} of its scale`);
     await phone.screenshot({ path: join(ARTIFACTS, "phone-track-pinched.png") });
-  } finally {
-    await browser.close();
-  }
+  });
 });
 
 test("at phone width the log list stacks above the views and the charts take the width", async () => {
