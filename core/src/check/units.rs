@@ -26,22 +26,20 @@ pub(super) fn units_and_sign(r: &mut CheckReport, log: &DriveLog, standing_s: Op
             None => (bias_s > 0.0).then(|| r.eps0_dps.unwrap_or(0.0)),
         };
         let near_one = |x: f64| (x.abs() - 1.0).abs() < 0.25;
-        let (k, se) = gyro_over_reference(log, eps0, false, true).unzip();
+        let gyro = gyro_heading(log, eps0);
+        let ratio = |in_radians, road| gyro.as_ref().and_then(|gy| ratio_of(log, gy, in_radians, road));
+        let (k, se) = ratio(false, true).unzip();
         // A lead-in nothing says stands (no speed, no wheels) may be a turn: if its bias
         // alone puts the gyro out with the reference and the straight road's rate does not,
         // the lead-in is wrong (the bias warning below), not the units.
-        if standing_s.is_none()
-            && eps0.is_some()
-            && k.is_some_and(near_one)
-            && !gyro_over_reference(log, eps0, false, false).is_some_and(|(k, _)| near_one(k))
-        {
+        if standing_s.is_none() && eps0.is_some() && k.is_some_and(near_one) && !ratio(false, false).is_some_and(|(k, _)| near_one(k)) {
             limit_dps = 0.0;
         }
         r.gyro_over_reference = k;
         // A reference that never leaves +-pi may be radians: see whether the gyro agrees.
         let within_pi =
             log.column(Column::RefHeadingDeg).is_some_and(|h| h.iter().all(|v| v.is_nan() || v.abs() <= std::f64::consts::PI + 1e-3));
-        let k_rad = if within_pi { gyro_over_reference(log, eps0, true, true).map(|(k, _)| k) } else { None };
+        let k_rad = if within_pi { ratio(true, true).map(|(k, _)| k) } else { None };
         match (k, k_rad) {
             (k, Some(kr)) if near_one(kr) && !k.is_some_and(near_one) => {
                 let cw = if kr < 0.0 { ", positive = \"cw\"" } else { "" };
@@ -67,28 +65,37 @@ struct Window {
     mid_s: f64,
 }
 
-/// The windows the gyro is compared with the reference on, the gyro less `eps0` (deg/s).
+/// The gyro's heading less `eps0` (deg/s) on the 1 Hz blocks, the paper's "without HDR":
+/// (block times, heading), or None without a gyro or with under 20 blocks. Computed once
+/// for every window below.
+fn gyro_heading(log: &DriveLog, eps0: Option<f64>) -> Option<(Vec<f64>, Vec<f64>)> {
+    let blocks = preprocess::block_average_1hz(log.time_s(), log.column(Column::GyroDps)?);
+    if blocks.len() < 20 {
+        return None;
+    }
+    let mut raw = crate::hdr::RawIntegrator::new(eps0.unwrap_or(0.0));
+    let psi = blocks.time_s.iter().zip(&blocks.rate_dps).map(|(&t, &w)| raw.update(t, w)).collect();
+    Some((blocks.time_s, psi))
+}
+
+/// The windows the gyro (its heading `gt`, `psi` from [`gyro_heading`]) is compared with
+/// the reference on.
 /// With `steady_ends`, 10-60 s windows that end where the reference heading is steady
 /// (within 1.5 deg over +-2 s), so a window holds whole turns: a lag between the gyro and
 /// the reference (1 s means stamped at their end, a late GPS course) cuts none. Without
 /// (a drive in circles is never steady), 10-30 s windows between any reference samples.
-/// None without a reference or blocks.
-fn windows(log: &DriveLog, eps0: Option<f64>, in_radians: bool, steady_ends: bool) -> Option<Vec<Window>> {
+/// None without a reference.
+fn windows(log: &DriveLog, (gt, psi): &(Vec<f64>, Vec<f64>), in_radians: bool, steady_ends: bool) -> Option<Vec<Window>> {
     let mut reference = Reference::from_log(log).ok()?;
     if in_radians {
         // Radians wrap at +-pi, which the degree unwrap leaves alone: convert, then unwrap.
         let deg: Vec<f64> = reference.heading_deg.iter().map(|h| h.to_degrees()).collect();
         reference.heading_deg = crate::metrics::unwrap_deg(&deg);
     }
-    let g = log.column(Column::GyroDps)?;
-    let blocks = preprocess::block_average_1hz(log.time_s(), g);
     let (rt, rh) = (&reference.time_s, &reference.heading_deg);
-    if blocks.len() < 20 || rt.len() < 10 {
+    if rt.len() < 10 {
         return None;
     }
-    // The paper's "without HDR" heading on the blocks.
-    let mut raw = crate::hdr::RawIntegrator::new(eps0.unwrap_or(0.0));
-    let psi: Vec<f64> = blocks.time_s.iter().zip(&blocks.rate_dps).map(|(&t, &w)| raw.update(t, w)).collect();
     let (first, last) = (*rt.first()?, *rt.last()?);
     let steady = |t: f64| !steady_ends || (value_at(rt, rh, (t + 2.0).min(last)) - value_at(rt, rh, (t - 2.0).max(first))).abs() < 1.5;
     let max_s = if steady_ends { 60.0 } else { 30.0 };
@@ -104,7 +111,7 @@ fn windows(log: &DriveLog, eps0: Option<f64>, in_radians: bool, steady_ends: boo
             if dt < 10.0 {
                 continue;
             }
-            let gyro_deg = value_at(&blocks.time_s, &psi, t) - value_at(&blocks.time_s, &psi, t0);
+            let gyro_deg = value_at(gt, psi, t) - value_at(gt, psi, t0);
             let ref_deg = h - h0;
             if dt <= max_s && gyro_deg.is_finite() && ref_deg.is_finite() {
                 out.push(Window { gyro_deg, ref_deg, dt_s: dt, mid_s: 0.5 * (t + t0) });
@@ -143,9 +150,16 @@ fn turn_ratio(windows: &[Window], road: bool) -> Option<(f64, f64)> {
     (n >= 3.0).then(|| (q(0.5), 0.929 * (q(0.75) - q(0.25)) / n.sqrt()))
 }
 
-/// [`turn_ratio`] on the windows with steady ends, else on any (a drive in circles).
+/// [`turn_ratio`] on the windows with steady ends, else on any (a drive in circles), the
+/// gyro's heading `gyro` from [`gyro_heading`].
+fn ratio_of(log: &DriveLog, gyro: &(Vec<f64>, Vec<f64>), in_radians: bool, road: bool) -> Option<(f64, f64)> {
+    [true, false].into_iter().find_map(|steady| turn_ratio(&windows(log, gyro, in_radians, steady)?, road))
+}
+
+/// The ratio and its standard error from the log alone (the tests' entry).
+#[cfg(test)]
 pub(super) fn gyro_over_reference(log: &DriveLog, eps0: Option<f64>, in_radians: bool, road: bool) -> Option<(f64, f64)> {
-    [true, false].into_iter().find_map(|steady| turn_ratio(&windows(log, eps0, in_radians, steady)?, road))
+    ratio_of(log, &gyro_heading(log, eps0)?, in_radians, road)
 }
 
 /// What a gyro-over-reference ratio (standard error `se`) says about units and sign.
