@@ -1,7 +1,7 @@
 // The gyrodrift dashboard: loads logs, keeps the view's settings (and the URL) in sync, and
 // asks the wasm package for every number and every chart. No science here. Modules:
 // state.js (settings, URL), loading.js (files, worker), controls.js (list, forms),
-// charts.js (canvases, legends, exports), chart-input.js (zoom, pan, cursor),
+// charts.js (canvases, legends, exports), chart-input.js (zoom, pan, cursor, the track too),
 // render.js (the active view), views/*.js (one per view), touchtip.js (the tooltips, on a
 // touch screen), remap.js (a check error's fix in the column mapper).
 import init, * as gd from "./pkg/gyrodrift.js";
@@ -10,12 +10,11 @@ import { $, state, defaults, readUrl, urlHash, hdrOptions, PARAMS, GYRO_PARAMS, 
 import { loadFiles, loadSamples } from "./loading.js";
 import { buildParams, syncParams, logFor } from "./controls.js";
 import { csvOf, download, pngOf, timeChartsCsv } from "./charts.js";
-import { attachTimeInteraction } from "./chart-input.js";
+import { attachTimeInteraction, attachTrackInteraction } from "./chart-input.js";
 import { render, scheduleRender, showError } from "./render.js";
 import { runTune, reportExports } from "./views/report.js";
 import { runBattery, addWorse } from "./views/robustness.js";
 import { setupTouchTips } from "./touchtip.js";
-import { attachTrackInteraction } from "./views/track.js";
 
 // ---------- start ----------
 async function main() {

@@ -1,9 +1,11 @@
-// The time charts' input: the tooltip at the cursor, zoom and pan by mouse (rubber band,
-// Shift+drag, wheel), keys and touch (pan, pinch). Every time chart shares state.zoom.
+// The charts' input. The time charts: the tooltip at the cursor, zoom and pan by mouse
+// (rubber band, Shift+drag, wheel), keys and touch (pan, pinch), every one sharing
+// state.zoom. The Track view: zoom and pan on equal axes (state.trackView).
 import * as plot from "./pkg/plot/gyrodrift_plot.js";
 import * as gd from "./pkg/gyrodrift.js";
 import { $, esc, state } from "./state.js";
 import { scheduleRender } from "./render.js";
+import { logFor } from "./controls.js";
 
 /** The tooltip at the cursor: the time and every shown series' value there (core's
  * valueAt, linear between samples), the shaded state, in the chart's colours. */
@@ -116,52 +118,60 @@ export function attachTimeInteraction(id) {
   });
 }
 
+/** The touch pointers on canvas `c`, each at its [offsetX, offsetY]: `start(at)` when a finger
+ * goes down or up (a gesture goes on from where the fingers are), `move(at)` as they move. */
+function touches(c, start, move) {
+  const at = new Map();
+  c.addEventListener("pointerdown", (ev) => {
+    if (ev.pointerType !== "touch") return;
+    at.set(ev.pointerId, [ev.offsetX, ev.offsetY]);
+    start(at);
+  });
+  c.addEventListener("pointermove", (ev) => {
+    if (ev.pointerType !== "touch" || !at.has(ev.pointerId)) return;
+    at.set(ev.pointerId, [ev.offsetX, ev.offsetY]);
+    move(at);
+  });
+  const lift = (ev) => {
+    if (at.delete(ev.pointerId)) start(at);
+  };
+  c.addEventListener("pointerup", lift);
+  c.addEventListener("pointercancel", lift);
+}
+
 /** Touch: one finger dragged sideways pans time, two fingers pinch it (the page still scrolls
  * up and down: touch-action pan-y); a tap shows the values there, as the mouse's hover does
  * (the browser's compatibility mouse events). */
 function attachTouch(c, id, scale) {
   c.style.touchAction = "pan-y";
-  const at = new Map(); // pointer id -> its offsetX now
-  let start = null; // the time range, the layout and the pointers' offsetX when the gesture (re)started
-  const restart = () => {
+  let start = null; // the time range, the layout and the fingers' offsetX when the gesture (re)started
+  touches(c, (at) => {
     const L = state.layouts[id];
-    start = L && at.size ? { range: state.zoom || [L.x_min, L.x_max], L, from: new Map(at) } : null;
-  };
-  c.addEventListener("pointerdown", (ev) => {
-    if (ev.pointerType !== "touch") return;
-    at.set(ev.pointerId, ev.offsetX);
-    restart();
-  });
-  c.addEventListener("pointermove", (ev) => {
-    if (ev.pointerType !== "touch" || !at.has(ev.pointerId) || !start) return;
-    at.set(ev.pointerId, ev.offsetX);
+    start = L && at.size ? { range: state.zoom || [L.x_min, L.x_max], L, from: new Map([...at].map(([k, p]) => [k, p[0]])) } : null;
+  }, (at) => {
+    if (!start) return;
     const { range: [r0, r1], L, from } = start;
     // Fraction of the plot's width at a CSS x, and the time it showed when the gesture began.
     const u = (px) => (px * scale() - L.left) / (L.right - L.left);
     const t = (px) => r0 + u(px) * (r1 - r0);
+    const x = (k) => at.get(k)[0];
     const ids = [...at.keys()].filter((k) => from.has(k)).slice(0, 2);
     if (ids.length === 1) {
       const [k] = ids;
-      const n0 = t(from.get(k)) - u(at.get(k)) * (r1 - r0);
+      const n0 = t(from.get(k)) - u(x(k)) * (r1 - r0);
       state.zoom = [n0, n0 + (r1 - r0)];
     } else if (ids.length === 2) {
       // The two times under the fingers stay under them.
       const [a, b] = ids;
-      const du = u(at.get(b)) - u(at.get(a));
+      const du = u(x(b)) - u(x(a));
       if (Math.abs(du) < 0.02) return;
       const span = (t(from.get(b)) - t(from.get(a))) / du;
       if (!(span > 0)) return;
-      const n0 = t(from.get(a)) - u(at.get(a)) * span;
+      const n0 = t(from.get(a)) - u(x(a)) * span;
       state.zoom = [n0, n0 + span];
     } else return;
     scheduleRender();
   });
-  const lift = (ev) => {
-    if (!at.delete(ev.pointerId)) return;
-    restart(); // a finger left: the others go on from where they are
-  };
-  c.addEventListener("pointerup", lift);
-  c.addEventListener("pointercancel", lift);
 }
 
 /** Wheel: zoom time around the cursor; Alt + wheel: this chart's y. */
@@ -200,5 +210,59 @@ function attachKeys(c, id) {
     else return;
     ev.preventDefault();
     scheduleRender();
+  });
+}
+
+/** Zoom and pan on the track, equal axes throughout: the wheel zooms about the cursor, a drag
+ * pans, a double click or tap resets; on a touch screen two fingers pinch and pan (one
+ * finger still scrolls the page). */
+export function attachTrackInteraction() {
+  const c = $("c-track");
+  c.style.touchAction = "pan-x pan-y";
+  const k = () => c.width / c.clientWidth;
+  // The view of the last drawing: its centre and metres per canvas pixel.
+  const view = () => {
+    const L = state.layouts["c-track"];
+    if (!L) return null;
+    return { L, xc: (L.x_min + L.x_max) / 2, yc: (L.y_min + L.y_max) / 2, mpp: (L.x_max - L.x_min) / (L.right - L.left) };
+  };
+  // The metres under a CSS pixel of the canvas, in view v.
+  const metres = (v, px, py) => [v.L.x_min + (px * k() - v.L.left) * v.mpp, v.L.y_max - (py * k() - v.L.top) * v.mpp];
+  const set = (xc, yc, mpp) => {
+    const e = logFor("track");
+    if (!e || !(mpp > 0)) return;
+    state.trackView = { name: e.name, xc, yc, mpp };
+    scheduleRender();
+  };
+  /** Zoom by f about CSS pixel (px, py) of view v, which also moves by (dx, dy) CSS pixels. */
+  const zoomAbout = (v, px, py, f, dx = 0, dy = 0) => {
+    const [x, y] = metres(v, px, py);
+    set(x + (v.xc - x) * f - dx * k() * v.mpp * f, y + (v.yc - y) * f + dy * k() * v.mpp * f, v.mpp * f);
+  };
+  c.addEventListener("wheel", (ev) => {
+    const v = view();
+    if (!v) return;
+    ev.preventDefault();
+    zoomAbout(v, ev.offsetX, ev.offsetY, ev.deltaY > 0 ? 1.25 : 0.8);
+  }, { passive: false });
+  let drag = null;
+  c.addEventListener("mousedown", (ev) => { drag = { v: view(), px: ev.offsetX, py: ev.offsetY }; });
+  c.addEventListener("mousemove", (ev) => {
+    if (!drag?.v) return;
+    const { v } = drag;
+    set(v.xc - (ev.offsetX - drag.px) * k() * v.mpp, v.yc + (ev.offsetY - drag.py) * k() * v.mpp, v.mpp);
+  });
+  window.addEventListener("mouseup", () => { drag = null; });
+  c.addEventListener("dblclick", () => { state.trackView = null; scheduleRender(); });
+  // Two fingers: the metres under their midpoint stay under it, the scale follows their spread.
+  const spread = (a, b) => [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, Math.hypot(a[0] - b[0], a[1] - b[1])];
+  let pinch = null;
+  touches(c, (at) => {
+    pinch = at.size === 2 ? { v: view(), s: spread(...at.values()) } : null;
+  }, (at) => {
+    if (!pinch?.v || at.size !== 2) return;
+    const s = spread(...at.values());
+    if (s[2] < 10 || pinch.s[2] < 10) return;
+    zoomAbout(pinch.v, pinch.s[0], pinch.s[1], pinch.s[2] / s[2], s[0] - pinch.s[0], s[1] - pinch.s[1]);
   });
 }

@@ -32,7 +32,7 @@ export function renderList() {
       li.append(b, removeButton(i, `Remove ${e.name}`));
       if (state.view === "hdr" && e.kind === "drive" && e !== shown) li.append(overlayButton(e));
       if (e.findings?.length) {
-        const worst = e.findings.some((f) => f.severity === "error") ? "error" : "warning";
+        const worst = e.errors.length ? "error" : "warning";
         li.append(checkNote(worst, `⚠ check: ${e.findings.map((f) => f.code).join(", ")}`, said(e.findings)));
       }
       if (e.info?.length) li.append(checkNote("info", `ℹ ${e.info.map((f) => f.code.replace("_", " ")).join(", ")}`, said(e.info)));
@@ -59,7 +59,7 @@ export function renderList() {
 }
 
 /** A check's findings as each says them: the message, then its fix. */
-const said = (findings) => findings.map((f) => `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}`);
+export const said = (findings) => findings.map((f) => `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}`);
 
 /** A note on a log: its summary in the list, what it says under it, opened by a click, a tap
  * or the keyboard (a tooltip alone shows nothing on a phone), and on hover as before. */

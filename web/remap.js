@@ -16,7 +16,7 @@ const MAPPER_FIX = {
 
 /** Whether the column mapper can fix `entry`'s check errors (a v1 log opened from a file). */
 export function canRemap(entry) {
-  const errors = entry.findings?.filter((f) => f.severity === "error") ?? [];
+  const errors = entry.errors ?? [];
   return !!entry.source && errors.length > 0 && errors.every((f) => MAPPER_FIX[f.code]);
 }
 
@@ -27,7 +27,7 @@ export async function remap(entry) {
   const f = entry.source;
   const bytes = { [f.name]: new Uint8Array(await f.arrayBuffer()) };
   const importer = (r) => inWorker({ type: "import", files: bytes, recipe: r, title: "the check's fix" }, [], () => {});
-  const fixes = entry.findings.filter((x) => x.severity === "error");
+  const fixes = entry.errors;
   const lead = entry.log.toColumns().meta.bias_s ?? gd.defaultBiasS();
   // A v1 log's reference is counter-clockwise positive already and kept at any speed (not a
   // raw GPS course).

@@ -1,6 +1,6 @@
 // Rendering: one animation frame per burst of input, the active view, its errors.
 import { $, state, writeUrl } from "./state.js";
-import { renderList, logFor } from "./controls.js";
+import { renderList, logFor, said } from "./controls.js";
 import { canRemap, remap } from "./remap.js";
 import { renderHdr } from "./views/hdr.js";
 import { renderTrack } from "./views/track.js";
@@ -30,14 +30,14 @@ export function showError(msg) {
  * a log (its figures would be absurd, e.g. a clockwise gyro's), the page shows them
  * flagged. */
 function showCheck(e) {
-  const errors = e?.findings?.filter((f) => f.severity === "error") ?? [];
+  const errors = e?.errors ?? [];
   const box = $("view-check");
   box.hidden = !errors.length;
   box.replaceChildren();
   if (!errors.length) return;
   const head = document.createElement("b");
   head.textContent = `⚠ ${e.name}: check found an error, so these figures are not to be trusted (the CLI refuses the log until it is fixed)`;
-  box.append(head, ...errors.map((f) => Object.assign(document.createElement("p"), { textContent: `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}` })));
+  box.append(head, ...said(errors).map((line) => Object.assign(document.createElement("p"), { textContent: line })));
   if (canRemap(e)) {
     const fix = Object.assign(document.createElement("button"), { type: "button", id: "check-remap", textContent: "Open it with the fix in the column mapper…" });
     fix.addEventListener("click", () => remap(e));

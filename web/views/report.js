@@ -7,9 +7,8 @@ import { showError, render } from "../render.js";
 import { inWorker, driveColumns } from "../loading.js";
 import { fillWorse } from "./robustness.js";
 
-/** A log `check` found an error in (time in ms, a radian heading, a rad/s or clockwise
- * gyro): the CLI refuses it, as its figures would be absurd. */
-const refused = (e) => e.findings?.some((f) => f.severity === "error");
+/** A log `check` found an error in: the CLI refuses it, as its figures would be absurd. */
+const refused = (e) => e.errors?.length > 0;
 
 /** The loaded drives with a reference heading and no check error: the ones the Report view
  * scores, as the CLI's report would. */

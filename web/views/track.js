@@ -3,7 +3,7 @@ import * as gd from "../pkg/gyrodrift.js";
 import { $, fmt, state, hdrOptions, COLORS, PALETTE } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
 import { chart, timeRange } from "../charts.js";
-import { showError, render, scheduleRender } from "../render.js";
+import { showError, render } from "../render.js";
 import { background, perLog } from "../background.js";
 
 /** The recommended pipeline's paths: they depend on the log and bias_s only, so HDR's
@@ -62,74 +62,4 @@ export function renderTrack() {
   chart("c-track", spec(w, h));
   const [w2, h2] = area();
   if (w2 !== w || h2 !== h) chart("c-track", spec(w2, h2)); // first drawing, or the canvas was resized
-}
-
-/** Zoom and pan on the track, equal axes throughout: the wheel zooms about the cursor, a drag
- * pans, a double click or tap resets; on a touch screen two fingers pinch and pan (one
- * finger still scrolls the page). */
-export function attachTrackInteraction() {
-  const c = $("c-track");
-  c.style.touchAction = "pan-x pan-y";
-  const k = () => c.width / c.clientWidth;
-  // The view of the last drawing: its centre and metres per canvas pixel.
-  const view = () => {
-    const L = state.layouts["c-track"];
-    if (!L) return null;
-    return { L, xc: (L.x_min + L.x_max) / 2, yc: (L.y_min + L.y_max) / 2, mpp: (L.x_max - L.x_min) / (L.right - L.left) };
-  };
-  // The metres under a CSS pixel of the canvas, in view v.
-  const metres = (v, px, py) => [v.L.x_min + (px * k() - v.L.left) * v.mpp, v.L.y_max - (py * k() - v.L.top) * v.mpp];
-  const set = (xc, yc, mpp) => {
-    const e = logFor("track");
-    if (!e || !(mpp > 0)) return;
-    state.trackView = { name: e.name, xc, yc, mpp };
-    scheduleRender();
-  };
-  /** Zoom by f about CSS pixel (px, py) of view v, which also moves by (dx, dy) CSS pixels. */
-  const zoomAbout = (v, px, py, f, dx = 0, dy = 0) => {
-    const [x, y] = metres(v, px, py);
-    set(x + (v.xc - x) * f - dx * k() * v.mpp * f, y + (v.yc - y) * f + dy * k() * v.mpp * f, v.mpp * f);
-  };
-  c.addEventListener("wheel", (ev) => {
-    const v = view();
-    if (!v) return;
-    ev.preventDefault();
-    zoomAbout(v, ev.offsetX, ev.offsetY, ev.deltaY > 0 ? 1.25 : 0.8);
-  }, { passive: false });
-  let drag = null;
-  c.addEventListener("mousedown", (ev) => { drag = { v: view(), px: ev.offsetX, py: ev.offsetY }; });
-  c.addEventListener("mousemove", (ev) => {
-    if (!drag?.v) return;
-    const { v } = drag;
-    set(v.xc - (ev.offsetX - drag.px) * k() * v.mpp, v.yc + (ev.offsetY - drag.py) * k() * v.mpp, v.mpp);
-  });
-  window.addEventListener("mouseup", () => { drag = null; });
-  c.addEventListener("dblclick", () => { state.trackView = null; scheduleRender(); });
-  // Two fingers: the metres under their midpoint stay under it, the scale follows their spread.
-  const at = new Map();
-  let pinch = null;
-  const begin = () => {
-    const [a, b] = [...at.values()];
-    pinch = at.size === 2 ? { v: view(), mid: [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2], d: Math.hypot(a[0] - b[0], a[1] - b[1]) } : null;
-  };
-  c.addEventListener("pointerdown", (ev) => {
-    if (ev.pointerType !== "touch") return;
-    at.set(ev.pointerId, [ev.offsetX, ev.offsetY]);
-    begin();
-  });
-  c.addEventListener("pointermove", (ev) => {
-    if (ev.pointerType !== "touch" || !at.has(ev.pointerId)) return;
-    at.set(ev.pointerId, [ev.offsetX, ev.offsetY]);
-    if (!pinch?.v || at.size !== 2) return;
-    const [a, b] = [...at.values()];
-    const d = Math.hypot(a[0] - b[0], a[1] - b[1]);
-    if (d < 10 || pinch.d < 10) return;
-    const mid = [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
-    zoomAbout(pinch.v, pinch.mid[0], pinch.mid[1], pinch.d / d, mid[0] - pinch.mid[0], mid[1] - pinch.mid[1]);
-  });
-  const lift = (ev) => {
-    if (at.delete(ev.pointerId)) begin();
-  };
-  c.addEventListener("pointerup", lift);
-  c.addEventListener("pointercancel", lift);
 }
