@@ -81,6 +81,21 @@ pub fn value_range(vals: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     }
 }
 
+/// Equal axes (a track in metres): x and y ranges that draw one unit the same length across
+/// and up on a plot area of `w_px` by `h_px`. Centred on `view` = (x centre, y centre, units
+/// per pixel) when given (a zoomed or panned view), else fitting `extent` = (x0, x1, y0, y1)
+/// with 5 % to spare on its tighter axis.
+pub fn equal_ranges(extent: [f64; 4], w_px: f64, h_px: f64, view: Option<[f64; 3]>) -> [f64; 4] {
+    let (w, h) = (w_px.max(1.0), h_px.max(1.0));
+    let [x0, x1, y0, y1] = extent;
+    let [xc, yc, per_px] = match view {
+        Some(v) if v.iter().all(|a| a.is_finite()) && v[2] > 0.0 => v,
+        _ => [(x0 + x1) / 2.0, (y0 + y1) / 2.0, ((x1 - x0) / w).max((y1 - y0) / h).max(1e-9) * 1.05],
+    };
+    let (half_x, half_y) = (per_px * w / 2.0, per_px * h / 2.0);
+    [xc - half_x, xc + half_x, yc - half_y, yc + half_y]
+}
+
 /// The intervals of x where a 0/1 mask is on (from the first x on to the first x off, or
 /// the last x), gaps narrower than `min_gap` merged: the shaded stretches of a chart.
 pub fn mask_intervals(x: &[f64], mask: &[f64], min_gap: f64) -> Vec<(f64, f64)> {
@@ -108,6 +123,24 @@ pub fn mask_intervals(x: &[f64], mask: &[f64], min_gap: f64) -> Vec<(f64, f64)> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn equal_ranges_fit_the_extent_or_keep_the_view() {
+        // 100 m by 50 m on 200 x 200 px: x limits, 0.5 m/px x 1.05 = 0.525 m/px, 105 m each way.
+        let r = equal_ranges([0.0, 100.0, 0.0, 50.0], 200.0, 200.0, None);
+        for (a, b) in r.iter().zip([-2.5, 102.5, -27.5, 77.5]) {
+            assert!((a - b).abs() < 1e-9, "{r:?}");
+        }
+        // A view centred on (10, 20) at 2 m/px on 100 x 50 px: 200 m across, 100 m up.
+        assert_eq!(equal_ranges([0.0, 1.0, 0.0, 1.0], 100.0, 50.0, Some([10.0, 20.0, 2.0])), [-90.0, 110.0, -30.0, 70.0]);
+        // An unusable view (zero scale) falls back to the extent; a point still gets a span.
+        let f = equal_ranges([0.0, 4.0, 0.0, 2.0], 4.0, 2.0, Some([0.0, 0.0, 0.0]));
+        for (a, b) in f.iter().zip([-0.1, 4.1, -0.05, 2.05]) {
+            assert!((a - b).abs() < 1e-12, "{f:?}");
+        }
+        let p = equal_ranges([3.0, 3.0, 5.0, 5.0], 10.0, 10.0, None);
+        assert!(p[1] > p[0] && p[3] > p[2] && (p[0] + p[1]) / 2.0 == 3.0);
+    }
 
     #[test]
     fn ticks_at_one_two_five() {

@@ -663,6 +663,15 @@ test("the Track view has equal metres per pixel across and up, and the recommend
     const across = (L.x_max - L.x_min) / (L.right - L.left);
     const up = (L.y_max - L.y_min) / (L.bottom - L.top);
     assert.ok(Math.abs(across / up - 1) < 0.01, `width ${width}: ${across} m/px across, ${up} m/px up`);
+    // The whole track is shown, with 5 % to spare on the axis that limits it.
+    const ext = await page.evaluate(() => {
+      const e = (k) => { let l = Infinity, h = -Infinity; for (const s of window.gyrodrift.state.specs["c-track"].series) for (const v of s[k]) if (Number.isFinite(v)) { l = Math.min(l, v); h = Math.max(h, v); } return [l, h]; };
+      return [e("x"), e("y")];
+    });
+    const [[x0, x1], [y0, y1]] = ext;
+    assert.ok(L.x_min <= x0 && L.x_max >= x1 && L.y_min <= y0 && L.y_max >= y1, `${JSON.stringify(ext)} in ${JSON.stringify(L)}`);
+    const spare = Math.min((L.x_max - L.x_min) / (x1 - x0), (L.y_max - L.y_min) / (y1 - y0));
+    assert.ok(Math.abs(spare - 1.05) < 0.02, `spare ${spare}`);
   }
   await page.setViewportSize({ width: 1400, height: 1000 });
   await page.waitForTimeout(200);

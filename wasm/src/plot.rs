@@ -50,6 +50,10 @@ struct Spec {
     dpr: f64,
     /// Draw the legend inside the plot (default); a page with its own legend turns it off.
     legend: bool,
+    /// Equal axes (a track): one unit as long across as up, fitting the data or `view`.
+    equal_axes: bool,
+    /// With equal axes: the centre and units per canvas pixel of a zoomed or panned view.
+    view: Option<[f64; 3]>,
 }
 
 // The spec is read with Reflect rather than serde: typed arrays copy straight into Vec<f64>
@@ -77,13 +81,21 @@ fn numbers(obj: &JsValue, key: &str) -> Result<Vec<f64>, JsValue> {
     }
     Err(js_err(format!("chart spec: {key} must be an array of numbers")))
 }
-fn range(obj: &JsValue, key: &str) -> Result<Option<[f64; 2]>, JsValue> {
+/// `len` numbers, or none when the key is absent, null or of another length.
+fn range(obj: &JsValue, key: &str, len: usize) -> Result<Vec<f64>, JsValue> {
     let v = prop(obj, key);
     if v.is_undefined() || v.is_null() {
-        return Ok(None);
+        return Ok(Vec::new());
     }
     let r = numbers(obj, key)?;
-    Ok((r.len() == 2).then(|| [r[0], r[1]]))
+    Ok(if r.len() == len { r } else { Vec::new() })
+}
+
+fn pair(r: Vec<f64>) -> Option<[f64; 2]> {
+    match r[..] {
+        [a, b] => Some([a, b]),
+        _ => None,
+    }
 }
 
 impl Spec {
@@ -114,8 +126,8 @@ impl Spec {
             title: text(v, "title"),
             x_label: text(v, "x_label"),
             y_label: text(v, "y_label"),
-            x_range: range(v, "x_range")?,
-            y_range: range(v, "y_range")?,
+            x_range: pair(range(v, "x_range", 2)?),
+            y_range: pair(range(v, "y_range", 2)?),
             log_x: flag(v, "log_x"),
             log_y: flag(v, "log_y"),
             time_x: flag(v, "time_x"),
@@ -124,6 +136,11 @@ impl Spec {
             cursor_x: number(v, "cursor_x"),
             dpr: number(v, "dpr").unwrap_or(1.0),
             legend: prop(v, "legend").as_bool().unwrap_or(true),
+            equal_axes: flag(v, "equal_axes"),
+            view: match range(v, "view", 3)?[..] {
+                [xc, yc, per_px] => Some([xc, yc, per_px]),
+                _ => None,
+            },
         })
     }
 }
@@ -266,8 +283,12 @@ pub fn chart_csv(#[wasm_bindgen(unchecked_param_type = "ChartSpec")] spec: JsVal
 type Decimated<'a> = Vec<(&'a Series, Vec<f64>, Vec<f64>)>;
 
 /// The x and y ranges (given, or from the data in the x window) and the decimated series.
-fn ranges(spec: &Spec, columns: usize) -> (f64, f64, f64, f64, Decimated<'_>) {
-    let (x0, x1) = match spec.x_range {
+fn ranges(spec: &Spec, columns: usize, equal: Option<[f64; 4]>) -> (f64, f64, f64, f64, Decimated<'_>) {
+    let (x_range, y_range) = match equal {
+        Some([a, b, c, d]) => (Some([a, b]), Some([c, d])),
+        None => (spec.x_range, spec.y_range),
+    };
+    let (x0, x1) = match x_range {
         Some([a, b]) if b > a => (a, b),
         _ => axis::finite_range(spec.series.iter().flat_map(|s| s.x.iter().copied())).unwrap_or((0.0, 1.0)),
     };
@@ -276,7 +297,7 @@ fn ranges(spec: &Spec, columns: usize) -> (f64, f64, f64, f64, Decimated<'_>) {
         let (dx, dy) = if s.points || s.path { (s.x.clone(), s.y.clone()) } else { decimate::min_max(&s.x, &s.y, x0, x1, columns) };
         decimated.push((s, dx, dy));
     }
-    let (y0, y1) = match spec.y_range {
+    let (y0, y1) = match y_range {
         Some([a, b]) if b > a => (a, b),
         _ => axis::value_range(
             decimated.iter().flat_map(|(_, dx, dy)| dx.iter().zip(dy.iter()).filter(|(x, _)| **x >= x0 && **x <= x1).map(|(_, y)| *y)),
@@ -390,13 +411,48 @@ fn draw_line(
     Ok(())
 }
 
+/// The chart's frame: title, margins and label areas; the plot area is what they leave.
+fn frame<'a, 'b>(
+    root: &'a DrawingArea<CanvasBackend, Shift>,
+    title: &'b str,
+    title_px: i32,
+    dpr: f64,
+) -> ChartBuilder<'a, 'b, CanvasBackend> {
+    let px = |v: f64| (v * dpr).round() as i32;
+    let mut b = ChartBuilder::on(root);
+    b.caption(title, ("sans-serif", title_px).into_font())
+        .margin(px(8.0))
+        .margin_right(px(16.0))
+        .x_label_area_size(px(34.0))
+        .y_label_area_size(px(62.0));
+    b
+}
+
+/// Equal axes (core's `axis::equal_ranges`) on the plot area this frame leaves, measured by
+/// building it once and clearing what that drew.
+fn equal_ranges(
+    root: &DrawingArea<CanvasBackend, Shift>,
+    spec: &Spec,
+    title: &str,
+    title_px: i32,
+) -> Result<[f64; 4], Box<dyn std::error::Error>> {
+    let measured = frame(root, title, title_px, spec.dpr.clamp(0.5, 4.0)).build_cartesian_2d(0f64..1f64, 0f64..1f64)?;
+    let (xr, yr) = measured.plotting_area().get_pixel_range();
+    root.fill(&WHITE)?;
+    let ext = |f: fn(&Series) -> &Vec<f64>| axis::finite_range(spec.series.iter().flat_map(|s| f(s).iter().copied())).unwrap_or((0.0, 1.0));
+    let ((x0, x1), (y0, y1)) = (ext(|s| &s.x), ext(|s| &s.y));
+    Ok(axis::equal_ranges([x0, x1, y0, y1], (xr.end - xr.start) as f64, (yr.end - yr.start) as f64, spec.view))
+}
+
 fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout, Box<dyn std::error::Error>> {
     root.fill(&WHITE)?;
     let dpr = spec.dpr.clamp(0.5, 4.0);
     let px = |v: f64| (v * dpr).round() as i32;
     let (w, _h) = root.dim_in_pixel();
     let columns = (w as usize).max(1);
-    let (x0, x1, y0, y1, decimated) = ranges(spec, columns);
+    let (title, title_px) = fit_caption(root, &spec.title, w.saturating_sub(px(24.0).max(0) as u32), px(15.0), px(11.0));
+    let equal = if spec.equal_axes { Some(equal_ranges(root, spec, &title, title_px)?) } else { None };
+    let (x0, x1, y0, y1, decimated) = ranges(spec, columns, equal);
     // A time axis is drawn in its unit, so ticks fall on round minutes or hours.
     let unit = spec.time_x.then(|| axis::time_unit(x1 - x0));
     let per = unit.map_or(1.0, |u| u.seconds);
@@ -411,13 +467,7 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
     // log one (drawn linear in log10).
     let tick = |log: bool, a: f64, b: f64| if log { axis::log_ticks(a, b, 12) } else { axis::ticks(a, b, 10) };
     let (x_ticks, y_ticks) = (tick(spec.log_x, cx0, cx1), tick(spec.log_y, cy0, cy1));
-    let (title, title_px) = fit_caption(root, &spec.title, w.saturating_sub(px(24.0).max(0) as u32), px(15.0), px(11.0));
-    let mut chart = ChartBuilder::on(root)
-        .caption(&title, ("sans-serif", title_px).into_font())
-        .margin(px(8.0))
-        .margin_right(px(16.0))
-        .x_label_area_size(px(34.0))
-        .y_label_area_size(px(62.0))
+    let mut chart = frame(root, &title, title_px, dpr)
         .build_cartesian_2d(Ticked { range: cx0..cx1, ticks: x_ticks.clone() }, Ticked { range: cy0..cy1, ticks: y_ticks.clone() })?;
     let fmt_x = |v: &f64| if spec.log_x { plain(10f64.powf(*v)) } else { plain(*v) };
     let fmt_y = |v: &f64| if spec.log_y { format!("{:.1e}", 10f64.powf(*v)) } else { plain(*v) };

@@ -1,8 +1,8 @@
 // The Track view: dead-reckoned paths on equal axes.
 import * as gd from "../pkg/gyrodrift.js";
-import { $, fmt, state, hdrOptions, COLORS, PALETTE } from "../state.js";
+import { $, state, hdrOptions, COLORS } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
-import { chart, timeRange } from "../charts.js";
+import { chart } from "../charts.js";
 import { showError, render } from "../render.js";
 import { background, perLog } from "../background.js";
 
@@ -33,33 +33,12 @@ export function renderTrack() {
     series.push({ name: "pipeline (recommended)", color: COLORS.pipe, x: p.pipeline.x_m, y: p.pipeline.y_m, points: false, width: 2 });
     series.push({ name: "smoothed (offline)", color: COLORS.smooth, x: p.smoothed.x_m, y: p.smoothed.y_m, points: false });
   }
-  // Equal axes: the same metres per pixel across and up. The plot area inside the canvas
-  // (margins for labels) is not square, so its size is read from the last drawing.
-  const ext = (key) => {
-    let l = Infinity, h = -Infinity;
-    for (const s of series) for (const v of s[key]) if (Number.isFinite(v)) { l = Math.min(l, v); h = Math.max(h, v); }
-    return Number.isFinite(l) ? [l, h] : [0, 1];
-  };
-  const [x0, x1] = ext("x"), [y0, y1] = ext("y");
-  // The whole track, or where the user zoomed and panned on this log (one scale across and
-  // up: metres per canvas pixel, and the centre).
-  const zoomed = state.trackView?.name === e.name ? state.trackView : null;
-  const ranges = (w, h) => {
-    const mpp = zoomed ? zoomed.mpp : Math.max((x1 - x0) / w, (y1 - y0) / h, 1e-9) * 1.05;
-    const xc = zoomed ? zoomed.xc : (x0 + x1) / 2, yc = zoomed ? zoomed.yc : (y0 + y1) / 2;
-    return { x_range: [xc - (mpp * w) / 2, xc + (mpp * w) / 2], y_range: [yc - (mpp * h) / 2, yc + (mpp * h) / 2] };
-  };
-  const spec = (w, h) => ({
+  // Equal axes (the plot module fits them to the plot area): the whole track, or where the
+  // user zoomed and panned on this log (its centre and metres per canvas pixel).
+  const v = state.trackView?.name === e.name ? state.trackView : null;
+  chart("c-track", {
     title: `${e.name}: dead-reckoned track`, x_label: "east (m)", y_label: "north (m)",
-    ...ranges(w, h),
+    equal_axes: true, view: v ? [v.xc, v.yc, v.mpp] : null,
     series: series.map((s) => ({ ...s, points: false, path: true })),
   });
-  const area = () => {
-    const L = state.layouts["c-track"];
-    return L ? [L.right - L.left, L.bottom - L.top] : [1, 1];
-  };
-  const [w, h] = area();
-  chart("c-track", spec(w, h));
-  const [w2, h2] = area();
-  if (w2 !== w || h2 !== h) chart("c-track", spec(w2, h2)); // first drawing, or the canvas was resized
 }

@@ -43,6 +43,11 @@ export interface ChartSpec {
   time_x?: boolean;
   /** Draw the legend inside the plot (default true). */
   legend?: boolean;
+  /** Equal axes (a track in metres): one unit as long across as up; x_range and y_range are
+   * ignored. The ranges fit the data with 5 % to spare, or follow `view`. */
+  equal_axes?: boolean;
+  /** With equal_axes: a zoomed or panned view, [x centre, y centre, units per canvas pixel]. */
+  view?: [number, number, number] | null;
   series: { name: string; color: string; x: ArrayLike<number>; y: ArrayLike<number>; width?: number; points?: boolean; path?: boolean }[];
   shade?: { x: ArrayLike<number>; mask: ArrayLike<number>; color: string; label?: string } | null;
   cursor_x?: number | null;
