@@ -196,11 +196,29 @@ fn borrowed(v: &[(String, std::sync::Arc<DriveLog>)]) -> Vec<(String, &DriveLog)
     v.iter().map(|(n, l)| (n.clone(), l.as_ref())).collect()
 }
 
+/// The logs as the CLI takes them: one that `check` finds an error in (ms time, radian
+/// heading, rad/s or clockwise gyro; core's `refusal`) is a ValueError naming it and the fix,
+/// since every figure from it would be absurd, unless `ignore_check`.
+fn checked(
+    py: Python<'_>,
+    named: Vec<(String, std::sync::Arc<DriveLog>)>,
+    ignore_check: bool,
+) -> PyResult<Vec<(String, std::sync::Arc<DriveLog>)>> {
+    if !ignore_check {
+        let refused = py.detach(|| named.iter().find_map(|(n, l)| g::log::accept::refusal(l).map(|r| format!("{n}: {r}"))));
+        if let Some(r) = refused {
+            return Err(PyValueError::new_err(format!("{r} (refused: its results would be absurd; ignore_check=True runs it anyway)")));
+        }
+    }
+    Ok(named)
+}
+
 /// The drives a table can score, as the CLI's `report`, `compare` and `tune` take them: one
 /// without a reference heading (core's `has_reference`) is left out with a UserWarning naming
 /// it (the CLI's stderr line); none left to score is a ValueError.
-fn scored(py: Python<'_>, logs: &[PyRef<'_, PyLog>]) -> PyResult<Vec<(String, std::sync::Arc<DriveLog>)>> {
-    let (named, unscored): (Vec<_>, Vec<_>) = logs_of(logs).into_iter().partition(|(_, log)| log.has_reference());
+fn scored(py: Python<'_>, logs: &[PyRef<'_, PyLog>], ignore_check: bool) -> PyResult<Vec<(String, std::sync::Arc<DriveLog>)>> {
+    let (named, unscored): (Vec<_>, Vec<_>) =
+        checked(py, logs_of(logs), ignore_check)?.into_iter().partition(|(_, log)| log.has_reference());
     let unscored: Vec<String> = unscored.into_iter().map(|(name, _)| name).collect();
     for name in &unscored {
         let msg = std::ffi::CString::new(format!("{name}: not scored: no reference heading (ref_heading_deg absent or empty)"))
@@ -215,20 +233,30 @@ fn scored(py: Python<'_>, logs: &[PyRef<'_, PyLog>]) -> PyResult<Vec<(String, st
 
 /// The HDR paper's Table II over logs (named by `# name:`): the CLI's `report --json`.
 #[pyfunction]
-#[pyo3(signature = (logs, settings=None))]
-fn report<'py>(py: Python<'py>, logs: Vec<PyRef<'py, PyLog>>, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+#[pyo3(signature = (logs, settings=None, ignore_check=false))]
+fn report<'py>(
+    py: Python<'py>,
+    logs: Vec<PyRef<'py, PyLog>>,
+    settings: Option<&Bound<'py, PyAny>>,
+    ignore_check: bool,
+) -> PyResult<Bound<'py, PyDict>> {
     let opts: HdrOptions = crate::settings("hdr", settings)?;
-    let named = scored(py, &logs)?;
+    let named = scored(py, &logs, ignore_check)?;
     let r = py.detach(|| gyrodrift::report::Report::build(&borrowed(&named), &opts)).map_err(value_err)?;
     result_dict(py, &r)
 }
 
 /// Every method side by side (NE_psi per drive): the CLI's `report --compare --json`.
 #[pyfunction]
-#[pyo3(signature = (logs, settings=None))]
-fn compare<'py>(py: Python<'py>, logs: Vec<PyRef<'py, PyLog>>, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+#[pyo3(signature = (logs, settings=None, ignore_check=false))]
+fn compare<'py>(
+    py: Python<'py>,
+    logs: Vec<PyRef<'py, PyLog>>,
+    settings: Option<&Bound<'py, PyAny>>,
+    ignore_check: bool,
+) -> PyResult<Bound<'py, PyDict>> {
     let p: PipelineParams = crate::settings("pipeline", settings)?;
-    let named = scored(py, &logs)?;
+    let named = scored(py, &logs, ignore_check)?;
     let c = py.detach(|| gyrodrift::compare::compare(&borrowed(&named), &p, None)).map_err(value_err)?;
     result_dict(py, &c)
 }
@@ -237,25 +265,31 @@ fn compare<'py>(py: Python<'py>, logs: Vec<PyRef<'py, PyLog>>, settings: Option<
 /// `{methods, cases, scoring, added, skipped}`, each case's `ne_psi` in the order of
 /// `methods`, as the CLI's `battery --logs --json` but without its tuned-HDR peer.
 #[pyfunction]
-#[pyo3(signature = (logs, settings=None))]
-fn battery<'py>(py: Python<'py>, logs: Vec<PyRef<'py, PyLog>>, settings: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+#[pyo3(signature = (logs, settings=None, ignore_check=false))]
+fn battery<'py>(
+    py: Python<'py>,
+    logs: Vec<PyRef<'py, PyLog>>,
+    settings: Option<&Bound<'py, PyAny>>,
+    ignore_check: bool,
+) -> PyResult<Bound<'py, PyDict>> {
     let p: PipelineParams = crate::settings("pipeline", settings)?;
-    let named = logs_of(&logs);
+    let named = checked(py, logs_of(&logs), ignore_check)?;
     let b = py.detach(|| gyrodrift::battery::on_drives(&borrowed(&named), &p)).map_err(value_err)?;
     result_dict(py, &b)
 }
 
 /// Table II ("report") or the comparison ("compare") as "markdown", "csv" or "text".
 #[pyfunction]
-#[pyo3(signature = (logs, table="report", format="markdown", settings=None))]
+#[pyo3(signature = (logs, table="report", format="markdown", settings=None, ignore_check=false))]
 fn table<'py>(
     py: Python<'py>,
     logs: Vec<PyRef<'py, PyLog>>,
     table: &str,
     format: &str,
     settings: Option<&Bound<'py, PyAny>>,
+    ignore_check: bool,
 ) -> PyResult<String> {
-    let named = scored(py, &logs)?;
+    let named = scored(py, &logs, ignore_check)?;
     let drives = borrowed(&named);
     match table {
         "report" => {
@@ -284,16 +318,17 @@ fn table<'py>(
 /// Tunes HDR's five parameters on `train` (leave-one-drive-out cross-validated, refusing
 /// parameters that do not generalise) and scores Table III against them on both sets.
 #[pyfunction]
-#[pyo3(signature = (train, test=Vec::new(), settings=None))]
+#[pyo3(signature = (train, test=Vec::new(), settings=None, ignore_check=false))]
 fn tune<'py>(
     py: Python<'py>,
     train: Vec<PyRef<'py, PyLog>>,
     test: Vec<PyRef<'py, PyLog>>,
     settings: Option<&Bound<'py, PyAny>>,
+    ignore_check: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let opts: g::tune::TuneOptions = crate::settings("tune", settings)?;
-    let train = scored(py, &train)?;
-    let test = scored(py, &test)?;
+    let train = scored(py, &train, ignore_check)?;
+    let test = scored(py, &test, ignore_check)?;
     let rep = py
         .detach(|| {
             let hdr_opts = HdrOptions::default();

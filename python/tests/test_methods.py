@@ -157,6 +157,24 @@ def test_pipeline_estimator_without_speed_judges_stops_by_the_gyro(samples):
     assert sum(s["stop"] for s in blocks) > 30
 
 
+def test_a_log_with_a_check_error_is_refused_by_the_tables_as_the_cli_refuses_it(cli, samples, tmp_path):
+    """A clockwise gyro (every rate negated): the tables raise naming the log, the finding and
+    the fix, as the CLI exits; ignore_check=True runs it, equal to the CLI's --ignore-check."""
+    city = g.read_log(str(samples / "train" / "city-1.csv"))
+    df = g.to_pandas(city)
+    df["gyro_dps"] = -df["gyro_dps"]
+    cw = g.from_pandas(df, {"name": "City 1 clockwise", "bias_s": 20})
+    refused = r"City 1 clockwise: check: error \[gyro_sign\].*ignore_check=True runs it anyway"
+    for table in (g.report, g.compare, g.battery, lambda logs, **k: g.table(logs, "compare", "csv", **k),
+                  lambda logs, **k: g.tune(logs, [city], **k)):
+        with pytest.raises(ValueError, match=refused):
+            table([city, cw])
+    path = tmp_path / "cw.csv"
+    path.write_text(cw.to_csv())
+    close(g.report([cw], ignore_check=True), cli("report", str(path), "--ignore-check", "--json"))
+    close(g.compare([cw], ignore_check=True), cli("report", "--compare", str(path), "--ignore-check", "--json"))
+
+
 def test_a_log_without_reference_runs_but_has_no_result(samples):
     run = g.run_hdr(g.read_log(str(samples / "static" / "static-2h.csv")))
     assert run["result"] is None and "ref_heading_deg" in run["error"]

@@ -6,7 +6,7 @@
 
 use super::gaps::{split_at_gaps, GapPolicy, MIN_PART_S};
 use super::DriveLog;
-use crate::check::{check, Severity};
+use crate::check::{check, Finding, Severity};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -35,8 +35,7 @@ pub struct Accepted {
 pub fn accept(mut log: DriveLog, name: &str, policy: InputPolicy, bias_s: Option<f64>) -> Result<Accepted> {
     let mut warnings = Vec::new();
     for f in check(&log).findings.iter().filter(|f| f.severity != Severity::Info && f.code != "gap") {
-        let fix = f.fix.as_deref().map(|x| format!("; fix: {x}")).unwrap_or_default();
-        let line = format!("check: {} [{}]: {}{fix}", f.severity.name(), f.code, f.message);
+        let line = said(f);
         if f.severity == Severity::Error && !policy.ignore_check {
             return Err(Error::data(format!("{line} (refused: its results would be absurd; --ignore-check runs it anyway)")));
         }
@@ -50,6 +49,19 @@ pub fn accept(mut log: DriveLog, name: &str, policy: InputPolicy, bias_s: Option
     }
     let split = s.summary();
     Ok(Accepted { parts: s.parts, warnings, split })
+}
+
+/// A finding as the fronts say it: "check: <severity> [<code>]: <message>; fix: <fix>".
+fn said(f: &Finding) -> String {
+    let fix = f.fix.as_deref().map(|x| format!("; fix: {x}")).unwrap_or_default();
+    format!("check: {} [{}]: {}{fix}", f.severity.name(), f.code, f.message)
+}
+
+/// Why `accept` would refuse this log (its first check error, said as `accept` says it), or
+/// None: for fronts that take logs already parsed (the wasm and Python tables), which refuse
+/// the same logs as the CLI unless asked to run them anyway.
+pub fn refusal(log: &DriveLog) -> Option<String> {
+    check(log).findings.iter().find(|f| f.severity == Severity::Error).map(said)
 }
 
 #[cfg(test)]
@@ -92,6 +104,9 @@ mod tests {
         log.column_mut(crate::log::Column::GyroDps).unwrap().iter_mut().for_each(|v| *v = -*v);
         let e = accept(log.clone(), "cw", InputPolicy::default(), None).unwrap_err();
         assert!(e.to_string().contains("[gyro_sign]") && e.to_string().contains("refused"), "{e}");
+        let r = refusal(&log).unwrap();
+        assert!(r.starts_with("check: error [gyro_sign]") && e.to_string().starts_with(&r), "{r}");
+        assert_eq!(refusal(&drive((0..200).map(|i| (i as f64, 0.0)))), None);
         let a = accept(log, "cw", InputPolicy { ignore_check: true, ..Default::default() }, None).unwrap();
         assert!(a.warnings.iter().any(|w| w.starts_with("check: error [gyro_sign]")), "{:?}", a.warnings);
     }
