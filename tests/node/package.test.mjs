@@ -236,7 +236,7 @@ test("wrong argument types throw TypeError (never a trap), misspelled recipe fie
   assert.equal(gd.defaultBiasS(), 20);
 });
 
-test("checkLog equals the CLI's check, and finds a clockwise gyro with its fix", () => {
+test("checkLog equals the CLI's check, and finds a clockwise gyro with its fix, which every table then refuses unless ignore_check", () => {
   const file = join(SAMPLES, "train", "city-1.csv");
   const text = readFileSync(file, "utf8");
   assert.deepEqual(plain(gd.checkLog(gd.Log.parse(text))), JSON.parse(cli("check", file, "--json")));
@@ -249,9 +249,33 @@ test("checkLog equals the CLI's check, and finds a clockwise gyro with its fix",
     c[g] = String(-Number(c[g]));
     return c.join(",");
   });
-  const r = gd.checkLog(gd.Log.parse(cw.join("\n")));
+  const cwLog = gd.Log.parse(cw.join("\n"));
+  const r = gd.checkLog(cwLog);
   const f = r.findings.find((x) => x.code === "gyro_sign");
   assert.ok(f && f.severity === "error" && /positive = "cw"/.test(f.fix), JSON.stringify(r.findings));
+  // Every table refuses it, as the CLI does, naming it and the fix; ignore_check runs it,
+  // giving the CLI's --ignore-check figures.
+  const city = gd.Log.parse(text);
+  const refused = /City 1: check: error \[gyro_sign\].*positive = "cw".*ignore_check = true runs it anyway/;
+  for (const [name, table] of Object.entries({
+    report: (x) => gd.report([city, cwLog], {}, x),
+    reportCsv: (x) => gd.reportCsv([cwLog], {}, x),
+    reportMarkdown: (x) => gd.reportMarkdown([cwLog], {}, x),
+    compare: (x) => gd.compare([cwLog], {}, x),
+    compareTable: (x) => gd.compareTable([cwLog], {}, "csv", x),
+    battery: (x) => gd.batteryMarkdown([cwLog], {}, x),
+    tune: (x) => gd.tune([city], [cwLog], {}, undefined, x),
+  })) {
+    assert.throws(() => table(undefined), refused, name);
+    assert.throws(() => table(false), refused, name);
+    if (name === "report" || name === "compare") assert.doesNotThrow(() => table(true), name);
+  }
+  const dir = mkdtempSync(join(tmpdir(), "gd-cw-"));
+  const path = join(dir, "cw.csv");
+  writeFileSync(path, cw.join("\n"));
+  assert.deepEqual(plain(gd.report([cwLog], {}, true)), JSON.parse(cli("report", path, "--ignore-check", "--json")));
+  const noNulls = (o) => JSON.parse(JSON.stringify(o, (_, v) => (v === null ? undefined : v)));
+  assert.deepEqual(plain(gd.compare([cwLog], {}, true)), noNulls(JSON.parse(cli("report", "--compare", path, "--ignore-check", "--json"))));
 });
 
 test("splitAtGaps gives the CLI's parts: no method integrates across a 60 s gap", () => {

@@ -56,8 +56,10 @@ impl Log {
         Log { id, log, name, hdr_prepared: RefCell::new(None) }
     }
 
-    /// The logs of a JS array of `Log` objects, with their names, without taking them.
-    pub(crate) fn from_array(value: &JsValue, what: &str) -> JsResult<Vec<(String, Rc<DriveLog>)>> {
+    /// The logs of a JS array of `Log` objects, with their names, without taking them. One
+    /// `check` finds an error in (core's `refusal`: ms time, radian heading, rad/s or clockwise
+    /// gyro) is refused, as the CLI refuses it, unless `ignore_check`.
+    pub(crate) fn from_array(value: &JsValue, what: &str, ignore_check: Option<bool>) -> JsResult<Vec<(String, Rc<DriveLog>)>> {
         if value.is_undefined() || value.is_null() {
             return Ok(Vec::new());
         }
@@ -73,6 +75,11 @@ impl Log {
                 .with(|m| m.borrow().iter().find(|(k, _)| *k == id as u32).map(|(_, l)| l.clone()))
                 .ok_or_else(|| err(format!("{what}[{i}]: this Log was freed")))?;
             let name = name.filter(|n| !n.is_empty()).unwrap_or_else(|| format!("log {}", i + 1));
+            if ignore_check != Some(true) {
+                if let Some(r) = gyrodrift::log::accept::refusal(&log) {
+                    return Err(err(format!("{name}: {r} (refused: its results would be absurd; ignore_check = true runs it anyway)")));
+                }
+            }
             out.push((name, log));
         }
         Ok(out)

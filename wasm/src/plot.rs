@@ -436,7 +436,8 @@ fn equal_ranges(
     title: &str,
     title_px: i32,
 ) -> Result<[f64; 4], Box<dyn std::error::Error>> {
-    let measured = frame(root, title, title_px, spec.dpr.clamp(0.5, 4.0)).build_cartesian_2d(0f64..1f64, 0f64..1f64)?;
+    let measured = frame(root, title, title_px, spec.dpr.clamp(0.5, 4.0))
+        .build_cartesian_2d(Ticked { range: 0.0..1.0, ticks: Vec::new() }, Ticked { range: 0.0..1.0, ticks: Vec::new() })?;
     let (xr, yr) = measured.plotting_area().get_pixel_range();
     root.fill(&WHITE)?;
     let ext = |f: fn(&Series) -> &Vec<f64>| axis::finite_range(spec.series.iter().flat_map(|s| f(s).iter().copied())).unwrap_or((0.0, 1.0));

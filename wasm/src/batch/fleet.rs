@@ -2,19 +2,21 @@
 
 use super::*;
 
-/// The HDR paper's Table II over many logs (named by their `name`).
+/// The HDR paper's Table II over many logs (named by their `name`). A log `checkLog` finds an
+/// error in throws, as the CLI refuses it, unless `ignore_check` (so in every table).
 #[wasm_bindgen(unchecked_return_type = "Report")]
 pub fn report(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
     #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+    ignore_check: Option<bool>,
 ) -> JsResult<JsValue> {
-    to_js(&build_report(&logs, options)?)
+    to_js(&build_report(&logs, options, ignore_check)?)
 }
 
 /// Table II over a JS array of logs with HDR options (shared by `report` and `reportMarkdown`).
-fn build_report(logs: &JsValue, options: JsValue) -> JsResult<report::Report> {
+fn build_report(logs: &JsValue, options: JsValue, ignore_check: Option<bool>) -> JsResult<report::Report> {
     let opts: HdrOptions = self::options("report", options)?;
-    let logs = Log::from_array(logs, "logs")?;
+    let logs = Log::from_array(logs, "logs", ignore_check)?;
     let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), &**l)).collect();
     report::Report::build(&named, &opts).map_err(err)
 }
@@ -24,8 +26,9 @@ fn build_report(logs: &JsValue, options: JsValue) -> JsResult<report::Report> {
 pub fn report_markdown(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
     #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+    ignore_check: Option<bool>,
 ) -> JsResult<String> {
-    Ok(build_report(&logs, options)?.to_markdown())
+    Ok(build_report(&logs, options, ignore_check)?.to_markdown())
 }
 
 /// The report as CSV (one row per drive, then the average).
@@ -33,8 +36,9 @@ pub fn report_markdown(
 pub fn report_csv(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
     #[wasm_bindgen(unchecked_param_type = "HdrOptions")] options: JsValue,
+    ignore_check: Option<bool>,
 ) -> JsResult<String> {
-    Ok(build_report(&logs, options)?.to_csv())
+    Ok(build_report(&logs, options, ignore_check)?.to_csv())
 }
 
 /// Tunes the five HDR parameters on `train` and reports Table III vs tuned on both sets.
@@ -46,6 +50,7 @@ pub fn tune(
     #[wasm_bindgen(unchecked_param_type = "Log[] | undefined")] test: JsValue,
     #[wasm_bindgen(unchecked_param_type = "TuneOptions")] options: JsValue,
     progress: Option<js_sys::Function>,
+    ignore_check: Option<bool>,
 ) -> JsResult<JsValue> {
     let opts: tune::TuneOptions = self::options("tune", options)?;
     let hdr_opts = HdrOptions::default();
@@ -53,8 +58,8 @@ pub fn tune(
         let named: Vec<(String, &DriveLog)> = v.iter().map(|(n, l)| (n.clone(), &**l)).collect();
         tune::prepare_all(&named, &hdr_opts).map_err(err)
     };
-    let train = prep(Log::from_array(&train, "train")?)?;
-    let test = prep(Log::from_array(&test, "test")?)?;
+    let train = prep(Log::from_array(&train, "train", ignore_check)?)?;
+    let test = prep(Log::from_array(&test, "test", ignore_check)?)?;
     let expected = tune::expected_evaluations_for(&opts, train.len()).max(1) as f64;
     let report = |n: u64| {
         if let Some(f) = &progress {
@@ -72,8 +77,9 @@ pub fn tune(
 pub fn battery(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
     #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue,
+    ignore_check: Option<bool>,
 ) -> JsResult<JsValue> {
-    to_js(&build_battery(&logs, options)?)
+    to_js(&build_battery(&logs, options, ignore_check)?)
 }
 
 /// The battery on these drives as Markdown, every case listed (the CLI's `battery --cases`).
@@ -82,14 +88,15 @@ pub fn battery(
 pub fn battery_markdown(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
     #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue,
+    ignore_check: Option<bool>,
 ) -> JsResult<String> {
-    Ok(build_battery(&logs, options)?.to_markdown(true))
+    Ok(build_battery(&logs, options, ignore_check)?.to_markdown(true))
 }
 
 #[cfg(feature = "sim")]
-fn build_battery(logs: &JsValue, options: JsValue) -> JsResult<gyrodrift::battery::Battery> {
+fn build_battery(logs: &JsValue, options: JsValue, ignore_check: Option<bool>) -> JsResult<gyrodrift::battery::Battery> {
     let p: gyrodrift::pipeline::PipelineParams = self::options("battery", options)?;
-    let logs = Log::from_array(logs, "logs")?;
+    let logs = Log::from_array(logs, "logs", ignore_check)?;
     let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), &**l)).collect();
     gyrodrift::battery::on_drives(&named, &p).map_err(err)
 }

@@ -56,13 +56,14 @@ pub fn pipeline_track(log: &Log, #[wasm_bindgen(unchecked_param_type = "Pipeline
 pub fn compare(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
     #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue,
+    ignore_check: Option<bool>,
 ) -> JsResult<JsValue> {
-    to_js(&build_compare(&logs, options)?)
+    to_js(&build_compare(&logs, options, ignore_check)?)
 }
 
-fn build_compare(logs: &JsValue, options: JsValue) -> JsResult<gyrodrift::compare::Compare> {
+fn build_compare(logs: &JsValue, options: JsValue, ignore_check: Option<bool>) -> JsResult<gyrodrift::compare::Compare> {
     let p: gyrodrift::pipeline::PipelineParams = self::options("pipeline", options)?;
-    let logs = Log::from_array(logs, "logs")?;
+    let logs = Log::from_array(logs, "logs", ignore_check)?;
     let named: Vec<(String, &DriveLog)> = logs.iter().map(|(n, l)| (n.clone(), l.as_ref())).collect();
     gyrodrift::compare::compare(&named, &p, None).map_err(err)
 }
@@ -73,9 +74,10 @@ pub fn compare_table(
     #[wasm_bindgen(unchecked_param_type = "Log[]")] logs: JsValue,
     #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue,
     #[wasm_bindgen(unchecked_param_type = "\"markdown\" | \"csv\"")] format: JsValue,
+    ignore_check: Option<bool>,
 ) -> JsResult<String> {
     let format = js_string(&format, "compareTable(format)")?;
-    let c = build_compare(&logs, options)?;
+    let c = build_compare(&logs, options, ignore_check)?;
     match format.as_str() {
         "markdown" => Ok(c.to_markdown()),
         "csv" => Ok(c.to_csv()),
