@@ -1,5 +1,5 @@
 // The log list, the selection, and the parameter forms.
-import { $, fmt, state, VIEW_KIND } from "./state.js";
+import { $, fmt, state, VIEW_KIND, logFor } from "./state.js";
 import { render, scheduleRender } from "./render.js";
 import { saveRecipe } from "./loading.js";
 import { forget } from "./background.js";
@@ -127,18 +127,8 @@ export function selectEntry(i) {
   render();
 }
 
-/** The selected log if it suits the view, else the first loaded one that does. */
-export function logFor(view) {
-  const want = VIEW_KIND[view];
-  const sel = state.entries[state.selected];
-  if (view === "allan") {
-    // any gyro log will do, a static one is what the method is for
-    if (sel && !sel.error && sel.kind === "static") return sel;
-    return state.entries.find((e) => !e.error && e.kind === "static") || (sel && !sel.error ? sel : null);
-  }
-  if (sel && !sel.error && (!want || sel.kind === want)) return sel;
-  return state.entries.find((e) => !e.error && (!want || e.kind === want)) || null;
-}
+/** The selected log if it suits the view, else the first loaded one that does (state.js). */
+export { logFor };
 
 // ---------- parameters ----------
 /** A form of parameters, slider and box each. `check(key, value)` asks core whether the

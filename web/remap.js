@@ -28,7 +28,7 @@ export async function remap(entry) {
   const bytes = { [f.name]: new Uint8Array(await f.arrayBuffer()) };
   const importer = (r) => inWorker({ type: "import", files: bytes, recipe: r, title: "the check's fix" }, [], () => {});
   const fixes = entry.errors;
-  const lead = entry.log.toColumns().meta.bias_s ?? gd.defaultBiasS();
+  const lead = entry.log.meta().bias_s ?? gd.defaultBiasS();
   // A v1 log's reference is counter-clockwise positive already and kept at any speed (not a
   // raw GPS course).
   const preset = Object.assign({ "map-lead": String(lead), "map-ref-sense": "ccw", "map-ref-min-speed": "0" }, ...fixes.map((x) => MAPPER_FIX[x.code]));

@@ -63,8 +63,21 @@ export function hdrOptions() {
   return o;
 }
 
+/** The selected log if it suits the view, else the first loaded one that does. */
+export function logFor(view) {
+  const want = VIEW_KIND[view];
+  const sel = state.entries[state.selected];
+  if (view === "allan") {
+    // any gyro log will do, a static one is what the method is for
+    if (sel && !sel.error && sel.kind === "static") return sel;
+    return state.entries.find((e) => !e.error && e.kind === "static") || (sel && !sel.error ? sel : null);
+  }
+  if (sel && !sel.error && (!want || sel.kind === want)) return sel;
+  return state.entries.find((e) => !e.error && (!want || e.kind === want)) || null;
+}
+
 // ---------- URL state ----------
-/** Applies a link's state (view, parameters, zoom); returns the log name it asks for. Only
+/** Applies a link's state (view, parameters, zooms); returns the log name it asks for. Only
  * valid values are taken, 0 included. */
 export function readUrl() {
   const h = new URLSearchParams(location.hash.slice(1));
@@ -85,6 +98,10 @@ export function readUrl() {
   state.overlay = new Set(h.getAll("overlay"));
   const z = (h.get("zoom") || "").split(",").map(Number);
   state.zoom = z.length === 2 && z.every(Number.isFinite) && z[0] < z[1] ? z : null;
+  // The Track view's zoom and pan: centre (m) and metres per canvas pixel, on the log that
+  // view shows first (name null until then: web/views/track.js).
+  const t = (h.get("track") || "").split(",").map(Number);
+  state.trackView = t.length === 3 && t.every(Number.isFinite) && t[2] > 0 ? { name: null, xc: t[0], yc: t[1], mpp: t[2] } : null;
   return h.get("log");
 }
 
@@ -105,6 +122,10 @@ export function urlHash() {
   h.set("resample", state.resample ? "1" : "0");
   h.set("thres_rate_dps", String(state.gyro.thres_rate_dps));
   if (state.zoom) h.set("zoom", state.zoom.map((v) => +v.toFixed(3)).join(","));
+  // The Track view's zoom, while it is on the log that view shows (the selected one, or the
+  // first drive when the selected log is not one).
+  const tv = state.trackView;
+  if (tv && tv.name === logFor("track")?.name) h.set("track", [tv.xc, tv.yc, tv.mpp].map((v) => +v.toPrecision(6)).join(","));
   if (state.columns) h.set("cols", state.columns.join(","));
   for (const name of state.overlay) h.append("overlay", name);
   return "#" + h.toString();

@@ -651,7 +651,7 @@ test("a large raw export is imported in the Web Worker with the CLI's numbers", 
   assert.ok(text.includes(`ARW ${native.arw_deg_per_sqrt_h.toFixed(2)} deg/√h`), text);
 });
 
-test("the Track view has equal metres per pixel across and up, and the recommended pipeline's paths", async () => {
+test("the Track view has equal metres per pixel across and up, and the recommended pipeline's paths; its zoom and pan are in the link", async () => {
   await page.locator("#tabs button[data-view=track]").click();
   await page.waitForFunction(() => window.gyrodrift.state.layouts["c-track"]);
   const names = await page.evaluate(() => window.gyrodrift.state.specs["c-track"].series.map((s) => s.name));
@@ -704,8 +704,16 @@ test("the Track view has equal metres per pixel across and up, and the recommend
   await page.waitForTimeout(100);
   const L2 = await layout();
   assert.ok(L2.x_min < L1.x_min && Math.abs(L2.x_max - L2.x_min - (L1.x_max - L1.x_min)) < 1e-6, "a drag to the right pans west");
+  // The view is in the link, and a link's view is applied.
+  await page.waitForFunction(() => /[#&]track=[-0-9.e]+(%2C|,)[-0-9.e]+(%2C|,)[0-9.e]+/.test(location.hash));
+  const linked = page.url().split("#")[0] + "#view=track&log=City+1&track=1000,1500,2";
+  await page.evaluate((u) => { location.href = u; }, linked);
+  await page.waitForFunction(() => {
+    const L = window.gyrodrift.state.layouts["c-track"];
+    return L && Math.abs((L.x_min + L.x_max) / 2 - 1000) < 1e-6 && Math.abs((L.y_min + L.y_max) / 2 - 1500) < 1e-6 && Math.abs((L.x_max - L.x_min) / (L.right - L.left) - 2) < 1e-9;
+  });
   await canvas.dblclick();
-  await page.waitForFunction(() => window.gyrodrift.state.trackView === null);
+  await page.waitForFunction(() => window.gyrodrift.state.trackView === null && !location.hash.includes("track="));
   await page.waitForTimeout(100);
   assert.ok(Math.abs((await layout()).x_max - L0.x_max) < 1e-6, "a double click shows the whole track again");
   await page.locator("#tabs button[data-view=hdr]").click();

@@ -35,6 +35,7 @@ export function renderTrack() {
   }
   // Equal axes (the plot module fits them to the plot area): the whole track, or where the
   // user zoomed and panned on this log (its centre and metres per canvas pixel).
+  if (state.trackView && state.trackView.name === null) state.trackView.name = e.name; // from a link
   const v = state.trackView?.name === e.name ? state.trackView : null;
   chart("c-track", {
     title: `${e.name}: dead-reckoned track`, x_label: "east (m)", y_label: "north (m)",
