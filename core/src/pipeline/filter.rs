@@ -151,6 +151,11 @@ impl Pipeline {
         })
     }
 
+    /// Where the declared stationary lead-in ends (absolute time, s).
+    pub fn lead_in_end_s(&self) -> f64 {
+        self.lead_in_end_s
+    }
+
     /// Ends the declared stationary lead-in at `time_s` if it was to end later: a block
     /// stamped then or after is not lead-in evidence (the speed showed the vehicle moving).
     pub fn end_lead_in(&mut self, time_s: f64) {

@@ -5,6 +5,7 @@
 //! labelled non-causal). Design and what was
 //! tried and dropped: docs/pipeline.md. `gyrodrift hdr` stays the paper's exact method.
 
+mod blend;
 mod dating;
 mod evidence;
 pub mod filter;
@@ -100,15 +101,23 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
     f.gyro_stills = blocks.source == StillSource::Gyro;
     let mut tr = PipelineTrace { time_s: blocks.time_s.clone(), ..Default::default() };
+    let (mut blend, mut blended) = (blend::Blend::default(), Vec::with_capacity(n));
     for i in 0..n {
-        let o = f.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
+        let (t, rate) = (blocks.time_s[i], blocks.rate_dps[i]);
+        let o = f.update(t, rate, blocks.still[i])?;
         tr.heading_deg.push(o.heading_deg);
         tr.heading_sigma_deg.push(o.heading_sigma_deg);
         tr.bias_dps.push(o.bias_dps);
         tr.bias_sigma_dps.push(o.bias_sigma_dps);
         tr.stop.push(o.stop);
+        blended.push(blend.update(params.hdr_blend_sigmas, t >= f.lead_in_end_s(), t, rate, o)?);
     }
+    // The smoothed mode is held to the bank's causal heading at stops; the trace then takes
+    // the blended heading and bias (`blend.rs`).
     tr.bias_smoothed_dps = smoother::smoothed_bias(blocks, params, lead_in_end_s, &f, &tr)?;
+    for (i, o) in blended.iter().enumerate() {
+        (tr.heading_deg[i], tr.bias_dps[i]) = (o.heading_deg, o.bias_dps);
+    }
     let mut h = 0.0;
     for i in 0..n {
         if i > 0 {

@@ -49,6 +49,8 @@ pub struct PipelineStream {
     gyro_still: crate::still::GyroStill,
     /// A row has brought a finite speed: stillness is judged by speed from then on.
     speed_seen: bool,
+    /// The heading's blend with HDR's, as the batch path blends it.
+    blend: super::blend::Blend,
 }
 
 impl PipelineStream {
@@ -66,6 +68,7 @@ impl PipelineStream {
             heading_deg: 0.0,
             gyro_still: Default::default(),
             speed_seen: false,
+            blend: Default::default(),
         })
     }
 
@@ -120,7 +123,9 @@ impl PipelineStream {
                 filter.end_lead_in(o.last_s);
             }
             filter.gyro_stills = !self.speed_seen;
-            let out = filter.update(o.last_s, o.sum_dps / o.n as f64, still)?;
+            let rate_dps = o.sum_dps / o.n as f64;
+            let bank = filter.update(o.last_s, rate_dps, still)?;
+            let out = self.blend.update(self.params.hdr_blend_sigmas, o.last_s >= filter.lead_in_end_s(), o.last_s, rate_dps, bank)?;
             self.last = Some((out, o.last_s));
             self.bias_dps = filter.bias().0;
         }
@@ -155,10 +160,16 @@ mod tests {
 
     /// Streams `log` (NaN speed where it has no speed column) and checks that every closed
     /// block's output equals the batch trace's (unaligned) at that block, bit for bit, and,
-    /// at a block's last row, the heading where the block brought no stop. Returns the batch
-    /// path's still source.
+    /// with the bank's heading alone (no blend with HDR's, which moves a block's heading
+    /// only when it closes), at a block's last row, the heading where the block brought no
+    /// stop. Returns the batch path's still source.
     fn assert_stream_equals_batch(log: &crate::DriveLog) -> crate::still::StillSource {
         let params = PipelineParams { bias_s: Some(log.bias_s(None)), ..Default::default() };
+        assert_stream_equals_batch_with(log, PipelineParams { hdr_blend_sigmas: 0.0, ..params }, true);
+        assert_stream_equals_batch_with(log, params, false)
+    }
+
+    fn assert_stream_equals_batch_with(log: &crate::DriveLog, params: PipelineParams, rows: bool) -> crate::still::StillSource {
         let prep = Prepared::new(log, params.bias_s, &params.still).unwrap();
         let batch = prep.pipeline_trace(&params).unwrap();
         let t = log.time_s();
@@ -187,7 +198,7 @@ mod tests {
         }
         let lead_in_blocks = batch.time_s.iter().filter(|&&b| b < prep.lead_in_end_s()).count();
         assert!(batch.stop.iter().skip(lead_in_blocks).any(|&s| s), "the drive has stops after its lead-in");
-        for (j, psi) in at_last_row.iter().enumerate().skip(1).filter(|(j, _)| !batch.stop[*j]) {
+        for (j, psi) in at_last_row.iter().enumerate().skip(1).filter(|(j, _)| rows && !batch.stop[*j]) {
             assert!((psi - batch.heading_deg[j]).abs() < 1e-9, "block {j}: {psi} against {}", batch.heading_deg[j]);
         }
         prep.blocks.source

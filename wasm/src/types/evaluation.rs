@@ -79,6 +79,9 @@ export interface PipelineOptions {
   warm_tau_long_s?: number;
   prior_bias_sigma_dps?: number;
   forget_s?: number;
+  /** The heading is the mean of the bank's and Table-III HDR's over each block where their
+   * biases differ by less than this many of the bank's bias sigma (2); 0 = the bank's alone. */
+  hdr_blend_sigmas?: number;
   bias_s?: number | null;
 }
 export type StillSource = "speed" | "odometry" | "gyro" | "none";
