@@ -12,7 +12,7 @@ mod common;
 use gyrodrift::battery::{self, Base, Profile};
 use gyrodrift::eval::Prepared;
 use gyrodrift::metrics::{error_series, score};
-use gyrodrift::pipeline::{Pipeline, PipelineParams};
+use gyrodrift::pipeline::PipelineParams;
 
 /// One case: its label, whether its base is simulated, and per scored sample |error| and sigma.
 struct Case {
@@ -86,13 +86,9 @@ fn run_case(b: &Base, pr: &Profile) -> Option<Case> {
     let prep = Prepared::new(&log, None, &params.still).unwrap();
     let reference = prep.reference().ok()?;
     let bl = &prep.blocks;
-    let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, prep.lead_in_end_s()).unwrap();
-    let (mut psi, mut sig) = (Vec::new(), Vec::new());
-    for i in 0..bl.len() {
-        let o = f.update(bl.time_s[i], bl.rate_dps[i], bl.still[i]).unwrap();
-        psi.push(o.heading_deg);
-        sig.push(o.heading_sigma_deg);
-    }
+    // The shipped causal heading (the bank's blended with HDR's) and the bank's sigma.
+    let tr = prep.pipeline_trace(&params).unwrap();
+    let (psi, sig) = (tr.heading_deg, tr.heading_sigma_deg);
     let shift = score(&bl.time_s, &psi, reference).ok()?.shift_deg;
     let aligned: Vec<f64> = psi.iter().map(|p| p + shift).collect();
     let (_, err) = error_series(&bl.time_s, &aligned, reference);

@@ -5,14 +5,16 @@
 //! the heading moves by the mean of the two headings' moves when the bias they imply
 //! differ by less than `hdr_blend_sigmas` of the bank's bias uncertainty, and by the bank's
 //! alone otherwise (HDR diverging, or the bank correcting its heading at a stop). HDR starts
-//! at the end of the lead-in from the bank's bias then (its static bias, eps0), so the
-//! stream and the batch path blend alike, block for block. Beyond the paper, like the bank.
+//! after the lead-in, at the first block where the bank knows its bias to better than one
+//! of HDR's own correction steps (Table III's i_c, 0.0422 deg/s: HDR's static bias eps0 is
+//! a standstill's, known that well), from the bank's bias then; before, the bank's alone.
+//! The stream and the batch path blend alike, block for block. Beyond the paper, like the bank.
 
 use super::filter::PipelineOutput;
 use crate::error::Result;
 use crate::hdr::{Hdr, HdrParams};
 
-/// The blend beside a bank: HDR on the blocks from the end of the lead-in, the two headings
+/// The blend beside a bank: HDR on the blocks once the bank knows its bias, the two headings
 /// at the last block, the offset the blend has added to the bank's heading.
 #[derive(Debug, Clone, Default)]
 pub struct Blend {
@@ -29,9 +31,13 @@ impl Blend {
         if !(sigmas > 0.0 && after_lead_in) {
             return Ok(bank);
         }
+        let table_iii = HdrParams::table_iii();
+        if self.hdr.is_none() && !(bank.bias_sigma_dps < table_iii.i_c_dps) {
+            return Ok(bank);
+        }
         let hdr = match self.hdr.as_mut() {
             Some(h) => h,
-            None => self.hdr.insert(Hdr::new(HdrParams::table_iii(), bank.bias_dps)?),
+            None => self.hdr.insert(Hdr::new(table_iii, bank.bias_dps)?),
         };
         let hdr_heading_deg = hdr.update(time_s, rate_dps)?.heading_deg;
         let mut out = bank;
@@ -54,39 +60,33 @@ impl Blend {
 mod tests {
     use super::*;
 
-    fn bank(heading_deg: f64) -> PipelineOutput {
-        PipelineOutput {
-            heading_deg,
-            bias_dps: 0.0,
-            bias_sigma_dps: 0.1,
-            heading_sigma_deg: 0.0,
-            stop: false,
-            straight: false,
-            reopened: false,
-        }
+    fn bank(heading_deg: f64, bias_sigma_dps: f64) -> PipelineOutput {
+        PipelineOutput { heading_deg, bias_dps: 0.0, bias_sigma_dps, heading_sigma_deg: 0.0, stop: false, straight: false, reopened: false }
     }
 
     #[test]
     fn agreeing_headings_are_averaged_and_a_diverging_one_is_left_out() {
         let mut b = Blend::default();
-        // In the lead-in, or with the blend off, the bank's output as it is.
-        assert_eq!(b.update(2.0, false, 0.0, 0.0, bank(0.3)).unwrap(), bank(0.3));
-        assert_eq!(b.update(0.0, true, 0.0, 0.0, bank(0.3)).unwrap(), bank(0.3));
+        // In the lead-in, with the blend off, or while the bank's bias is less sure than one
+        // of HDR's steps (0.0422 deg/s), the bank's output as it is, and HDR not started.
+        assert_eq!(b.update(2.0, false, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
+        assert_eq!(b.update(0.0, true, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
+        assert_eq!(b.update(2.0, true, 0.0, 0.0, bank(0.3, 0.05)).unwrap(), bank(0.3, 0.05));
         assert!(b.hdr.is_none());
-        // HDR from eps0 = the bank's bias (0) on a rate of 0: its heading h1 after 1 s moves
-        // only by its controller (at most Table III's i_c, 0.0422 deg/s, per step).
-        assert_eq!(b.update(2.0, true, 0.0, 0.0, bank(0.0)).unwrap(), bank(0.0));
-        let h1 = b.hdr.clone().unwrap().update(1.0, 0.0).unwrap().heading_deg;
+        // HDR from eps0 = the bank's bias (0) on a rate of 0; h1, its heading after 1 s,
+        // moves only by its controller (at most i_c per step).
+        assert_eq!(b.update(2.0, true, 1.0, 0.0, bank(0.0, 0.03)).unwrap(), bank(0.0, 0.03));
+        let h1 = b.hdr.clone().unwrap().update(2.0, 0.0).unwrap().heading_deg;
         assert!(h1.abs() <= 0.0422 + 1e-12);
-        // The bank moved 0.1 deg in 1 s: 0.1 - h1 apart, within 2 x 0.1 deg/s, so the blend
-        // takes the mean of the two moves, and the bias the bank's less half the difference.
-        let o = b.update(2.0, true, 1.0, 0.0, bank(0.1)).unwrap();
-        assert!((o.heading_deg - (0.1 + h1) / 2.0).abs() < 1e-12, "{} against {}", o.heading_deg, (0.1 + h1) / 2.0);
-        assert!((o.bias_dps - (0.1 - h1) / 2.0).abs() < 1e-12, "{}", o.bias_dps);
-        // Then the bank jumps 5 deg in a block (a stop's correction): 5 deg/s apart, beyond
-        // 2 sigma, so the blend moves with the bank alone and keeps its offset.
-        let offset = o.heading_deg - 0.1;
-        let o = b.update(2.0, true, 2.0, 0.0, bank(5.1)).unwrap();
-        assert!((o.heading_deg - (5.1 + offset)).abs() < 1e-12 && o.bias_dps == 0.0);
+        // The bank moved h1 + 0.05 deg in 1 s: 0.05 deg/s apart, within 2 x 0.03, so the
+        // blend takes the mean of the two moves, and the bias the bank's less half the gap.
+        let o = b.update(2.0, true, 2.0, 0.0, bank(h1 + 0.05, 0.03)).unwrap();
+        assert!((o.heading_deg - (h1 + 0.025)).abs() < 1e-12, "{} against {}", o.heading_deg, h1 + 0.025);
+        assert!((o.bias_dps - 0.025).abs() < 1e-12, "{}", o.bias_dps);
+        // 0.07 deg/s apart next: beyond 2 sigma, the bank's move alone, the offset kept.
+        let o = b.update(2.0, true, 3.0, 0.0, bank(h1 + 0.05 + 0.07, 0.03)).unwrap();
+        let h2 = b.last.unwrap().2;
+        assert!((h2 - h1).abs() < 1e-12, "HDR still on the rate of 0: {h2}");
+        assert!((o.heading_deg - (h1 + 0.05 + 0.07 - 0.025)).abs() < 1e-12 && o.bias_dps == 0.0);
     }
 }
