@@ -197,3 +197,29 @@ fn a_large_bias_without_a_lead_in_is_not_a_scale_error() {
     assert!(codes(&log).is_empty(), "{}", r.to_text());
     assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{:?}", r.gyro_over_reference);
 }
+
+/// A short drive with one clear turn (a standing, straights, one 90 deg turn at 10 deg/s):
+/// its whole, steady-ended window judges units and sign, so a gyro in rad/s is found; a
+/// 5 % scale error is not claimed from one turn (a scale needs 3), and nothing is said.
+#[test]
+fn one_turn_judges_units_but_not_a_scale() {
+    let drive = |gain: f64| {
+        let (mut s, mut psi) = (String::from("time_s,gyro_dps,ref_heading_deg,speed_mps\n"), 0.0_f64);
+        for i in 0..=1200 {
+            let t = i as f64 / 10.0;
+            let w = if (60.0..69.0).contains(&t) { 10.0 } else { 0.0 };
+            if i > 0 {
+                psi += w * 0.1;
+            }
+            let r = if i % 10 == 0 { format!("{psi}") } else { String::new() };
+            s.push_str(&format!("{t},{},{r},{}\n", 0.3 * gain + w * gain, if t < 20.0 { 0.0 } else { 10.0 }));
+        }
+        crate::log::parse_log_str(&s).unwrap()
+    };
+    let rad = check(&drive(std::f64::consts::PI / 180.0));
+    assert!(rad.findings.iter().any(|f| f.code == "gyro_unit" && f.severity == Severity::Error), "{}", rad.to_text());
+    let scaled = drive(1.05);
+    let r = check(&scaled);
+    assert!((r.gyro_over_reference.unwrap() - 1.05).abs() < 0.01, "{}", r.to_text());
+    assert!(codes(&scaled).is_empty(), "{}", r.to_text());
+}

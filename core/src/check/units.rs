@@ -123,12 +123,12 @@ fn windows(log: &DriveLog, (gt, psi): &(Vec<f64>, Vec<f64>), in_radians: bool, s
 }
 
 /// The ratio of the integrated gyro's heading change to the reference's over the largest
-/// turns (median) and its standard error (from the interquartile range), or None without
-/// turns. With `road`, each turn first loses the bias the windows the reference says are
+/// turns (median) and its standard error (from the interquartile range; infinite under 3
+/// turns), or None with fewer than `min_turns`. With `road`, each turn first loses the bias the windows the reference says are
 /// straight (2 deg) show within 300 s of it (their median rate, if 3 or more: a turn-on
 /// bias without a lead-in, a warm-up after one); without, the gyro less the lead-in's bias
 /// alone.
-fn turn_ratio(windows: &[Window], road: bool) -> Option<(f64, f64)> {
+fn turn_ratio(windows: &[Window], road: bool, min_turns: usize) -> Option<(f64, f64)> {
     let big = windows.iter().map(|w| w.ref_deg.abs()).fold(0.0, f64::max);
     // Only clear turns (20 deg or more in a window) say anything about scale and sign.
     let min_turn = (0.3 * big).max(20.0);
@@ -144,16 +144,20 @@ fn turn_ratio(windows: &[Window], road: bool) -> Option<(f64, f64)> {
         let bias = if near.len() >= 3 { crate::metrics::quantile_mut(&mut near, 0.5) } else { 0.0 };
         ratios.push((turn.gyro_deg - bias * turn.dt_s) / turn.ref_deg);
     }
-    let n = ratios.len() as f64;
+    let n = ratios.len();
     let mut q = |p: f64| crate::metrics::quantile_mut(&mut ratios, p);
     // The median's standard error: 1.2533 sigma / sqrt(n), sigma = IQR / 1.349.
-    (n >= 3.0).then(|| (q(0.5), 0.929 * (q(0.75) - q(0.25)) / n.sqrt()))
+    let se = if n >= 3 { 0.929 * (q(0.75) - q(0.25)) / (n as f64).sqrt() } else { f64::INFINITY };
+    (n >= min_turns.max(1)).then(|| (q(0.5), se))
 }
 
-/// [`turn_ratio`] on the windows with steady ends, else on any (a drive in circles), the
-/// gyro's heading `gyro` from [`gyro_heading`].
+/// [`turn_ratio`] on the windows with steady ends if they hold a clear turn (each whole, so
+/// one says units and sign; a scale error needs 3), else on any with 3 turns or more (a
+/// drive in circles, never steady, whose 10-30 s windows cut turns: with a lag between the
+/// gyro and the reference, 1 s means stamped at their end, they were the cause of 1 Hz
+/// logs refused as a unit mistake), the gyro's heading `gyro` from [`gyro_heading`].
 fn ratio_of(log: &DriveLog, gyro: &(Vec<f64>, Vec<f64>), in_radians: bool, road: bool) -> Option<(f64, f64)> {
-    [true, false].into_iter().find_map(|steady| turn_ratio(&windows(log, gyro, in_radians, steady)?, road))
+    [(true, 1), (false, 3)].into_iter().find_map(|(steady, n)| turn_ratio(&windows(log, gyro, in_radians, steady)?, road, n))
 }
 
 /// The ratio and its standard error from the log alone (the tests' entry).
