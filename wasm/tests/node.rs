@@ -158,13 +158,18 @@ fn every_method_returns_result_keys() {
     let d1 = Log::parse(JsValue::from_str(RURAL)).unwrap();
     let d2 = simulate(obj(&[("scenario", "city".into()), ("minutes", JsValue::from_f64(6.0)), ("name", "Sim".into())])).unwrap();
     let logs = Array::of2(&JsValue::from(d1), &JsValue::from(d2));
-    let rep = report(logs.clone().into(), JsValue::UNDEFINED).unwrap();
+    let rep = report(logs.clone().into(), JsValue::UNDEFINED, None).unwrap();
     let rows: Array = get(&rep, "rows").dyn_into().unwrap();
     assert_eq!(rows.length(), 2);
     assert_eq!(get(&rows.get(1), "name").as_string().as_deref(), Some("Sim"));
-    let t =
-        tune(logs.into(), JsValue::UNDEFINED, obj(&[("max_iters", JsValue::from_f64(20.0)), ("restarts", JsValue::from_f64(0.0))]), None)
-            .unwrap();
+    let t = tune(
+        logs.into(),
+        JsValue::UNDEFINED,
+        obj(&[("max_iters", JsValue::from_f64(20.0)), ("restarts", JsValue::from_f64(0.0))]),
+        None,
+        None,
+    )
+    .unwrap();
     let res = get(&t, "result");
     assert!(num(&res, "objective_tuned_deg_per_min") <= num(&res, "objective_start_deg_per_min"));
 }
@@ -243,6 +248,6 @@ fn import_log_by_recipe_and_pipeline_match_core() {
     assert_eq!(get(&run, "still_source").as_string().as_deref(), Some("speed"));
     let e = pipeline(&rural, obj(&[("gate", JsValue::from_f64(1.0))])).unwrap_err();
     assert!(message(e).contains("unknown field `gate`"));
-    let c = compare(Array::of1(&JsValue::from(rural)).into(), JsValue::UNDEFINED).unwrap();
+    let c = compare(Array::of1(&JsValue::from(rural)).into(), JsValue::UNDEFINED, None).unwrap();
     assert_eq!(num(&get(&c, "mean"), "pipeline").to_bits(), native.NE_psi_pipeline_deg_per_min.to_bits());
 }
