@@ -16,7 +16,9 @@ export function scoredDrives() {
   return state.entries.filter((e) => !e.error && e.scored && !refused(e));
 }
 
-/** The loaded drives the Report view tabulates. */
+/** The loaded drives the Report view tabulates. Those `check` refuses are left out here
+ * (entry.errors, decided once where a log is loaded), so the tables are called with
+ * ignore_check = true: no second check of every log at every slider step. */
 export function reportDrives() {
   return scoredDrives().map((e) => e.log);
 }
@@ -25,10 +27,10 @@ export function reportDrives() {
 export function reportExports(download) {
   const pipe = () => ({ bias_s: hdrOptions().bias_s ?? null });
   const files = {
-    "export-report-csv": ["gyrodrift-table-ii.csv", "text/csv", () => gd.reportCsv(reportDrives(), hdrOptions())],
-    "export-report-md": ["gyrodrift-table-ii.md", "text/markdown", () => gd.reportMarkdown(reportDrives(), hdrOptions())],
-    "export-compare-csv": ["gyrodrift-methods.csv", "text/csv", () => gd.compareTable(reportDrives(), pipe(), "csv")],
-    "export-compare-md": ["gyrodrift-methods.md", "text/markdown", () => gd.compareTable(reportDrives(), pipe(), "markdown")],
+    "export-report-csv": ["gyrodrift-table-ii.csv", "text/csv", () => gd.reportCsv(reportDrives(), hdrOptions(), true)],
+    "export-report-md": ["gyrodrift-table-ii.md", "text/markdown", () => gd.reportMarkdown(reportDrives(), hdrOptions(), true)],
+    "export-compare-csv": ["gyrodrift-methods.csv", "text/csv", () => gd.compareTable(reportDrives(), pipe(), "csv", true)],
+    "export-compare-md": ["gyrodrift-methods.md", "text/markdown", () => gd.compareTable(reportDrives(), pipe(), "markdown", true)],
   };
   for (const [id, [name, type, make]] of Object.entries(files)) {
     $(id).addEventListener("click", () => {
@@ -52,9 +54,9 @@ export function renderReport() {
   ].filter(Boolean).join(" ");
   const drives = reportDrives();
   if (!drives.length) return showError("Load drive logs for the report.");
-  const rep = gd.report(drives, hdrOptions());
+  const rep = gd.report(drives, hdrOptions(), true);
   $("report-table").replaceChildren(reportTable(rep));
-  const cmp = gd.compare(drives, { bias_s: hdrOptions().bias_s ?? null });
+  const cmp = gd.compare(drives, { bias_s: hdrOptions().bias_s ?? null }, true);
   $("compare-table").replaceChildren(compareTable(cmp));
   fillWorse();
 }
