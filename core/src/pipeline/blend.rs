@@ -2,7 +2,7 @@
 //! Two estimators whose errors differ in kind (the bank's road model is wrong where the road
 //! is not as modelled; HDR's fixed-rate heuristic cannot acquire a bias it did not start
 //! near, and follows a slow change the bank lags) are averaged, with a guard: over each block
-//! the heading moves by the mean of the two headings' moves when the bias they imply
+//! the heading moves by the mean of the two headings' moves when the biases they imply
 //! differ by less than `hdr_blend_sigmas` of the bank's bias uncertainty, and by the bank's
 //! alone otherwise (HDR diverging, or the bank correcting its heading at a stop). HDR starts
 //! after the lead-in, at the first block where the bank knows its bias to better than one
@@ -42,7 +42,8 @@ impl Blend {
         let hdr_heading_deg = hdr.update(time_s, rate_dps)?.heading_deg;
         let mut out = bank;
         if let Some((t, bank_deg, hdr_deg)) = self.last {
-            // HDR's bias less the bank's over the block, from the headings' moves.
+            // How far the two headings moved apart over the block: (the bank's bias less
+            // HDR's, as each integrated it) x dt.
             let apart_deg = (hdr_heading_deg - hdr_deg) - (bank.heading_deg - bank_deg);
             let dt = time_s - t;
             if dt > 0.0 && (apart_deg / dt).abs() < sigmas * bank.bias_sigma_dps {
