@@ -55,6 +55,11 @@ impl FusionOffset {
         g
     }
 
+    /// As `new`, with the offset already at `offset_dps` (an estimate known at the start).
+    pub fn starting_at(sample_rate_hz: u32, offset_dps: f64) -> Self {
+        FusionOffset { offset_dps, ..Self::new(sample_rate_hz) }
+    }
+
     pub fn offset_dps(&self) -> f64 {
         self.offset_dps
     }

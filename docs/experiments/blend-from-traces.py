@@ -2,7 +2,7 @@
 """The blend of the bank's heading with Table-III HDR's, computed from the two methods'
 traces (how the twenty-fifth session measured it before building it: docs/pipeline.md).
 For every training case of the battery (or the format probe's logs), the bank's trace
-(`pipeline --trace --set hdr_blend_sigmas=0`) and HDR's (`hdr --trace`, HDR from the log's
+(`pipeline --trace --set blend_sigmas=0`) and HDR's (`hdr --trace`, HDR from the log's
 start, as the battery's peer) are blended per 1 s block: the heading moves by the mean of
 the two moves where the biases they imply differ by less than K of the bank's bias sigma,
 by the bank's alone elsewhere. Prints the goal's counts against the best other method.
@@ -57,7 +57,7 @@ def blended(log):
     """The bank's and the blend's NE_psi numerators (E_psi, deg) for one log."""
     bank, hdr = log + ".bank.csv", log + ".hdr.csv"
     if not os.path.exists(hdr):
-        run("pipeline", log, "--set", "hdr_blend_sigmas=0", "--trace", bank, "--json")
+        run("pipeline", log, "--set", "blend_sigmas=0", "--trace", bank, "--json")
         run("hdr", log, "--trace", hdr, "--json")
     P, H = list(csv.DictReader(open(bank))), list(csv.DictReader(open(hdr)))
     t = [float(r["time_s"]) for r in P]

@@ -1,57 +1,87 @@
-//! The recommended heading: the bank's, averaged with Table-III HDR's where the two agree.
-//! Two estimators whose errors differ in kind (the bank's road model is wrong where the road
-//! is not as modelled; HDR's fixed-rate heuristic cannot acquire a bias it did not start
-//! near, and follows a slow change the bank lags) are averaged, with a guard: over each block
-//! the heading moves by the mean of the two headings' moves when the biases they imply
-//! differ by less than `hdr_blend_sigmas` of the bank's bias uncertainty, and by the bank's
-//! alone otherwise (HDR diverging, or the bank correcting its heading at a stop). HDR starts
-//! after the lead-in, at the first block where the bank knows its bias to better than one
-//! of HDR's own correction steps (Table III's i_c, 0.0422 deg/s: HDR's static bias eps0 is
-//! a standstill's, known that well), from the bank's bias then; before, the bank's alone.
-//! The stream and the batch path blend alike, block for block. Beyond the paper, like the bank.
+//! The recommended heading: the bank's, averaged with two simple experts' where they agree
+//! with it. Estimators whose errors differ in kind are averaged, with a guard: the bank's
+//! road model is wrong where the road is not as modelled; Table-III HDR's fixed-rate
+//! heuristic cannot acquire a bias it did not start near, and follows a slow change the bank
+//! lags; x-io Fusion's offset follows any slow rate within 3 deg/s, a bias and a long curve
+//! alike. Over each block the heading moves by the mean of the bank's move and the move of
+//! every expert whose implied bias differs from the bank's by less than `blend_sigmas` of the
+//! bank's bias uncertainty; by the bank's alone when none does (an expert diverging, or the
+//! bank correcting its heading at a stop). The experts start after the lead-in, at the first
+//! block where the bank knows its bias to better than one of HDR's own correction steps
+//! (Table III's i_c, 0.0422 deg/s: HDR's static bias eps0 is a standstill's, known that
+//! well), from the bank's bias then; before, the bank's alone. The stream and the batch path
+//! blend alike, block for block. Beyond the paper, like the bank.
 
 use super::filter::PipelineOutput;
 use crate::error::Result;
 use crate::hdr::{Hdr, HdrParams};
+use crate::peers::FusionOffset;
 
-/// The blend beside a bank: HDR on the blocks once the bank knows its bias, the two headings
-/// at the last block, the offset the blend has added to the bank's heading.
+/// The experts on the blocks once started, and their headings at the last block.
+#[derive(Debug, Clone)]
+struct Experts {
+    hdr: Hdr,
+    hdr_deg: f64,
+    /// Fusion's algorithm on the 1 s blocks, as on a 1 Hz gyro (its 5 s timeout is 5 blocks).
+    fusion: FusionOffset,
+}
+
+/// The blend beside a bank.
 #[derive(Debug, Clone, Default)]
 pub struct Blend {
-    hdr: Option<Hdr>,
-    last: Option<(f64, f64, f64)>,
+    sigmas: f64,
+    experts: Option<Experts>,
+    /// The last block's end time and the bank's heading then.
+    last: Option<(f64, f64)>,
+    /// What the blend has added to the bank's heading so far, deg.
     offset_deg: f64,
 }
 
 impl Blend {
+    /// `sigmas`: the guard, `blend_sigmas` (0: the bank's output as it is).
+    pub fn new(sigmas: f64) -> Self {
+        Blend { sigmas, ..Default::default() }
+    }
+
     /// One block (end time, mean raw rate) and the bank's output on it: the output with the
-    /// blended heading and the bias it integrated. `sigmas` is `hdr_blend_sigmas` (0: the
-    /// bank's output as it is); `after_lead_in`: the block is past the lead-in.
-    pub fn update(&mut self, sigmas: f64, after_lead_in: bool, time_s: f64, rate_dps: f64, bank: PipelineOutput) -> Result<PipelineOutput> {
-        if !(sigmas > 0.0 && after_lead_in) {
+    /// blended heading and the bias it integrated. `after_lead_in`: the block is past the lead-in.
+    pub fn update(&mut self, after_lead_in: bool, time_s: f64, rate_dps: f64, bank: PipelineOutput) -> Result<PipelineOutput> {
+        if !(self.sigmas > 0.0 && after_lead_in) {
             return Ok(bank);
         }
         let table_iii = HdrParams::table_iii();
-        if self.hdr.is_none() && !(bank.bias_sigma_dps < table_iii.i_c_dps) {
+        if self.experts.is_none() && !(bank.bias_sigma_dps < table_iii.i_c_dps) {
             return Ok(bank);
         }
-        let hdr = match self.hdr.as_mut() {
-            Some(h) => h,
-            None => self.hdr.insert(Hdr::new(table_iii, bank.bias_dps)?),
+        let e = match self.experts.as_mut() {
+            Some(e) => e,
+            None => {
+                let hdr = Hdr::new(table_iii, bank.bias_dps)?;
+                self.experts.insert(Experts { hdr, hdr_deg: 0.0, fusion: FusionOffset::starting_at(1, bank.bias_dps) })
+            }
         };
-        let hdr_heading_deg = hdr.update(time_s, rate_dps)?.heading_deg;
+        let hdr_deg = e.hdr.update(time_s, rate_dps)?.heading_deg;
+        let fusion_rate_dps = e.fusion.update(rate_dps);
         let mut out = bank;
-        if let Some((t, bank_deg, hdr_deg)) = self.last {
-            // How far the two headings moved apart over the block: (the bank's bias less
-            // HDR's, as each integrated it) x dt.
-            let apart_deg = (hdr_heading_deg - hdr_deg) - (bank.heading_deg - bank_deg);
+        if let Some((t, bank_deg)) = self.last {
             let dt = time_s - t;
-            if dt > 0.0 && (apart_deg / dt).abs() < sigmas * bank.bias_sigma_dps {
-                self.offset_deg += 0.5 * apart_deg;
-                out.bias_dps -= 0.5 * apart_deg / dt;
+            let bank_move_deg = bank.heading_deg - bank_deg;
+            let (mut sum_deg, mut n) = (bank_move_deg, 1.0);
+            for move_deg in [hdr_deg - e.hdr_deg, fusion_rate_dps * dt] {
+                // How far the two moved apart over the block: (the bank's bias less the
+                // expert's, as each integrated it) x dt.
+                if dt > 0.0 && ((move_deg - bank_move_deg) / dt).abs() < self.sigmas * bank.bias_sigma_dps {
+                    (sum_deg, n) = (sum_deg + move_deg, n + 1.0);
+                }
+            }
+            let gain_deg = sum_deg / n - bank_move_deg;
+            if gain_deg != 0.0 {
+                self.offset_deg += gain_deg;
+                out.bias_dps -= gain_deg / dt;
             }
         }
-        self.last = Some((time_s, bank.heading_deg, hdr_heading_deg));
+        e.hdr_deg = hdr_deg;
+        self.last = Some((time_s, bank.heading_deg));
         out.heading_deg += self.offset_deg;
         Ok(out)
     }
@@ -65,29 +95,48 @@ mod tests {
         PipelineOutput { heading_deg, bias_dps: 0.0, bias_sigma_dps, heading_sigma_deg: 0.0, stop: false, straight: false, reopened: false }
     }
 
+    /// HDR's move over the next block, from a copy of the blend's HDR.
+    fn hdr_move(b: &Blend, time_s: f64, rate_dps: f64) -> f64 {
+        let e = b.experts.clone().unwrap();
+        let mut hdr = e.hdr;
+        hdr.update(time_s, rate_dps).unwrap().heading_deg - e.hdr_deg
+    }
+
     #[test]
-    fn agreeing_headings_are_averaged_and_a_diverging_one_is_left_out() {
-        let mut b = Blend::default();
+    fn agreeing_moves_are_averaged_and_a_diverging_expert_is_left_out() {
+        let mut b = Blend::new(2.0);
         // In the lead-in, with the blend off, or while the bank's bias is less sure than one
-        // of HDR's steps (0.0422 deg/s), the bank's output as it is, and HDR not started.
-        assert_eq!(b.update(2.0, false, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
-        assert_eq!(b.update(0.0, true, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
-        assert_eq!(b.update(2.0, true, 0.0, 0.0, bank(0.3, 0.05)).unwrap(), bank(0.3, 0.05));
-        assert!(b.hdr.is_none());
-        // HDR from eps0 = the bank's bias (0) on a rate of 0; h1, its heading after 1 s,
-        // moves only by its controller (at most i_c per step).
-        assert_eq!(b.update(2.0, true, 1.0, 0.0, bank(0.0, 0.03)).unwrap(), bank(0.0, 0.03));
-        let h1 = b.hdr.clone().unwrap().update(2.0, 0.0).unwrap().heading_deg;
-        assert!(h1.abs() <= 0.0422 + 1e-12);
-        // The bank moved h1 + 0.05 deg in 1 s: 0.05 deg/s apart, within 2 x 0.03, so the
-        // blend takes the mean of the two moves, and the bias the bank's less half the gap.
-        let o = b.update(2.0, true, 2.0, 0.0, bank(h1 + 0.05, 0.03)).unwrap();
-        assert!((o.heading_deg - (h1 + 0.025)).abs() < 1e-12, "{} against {}", o.heading_deg, h1 + 0.025);
-        assert!((o.bias_dps - 0.025).abs() < 1e-12, "{}", o.bias_dps);
-        // 0.07 deg/s apart next: beyond 2 sigma, the bank's move alone, the offset kept.
-        let o = b.update(2.0, true, 3.0, 0.0, bank(h1 + 0.05 + 0.07, 0.03)).unwrap();
-        let h2 = b.last.unwrap().2;
-        assert!((h2 - h1).abs() < 1e-12, "HDR still on the rate of 0: {h2}");
-        assert!((o.heading_deg - (h1 + 0.05 + 0.07 - 0.025)).abs() < 1e-12 && o.bias_dps == 0.0);
+        // of HDR's steps (0.0422 deg/s): the bank's output as it is, and no expert started.
+        assert_eq!(b.update(false, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
+        assert_eq!(Blend::new(0.0).update(true, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
+        assert_eq!(b.update(true, 0.0, 0.0, bank(0.3, 0.05)).unwrap(), bank(0.3, 0.05));
+        assert!(b.experts.is_none());
+        // The experts start from the bank's bias (0); their first block moves nothing.
+        assert_eq!(b.update(true, 1.0, 0.0, bank(0.0, 0.04)).unwrap(), bank(0.0, 0.04));
+        // On a rate of 0, Fusion's move is 0 (offset 0, and it adapts only after 5 blocks
+        // within 3 deg/s); HDR's moves only by its controller, at most i_c per block.
+        let m = hdr_move(&b, 2.0, 0.0);
+        assert!(m.abs() <= 0.0422 + 1e-12, "{m}");
+        // The bank moves 0.03 deg: Fusion 0.03 deg/s apart, HDR at most 0.0722, both within
+        // 2 x 0.04: the heading moves by the mean of the three moves, the bias is the bank's
+        // less what that adds per second.
+        let o = b.update(true, 2.0, 0.0, bank(0.03, 0.04)).unwrap();
+        let gain = (0.03 + m + 0.0) / 3.0 - 0.03;
+        assert!((o.heading_deg - (0.03 + gain)).abs() < 1e-12, "{} against {}", o.heading_deg, 0.03 + gain);
+        assert!((o.bias_dps + gain).abs() < 1e-12, "{}", o.bias_dps);
+        // Fusion's offset put at 0.5 deg/s: a move of -0.5 deg on a rate of 0, far from the
+        // bank's; the bank moves HDR's move + 0.07 (within 0.08): the mean of the two.
+        b.experts.as_mut().unwrap().fusion = FusionOffset::starting_at(1, 0.5);
+        let m = hdr_move(&b, 3.0, 0.0);
+        let bank_deg = 0.03 + m + 0.07;
+        let o = b.update(true, 3.0, 0.0, bank(bank_deg, 0.04)).unwrap();
+        let gain2 = (m + 0.07 + m) / 2.0 - (m + 0.07);
+        assert!((o.heading_deg - (bank_deg + gain + gain2)).abs() < 1e-12, "{} against {}", o.heading_deg, bank_deg + gain + gain2);
+        // The bank moves 0.3 deg, 0.17 deg/s or more from HDR (at most 3 i_c) and 0.8 from
+        // Fusion: the bank's move alone, the offset kept, the bias the bank's.
+        let m = hdr_move(&b, 4.0, 0.0);
+        assert!(m.abs() <= 3.0 * 0.0422 + 1e-12, "{m}");
+        let o = b.update(true, 4.0, 0.0, bank(bank_deg + 0.3, 0.04)).unwrap();
+        assert!((o.heading_deg - (bank_deg + 0.3 + gain + gain2)).abs() < 1e-12 && o.bias_dps == 0.0);
     }
 }

@@ -101,7 +101,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
     f.gyro_stills = blocks.source == StillSource::Gyro;
     let mut tr = PipelineTrace { time_s: blocks.time_s.clone(), ..Default::default() };
-    let (mut blend, mut blended) = (blend::Blend::default(), Vec::with_capacity(n));
+    let (mut blend, mut blended) = (blend::Blend::new(params.blend_sigmas), Vec::with_capacity(n));
     for i in 0..n {
         let (t, rate) = (blocks.time_s[i], blocks.rate_dps[i]);
         let o = f.update(t, rate, blocks.still[i])?;
@@ -110,7 +110,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
         tr.bias_dps.push(o.bias_dps);
         tr.bias_sigma_dps.push(o.bias_sigma_dps);
         tr.stop.push(o.stop);
-        blended.push(blend.update(params.hdr_blend_sigmas, t >= f.lead_in_end_s(), t, rate, o)?);
+        blended.push(blend.update(t >= f.lead_in_end_s(), t, rate, o)?);
     }
     // The smoothed mode is held to the bank's causal heading at stops; the trace then takes
     // the blended heading and bias (`blend.rs`).

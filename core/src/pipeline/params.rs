@@ -64,10 +64,12 @@ pub struct PipelineParams {
     pub huber_k: f64,
     /// Hypothesis weights forget with this time constant, so the bank can switch, s.
     pub forget_s: f64,
-    /// The heading is the mean of the bank's and Table-III HDR's over each block where the
-    /// biases they imply differ by less than this many of the bank's bias sigma, the bank's
-    /// alone elsewhere (`blend.rs`); 0 = the bank's alone. 2 by convention (95 %).
-    pub hdr_blend_sigmas: f64,
+    /// The heading moves by the mean of the bank's move and those of Table-III HDR and
+    /// Fusion's offset over each block where the bias an expert implies differs from the
+    /// bank's by less than this many of the bank's bias sigma (`blend.rs`); 0 = the bank's
+    /// alone. 2 by convention (95 %). `hdr_blend_sigmas` (HDR alone, before) is its alias.
+    #[serde(alias = "hdr_blend_sigmas")]
+    pub blend_sigmas: f64,
     /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
     pub bias_s: Option<f64>,
 }
@@ -94,7 +96,7 @@ impl Default for PipelineParams {
             prior_bias_sigma_dps: 2.5,
             huber_k: 3.0,
             forget_s: 600.0,
-            hdr_blend_sigmas: 2.0,
+            blend_sigmas: 2.0,
             bias_s: None,
         }
     }
@@ -173,8 +175,8 @@ impl PipelineParams {
                 return Err(Error::param(name, format!("{v} is not a number in (0, 1e6)")));
             }
         }
-        if !(self.hdr_blend_sigmas >= 0.0 && self.hdr_blend_sigmas < 1e6) {
-            return Err(Error::param("hdr_blend_sigmas", format!("{} is not a number of sigma in [0, 1e6)", self.hdr_blend_sigmas)));
+        if !(self.blend_sigmas >= 0.0 && self.blend_sigmas < 1e6) {
+            return Err(Error::param("blend_sigmas", format!("{} is not a number of sigma in [0, 1e6)", self.blend_sigmas)));
         }
         if !(self.huber_k > 0.0) {
             return Err(Error::param("huber_k", format!("{} is not a positive number of sigma", self.huber_k)));

@@ -49,7 +49,7 @@ pub struct PipelineStream {
     gyro_still: crate::still::GyroStill,
     /// A row has brought a finite speed: stillness is judged by speed from then on.
     speed_seen: bool,
-    /// The heading's blend with HDR's, as the batch path blends it.
+    /// The heading's blend with the experts', as the batch path blends it.
     blend: super::blend::Blend,
 }
 
@@ -68,7 +68,7 @@ impl PipelineStream {
             heading_deg: 0.0,
             gyro_still: Default::default(),
             speed_seen: false,
-            blend: Default::default(),
+            blend: super::blend::Blend::new(params.blend_sigmas),
         })
     }
 
@@ -125,7 +125,7 @@ impl PipelineStream {
             filter.gyro_stills = !self.speed_seen;
             let rate_dps = o.sum_dps / o.n as f64;
             let bank = filter.update(o.last_s, rate_dps, still)?;
-            let out = self.blend.update(self.params.hdr_blend_sigmas, o.last_s >= filter.lead_in_end_s(), o.last_s, rate_dps, bank)?;
+            let out = self.blend.update(o.last_s >= filter.lead_in_end_s(), o.last_s, rate_dps, bank)?;
             self.last = Some((out, o.last_s));
             self.bias_dps = filter.bias().0;
         }
@@ -160,12 +160,12 @@ mod tests {
 
     /// Streams `log` (NaN speed where it has no speed column) and checks that every closed
     /// block's output equals the batch trace's (unaligned) at that block, bit for bit, and,
-    /// with the bank's heading alone (no blend with HDR's, which moves a block's heading
+    /// with the bank's heading alone (no blend, which moves a block's heading
     /// only when it closes), at a block's last row, the heading where the block brought no
     /// stop. Returns the batch path's still source.
     fn assert_stream_equals_batch(log: &crate::DriveLog) -> crate::still::StillSource {
         let params = PipelineParams { bias_s: Some(log.bias_s(None)), ..Default::default() };
-        assert_stream_equals_batch_with(log, PipelineParams { hdr_blend_sigmas: 0.0, ..params }, true);
+        assert_stream_equals_batch_with(log, PipelineParams { blend_sigmas: 0.0, ..params }, true);
         assert_stream_equals_batch_with(log, params, false)
     }
 

@@ -79,8 +79,11 @@ export interface PipelineOptions {
   warm_tau_long_s?: number;
   prior_bias_sigma_dps?: number;
   forget_s?: number;
-  /** The heading is the mean of the bank's and Table-III HDR's over each block where their
-   * biases differ by less than this many of the bank's bias sigma (2); 0 = the bank's alone. */
+  /** Over each block the heading moves by the mean of the bank's move and those of Table-III
+   * HDR and Fusion's offset where the bias an expert implies differs from the bank's by less
+   * than this many of the bank's bias sigma (2); 0 = the bank's alone. */
+  blend_sigmas?: number;
+  /** @deprecated The name of `blend_sigmas` while it blended HDR alone. */
   hdr_blend_sigmas?: number;
   bias_s?: number | null;
 }
