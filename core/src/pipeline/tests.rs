@@ -274,6 +274,14 @@ fn bad_updates_and_params_are_errors() {
     assert!(PipelineParams { road_sigma_dps: 1e300, ..one_model() }.validate().is_err());
     assert!(crate::options::from_pairs::<PipelineParams>(&[("nope".into(), 1.0)]).is_err());
     assert!(Pipeline::new(one_model(), 0.0, 0.0, 0.0).is_err());
+    assert!(crate::options::from_pairs::<PipelineParams>(&[("blend_sigmas".into(), -1.0)]).is_err());
+}
+
+#[test]
+fn the_blend_guard_keeps_its_first_name_as_an_alias() {
+    let by = |key: &str| crate::options::from_pairs::<PipelineParams>(&[(key.into(), 3.0)]).unwrap().blend_sigmas;
+    assert_eq!((by("blend_sigmas"), by("hdr_blend_sigmas")), (3.0, 3.0));
+    assert_eq!(PipelineParams::default().blend_sigmas, 2.0);
 }
 
 #[test]
