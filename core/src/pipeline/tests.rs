@@ -404,6 +404,12 @@ proptest::proptest! {
         for (x, h) in tr.bias_smoothed_dps.iter().zip(&tr.heading_smoothed_deg) {
             proptest::prop_assert!(x.is_finite() && x.abs() <= p.max_bias_dps + lead_max && h.is_finite(), "smoothed bias {x}, heading {h}");
         }
+        // The causal heading's bias is the bank's, bounded as above, moved by the blend by
+        // less than the guard: the mean of moves each within blend_sigmas of the bank's sigma.
+        for ((x, s), h) in tr.bias_dps.iter().zip(&tr.bias_sigma_dps).zip(&tr.heading_deg) {
+            let bound = p.max_bias_dps + lead_max + p.blend_sigmas * s;
+            proptest::prop_assert!(x.is_finite() && x.abs() <= bound && h.is_finite(), "causal bias {x} beyond {bound}, heading {h}");
+        }
     }
 }
 
