@@ -113,19 +113,40 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
         blended.push(blend.update(t >= f.lead_in_end_s(), t, rate, o)?);
     }
     // The smoothed mode is held to the bank's causal heading at stops; the trace then takes
-    // the blended heading and bias (`blend.rs`).
+    // the blended heading and bias (`blend.rs`), and the smoothed mode is blended alike.
     tr.bias_smoothed_dps = smoother::smoothed_bias(blocks, params, lead_in_end_s, &f, &tr)?;
     for (i, o) in blended.iter().enumerate() {
         (tr.heading_deg[i], tr.bias_dps[i]) = (o.heading_deg, o.bias_dps);
     }
-    let mut h = 0.0;
-    for i in 0..n {
-        if i > 0 {
-            h += (blocks.rate_dps[i] - tr.bias_smoothed_dps[i]) * (blocks.time_s[i] - blocks.time_s[i - 1]);
-        }
-        tr.heading_smoothed_deg.push(h);
-    }
+    blend_smoothed(blocks, params, f.lead_in_end_s(), &mut tr)?;
     Ok(tr)
+}
+
+/// The smoothed heading: the smoothed bias integrated, blended with the experts as the
+/// causal heading is (guarded by the bank's causal bias sigma: the smoother keeps none; the
+/// bank's stops pass whole). Sets `heading_smoothed_deg` and the bias it integrated.
+fn blend_smoothed(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64, tr: &mut PipelineTrace) -> Result<()> {
+    let mut blend = blend::Blend::new(params.blend_sigmas);
+    let mut h = 0.0;
+    for i in 0..blocks.len() {
+        let (t, rate) = (blocks.time_s[i], blocks.rate_dps[i]);
+        if i > 0 {
+            h += (rate - tr.bias_smoothed_dps[i]) * (t - blocks.time_s[i - 1]);
+        }
+        let smoothed = PipelineOutput {
+            heading_deg: h,
+            bias_dps: tr.bias_smoothed_dps[i],
+            bias_sigma_dps: tr.bias_sigma_dps[i],
+            heading_sigma_deg: 0.0,
+            stop: tr.stop[i],
+            straight: false,
+            reopened: false,
+        };
+        let o = blend.update(t >= lead_in_end_s, t, rate, smoothed)?;
+        tr.heading_smoothed_deg.push(o.heading_deg);
+        tr.bias_smoothed_dps[i] = o.bias_dps;
+    }
+    Ok(())
 }
 
 /// The pipeline's result keys (E_psi_*, NE_psi_*, improvement_pipeline, duration_min),

@@ -401,14 +401,14 @@ proptest::proptest! {
         let tr = run_blocks(&blocks, p, lead_in_s).unwrap();
         // The turn-on bias is a mean of lead-in or stop blocks: at most their largest rate.
         let lead_max = (0..blocks.len()).filter(|&i| blocks.time_s[i] < lead_in_s || blocks.still[i]).map(|i| blocks.rate_dps[i].abs()).fold(0.0, f64::max);
-        for (x, h) in tr.bias_smoothed_dps.iter().zip(&tr.heading_smoothed_deg) {
-            proptest::prop_assert!(x.is_finite() && x.abs() <= p.max_bias_dps + lead_max && h.is_finite(), "smoothed bias {x}, heading {h}");
-        }
-        // The causal heading's bias is the bank's, bounded as above, moved by the blend by
-        // less than the guard: the mean of moves each within blend_sigmas of the bank's sigma.
-        for ((x, s), h) in tr.bias_dps.iter().zip(&tr.bias_sigma_dps).zip(&tr.heading_deg) {
-            let bound = p.max_bias_dps + lead_max + p.blend_sigmas * s;
-            proptest::prop_assert!(x.is_finite() && x.abs() <= bound && h.is_finite(), "causal bias {x} beyond {bound}, heading {h}");
+        // Both headings' biases are the bank's (causal, or smoothed and projected after the
+        // hold), bounded as that, moved by the blend by less than the guard: the mean of moves
+        // each within blend_sigmas of the bank's causal sigma.
+        for i in 0..tr.time_s.len() {
+            let bound = p.max_bias_dps + lead_max + p.blend_sigmas * tr.bias_sigma_dps[i];
+            for (what, x, h) in [("causal", tr.bias_dps[i], tr.heading_deg[i]), ("smoothed", tr.bias_smoothed_dps[i], tr.heading_smoothed_deg[i])] {
+                proptest::prop_assert!(x.is_finite() && x.abs() <= bound && h.is_finite(), "{what} bias {x} beyond {bound}, heading {h}");
+            }
         }
     }
 }
