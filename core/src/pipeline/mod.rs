@@ -37,8 +37,11 @@ pub struct PipelineTrace {
     pub heading_sigma_deg: Vec<f64>,
     /// Smoothed heading: uses the whole log, not available live (aligned likewise).
     pub heading_smoothed_deg: Vec<f64>,
+    /// The bias the causal heading integrated: the bank's, moved by the blend (`blend.rs`).
     pub bias_dps: Vec<f64>,
+    /// The bank's bias sigma (the blend's guard; not the blended bias' own uncertainty).
     pub bias_sigma_dps: Vec<f64>,
+    /// The bias the smoothed heading integrated: the bank's smoothed, blended likewise.
     pub bias_smoothed_dps: Vec<f64>,
     /// The block brought stop evidence.
     pub stop: Vec<bool>,

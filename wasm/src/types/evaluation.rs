@@ -124,8 +124,12 @@ export interface PipelineRun {
     heading_sigma_deg: Float64Array;
     /** Offline smoothed heading (non-causal). */
     heading_smoothed_deg: Float64Array;
+    /** The bias the causal heading integrated: the bank's, moved by the blend with
+     * Table-III HDR and Fusion's offset (deg/s). */
     bias_dps: Float64Array;
+    /** The bank's bias sigma (deg/s): the blend's guard, not the blended bias' own. */
     bias_sigma_dps: Float64Array;
+    /** The bias the smoothed heading integrated, blended likewise (deg/s). */
     bias_smoothed_dps: Float64Array;
     stop: Uint8Array;
   };
