@@ -119,6 +119,14 @@ test("runPipeline's trace equals the CLI's `pipeline --trace`, the heading's sig
     assert.deepEqual(Array.from(run.trace[name]), rows.map((r) => Number(r.split(",")[j])), name);
   }
   assert.ok(run.trace.heading_sigma_deg.every((s) => Number.isFinite(s) && s >= 0));
+  // The end figures are core's summary; the final bias is the bank's (the blended series
+  // moves by the experts' per block): the last block's bias with the blend off.
+  const bank = gd.runPipeline(log, { blend_sigmas: 0 }).trace;
+  const last = bank.bias_dps.length - 1;
+  assert.equal(run.summary.final_bias_dps, bank.bias_dps[last]);
+  assert.equal(run.summary.final_bias_sigma_dps, bank.bias_sigma_dps[last]);
+  assert.equal(run.result.final_bias_dps, run.summary.final_bias_dps);
+  assert.ok(run.trace.bias_dps.some((b, i) => b !== bank.bias_dps[i]), "the blend moves some block's bias");
   log.free();
 });
 

@@ -7,7 +7,7 @@ import { showError, render } from "../render.js";
 import { perLog } from "../background.js";
 
 let lastHdr = null;
-const NO_PIPE = { result: null, trace: null, errors: null, pending: true };
+const NO_PIPE = { result: null, summary: null, trace: null, errors: null, pending: true };
 /** The recommended pipeline beside the paper's method, with the same static-bias window.
  * It depends on the log and bias_s only, so HDR's sliders reuse it; a large log's runs in
  * the worker (seconds on millions of rows) and shows when it arrives. */
@@ -43,9 +43,9 @@ export function renderHdr() {
       <span class="smoothed" title="forward-backward over the whole log: for recorded logs, not available live">smoothed (offline, non-causal): E<sub>ψ</sub> <b id="m-e-smoothed">${fmt(pr.E_psi_pipeline_smoothed_deg, 2)}</b> deg · NE<sub>ψ</sub> <b>${fmt(pr.NE_psi_pipeline_smoothed_deg_per_min, 3)}</b> deg/min</span>` : busy);
   } else if (!run.reference) {
     // A drive with no GPS course: the estimates run, nothing is scored.
-    const last = (a) => a[a.length - 1];
+    const ps = pipe.summary;
     m.innerHTML = `<span id="m-unscored">Not scored: ${esc(run.error)}. The headings below start at 0 deg.</span>` +
-      (pipe.trace ? `<span class="recommended">pipeline (recommended): final bias <b id="m-bias-pipeline">${fmt(last(pipe.trace.bias_dps), 4)}</b> ± ${fmt(last(pipe.trace.bias_sigma_dps), 4)} deg/s (stops from ${pipe.still_source})</span>` : busy);
+      (ps ? `<span class="recommended">pipeline (recommended): final bias <b id="m-bias-pipeline">${fmt(ps.final_bias_dps, 4)}</b> ± ${fmt(ps.final_bias_sigma_dps, 4)} deg/s (stops from ${ps.still_source})</span>` : busy);
   } else {
     m.textContent = run.error;
   }

@@ -45,6 +45,10 @@ pub struct PipelineTrace {
     pub bias_smoothed_dps: Vec<f64>,
     /// The block brought stop evidence.
     pub stop: Vec<bool>,
+    /// The bank's bias and its sigma at the last block (NaN without blocks), deg/s: the
+    /// model's estimate of the gyro's bias, which the blended series move by per block.
+    pub final_bias_dps: f64,
+    pub final_bias_sigma_dps: f64,
 }
 
 impl PipelineTrace {
@@ -88,8 +92,8 @@ impl PipelineTrace {
             duration_min,
             still_source,
             stop_s,
-            final_bias_dps: last(&self.bias_dps),
-            final_bias_sigma_dps: last(&self.bias_sigma_dps),
+            final_bias_dps: self.final_bias_dps,
+            final_bias_sigma_dps: self.final_bias_sigma_dps,
             heading_change_deg: change(&self.heading_deg),
             heading_change_sigma_deg: last(&self.heading_sigma_deg),
             heading_change_smoothed_deg: change(&self.heading_smoothed_deg),
@@ -103,7 +107,8 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     let n = blocks.len();
     let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
     f.gyro_stills = blocks.source == StillSource::Gyro;
-    let mut tr = PipelineTrace { time_s: blocks.time_s.clone(), ..Default::default() };
+    let mut tr =
+        PipelineTrace { time_s: blocks.time_s.clone(), final_bias_dps: f64::NAN, final_bias_sigma_dps: f64::NAN, ..Default::default() };
     let (mut blend, mut blended) = (blend::Blend::new(params.blend_sigmas), Vec::with_capacity(n));
     for i in 0..n {
         let (t, rate) = (blocks.time_s[i], blocks.rate_dps[i]);
@@ -113,6 +118,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
         tr.bias_dps.push(o.bias_dps);
         tr.bias_sigma_dps.push(o.bias_sigma_dps);
         tr.stop.push(o.stop);
+        (tr.final_bias_dps, tr.final_bias_sigma_dps) = (o.bias_dps, o.bias_sigma_dps);
         blended.push(blend.update(t >= f.lead_in_end_s(), t, rate, o)?);
     }
     // The smoothed mode is held to the bank's causal heading at stops; the trace then takes
@@ -265,8 +271,8 @@ pub fn run(log: &DriveLog, params: &PipelineParams) -> Result<PipelineRun> {
             NE_psi_zaru_deg_per_min: ne(zaru.e_psi_deg),
             still_source: prep.blocks.source,
             stop_s,
-            final_bias_dps: trace.bias_dps.last().copied().unwrap_or(f64::NAN),
-            final_bias_sigma_dps: trace.bias_sigma_dps.last().copied().unwrap_or(f64::NAN),
+            final_bias_dps: trace.final_bias_dps,
+            final_bias_sigma_dps: trace.final_bias_sigma_dps,
             n_samples: pipe.n_samples,
         })
     });

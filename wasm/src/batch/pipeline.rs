@@ -11,13 +11,15 @@ pub fn pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOption
     to_js(&run.result.map_err(err)?)
 }
 
-/// The pipeline with its per-block series: `{ result, error, still_source, trace }`.
+/// The pipeline with its per-block series: `{ result, error, still_source, summary, trace,
+/// errors }` (summary: the estimator's end figures, which need no reference).
 #[wasm_bindgen(js_name = runPipeline, unchecked_return_type = "PipelineRun")]
 pub fn run_pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOptions")] options: JsValue) -> JsResult<JsValue> {
     let p: gyrodrift::pipeline::PipelineParams = self::options("pipeline", options)?;
     let run = gyrodrift::pipeline::run(&log.log, &p).map_err(err)?;
     let out = result_object(&run.result)?;
     set(&out, "still_source", &to_js(&run.still_source)?)?;
+    set(&out, "summary", &to_js(&run.summary(log.log.duration_min()))?)?;
     let t = &run.trace;
     let trace = object_of(&[
         ("time_s", f64s(&t.time_s)),

@@ -111,10 +111,24 @@ export interface PipelineResult {
   final_bias_sigma_dps: number;
   n_samples: number;
 }
+/** The pipeline's end figures, which need no reference (a drive with no GPS course). */
+export interface PipelineSummary {
+  duration_min: number;
+  still_source: StillSource;
+  stop_s: number;
+  /** The bank's bias estimate and its sigma at the last block (deg/s). */
+  final_bias_dps: number;
+  final_bias_sigma_dps: number;
+  /** Heading turned from the first block to the last (causal, its sigma; smoothed), deg. */
+  heading_change_deg: number;
+  heading_change_sigma_deg: number;
+  heading_change_smoothed_deg: number;
+}
 export interface PipelineRun {
   result: PipelineResult | null;
   error: string | null;
   still_source: StillSource;
+  summary: PipelineSummary;
   /** Per 1 Hz block; heading aligned to the reference when there is one. */
   trace: {
     time_s: Float64Array;
