@@ -86,7 +86,7 @@ fn run_case(b: &Base, pr: &Profile) -> Option<Case> {
     let prep = Prepared::new(&log, None, &params.still).unwrap();
     let reference = prep.reference().ok()?;
     let bl = &prep.blocks;
-    // The shipped causal heading (the bank's blended with HDR's) and the bank's sigma.
+    // The shipped causal heading (the bank's blended with HDR's and Fusion's offset's) and the bank's sigma.
     let tr = prep.pipeline_trace(&params).unwrap();
     let (psi, sig) = (tr.heading_deg, tr.heading_sigma_deg);
     let shift = score(&bl.time_s, &psi, reference).ok()?.shift_deg;
