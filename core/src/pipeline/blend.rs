@@ -5,8 +5,10 @@
 //! lags; x-io Fusion's offset follows any slow rate within 3 deg/s, a bias and a long curve
 //! alike. Over each block the heading moves by the mean of the bank's move and the move of
 //! every expert whose implied bias differs from the bank's by less than `blend_sigmas` of the
-//! bank's bias uncertainty; by the bank's alone when none does (an expert diverging, or the
-//! bank correcting its heading at a stop). The experts start after the lead-in, at the first
+//! bank's bias uncertainty, grown between stops as a bias walk of `blend_walk_dps_per_sqrt_s`
+//! since the last stop (there the bank's sigma rests on road evidence it counts as white
+//! over 10 s, so it is too narrow to reject an expert on); by the bank's alone when none
+//! does (an expert diverging, or the bank correcting its heading at a stop). The experts start after the lead-in, at the first
 //! block where the bank knows its bias to better than one of HDR's own correction steps
 //! (Table III's i_c, 0.0422 deg/s: HDR's static bias eps0 is a standstill's, known that
 //! well), from the bank's bias then; before, the bank's alone. The stream and the batch path
@@ -30,6 +32,9 @@ struct Experts {
 #[derive(Debug, Clone, Default)]
 pub struct Blend {
     sigmas: f64,
+    walk_dps_per_sqrt_s: f64,
+    /// The last block with stop evidence, or the experts' first, s.
+    last_stop_s: f64,
     experts: Option<Experts>,
     /// The last block's end time and the bank's heading then.
     last: Option<(f64, f64)>,
@@ -38,9 +43,10 @@ pub struct Blend {
 }
 
 impl Blend {
-    /// `sigmas`: the guard, `blend_sigmas` (0: the bank's output as it is).
-    pub fn new(sigmas: f64) -> Self {
-        Blend { sigmas, ..Default::default() }
+    /// `sigmas`: the guard, `blend_sigmas` (0: the bank's output as it is); `walk`: how it
+    /// grows between stops, `blend_walk_dps_per_sqrt_s`.
+    pub fn new(sigmas: f64, walk_dps_per_sqrt_s: f64) -> Self {
+        Blend { sigmas, walk_dps_per_sqrt_s, ..Default::default() }
     }
 
     /// One block (end time, mean raw rate) and the bank's output on it: the output with the
@@ -56,12 +62,18 @@ impl Blend {
         let e = match self.experts.as_mut() {
             Some(e) => e,
             None => {
+                self.last_stop_s = time_s;
                 let hdr = Hdr::new(table_iii, bank.bias_dps)?;
                 self.experts.insert(Experts { hdr, hdr_deg: 0.0, fusion: FusionOffset::starting_at(1, bank.bias_dps) })
             }
         };
         let hdr_deg = e.hdr.update(time_s, rate_dps)?.heading_deg;
         let fusion_rate_dps = e.fusion.update(rate_dps);
+        if bank.stop {
+            self.last_stop_s = time_s;
+        }
+        let since_stop_s = time_s - self.last_stop_s;
+        let guard_dps = self.sigmas * libm::sqrt(bank.bias_sigma_dps.powi(2) + self.walk_dps_per_sqrt_s.powi(2) * since_stop_s);
         let mut out = bank;
         if let Some((t, bank_deg)) = self.last {
             let dt = time_s - t;
@@ -70,7 +82,7 @@ impl Blend {
             for move_deg in [hdr_deg - e.hdr_deg, fusion_rate_dps * dt] {
                 // How far the two moved apart over the block: (the bank's bias less the
                 // expert's, as each integrated it) x dt.
-                if dt > 0.0 && ((move_deg - bank_move_deg) / dt).abs() < self.sigmas * bank.bias_sigma_dps {
+                if dt > 0.0 && ((move_deg - bank_move_deg) / dt).abs() < guard_dps {
                     (sum_deg, n) = (sum_deg + move_deg, n + 1.0);
                 }
             }
@@ -104,11 +116,11 @@ mod tests {
 
     #[test]
     fn agreeing_moves_are_averaged_and_a_diverging_expert_is_left_out() {
-        let mut b = Blend::new(2.0);
+        let mut b = Blend::new(2.0, 0.0);
         // In the lead-in, with the blend off, or while the bank's bias is less sure than one
         // of HDR's steps (0.0422 deg/s): the bank's output as it is, and no expert started.
         assert_eq!(b.update(false, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
-        assert_eq!(Blend::new(0.0).update(true, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
+        assert_eq!(Blend::new(0.0, 0.0).update(true, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
         assert_eq!(b.update(true, 0.0, 0.0, bank(0.3, 0.05)).unwrap(), bank(0.3, 0.05));
         assert!(b.experts.is_none());
         // The experts start from the bank's bias (0); their first block moves nothing.
@@ -138,5 +150,33 @@ mod tests {
         assert!(m.abs() <= 3.0 * 0.0422 + 1e-12, "{m}");
         let o = b.update(true, 4.0, 0.0, bank(bank_deg + 0.3, 0.04)).unwrap();
         assert!((o.heading_deg - (bank_deg + 0.3 + gain + gain2)).abs() < 1e-12 && o.bias_dps == 0.0);
+    }
+
+    /// Between stops the guard grows as the walk since the last stop: Fusion's offset 0.5
+    /// deg/s from the bank's bias is beyond 2 x 0.04 at once, within 2 sqrt(0.04^2 + 0.01^2
+    /// x 2500) = 1.0 after 2500 s without a stop, and beyond again a block after a stop.
+    #[test]
+    fn the_guard_grows_between_stops_and_closes_at_one() {
+        let started = |walk: f64| {
+            let mut b = Blend::new(2.0, walk);
+            b.update(true, 1.0, 0.0, bank(0.0, 0.04)).unwrap();
+            b.experts.as_mut().unwrap().fusion = FusionOffset::starting_at(1, 0.5);
+            b
+        };
+        // 2500 s later: HDR has moved at most i_c per second; Fusion -0.5 deg/s x 2500 s.
+        let (mut narrow, mut grown) = (started(0.0), started(0.01));
+        let m = hdr_move(&grown, 2501.0, 0.0);
+        assert!(m.abs() <= 0.0422 * 2500.0 + 1e-9, "{m}");
+        let o = narrow.update(true, 2501.0, 0.0, bank(0.0, 0.04)).unwrap();
+        assert!((o.heading_deg - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg, m / 2.0);
+        let o = grown.update(true, 2501.0, 0.0, bank(0.0, 0.04)).unwrap();
+        assert!((o.heading_deg - (m - 1250.0) / 3.0).abs() < 1e-9, "{} against {}", o.heading_deg, (m - 1250.0) / 3.0);
+        // A stop block at 2502 s closes it: at 2503 s Fusion (still -0.5 deg/s: within 3 deg/s
+        // for 3 blocks, short of its 5 s timeout) is out, HDR in.
+        let stop = PipelineOutput { stop: true, ..bank(0.0, 0.04) };
+        let before = grown.update(true, 2502.0, 0.0, stop).unwrap().heading_deg;
+        let m = hdr_move(&grown, 2503.0, 0.0);
+        let o = grown.update(true, 2503.0, 0.0, bank(0.0, 0.04)).unwrap();
+        assert!((o.heading_deg - before - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg - before, m / 2.0);
     }
 }

@@ -70,6 +70,13 @@ pub struct PipelineParams {
     /// alone. 2 by convention (95 %). `hdr_blend_sigmas` (HDR alone, before) is its alias.
     #[serde(alias = "hdr_blend_sigmas")]
     pub blend_sigmas: f64,
+    /// Between stops the guard's sigma grows as a bias walk of this since the last stop block
+    /// (or the experts' start): there the bank knows its bias from the road alone, whose
+    /// curvature it models as white over `road_corr_s` while real roads meander for minutes,
+    /// so its sigma is too narrow for the guard to take on faith (`blend.rs`), deg/s per
+    /// sqrt(s); 0 = the bank's sigma alone. Chosen on the training cases among the bank's
+    /// three fastest walks (0.001, 0.003, 0.01; docs/pipeline.md).
+    pub blend_walk_dps_per_sqrt_s: f64,
     /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
     pub bias_s: Option<f64>,
 }
@@ -97,6 +104,7 @@ impl Default for PipelineParams {
             huber_k: 3.0,
             forget_s: 600.0,
             blend_sigmas: 2.0,
+            blend_walk_dps_per_sqrt_s: 0.003,
             bias_s: None,
         }
     }
@@ -177,6 +185,10 @@ impl PipelineParams {
         }
         if !(self.blend_sigmas >= 0.0 && self.blend_sigmas < 1e6) {
             return Err(Error::param("blend_sigmas", format!("{} is not a number of sigma in [0, 1e6)", self.blend_sigmas)));
+        }
+        if !(self.blend_walk_dps_per_sqrt_s >= 0.0 && self.blend_walk_dps_per_sqrt_s < 1e6) {
+            let w = self.blend_walk_dps_per_sqrt_s;
+            return Err(Error::param("blend_walk_dps_per_sqrt_s", format!("{w} is not a walk in [0, 1e6) deg/s per sqrt(s)")));
         }
         if !(self.huber_k > 0.0) {
             return Err(Error::param("huber_k", format!("{} is not a positive number of sigma", self.huber_k)));

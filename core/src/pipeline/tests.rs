@@ -275,6 +275,8 @@ fn bad_updates_and_params_are_errors() {
     assert!(crate::options::from_pairs::<PipelineParams>(&[("nope".into(), 1.0)]).is_err());
     assert!(Pipeline::new(one_model(), 0.0, 0.0, 0.0).is_err());
     assert!(crate::options::from_pairs::<PipelineParams>(&[("blend_sigmas".into(), -1.0)]).is_err());
+    assert!(crate::options::from_pairs::<PipelineParams>(&[("blend_walk_dps_per_sqrt_s".into(), -0.001)]).is_err());
+    assert!(crate::options::from_pairs::<PipelineParams>(&[("blend_walk_dps_per_sqrt_s".into(), f64::NAN)]).is_err());
 }
 
 #[test]
@@ -403,9 +405,11 @@ proptest::proptest! {
         let lead_max = (0..blocks.len()).filter(|&i| blocks.time_s[i] < lead_in_s || blocks.still[i]).map(|i| blocks.rate_dps[i].abs()).fold(0.0, f64::max);
         // Both headings' biases are the bank's (causal, or smoothed and projected after the
         // hold), bounded as that, moved by the blend by less than the guard: the mean of moves
-        // each within blend_sigmas of the bank's causal sigma.
+        // each within blend_sigmas of the bank's causal sigma, grown as the blend's walk since
+        // the last stop (at most since the start).
         for i in 0..tr.time_s.len() {
-            let bound = p.max_bias_dps + lead_max + p.blend_sigmas * tr.bias_sigma_dps[i];
+            let grown = p.blend_walk_dps_per_sqrt_s.powi(2) * (tr.time_s[i] - tr.time_s[0]);
+            let bound = p.max_bias_dps + lead_max + p.blend_sigmas * (tr.bias_sigma_dps[i].powi(2) + grown).sqrt();
             for (what, x, h) in [("causal", tr.bias_dps[i], tr.heading_deg[i]), ("smoothed", tr.bias_smoothed_dps[i], tr.heading_smoothed_deg[i])] {
                 proptest::prop_assert!(x.is_finite() && x.abs() <= bound && h.is_finite(), "{what} bias {x} beyond {bound}, heading {h}");
             }

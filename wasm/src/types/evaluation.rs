@@ -83,6 +83,9 @@ export interface PipelineOptions {
    * HDR and Fusion's offset where the bias an expert implies differs from the bank's by less
    * than this many of the bank's bias sigma (2); 0 = the bank's alone. */
   blend_sigmas?: number;
+  /** Between stops that guard's sigma grows as a bias walk of this since the last stop,
+   * deg/s per sqrt(s) (0.003); 0 = the bank's sigma alone. */
+  blend_walk_dps_per_sqrt_s?: number;
   /** @deprecated The name of `blend_sigmas` while it blended HDR alone. */
   hdr_blend_sigmas?: number;
   bias_s?: number | null;
