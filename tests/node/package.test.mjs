@@ -469,8 +469,11 @@ test("a drive with speed and no reference heading is a drive: runPipeline gives 
   assert.equal(run.still_source, native.still_source);
   const t = run.trace;
   assert.equal(t.heading_deg[0], 0);
-  assert.equal(t.bias_dps[t.bias_dps.length - 1], native.final_bias_dps);
+  // The final bias is core's summary's, the bank's (not the blended trace's last block).
+  assert.equal(run.summary.final_bias_dps, native.final_bias_dps);
+  assert.equal(run.summary.final_bias_sigma_dps, native.final_bias_sigma_dps);
   assert.equal(t.heading_deg[t.heading_deg.length - 1] - t.heading_deg[0], native.heading_change_deg);
+  assert.equal(run.summary.heading_change_deg, native.heading_change_deg);
   // Without a speed either, a gyro alone stays a static session (Allan deviation).
   const still = gd.Log.parse("time_s,gyro_dps\n0,0.1\n1,0.1\n2,0.1\n");
   assert.equal(still.kind, "static");
