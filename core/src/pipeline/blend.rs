@@ -8,7 +8,8 @@
 //! bank's bias uncertainty, grown between stops as a bias walk of `blend_walk_dps_per_sqrt_s`
 //! since the last stop (there the bank's sigma rests on road evidence it counts as white
 //! over 10 s, so it is too narrow to reject an expert on); by the bank's alone when none
-//! does (an expert diverging, or the bank correcting its heading at a stop). The experts start after the lead-in, at the first
+//! does (an expert diverging, or the bank correcting its heading at a stop). The experts
+//! start after the lead-in, at the first
 //! block where the bank knows its bias to better than one of HDR's own correction steps
 //! (Table III's i_c, 0.0422 deg/s: HDR's static bias eps0 is a standstill's, known that
 //! well), from the bank's bias then; before, the bank's alone. The stream and the batch path

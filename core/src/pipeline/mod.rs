@@ -132,8 +132,8 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
 }
 
 /// The smoothed heading: the smoothed bias integrated, blended with the experts as the
-/// causal heading is (guarded by the bank's causal bias sigma: the smoother keeps none; the
-/// bank's stops pass whole). Sets `heading_smoothed_deg` and the bias it integrated.
+/// causal heading is (guarded by the bank's causal bias sigma, the smoother keeping none,
+/// grown between the bank's stops as the causal guard is; the bank's stops pass whole). Sets `heading_smoothed_deg` and the bias it integrated.
 fn blend_smoothed(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64, tr: &mut PipelineTrace) -> Result<()> {
     let mut blend = blend::Blend::new(params.blend_sigmas, params.blend_walk_dps_per_sqrt_s);
     let mut h = 0.0;
