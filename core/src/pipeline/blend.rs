@@ -9,11 +9,11 @@
 //! since the last stop (there the bank's sigma rests on road evidence it counts as white
 //! over 10 s, so it is too narrow to reject an expert on); by the bank's alone when none
 //! does (an expert diverging, or the bank correcting its heading at a stop). The experts
-//! start after the lead-in, at the first
-//! block where the bank knows its bias to better than one of HDR's own correction steps
-//! (Table III's i_c, 0.0422 deg/s: HDR's static bias eps0 is a standstill's, known that
-//! well), from the bank's bias then; before, the bank's alone. The stream and the batch path
-//! blend alike, block for block. Beyond the paper, like the bank.
+//! start after the lead-in, at the first block where the bank knows its bias to better than
+//! one of HDR's own correction steps (Table III's i_c, 0.0422 deg/s: HDR's static bias eps0
+//! is a standstill's, known that well), from the bank's bias then; before, the bank's alone.
+//! The stream and the batch path blend alike, block for block. Beyond the paper, like the
+//! bank.
 
 use super::filter::PipelineOutput;
 use crate::error::Result;
@@ -48,6 +48,11 @@ impl Blend {
     /// grows between stops, `blend_walk_dps_per_sqrt_s`.
     pub fn new(sigmas: f64, walk_dps_per_sqrt_s: f64) -> Self {
         Blend { sigmas, walk_dps_per_sqrt_s, ..Default::default() }
+    }
+
+    /// The blend the pipeline's settings ask for (causal, smoothed and streamed alike).
+    pub fn of(p: &super::PipelineParams) -> Self {
+        Self::new(p.blend_sigmas, p.blend_walk_dps_per_sqrt_s)
     }
 
     /// One block (end time, mean raw rate) and the bank's output on it: the output with the

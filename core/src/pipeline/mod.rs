@@ -109,7 +109,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     f.gyro_stills = blocks.source == StillSource::Gyro;
     let mut tr =
         PipelineTrace { time_s: blocks.time_s.clone(), final_bias_dps: f64::NAN, final_bias_sigma_dps: f64::NAN, ..Default::default() };
-    let (mut blend, mut blended) = (blend::Blend::new(params.blend_sigmas, params.blend_walk_dps_per_sqrt_s), Vec::with_capacity(n));
+    let (mut blend, mut blended) = (blend::Blend::of(&params), Vec::with_capacity(n));
     for i in 0..n {
         let (t, rate) = (blocks.time_s[i], blocks.rate_dps[i]);
         let o = f.update(t, rate, blocks.still[i])?;
@@ -133,9 +133,10 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
 
 /// The smoothed heading: the smoothed bias integrated, blended with the experts as the
 /// causal heading is (guarded by the bank's causal bias sigma, the smoother keeping none,
-/// grown between the bank's stops as the causal guard is; the bank's stops pass whole). Sets `heading_smoothed_deg` and the bias it integrated.
+/// grown between the bank's stops as the causal guard is; the bank's stops pass whole).
+/// Sets `heading_smoothed_deg` and the bias it integrated.
 fn blend_smoothed(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64, tr: &mut PipelineTrace) -> Result<()> {
-    let mut blend = blend::Blend::new(params.blend_sigmas, params.blend_walk_dps_per_sqrt_s);
+    let mut blend = blend::Blend::of(&params);
     let mut h = 0.0;
     for i in 0..blocks.len() {
         let (t, rate) = (blocks.time_s[i], blocks.rate_dps[i]);

@@ -68,7 +68,7 @@ impl PipelineStream {
             heading_deg: 0.0,
             gyro_still: Default::default(),
             speed_seen: false,
-            blend: super::blend::Blend::new(params.blend_sigmas, params.blend_walk_dps_per_sqrt_s),
+            blend: super::blend::Blend::of(&params),
         })
     }
 
