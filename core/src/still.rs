@@ -1,6 +1,7 @@
 //! Still detection on the 1 Hz blocks (methods.md detail 2's blocks): is the vehicle
 //! standing in a block? From the speed when the log has it, else from the wheel travel,
-//! else from the gyro alone (the block's spread no larger than the stationary lead-in's).
+//! else from the gyro alone (the block's spread no larger than the stationary lead-in's,
+//! or, with no lead-in to compare with, block means that scatter no more than white noise).
 //! The zero-angular-rate update of the pipeline and of the ZARU peer rests on it.
 
 use crate::error::{Error, Result};
@@ -40,6 +41,11 @@ impl StillOptions {
 /// Blocks whose means must agree for the gyro alone to call the last of them still.
 pub const AGREE_BLOCKS: usize = 5;
 
+/// Blocks whose means must scatter no more than their rows' white noise would, for the gyro
+/// alone to call the last of them still when no lead-in gives a reference. On the training
+/// bases' drives no 10-block window of moving blocks passed (5 blocks: 0.4-3 % did).
+pub const WHITE_BLOCKS: usize = 10;
+
 /// The gyro-only detector, block by block. The declared stationary lead-in's blocks stand
 /// and set the reference; after it a block is still when its spread is at most
 /// `still_gyro_factor` times the lead-in's rows' and the means of the last [`AGREE_BLOCKS`]
@@ -47,7 +53,10 @@ pub const AGREE_BLOCKS: usize = 5;
 /// `still_agree_factor` times the lead-in's. The spread alone cannot tell an idling engine
 /// from a smooth drive (an idle shakes the gyro more than a slow turn does); a moving
 /// vehicle's rate wanders from second to second (steering, curves, sway), a standing one's
-/// does not.
+/// does not. Without a usable lead-in the wander alone decides: a block is still when the
+/// means of the last [`WHITE_BLOCKS`] blocks scatter no more than their rows' own noise
+/// predicts (sample variance of the means <= the pooled row variance / rows per block), as
+/// a standing gyro's white noise does and a moving vehicle's steering does not.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct GyroStill {
     /// The lead-in's rows: count, sum, sum of squares.
@@ -57,6 +66,10 @@ pub struct GyroStill {
     /// Once the lead-in is over: its rows' and its block means' standard deviations, or
     /// None when it cannot be used (no block after the lead-in is still).
     reference: Option<Option<(f64, f64)>>,
+    /// Without a reference: the last [`WHITE_BLOCKS`] blocks' rows, mean and row variance.
+    white: Vec<(usize, f64, f64)>,
+    /// Blocks called still by the white-noise test.
+    pub white_stills: usize,
 }
 
 impl GyroStill {
@@ -70,7 +83,7 @@ impl GyroStill {
             self.means.extend((n >= 5).then_some(mean));
             return true;
         }
-        let Some((std, scatter)) = self.reference() else { return false };
+        let Some((std, scatter)) = self.reference() else { return self.white_update(n, sum, sum2) };
         if n < 5 {
             self.means.clear();
             return false;
@@ -81,6 +94,32 @@ impl GyroStill {
         }
         let agree = self.means.len() == AGREE_BLOCKS && crate::metrics::mean_std(&self.means).1 <= opts.still_agree_factor * scatter;
         agree && (sum2 / n as f64 - mean * mean).max(0.0).sqrt() <= opts.still_gyro_factor * std
+    }
+
+    /// The white-noise test (no reference): is the block still? Blocks of fewer than 5 rows
+    /// are not, and restart the window; rows all equal (a quantised standing) say nothing.
+    fn white_update(&mut self, n: usize, sum: f64, sum2: f64) -> bool {
+        if n < 5 {
+            self.white.clear();
+            return false;
+        }
+        let mean = sum / n as f64;
+        self.white.push((n, mean, ((sum2 - sum * mean) / (n as f64 - 1.0)).max(0.0)));
+        if self.white.len() > WHITE_BLOCKS {
+            self.white.drain(..1);
+        }
+        if self.white.len() < WHITE_BLOCKS {
+            return false;
+        }
+        let k = WHITE_BLOCKS as f64;
+        let rows_per_block = self.white.iter().map(|b| b.0 as f64).sum::<f64>() / k;
+        let row_var = self.white.iter().map(|b| b.2).sum::<f64>() / k;
+        let mean_of_means = self.white.iter().map(|b| b.1).sum::<f64>() / k;
+        let means_var = self.white.iter().map(|b| (b.1 - mean_of_means).powi(2)).sum::<f64>() / (k - 1.0);
+        // Rows all equal leave a rounding residue of the order of 1e-16 x mean^2, not noise.
+        let still = row_var > 1e-12 * (1.0 + mean_of_means * mean_of_means) && means_var <= row_var / rows_per_block;
+        self.white_stills += still as usize;
+        still
     }
 
     /// The lead-in's rows' and block means' standard deviations, fixed at the first call:
@@ -111,8 +150,8 @@ pub enum StillSource {
     Speed,
     Odometry,
     Gyro,
-    /// No speed, no wheels, and no usable lead-in to compare the gyro with: no block after
-    /// the declared lead-in is still.
+    /// No speed, no wheels, no usable lead-in to compare the gyro with, and no standing the
+    /// gyro's white noise shows alone: no block after the declared lead-in is still.
     #[default]
     None,
 }
@@ -252,9 +291,9 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<Blocks
     if out.is_empty() {
         return Err(Error::data("the gyro_dps column has no values"));
     }
-    // No usable lead-in to compare the gyro with: no block after the lead-in is still
-    // (`GyroStill::update` says so), and the source says why.
-    if source == StillSource::Gyro && gyro_still.reference().is_none() {
+    // No usable lead-in to compare the gyro with, and no standing by the white-noise test:
+    // no block after the lead-in is still, and the source says why.
+    if source == StillSource::Gyro && gyro_still.reference().is_none() && gyro_still.white_stills == 0 {
         source = StillSource::None;
     }
     out.source = source;
@@ -353,6 +392,35 @@ mod tests {
         assert!(equal.reference().is_none());
     }
 
+    /// The white-noise test by hand (no lead-in): blocks of 5 rows m + (-0.1, 0.1, -0.1,
+    /// 0.1, 0) have row variance 0.04 / 4 = 0.01, so 10 block means may scatter with sample
+    /// variance up to 0.01 / 5 = 0.002. Means alternating 1 +- 0.04: 10 x 0.0016 / 9 =
+    /// 0.00178, still from the 10th block on; +- 0.05: 10 x 0.0025 / 9 = 0.00278, not.
+    #[test]
+    fn without_a_lead_in_block_means_that_scatter_as_white_noise_stand() {
+        let o = StillOptions::default();
+        let upd = |g: &mut GyroStill, m: f64| {
+            let rows: Vec<f64> = [-0.1, 0.1, -0.1, 0.1, 0.0].iter().map(|d| m + d).collect();
+            g.update(&o, false, 5, rows.iter().sum(), rows.iter().map(|v| v * v).sum())
+        };
+        let alt = |k: usize, d: f64| if k.is_multiple_of(2) { 1.0 + d } else { 1.0 - d };
+        let mut g = GyroStill::default();
+        assert!(g.reference().is_none());
+        let calls: Vec<bool> = (0..12).map(|k| upd(&mut g, alt(k, 0.04))).collect();
+        assert_eq!(calls, (0..12).map(|k| k >= 9).collect::<Vec<_>>());
+        assert_eq!(g.white_stills, 3);
+        let mut g = GyroStill::default();
+        assert!((0..12).all(|k| !upd(&mut g, alt(k, 0.05))));
+        // A block of 4 rows is not still and restarts the window.
+        let mut g = GyroStill::default();
+        (0..10).for_each(|k| _ = upd(&mut g, alt(k, 0.04)));
+        assert!(!g.update(&o, false, 4, 4.0, 4.04));
+        assert!((0..9).all(|k| !upd(&mut g, alt(k, 0.04))) && upd(&mut g, 1.0));
+        // Rows all equal (a quantised standing): nothing to compare with, never still.
+        let mut g = GyroStill::default();
+        assert!((0..12).all(|_| !g.update(&o, false, 5, 5.0, 5.0)));
+    }
+
     /// A gyro-only log at 10 Hz: `rate(t, row)`, lead-in `bias_s`.
     fn gyro_log(secs: f64, rate: impl Fn(f64, usize) -> f64) -> DriveLog {
         let mut l = DriveLog::with_columns(&[Column::GyroDps]);
@@ -384,10 +452,16 @@ mod tests {
         assert_eq!(b.still, want);
         // The gyro judges standing, not moving: nothing ends a lead-in.
         assert_eq!(b.first_moving_s, None);
-        // No lead-in: nothing to compare with, never still.
+        // No lead-in: the white-noise test alone. The turn's block means wander more than
+        // its rows' noise predicts, never still; the final idle's do not, still from its
+        // 10th block (the first with a window of idle blocks only).
         let b = blocks(&l, 0.0, &StillOptions::default()).unwrap();
-        let src = b.source;
-        assert_eq!(src, StillSource::None);
+        assert_eq!(b.source, StillSource::Gyro);
+        assert_eq!(b.still, (0..36).map(|k| k == 35).collect::<Vec<_>>());
+        // Without the final idle nothing stands: the source says so.
+        let l = gyro_log(26.0, |t, i| if (6.0..26.0).contains(&t) { turn(t, i) } else { idle(t, i) });
+        let b = blocks(&l, 0.0, &StillOptions::default()).unwrap();
+        assert_eq!(b.source, StillSource::None);
         assert!(b.still.iter().all(|s| !s));
     }
 }

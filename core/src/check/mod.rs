@@ -125,7 +125,7 @@ fn lead_in(r: &mut CheckReport, log: &DriveLog) -> Option<f64> {
     let blocks = crate::still::blocks(log, bias_s, &Default::default()).ok()?;
     if blocks.source == crate::still::StillSource::None {
         let message =
-            "no speed, wheel travel or stationary lead-in (3 s at 5 Hz or more): no stops for ZARU and the pipeline (which learns the bias from the road alone)";
+            "no speed, wheel travel or stationary lead-in (3 s at 5 Hz or more), and no 10 s standing the gyro shows alone (at 5 Hz or more): no stops for ZARU and the pipeline (which learns the bias from the road alone)";
         r.findings.push(finding(Severity::Info, "no_stops", message.into(), Some("a speed column, or # bias_s: N for a standing start")));
     }
     let m = (blocks.first_moving_s? - log.time_s().first()?).floor();
