@@ -1,0 +1,143 @@
+// Raw logger exports in the dashboard: presets, recipes saved and dropped, the mapping
+// panel for files no preset fits, large exports in the Web Worker; each with the CLI's numbers.
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { mkdtempSync, readFileSync, readdirSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join } from "node:path";
+import { ROOT, cli } from "../node/helpers.mjs";
+import { openDashboard, ARTIFACTS, page } from "./harness.mjs";
+
+openDashboard();
+
+const WILD = join(ROOT, "sample-logs", "wild");
+
+const wildFiles = (d) => readdirSync(join(WILD, d)).sort().map((f) => join(WILD, d, f));
+
+/** The CLI's HDR result on the same raw files, imported by the detected preset. */
+function cliOnRaw(files) {
+  const out = join(mkdtempSync(join(tmpdir(), "gd-raw-")), "imported.csv");
+  cli("import", ...files, "--out", out);
+  return JSON.parse(cli("hdr", out, "--json"));
+}
+
+for (const [dir, name] of [["sensorlog", "SensorLog.csv (SensorLog)"], ["sensor-logger", "Gyroscope.csv (Sensor Logger)"], ["phyphox", "Gyroscope.csv (phyphox, CSV export)"]]) {
+  test(`a ${dir} export opens by drop alone (detected preset) with the CLI's numbers`, async () => {
+    const files = wildFiles(dir);
+    await page.locator("#file-input").setInputFiles(files);
+    await page.waitForFunction((n) => document.querySelector("#logs li.selected")?.innerText.includes(n), name);
+    const li = page.locator("#logs li.selected");
+    assert.match(await li.innerText(), /imported:/);
+    const native = cliOnRaw(files);
+    assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+    assert.equal(await page.locator("#m-improvement").innerText(), native.improvement.toFixed(2));
+  });
+}
+
+test("the import recipe saves as TOML and, dropped with the files, imports the same log; no fit is a clear error", async () => {
+  const files = wildFiles("px4");
+  await page.locator("#file-input").setInputFiles(files);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("PX4"));
+  const e1 = await page.locator("#m-e-hdr").innerText();
+  const [dl] = await Promise.all([page.waitForEvent("download"), page.locator("#logs li.selected button.link").click()]);
+  assert.match(dl.suggestedFilename(), /\.recipe\.toml$/);
+  const recipe = join(mkdtempSync(join(tmpdir(), "gd-recipe-")), "px4.toml");
+  await dl.saveAs(recipe);
+  assert.match(readFileSync(recipe, "utf8"), /\[yaw_rate\][\s\S]*table = "imu"/);
+  const n = await page.locator("#logs li").count();
+  await page.locator("#file-input").setInputFiles([...files, recipe]);
+  await page.waitForFunction((k) => document.querySelectorAll("#logs li").length === k + 1, n);
+  assert.match(await page.locator("#logs li.selected").innerText(), /your recipe/);
+  assert.equal(await page.locator("#m-e-hdr").innerText(), e1);
+  await page.screenshot({ path: join(ARTIFACTS, "imported.png") });
+  const odd = join(mkdtempSync(join(tmpdir(), "gd-odd-")), "Gyroscope.csv");
+  writeFileSync(odd, "time,seconds_elapsed,x,y\n0,0,1,2\n");
+  await page.locator("#file-input").setInputFiles([odd]);
+  // No preset fits: the mapping panel says why; cancelled, the why stays as an error entry.
+  await page.waitForSelector("#mapping[open]");
+  assert.match(await page.locator("#mapping-why").innerText(), /closest preset is sensor-logger/);
+  await page.locator("#mapping-cancel").click();
+  await page.waitForFunction(() => [...document.querySelectorAll("#logs li.bad")].some((l) => l.innerText.includes("closest preset")));
+  assert.match(await page.locator("#logs li.bad").last().innerText(), /Gyroscope\.csv: closest preset is sensor-logger .* lacks the column z/);
+  assert.equal(await page.locator("#logs li:not(.bad)").count() >= n, true);
+});
+
+test("files no preset fits open the mapping panel: guessed columns, live preview, added with the CLI's numbers, recipe saved", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-map-"));
+  // A logger of our own: ms time, rate in deg/s, course clockwise, speed in km/h, ';' and decimal commas.
+  const v1 = join(dir, "drive.csv");
+  cli("simulate", "drive", "--scenario", "city", "--minutes", "4", "--seed", "5", "--out", v1);
+  const lines = readFileSync(v1, "utf8").split("\n").filter((l) => l && !l.startsWith("#"));
+  const head = lines[0].split(",");
+  const col = (name) => head.indexOf(name);
+  const out = ["stamp_ms;yaw_rate_dps;course;v_kmh"];
+  for (const l of lines.slice(1)) {
+    const f = l.split(",");
+    const ref = f[col("ref_heading_deg")];
+    const course = ref === "" ? "" : String(-Number(ref)).replace(".", ",");
+    out.push([String(Math.round(Number(f[col("time_s")]) * 1000)), f[col("gyro_dps")].replace(".", ","), course, String(Number(f[col("speed_mps")]) * 3.6).replace(".", ",")].join(";"));
+  }
+  const mine = join(dir, "my-logger.csv");
+  writeFileSync(mine, out.join("\n") + "\n");
+  await page.locator("#file-input").setInputFiles([mine]);
+  await page.waitForSelector("#mapping[open]");
+  // The guesses: time stamp_ms in ms, the rate in deg/s, the course clockwise, km/h.
+  assert.equal(await page.locator("#map-time-0").inputValue(), "stamp_ms");
+  assert.equal(await page.locator("#map-time-unit-0").inputValue(), "ms");
+  assert.equal(await page.locator("#map-rate").inputValue(), "0:yaw_rate_dps");
+  assert.equal(await page.locator("#map-rate-unit").inputValue(), "deg/s");
+  assert.equal(await page.locator("#map-ref").inputValue(), "0:course");
+  assert.equal(await page.locator("#map-speed-unit").inputValue(), "km/h");
+  await page.waitForFunction(() => /reference headings, 4\.0 min/.test(document.getElementById("mapping-preview").textContent));
+  // A wrong choice shows its error in place; putting it back restores the preview.
+  await page.locator("#map-time-unit-0").selectOption("iso8601");
+  await page.waitForFunction(() => document.getElementById("mapping-preview").classList.contains("bad"));
+  assert.match(await page.locator("#mapping-preview").innerText(), /line 2, column stamp_ms: .* not an ISO 8601 time/);
+  assert.equal(await page.locator("#mapping-add").isDisabled(), true);
+  await page.locator("#map-time-unit-0").selectOption("ms");
+  await page.waitForFunction(() => /4\.0 min/.test(document.getElementById("mapping-preview").textContent));
+  await page.locator("#map-lead").fill("20");
+  await page.waitForFunction(() => /4\.0 min/.test(document.getElementById("mapping-preview").textContent) && !document.getElementById("mapping-add").disabled);
+  await page.screenshot({ path: join(ARTIFACTS, "mapping.png") });
+  const [dl] = await Promise.all([page.waitForEvent("download"), page.locator("#mapping-save").click()]);
+  const recipe = join(dir, "mine.toml");
+  await dl.saveAs(recipe);
+  await page.locator("#mapping-add").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("my-logger.csv (mapped)"));
+  assert.match(await page.locator("#logs li.selected").innerText(), /imported: your column mapping/);
+  const imported = join(dir, "imported.csv");
+  cli("import", "--recipe", recipe, "--data", dir, "--out", imported);
+  const native = JSON.parse(cli("hdr", imported, "--json"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  // Close to the simulated log itself (ms time, negated course and km/h undone; the course
+  // gated below 18 km/h = 5 m/s): a wrong unit or sign would be tens of degrees off.
+  const orig = JSON.parse(cli("hdr", v1, "--json"));
+  assert.ok(Math.abs(native.E_psi_hdr_deg - orig.E_psi_hdr_deg) < 0.5, `${native.E_psi_hdr_deg} vs ${orig.E_psi_hdr_deg}`);
+  // Cancel keeps the detection's error entry.
+  await page.locator("#file-input").setInputFiles([mine]);
+  await page.waitForSelector("#mapping[open]");
+  await page.locator("#mapping-cancel").click();
+  await page.waitForFunction(() => [...document.querySelectorAll("#logs li.bad")].some((l) => l.innerText.includes("my-logger.csv: no logger preset")));
+});
+
+test("a large raw export is imported in the Web Worker with the CLI's numbers", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-bigraw-"));
+  // Sensor Logger's layout: 20 min of a 100 Hz gyro with a 0.2 deg/s bias and a slow turn.
+  const rows = ["time,seconds_elapsed,z,y,x"];
+  for (let i = 0; i < 120000; i++) {
+    const t = i / 100;
+    const w = ((0.2 + (t > 600 && t < 690 ? 1 : 0)) * Math.PI) / 180;
+    rows.push(`${1763892000000000000 + i * 10000000},${t.toFixed(2)},${w.toFixed(7)},0.0001,-0.0002`);
+  }
+  const gyro = join(dir, "Gyroscope.csv");
+  writeFileSync(gyro, rows.join("\n") + "\n");
+  await page.locator("#file-input").setInputFiles([gyro]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Gyroscope.csv (Sensor Logger)"), null, { timeout: 60000 });
+  assert.equal(await page.locator("#progress").isVisible(), false);
+  const out = join(dir, "imported.csv");
+  cli("import", gyro, "--out", out);
+  const native = JSON.parse(cli("allan", out, "--json"));
+  const text = await page.locator("#logs li.selected").innerText();
+  assert.match(text, /static · 20\.0 min/);
+  assert.ok(text.includes(`ARW ${native.arw_deg_per_sqrt_h.toFixed(2)} deg/√h`), text);
+});

@@ -1,0 +1,269 @@
+// Logs in the dashboard: a loaded file shows the CLI's numbers, a bad one its line and
+// column while the rest is kept; check badges, gaps, drives without a reference, the log
+// list's management, large logs parsed in a Web Worker, names shown as text.
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { mkdtempSync, readFileSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join } from "node:path";
+import { SAMPLES, cli } from "../node/helpers.mjs";
+import { openDashboard, ARTIFACTS, page } from "./harness.mjs";
+
+openDashboard();
+
+test("a loaded log shows the CLI's numbers; a bad one shows line and column and keeps the rest", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-logs-"));
+  const good = join(SAMPLES, "test", "rural-3.csv");
+  const bad = join(dir, "broken.csv");
+  writeFileSync(bad, "time_s,gyro_dps,ref_heading_deg\n0,1,0\n0.1,1.2.3,0\n");
+  await page.locator("#file-input").setInputFiles([good]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Rural 3"));
+  const native = JSON.parse(cli("hdr", good, "--json"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  assert.equal(await page.locator("#m-improvement").innerText(), native.improvement.toFixed(2));
+  const n = await page.locator("#logs li").count();
+  await page.locator("#file-input").setInputFiles([bad]);
+  await page.waitForSelector("#logs li.bad");
+  assert.match(await page.locator("#logs li.bad").innerText(), /broken\.csv: line 3, column gyro_dps: "1\.2\.3" is not a number/);
+  assert.equal(await page.locator("#logs li").count(), n + 1);
+  assert.match(await page.locator("#logs li.selected").innerText(), /Rural 3/);
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  await page.screenshot({ path: join(ARTIFACTS, "bad-file.png"), fullPage: true });
+});
+
+test("a log with a clockwise gyro gets a check badge naming the fix; the shipped ones none", async () => {
+  assert.equal(await page.locator("#logs li .check").count(), 0);
+  const dir = mkdtempSync(join(tmpdir(), "gd-cw-"));
+  const cw = join(dir, "city-cw.csv");
+  const lines = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").split("\n");
+  const h = lines.findIndex((l) => l.startsWith("time_s"));
+  const g = lines[h].split(",").indexOf("gyro_dps");
+  const name = lines.findIndex((l) => l.startsWith("# name:"));
+  if (name >= 0) lines[name] = "# name: City CW";
+  writeFileSync(cw, lines.map((l, i) => (i <= h || !l ? l : l.split(",").map((c, j) => (j === g ? String(-Number(c)) : c)).join(","))).join("\n"));
+  await page.locator("#file-input").setInputFiles([cw]);
+  await page.waitForSelector("#logs li .check.error");
+  const badge = page.locator("#logs li .check.error");
+  assert.match(await badge.innerText(), /gyro_sign/);
+  assert.match(await badge.getAttribute("title"), /positive = "cw"/);
+  // What it says and its fix open under it at a click or a tap (a tooltip shows nothing on a
+  // phone), and close again.
+  const said = badge.locator("p").first();
+  assert.equal(await said.isVisible(), false);
+  await badge.locator("summary").click();
+  assert.equal(await said.isVisible(), true);
+  assert.match(await said.innerText(), /turns the other way.*fix: .*positive = "cw"/);
+  await page.screenshot({ path: join(ARTIFACTS, "check-badge.png") });
+  await badge.locator("summary").click();
+  assert.equal(await said.isVisible(), false);
+  // Above the view too, while it plots that log: its figures are not to be trusted.
+  const banner = page.locator("#view-check");
+  assert.equal(await banner.isVisible(), true);
+  assert.match(await banner.innerText(), /City CW: check found an error[\s\S]*fix: yaw_rate\.positive = "cw"/);
+  await page.locator("#logs li", { hasText: "City 1" }).first().locator("button.pick").click();
+  assert.equal(await banner.isVisible(), false);
+  await page.locator("#logs li", { hasText: "City CW" }).locator("button.pick").click();
+  assert.equal(await banner.isVisible(), true);
+  // Its fix, filled in the column mapper: the preview, then a log of its own with City 1's
+  // numbers and no check error.
+  const e1 = await page.locator("#logs li", { hasText: "City 1" }).first().locator("button.pick").click().then(() => page.locator("#m-e-hdr").innerText());
+  await page.locator("#logs li", { hasText: "City CW" }).locator("button.pick").click();
+  await page.locator("#check-remap").click();
+  await page.locator("#mapping[open]").waitFor();
+  assert.equal(await page.locator("#map-rate-sense").inputValue(), "cw");
+  assert.equal(await page.locator("#map-lead").inputValue(), "20");
+  await page.waitForFunction(() => !document.getElementById("mapping-add").disabled);
+  await page.screenshot({ path: join(ARTIFACTS, "check-remap.png") });
+  await page.locator("#mapping-add").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City CW (fixed)"));
+  assert.equal(await banner.isVisible(), false);
+  assert.equal(await page.locator("#logs li", { hasText: "City CW (fixed)" }).locator(".check.error").count(), 0);
+  assert.equal(await page.locator("#m-e-hdr").innerText(), e1);
+  await page.locator("#logs li", { hasText: "City CW (fixed)" }).locator("button.remove").click();
+  await page.locator("#logs li", { hasText: "City CW" }).locator("button.pick").click();
+  // The Report leaves it out of its tables and means, as the CLI's report refuses it.
+  await page.locator("#tabs button[data-view=report]").click();
+  await page.locator("#compare-table table").waitFor();
+  assert.equal(await page.locator("#compare-table tr[data-drive='City CW']").count(), 0);
+  assert.ok((await page.locator("#compare-table tr[data-drive='City 1']").count()) > 0);
+  assert.match(await page.locator("#report-unscored").innerText(), /Left out \(check found an error.*\): City CW\./);
+  assert.equal(await banner.isVisible(), false);
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#logs li", { hasText: "City CW" }).locator("button.remove").click();
+  // Information (`check`'s info findings) gets a quiet note of its own: City 1 without its
+  // speed column and its lead-in, at 1 Hz (too sparse for the gyro's own white-noise test
+  // of standing, which needs 5 rows a second), has nothing that shows when it stands.
+  const bare = join(dir, "city-bare.csv");
+  const v = lines[h].split(",").indexOf("speed_mps");
+  const rows = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").split("\n");
+  writeFileSync(
+    bare,
+    rows
+      .filter((l, i) => i <= h || !l || (i - h - 1) % 10 === 0)
+      .map((l, i) => (l.startsWith("# name:") ? "# name: City bare" : l.startsWith("# bias_s:") ? "# bias_s: 0" : i < h || !l ? l : l.split(",").filter((_, j) => j !== v).join(",")))
+      .join("\n"),
+  );
+  await page.locator("#file-input").setInputFiles([bare]);
+  const info = page.locator("#logs li", { hasText: "City bare" }).locator(".check.info");
+  await info.waitFor();
+  assert.match(await info.innerText(), /no stops/);
+  assert.match(await info.getAttribute("title"), /a speed column, or # bias_s: N/);
+  assert.equal(await page.locator("#logs li", { hasText: "City bare" }).locator(".check.warning, .check.error").count(), 0);
+  await page.locator("#logs li", { hasText: "City bare" }).locator("button.remove").click();
+});
+
+test("a log with a 60 s gap becomes two drives, each marked as split, with the CLI's numbers", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-gap-"));
+  const file = join(dir, "city-gap.csv");
+  const lines = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").split("\n");
+  const name = lines.findIndex((l) => l.startsWith("# name:"));
+  lines[name] = "# name: City gap";
+  writeFileSync(file, lines.filter((l) => !(l && !l.startsWith("#") && Number(l.split(",")[0]) >= 300 && Number(l.split(",")[0]) < 360)).join("\n"));
+  await page.locator("#file-input").setInputFiles([file]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City gap (part 1 of 2)"));
+  assert.equal(await page.locator("#logs li", { hasText: "City gap (part" }).count(), 2);
+  assert.match(await page.locator("#logs li", { hasText: "City gap (part 2 of 2)" }).locator(".check.split").getAttribute("title"), /60\.1 s at line/);
+  const native = JSON.parse(cli("hdr", file, "--json"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native[0].E_psi_hdr_deg.toFixed(2));
+});
+
+test("a drive without a reference heading is shown, not scored: the HDR view says so, the Report skips it", async () => {
+  // City 1 with its GPS course dropped: speed and gyro only, a drive with no reference.
+  const dir = mkdtempSync(join(tmpdir(), "gd-noref-"));
+  const file = join(dir, "city-no-gps.csv");
+  const lines = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").split("\n");
+  const h = lines.findIndex((l) => l.startsWith("time_s"));
+  const r = lines[h].split(",").indexOf("ref_heading_deg");
+  writeFileSync(file, lines.map((l, i) => (l.startsWith("# name:") ? "# name: City no GPS" : i < h || !l ? l : l.split(",").filter((_, j) => j !== r).join(","))).join("\n"));
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#file-input").setInputFiles([file]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City no GPS"));
+  const item = page.locator("#logs li", { hasText: "City no GPS" });
+  assert.match(await item.innerText(), /drive · 19\.4 min · no reference: not scored/);
+  await page.waitForSelector("#m-bias-pipeline");
+  assert.match(await page.locator("#m-unscored").innerText(), /Not scored: missing column ref_heading_deg/);
+  // The pipeline's final bias is the CLI's, which runs the drive unscored too (exit 0).
+  const native = JSON.parse(cli("pipeline", file, "--json"));
+  assert.match(native.not_scored, /ref_heading_deg/);
+  assert.equal(await page.locator("#m-bias-pipeline").innerText(), native.final_bias_dps.toFixed(4));
+  // No error to draw: the chart is hidden, not the last drive's left standing.
+  assert.equal(await page.locator("#c-error").isVisible(), false);
+  assert.equal(await page.locator("#c-heading").isVisible(), true);
+  await page.screenshot({ path: join(ARTIFACTS, "no-reference.png"), fullPage: true });
+  // The Report scores the other drives and names the one it cannot.
+  await page.locator("#tabs button[data-view=report]").click();
+  await page.waitForSelector("#report-table table");
+  assert.match(await page.locator("#report-unscored").innerText(), /Not scored \(no reference heading\): City no GPS\./);
+  assert.equal(await page.locator("#report-table tr", { hasText: "City no GPS" }).count(), 0);
+  assert.ok((await page.locator("#report-table tr", { hasText: "City 1" }).count()) > 0);
+  await item.locator("button.remove").click();
+  assert.equal(await page.locator("#report-unscored").isVisible(), false);
+  // The column there but with no value in it is no reference either (core's rule, as the CLI).
+  const blank = join(dir, "city-blank-gps.csv");
+  writeFileSync(blank, lines.map((l, i) => (l.startsWith("# name:") ? "# name: City blank GPS" : i <= h || !l ? l : l.split(",").map((c, j) => (j === r ? "" : c)).join(","))).join("\n"));
+  await page.locator("#file-input").setInputFiles([blank]);
+  const blankItem = page.locator("#logs li", { hasText: "City blank GPS" });
+  await blankItem.waitFor();
+  assert.match(await blankItem.innerText(), /drive · 19\.4 min · no reference: not scored/);
+  await page.waitForSelector("#report-table table");
+  assert.match(await page.locator("#report-unscored").innerText(), /Not scored \(no reference heading\): City blank GPS\./);
+  assert.match(JSON.parse(cli("pipeline", blank, "--json")).not_scored, /ref_heading_deg column is empty/);
+  await blankItem.locator("button.remove").click();
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.waitForSelector("#m-e-hdr");
+  assert.equal(await page.locator("#c-error").isVisible(), true);
+});
+
+test("log management: same name made unique, the same file re-opened, a log removed, an error dismissed", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-manage-"));
+  const copy = join(dir, "rural-copy.csv");
+  writeFileSync(copy, readFileSync(join(SAMPLES, "test", "rural-3.csv")));
+  const before = await page.locator("#logs li").count();
+  await page.locator("#file-input").setInputFiles([copy]);
+  await page.locator("#file-input").setInputFiles([copy]); // the same file again: loads again
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li").length === n + 2, before);
+  const names = await page.locator("#logs li b").allInnerTexts();
+  const copies = names.filter((n) => n.startsWith("Rural 3"));
+  assert.equal(new Set(copies).size, copies.length, `unique names: ${names.join(" | ")}`);
+  assert.ok(copies.length >= 2, names.join(" | "));
+  const last = copies[copies.length - 1];
+  await page.getByRole("button", { name: `Remove ${last}`, exact: true }).click();
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li").length === n + 1, before);
+  assert.ok(!(await page.locator("#logs li b").allInnerTexts()).includes(last));
+  await page.getByRole("button", { name: `Remove ${copies[copies.length - 2]}`, exact: true }).click();
+  const bad = join(dir, "broken2.csv");
+  writeFileSync(bad, "time_s,gyro_dps\n0,x\n");
+  await page.locator("#file-input").setInputFiles([bad]);
+  await page.waitForSelector("#logs li.bad");
+  await page.locator("#logs li.bad button.remove").last().click();
+  await page.waitForFunction(() => ![...document.querySelectorAll("#logs li.bad")].some((li) => li.innerText.includes("broken2")));
+});
+
+test("the list highlights the log each view plots", async () => {
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+  await page.locator("#tabs button[data-view=gyrodometry]").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Robot straight"));
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City 1"));
+});
+
+test("a large log is parsed in a Web Worker, handed to the page in chunks, and gives the CLI's numbers", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-big-"));
+  const big = join(dir, "long-drive.csv");
+  cli("simulate", "drive", "--scenario", "mixed", "--minutes", "450", "--seed", "77", "--name", "Long drive", "--out", big);
+  await page.locator("#file-input").setInputFiles([big]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Long drive"), null, { timeout: 60000 });
+  // 270 000 rows: more than one chunk (CHUNK_ROWS in web/loading.js) crosses to the page.
+  assert.ok(await page.evaluate(() => window.gyrodrift.state.entries.find((e) => e.name === "Long drive").log.toColumns().columns.time_s.length > 250000));
+  const native = JSON.parse(cli("hdr", big, "--json"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  assert.equal(await page.locator("#progress").isVisible(), false);
+  // Its pipeline and its Track paths are computed in the worker (the page does not pause)
+  // and equal the CLI's and the page module's own.
+  assert.ok(await page.evaluate(() => window.gyrodrift.state.entries.find((e) => e.name === "Long drive").workerKey != null));
+  await page.waitForSelector("#m-e-pipeline", { timeout: 60000 });
+  const pipe = JSON.parse(cli("pipeline", big, "--json"));
+  assert.equal(await page.locator("#m-e-pipeline").innerText(), pipe.E_psi_pipeline_deg.toFixed(2));
+  await page.locator("#tabs button[data-view=track]").click();
+  await page.waitForFunction(() => !document.getElementById("track-busy").textContent && window.gyrodrift.state.specs["c-track"]?.title.startsWith("Long drive"), null, { timeout: 60000 });
+  const same = await page.evaluate(() => {
+    const { gd, state } = window.gyrodrift;
+    const e = state.entries.find((x) => x.name === "Long drive");
+    const here = gd.track(e.log, { resample: state.resample, ...state.params });
+    const pipe = gd.pipelineTrack(e.log, { bias_s: state.params.bias_s ?? null });
+    const equal = (name, p) => {
+      const drawn = state.specs["c-track"].series.find((s) => s.name === name);
+      return drawn.x.length === p.x_m.length && drawn.x.every((v, i) => v === p.x_m[i]) && drawn.y.every((v, i) => v === p.y_m[i]);
+    };
+    return [equal("HDR", here.hdr), equal("pipeline (recommended)", pipe.pipeline), equal("smoothed (offline)", pipe.smoothed)];
+  });
+  assert.deepEqual(same, [true, true, true], "the worker's HDR and pipeline paths are the page module's");
+  await page.locator("#tabs button[data-view=hdr]").click();
+});
+
+test("a log's name is text everywhere, never markup (list, overlay row, tooltip)", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-name-"));
+  const evil = '<img src=x onerror="window.__xss=1">';
+  const file = join(dir, "evil.csv");
+  writeFileSync(file, readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").replace(/^# name: .*$/m, `# name: ${evil}`));
+  await page.locator("#file-input").setInputFiles([file]);
+  await page.waitForFunction((n) => window.gyrodrift.state.entries.some((e) => e.name === n), evil);
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#logs li", { hasText: evil }).locator("button.overlay").click();
+  await page.waitForSelector("#overlay-metrics .overlay-row");
+  assert.match(await page.locator("#overlay-metrics").innerText(), /<img src=x onerror/);
+  await page.locator("#c-error").scrollIntoViewIfNeeded();
+  const box = await page.locator("#c-error").boundingBox();
+  await page.mouse.move(box.x + box.width * 0.3, box.y + box.height * 0.5);
+  await page.locator("#c-error ~ .tip").waitFor({ state: "visible" });
+  assert.match(await page.locator("#c-error ~ .tip").innerText(), /<img src=x onerror=.*: HDR/);
+  await page.locator("#logs li", { hasText: evil }).locator("button.overlay").click();
+  await page.locator("#logs li", { hasText: evil }).locator("button.pick").click();
+  await page.waitForTimeout(300);
+  assert.equal(await page.evaluate(() => window.__xss), undefined);
+  assert.equal(await page.locator("#view-hdr img, #view-allan img, #logs img, #overlay-metrics img").count(), 0);
+  await page.locator("#logs li", { hasText: evil }).locator("button.remove").click();
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+});
