@@ -1,0 +1,172 @@
+//! The stationary lead-in: where it ends, what it measures, turn-on biases beyond the
+//! bounds, standings without one.
+
+use super::*;
+
+#[test]
+fn a_declared_lead_in_that_outlasts_the_standing_is_judged_steady_like_a_stop() {
+    // `bias_s: 10`, but the car pulls away into a slow 3 deg/s turn after 5 s: the turn's
+    // blocks are plausible as a bias (under 5 deg/s) but not steady with the standing
+    // ones, so the bias stays the standing rate (0.4; 1.68 with the lead-in exempt).
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 10.0).unwrap();
+    for t in 0..9 {
+        f.update(t as f64, if t < 5 { 0.4 } else { 3.0 }, true).unwrap();
+    }
+    let (b, _) = f.bias();
+    assert!((b - 0.4).abs() < 0.01, "bias {b}");
+}
+
+/// A standing that goes on after the declared lead-in, the car pulling away into a turn
+/// while the GPS speed still reads zero (the VN-100 circle with the 20 s default lead-in):
+/// the stop's blocks after the lead-in are steady as the lead-in's are, so the turn's
+/// 3.3 deg/s is not a bias. Before, the stop started afresh at the lead-in's end, its one
+/// block left after trimming had nothing to be steady with, and the bias went to 0.86
+/// deg/s (NE_psi 18.5 deg/min where raw integration had 1.8).
+#[test]
+fn a_standing_that_goes_on_after_the_lead_in_is_judged_steady_with_it() {
+    let mut f = after_lead_in(0.01, 0.01);
+    for (i, w) in [0.3, 3.3, 9.0].into_iter().enumerate() {
+        f.update(20.0 + i as f64, w, true).unwrap();
+    }
+    for i in 23..30 {
+        f.update(i as f64, 14.0, false).unwrap();
+    }
+    let (b, _) = f.bias();
+    assert!(b.abs() < 0.05, "bias {b}");
+}
+
+/// A drive that never stops counts +0 s of stops: an empty float sum is -0 in Rust, which
+/// the CLI printed as "-0 s counted".
+#[test]
+fn a_drive_without_stops_counts_plus_zero_seconds_of_stops() {
+    let mut csv = String::from("# bias_s: 0\ntime_s,gyro_dps,ref_heading_deg,speed_mps\n");
+    for i in 0..120 {
+        csv.push_str(&format!("{i},0.1,{},10\n", -0.1 * i as f64));
+    }
+    let log = crate::parse_log_str(&csv).unwrap();
+    let r = run(&log, &PipelineParams::default()).unwrap().result.unwrap();
+    assert_eq!(r.stop_s, 0.0);
+    assert!(r.stop_s.is_sign_positive(), "{}", r.stop_s);
+}
+
+/// A declared 20 s lead-in over a car that stands 5 s (bias 0.1 deg/s) and then drives a
+/// steady 0.25 deg/s curve (within the lead-in's steadiness tolerance, 0.3 deg/s): the
+/// speed ends the lead-in, so the curve is not taken as the bias; with the speed column
+/// gone (nothing says it moved) the whole 20 s is lead-in and the bias is pulled toward
+/// the curve.
+#[test]
+fn the_speed_ends_a_declared_lead_in_that_outlasts_the_standing() {
+    use crate::log::{Column, DriveLog};
+    let build = |with_speed: bool| {
+        let cols: &[Column] = if with_speed { &[Column::GyroDps, Column::SpeedMps] } else { &[Column::GyroDps] };
+        let mut log = DriveLog::with_columns(cols);
+        log.meta.bias_s = Some(20.0);
+        for i in 0..300 {
+            let t = i as f64 * 0.1;
+            let moving = t >= 5.0;
+            let w = 0.1 + if moving { 0.25 } else { 0.0 } + if i % 2 == 0 { 0.01 } else { -0.01 };
+            log.push_row(&[(Column::TimeS, t), (Column::GyroDps, w), (Column::SpeedMps, if moving { 10.0 } else { 0.0 })]);
+        }
+        log
+    };
+    let bias_at_19 = |log: &DriveLog| {
+        let prep = crate::eval::Prepared::new(log, None, &PipelineParams::default().still).unwrap();
+        let tr = prep.pipeline_trace(&PipelineParams::default()).unwrap();
+        (prep.lead_in_end_s(), tr.bias_dps[20])
+    };
+    let (end, b) = bias_at_19(&build(true));
+    assert!((end - 5.9).abs() < 1e-9, "the lead-in ends with block 5 (rows 5.0-5.9): {end}");
+    assert!(b < 0.15, "bias {b}: near the standing's (0.127: the road evidence from 6 s on pulls a little)");
+    let (end, b) = bias_at_19(&build(false));
+    assert_eq!(end, 20.0);
+    assert!(b > 0.2, "bias {b}: the curve taken as standing (0.313)");
+}
+
+/// A turn-on bias beyond `max_bias_dps` (7 deg/s: an uncalibrated MEMS part) that the
+/// declared lead-in shows is learned, as the static bias takes it, and the stops and
+/// straights after it are judged about it. Before, every block was refused as a turn and
+/// the bias stayed 0 (E_psi in the thousands of degrees where raw integration had 33).
+#[test]
+fn a_turn_on_bias_beyond_max_bias_that_the_lead_in_shows_is_learned() {
+    let mut f = after_lead_in(7.0, 0.02);
+    let wiggle = |i: usize| if i.is_multiple_of(2) { 0.02 } else { -0.02 };
+    assert!((f.bias().0 - 7.0).abs() < 0.01 && (f.centre_dps() - 7.0).abs() < 0.01, "bias {:?}, centre {}", f.bias(), f.centre_dps());
+    // 200 s of road at 7.05 (a 0.05 deg/s warm-up), with turns; then a stop at 7.05.
+    for i in 20..220 {
+        let turn = if (i / 15) % 4 == 3 { 12.0 } else { 0.0 };
+        f.update(i as f64, 7.05 + turn + wiggle(i), false).unwrap();
+    }
+    for i in 220..240 {
+        f.update(i as f64, 7.05 + wiggle(i), true).unwrap();
+    }
+    assert!((f.bias().0 - 7.05).abs() < 0.01, "bias {:?}", f.bias());
+}
+
+/// Without a lead-in, a turn-on bias beyond `max_bias_dps` (8 deg/s) is acquired at the
+/// first standing of 10 s or more (a road vehicle does not turn at 8 deg/s for that long
+/// while its speed says it stands), not refused for good; a shorter standing at that rate
+/// (a slow turn with the GPS speed held at zero) is not evidence.
+#[test]
+fn without_a_lead_in_a_long_standing_beyond_max_bias_is_the_bias() {
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, f64::NEG_INFINITY).unwrap();
+    let wiggle = |i: usize| if i.is_multiple_of(2) { 0.02 } else { -0.02 };
+    let mut t = 0.0;
+    let mut drive = |f: &mut Pipeline, n: usize, still: bool| {
+        for i in 0..n {
+            t += 1.0;
+            let turn = if !still && (i / 15) % 4 == 3 { 12.0 } else { 0.0 };
+            f.update(t, 8.0 + turn + wiggle(i), still).unwrap();
+        }
+    };
+    drive(&mut f, 120, false);
+    drive(&mut f, 8, true);
+    assert!(f.bias().0.abs() <= 5.0 && f.centre_dps() == 0.0, "a short standing: {:?}", f.bias());
+    drive(&mut f, 60, false);
+    drive(&mut f, 15, true);
+    assert!((f.bias().0 - 8.0).abs() < 0.02 && (f.centre_dps() - 8.0).abs() < 0.02, "{:?}, centre {}", f.bias(), f.centre_dps());
+}
+
+/// On a simulated drive cut from its lead-in, a constant added that takes the turn-on bias
+/// beyond `max_bias_dps` (+6 deg/s: about 7.5) is acquired at the first long stop: far
+/// better than a zero-rate update at stops (before, the pipeline equalled raw integration,
+/// 224 deg/min on the city drive of the probe).
+#[test]
+fn a_large_bias_without_a_lead_in_is_acquired_on_a_simulated_drive() {
+    let cfg = crate::sim::DriveConfig { scenario: crate::sim::Scenario::City, minutes: 10.0, seed: 5 };
+    let mut log = crate::sim::drive::simulate_drive(&cfg);
+    log.retain_rows(|t| t >= 20.0);
+    log.meta.bias_s = Some(0.0);
+    log.column_mut(crate::log::Column::GyroDps).unwrap().iter_mut().for_each(|w| *w += 6.0);
+    let r = run(&log, &PipelineParams::default()).unwrap().result.unwrap();
+    let (pipe, zaru, raw) = (r.NE_psi_pipeline_deg_per_min, r.NE_psi_zaru_deg_per_min, r.NE_psi_raw_deg_per_min);
+    assert!(pipe < 0.2 * zaru && pipe < 0.05 * raw, "pipeline {pipe}, ZARU {zaru}, raw {raw}");
+}
+
+/// A first lead-in block far beyond any bias (a knock) is not evidence, and does not make
+/// the steady blocks after it so: one block agreeing with nothing before it.
+#[test]
+fn a_knock_at_the_start_of_the_lead_in_is_not_evidence() {
+    let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 10.0).unwrap();
+    for t in 0..9 {
+        f.update(t as f64, if t == 0 { 12.0 } else { 0.4 }, true).unwrap();
+    }
+    assert!((f.bias().0 - 0.4).abs() < 0.01, "bias {:?}", f.bias());
+}
+
+/// On a simulated drive with known truth, a constant added to the gyro that the lead-in
+/// measures changes the pipeline's NE_psi by little, within the old bound (+2 deg/s) and
+/// beyond it (+6 deg/s: a turn-on bias of about 7.5; before, NE_psi went from 0.5 to 160).
+#[test]
+fn a_constant_the_lead_in_measures_barely_changes_the_result() {
+    let cfg = crate::sim::DriveConfig { scenario: crate::sim::Scenario::City, minutes: 8.0, seed: 5 };
+    let ne = |add: f64| {
+        let mut log = crate::sim::drive::simulate_drive(&cfg);
+        log.column_mut(crate::log::Column::GyroDps).unwrap().iter_mut().for_each(|w| *w += add);
+        run(&log, &PipelineParams::default()).unwrap().result.unwrap().NE_psi_pipeline_deg_per_min
+    };
+    let base = ne(0.0);
+    for add in [2.0, -2.0, 6.0, -6.0] {
+        let got = ne(add);
+        assert!((got - base).abs() <= 0.1 * base + 0.02, "+{add} deg/s: NE_psi {got} against {base}");
+    }
+}
