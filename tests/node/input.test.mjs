@@ -1,0 +1,194 @@
+// Input to the npm package under Node: bad logs and arguments throw Errors naming line and
+// column (never a trap) and the module keeps working; check, gaps, settings, logger
+// presets, logs handed over in chunks, columns reduced for plotting.
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { readFileSync, readdirSync, mkdtempSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join } from "node:path";
+import * as gd from "gyrodrift";
+import { ROOT, SAMPLES, cli, plain, drives } from "./helpers.mjs";
+
+test("bad input throws an Error with line and column, and the module keeps working", () => {
+  assert.throws(() => gd.Log.parse("time_s,gyro_dps\n0,1\n0.1,1.2.3\n"), {
+    name: "Error",
+    message: 'line 3, column gyro_dps: "1.2.3" is not a number',
+  });
+  assert.throws(() => gd.Log.parse("gyro_dps\n1\n"), /missing required column time_s/);
+  assert.throws(() => gd.hdr(gd.Log.parse("time_s,gyro_dps\n0,1\n1,2\n"), {}), /missing column ref_heading_deg/);
+  assert.throws(() => gd.hdr(gd.Log.parse(readFileSync(drives[0], "utf8")), { tau_s: "x" }), /hdr options: parameter tau_s: invalid type/);
+  const est = new gd.HdrEstimator({}, 0);
+  est.update(0, 0.1);
+  assert.throws(() => est.update(0, 0.1), /not after/);
+  assert.equal(typeof est.update(1, 0.1), "number");
+  const ok = gd.hdr(gd.Log.parse(readFileSync(drives[0], "utf8")), {});
+  assert.ok(ok.E_psi_hdr_deg > 0);
+});
+
+test("wrong argument types throw TypeError (never a trap), misspelled recipe fields are refused, and the module keeps working", () => {
+  const log = gd.Log.parse("time_s,gyro_dps\n0,1\n1,2\n");
+  const typeErrors = [
+    () => gd.Log.parse(123),
+    () => gd.Log.parse({}),
+    () => log.column(5),
+    () => gd.Log.fromBytes({ length: 1e9 }),
+    () => gd.Log.fromBytes("abc"),
+    () => { log.name = 123; },
+    () => gd.hdr(log, 5),
+    () => gd.defaults(7),
+    () => gd.importLog(5, {}),
+  ];
+  for (const f of typeErrors) assert.throws(f, TypeError, f.toString());
+  assert.throws(() => gd.importLog({ ofset_s: 1 }, {}), /recipe: unknown field `ofset_s`/);
+  assert.throws(() => gd.importLog({ bias_s: NaN }, {}), /recipe: bias_s: NaN is not a finite number/);
+  assert.throws(() => gd.hdr(log, { i_c: Infinity }), /hdr options: i_c: inf is not a finite number/);
+  assert.equal(gd.Log.parse("time_s,gyro_dps\n0,1\n1,2\n").rowCount, 2);
+  assert.equal(gd.defaults("gyrodometry").thres_rate_dps, 1.25);
+  assert.equal(gd.defaultBiasS(), 20);
+});
+
+test("checkLog equals the CLI's check, and finds a clockwise gyro with its fix, which every table then refuses unless ignore_check", () => {
+  const file = join(SAMPLES, "train", "city-1.csv");
+  const text = readFileSync(file, "utf8");
+  assert.deepEqual(plain(gd.checkLog(gd.Log.parse(text))), JSON.parse(cli("check", file, "--json")));
+  const lines = text.split("\n");
+  const h = lines.findIndex((l) => l.startsWith("time_s"));
+  const g = lines[h].split(",").indexOf("gyro_dps");
+  const cw = lines.map((l, i) => {
+    if (i <= h || !l) return l;
+    const c = l.split(",");
+    c[g] = String(-Number(c[g]));
+    return c.join(",");
+  });
+  const cwLog = gd.Log.parse(cw.join("\n"));
+  const r = gd.checkLog(cwLog);
+  const f = r.findings.find((x) => x.code === "gyro_sign");
+  assert.ok(f && f.severity === "error" && /positive = "cw"/.test(f.fix), JSON.stringify(r.findings));
+  // Every table refuses it, as the CLI does, naming it and the fix; ignore_check runs it,
+  // giving the CLI's --ignore-check figures.
+  const city = gd.Log.parse(text);
+  const refused = /City 1: check: error \[gyro_sign\].*positive = "cw".*ignore_check = true runs it anyway/;
+  for (const [name, table] of Object.entries({
+    report: (x) => gd.report([city, cwLog], {}, x),
+    reportCsv: (x) => gd.reportCsv([cwLog], {}, x),
+    reportMarkdown: (x) => gd.reportMarkdown([cwLog], {}, x),
+    compare: (x) => gd.compare([cwLog], {}, x),
+    compareTable: (x) => gd.compareTable([cwLog], {}, "csv", x),
+    battery: (x) => gd.batteryMarkdown([cwLog], {}, x),
+    tune: (x) => gd.tune([city], [cwLog], {}, undefined, x),
+  })) {
+    assert.throws(() => table(undefined), refused, name);
+    assert.throws(() => table(false), refused, name);
+    if (name === "report" || name === "compare") assert.doesNotThrow(() => table(true), name);
+  }
+  const dir = mkdtempSync(join(tmpdir(), "gd-cw-"));
+  const path = join(dir, "cw.csv");
+  writeFileSync(path, cw.join("\n"));
+  assert.deepEqual(plain(gd.report([cwLog], {}, true)), JSON.parse(cli("report", path, "--ignore-check", "--json")));
+  const noNulls = (o) => JSON.parse(JSON.stringify(o, (_, v) => (v === null ? undefined : v)));
+  assert.deepEqual(plain(gd.compare([cwLog], {}, true)), noNulls(JSON.parse(cli("report", "--compare", path, "--ignore-check", "--json"))));
+});
+
+test("splitAtGaps gives the CLI's parts: no method integrates across a 60 s gap", () => {
+  const text = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const lines = text.split("\n").filter((l) => {
+    const t = Number(l.split(",")[0]);
+    return !(l && !l.startsWith("#") && t >= 300 && t < 360);
+  });
+  const dir = mkdtempSync(join(tmpdir(), "gd-gap-"));
+  const file = join(dir, "city-gap.csv");
+  writeFileSync(file, lines.join("\n"));
+  const split = gd.Log.parse(lines.join("\n")).splitAtGaps(undefined);
+  assert.equal(split.parts.length, 2);
+  assert.equal(split.gaps.length, 1);
+  assert.match(split.summary, /60\.1 s at line/);
+  const native = JSON.parse(cli("hdr", file, "--json"));
+  assert.equal(native.length, 2);
+  split.parts.forEach((p, i) => assert.equal(gd.hdr(p, {}).E_psi_hdr_deg, native[i].E_psi_hdr_deg));
+  // The part before the gap is scored exactly as a log of its rows alone: nothing after
+  // the gap reaches it, and the part after starts afresh (eps0 0: no lead-in there).
+  const before = lines.filter((l) => {
+    const t = Number(l.split(",")[0]);
+    return !l || l.startsWith("#") || Number.isNaN(t) || t < 300;
+  });
+  const alone = gd.hdr(gd.Log.parse(before.join("\n")), {});
+  assert.equal(alone.E_psi_hdr_deg, native[0].E_psi_hdr_deg);
+  assert.equal(native[1].eps0_dps, 0);
+  const whole = gd.Log.parse(text).splitAtGaps(undefined);
+  assert.deepEqual([whole.parts.length, whole.gaps.length, whole.summary], [1, 0, null]);
+  assert.throws(() => gd.Log.parse(text).splitAtGaps(NaN), TypeError);
+});
+
+test("checkOptions gives core's reason for a bad setting, or nothing for a good one", () => {
+  assert.equal(gd.checkOptions("hdr", { i_c_dps: 0.03 }), undefined);
+  assert.match(gd.checkOptions("hdr", { i_c_dps: 1e9 }), /i_c.*\[0, 10\]/);
+  assert.match(gd.checkOptions("gyrodometry", { thres_rate_dps: -1 }), /thres/);
+  assert.match(gd.checkOptions("hdr", { ofset: 1 }), /unknown field/);
+  assert.throws(() => gd.checkOptions("nope", {}), /unknown method/);
+});
+
+test("detectImport picks the logger's preset from raw files; importLog on its recipe gives the CLI's log", () => {
+  const dir = join(ROOT, "sample-logs", "wild", "sensor-logger");
+  const names = readdirSync(dir).sort();
+  const files = Object.fromEntries(names.map((f) => [f, readFileSync(join(dir, f))]));
+  const d = gd.detectImport(files);
+  assert.equal(d.preset, "sensor-logger");
+  assert.deepEqual(d.used, [["gyro", "Gyroscope.csv"], ["gravity", "Gravity.csv"], ["location", "Location.csv"]]);
+  assert.deepEqual(d.ignored, ["Accelerometer.csv", "Metadata.csv"]);
+  const { log } = gd.importLog(d.recipe, files);
+  const out = join(mkdtempSync(join(tmpdir(), "gd-detect-")), "imported.csv");
+  cli("import", ...names.map((f) => join(dir, f)), "--out", out);
+  const native = gd.Log.parse(readFileSync(out, "utf8"));
+  assert.deepEqual(Array.from(log.column("gyro_dps")), Array.from(native.column("gyro_dps")));
+  assert.equal(gd.isDriveLog("city-1.csv", readFileSync(join(SAMPLES, "train", "city-1.csv"))), true);
+  assert.equal(gd.isDriveLog("Gyroscope.csv", files["Gyroscope.csv"]), false);
+  // Errors are Errors naming the file, never a trap.
+  assert.throws(() => gd.detectImport(5), TypeError);
+  assert.throws(() => gd.detectImport({ "x.bin": new Uint8Array([0, 1, 2]) }), /x\.bin: a binary file/);
+  assert.throws(() => gd.detectImport({ "a.csv": new TextEncoder().encode("alpha;beta\n1;2\n") }), /no logger preset .* a\.csv \(header: alpha, beta\)/);
+  assert.throws(() => gd.detectImport({}), /no files/);
+});
+
+test("LogBuilder: a log handed over in chunks equals the whole; a bad chunk is refused whole, naming its line and column", () => {
+  const log = gd.Log.parse(readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8"));
+  const data = log.toColumns();
+  const names = Object.keys(data.columns);
+  const n = data.columns.time_s.length;
+  const chunk = (i, j) => ({ meta: data.meta, line: data.line.subarray(i, j), columns: Object.fromEntries(names.map((k) => [k, data.columns[k].subarray(i, j)])) });
+  const b = new gd.LogBuilder(chunk(0, 1000), n);
+  // time going back: the line of the offending row, nothing of the chunk kept
+  assert.throws(() => b.append(chunk(500, 1500)), (e) => e instanceof Error && /time_s/.test(e.message) && e.message.includes(String(data.line[500])));
+  // a gyro value out of range, named by line and column
+  const bad = chunk(1000, 1100);
+  bad.columns.gyro_dps = bad.columns.gyro_dps.slice();
+  bad.columns.gyro_dps[7] = 1e9;
+  assert.throws(() => b.append(bad), (e) => /gyro_dps/.test(e.message) && e.message.includes(String(data.line[1007])));
+  assert.throws(() => b.append({ columns: { time_s: data.columns.time_s.subarray(1000, 1001) } }), /gyro_dps/);
+  assert.throws(() => b.append({ columns: { time_s: "no" } }), /time_s/);
+  for (let i = 1000; i < n; i += 3000) b.append(chunk(i, Math.min(n, i + 3000)));
+  const built = b.finish();
+  assert.throws(() => b.finish(), /already finished/);
+  b.free();
+  assert.deepEqual(plain(gd.hdr(built, {})), plain(gd.hdr(log, {})));
+  assert.deepEqual(built.toColumns().line, data.line);
+  assert.throws(() => new gd.LogBuilder({ meta: data.meta, columns: { gyro_dps: new Float64Array(1) } }, 0), /time_s/);
+  assert.throws(() => new gd.LogBuilder({ columns: { time_s: new Float64Array([1, 0]) } }, 2), /line 3/);
+  built.free();
+  log.free();
+});
+
+test("Log.reduceColumns gives reduceSeries' points of the log's own columns, without copying them out", () => {
+  const log = gd.Log.parse(readFileSync(join(SAMPLES, "train", "highway-1.csv"), "utf8"));
+  for (const view of [{ columns: 300 }, { columns: 120, x_range: [100, 900] }]) {
+    const got = log.reduceColumns(["speed_mps", "gyro_dps"], view);
+    const want = gd.reduceSeries(log.column("time_s"), [log.column("speed_mps"), log.column("gyro_dps")], view);
+    assert.ok(got.x.length > 0 && got.x.length < log.column("time_s").length, "reduced");
+    assert.deepEqual(got.x, want.x);
+    assert.deepEqual(got.ys, want.ys);
+  }
+  assert.throws(() => log.reduceColumns(["odo_left_m"], { columns: 100 }), /odo_left_m/);
+  assert.throws(() => log.reduceColumns(["nope"], { columns: 100 }), /unknown column nope/);
+  assert.throws(() => log.reduceColumns("speed_mps", { columns: 100 }), TypeError);
+  assert.throws(() => log.reduceColumns(["speed_mps"], {}), /columns/);
+  log.free();
+});
