@@ -64,12 +64,12 @@ pub struct GyroStill {
     /// Block means: the lead-in's, then the last [`AGREE_BLOCKS`] after it.
     means: Vec<f64>,
     /// Once the lead-in is over: its rows' and its block means' standard deviations, or
-    /// None when it cannot be used (no block after the lead-in is still).
+    /// None when it cannot be used (the white-noise test then decides alone).
     reference: Option<Option<(f64, f64)>>,
     /// Without a reference: the last [`WHITE_BLOCKS`] blocks' rows, mean and row variance.
     white: Vec<(usize, f64, f64)>,
     /// Blocks called still by the white-noise test.
-    pub white_stills: usize,
+    white_stills: usize,
 }
 
 impl GyroStill {
