@@ -111,13 +111,7 @@ impl GyroStill {
         if self.white.len() < WHITE_BLOCKS {
             return false;
         }
-        let k = WHITE_BLOCKS as f64;
-        let rows_per_block = self.white.iter().map(|b| b.0 as f64).sum::<f64>() / k;
-        let row_var = self.white.iter().map(|b| b.2).sum::<f64>() / k;
-        let mean_of_means = self.white.iter().map(|b| b.1).sum::<f64>() / k;
-        let means_var = self.white.iter().map(|b| (b.1 - mean_of_means).powi(2)).sum::<f64>() / (k - 1.0);
-        // Rows all equal leave a rounding residue of the order of 1e-16 x mean^2, not noise.
-        let still = row_var > 1e-12 * (1.0 + mean_of_means * mean_of_means) && means_var <= row_var / rows_per_block;
+        let still = white_variance_ratio(&self.white).is_some_and(|r| r <= 1.0);
         self.white_stills += still as usize;
         still
     }
@@ -135,6 +129,38 @@ impl GyroStill {
             (n >= 10 && k >= 3 && std > 0.0 && scatter > 0.0).then_some((std, scatter))
         })
     }
+}
+
+/// How much more the block means (rows, mean, row variance per block) scatter than their
+/// rows' white noise predicts: the sample variance of the means over the pooled row variance
+/// per rows per block (1 in expectation for a standing gyro's white noise). None under 3
+/// blocks, or when the rows are all equal (a rounding residue of 1e-16 x mean^2 is not
+/// noise).
+pub fn white_variance_ratio(blocks: &[(usize, f64, f64)]) -> Option<f64> {
+    let k = blocks.len() as f64;
+    let rows_per_block = blocks.iter().map(|b| b.0 as f64).sum::<f64>() / k;
+    let row_var = blocks.iter().map(|b| b.2).sum::<f64>() / k;
+    let mean_of_means = blocks.iter().map(|b| b.1).sum::<f64>() / k;
+    let means_var = blocks.iter().map(|b| (b.1 - mean_of_means).powi(2)).sum::<f64>() / (k - 1.0);
+    (blocks.len() >= 3 && row_var > 1e-12 * (1.0 + mean_of_means * mean_of_means)).then(|| means_var / (row_var / rows_per_block))
+}
+
+/// The declared stationary lead-in's blocks of 5 rows or more (rows, mean, row variance):
+/// what `white_variance_ratio` judges a lead-in by.
+pub fn lead_in_blocks(log: &DriveLog, bias_s: f64) -> Vec<(usize, f64, f64)> {
+    let (t, Some(gyro)) = (log.time_s(), log.column(Column::GyroDps)) else { return Vec::new() };
+    let t0 = t.first().copied().unwrap_or(0.0);
+    crate::preprocess::blocks_1hz(t)
+        .take_while(|b| crate::preprocess::block_index(t[b.start], t0) < bias_s)
+        .filter_map(|b| {
+            let g: Vec<f64> = gyro[b].iter().copied().filter(|v| v.is_finite()).collect();
+            let n = g.len();
+            (n >= 5).then(|| {
+                let mean = g.iter().sum::<f64>() / n as f64;
+                (n, mean, g.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n as f64 - 1.0))
+            })
+        })
+        .collect()
 }
 
 impl Default for StillOptions {
@@ -419,6 +445,18 @@ mod tests {
         // Rows all equal (a quantised standing): nothing to compare with, never still.
         let mut g = GyroStill::default();
         assert!((0..12).all(|_| !g.update(&o, false, 5, 5.0, 5.0)));
+    }
+
+    /// The ratio by hand: 4 blocks of 5 rows with row variance 0.01 and means 1.0, 1.2, 1.0,
+    /// 1.2 (sample variance 4 x 0.01 / 3 = 0.01333): 0.01333 / (0.01 / 5) = 6.667. Under 3
+    /// blocks, or rows all equal: none.
+    #[test]
+    fn white_variance_ratio_by_hand() {
+        let b = |m: f64| (5, m, 0.01);
+        let r = white_variance_ratio(&[b(1.0), b(1.2), b(1.0), b(1.2)]).unwrap();
+        assert!((r - 0.04 / 3.0 / 0.002).abs() < 1e-9, "{r}");
+        assert!(white_variance_ratio(&[b(1.0), b(1.2)]).is_none());
+        assert!(white_variance_ratio(&[(5, 1.0, 0.0), (5, 1.0, 0.0), (5, 1.0, 0.0)]).is_none());
     }
 
     /// A gyro-only log at 10 Hz: `rate(t, row)`, lead-in `bias_s`.
