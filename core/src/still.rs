@@ -153,12 +153,10 @@ pub fn lead_in_blocks(log: &DriveLog, bias_s: f64) -> Vec<(usize, f64, f64)> {
     crate::preprocess::blocks_1hz(t)
         .take_while(|b| crate::preprocess::block_index(t[b.start], t0) < bias_s)
         .filter_map(|b| {
-            let g: Vec<f64> = gyro[b].iter().copied().filter(|v| v.is_finite()).collect();
-            let n = g.len();
-            (n >= 5).then(|| {
-                let mean = g.iter().sum::<f64>() / n as f64;
-                (n, mean, g.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n as f64 - 1.0))
-            })
+            let mut a = Acc::default();
+            gyro[b].iter().for_each(|&g| a.add(g, None, None, None));
+            let mean = a.sum / a.n as f64;
+            (a.n >= 5).then(|| (a.n, mean, ((a.sum2 - a.sum * mean) / (a.n as f64 - 1.0)).max(0.0)))
         })
         .collect()
 }
