@@ -167,6 +167,7 @@ mod tests {
             temp_c: vec![f64::NAN; 6],
             still: vec![true, true, true, false, false, true],
             first_moving_s: None,
+            lead_in_wander: None,
             source: crate::still::StillSource::Speed,
         };
         // Stop blocks 0..2: run 0, 1, 2 s -> only block 2 counts (min 2 s): bias 0.4.

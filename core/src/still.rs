@@ -61,6 +61,8 @@ pub const WHITE_BLOCKS: usize = 10;
 pub struct GyroStill {
     /// The lead-in's rows: count, sum, sum of squares.
     lead: (usize, f64, f64),
+    /// The lead-in's blocks of 5 rows or more: rows, mean, row variance (`block_stats`).
+    lead_blocks: Vec<(usize, f64, f64)>,
     /// Block means: the lead-in's, then the last [`AGREE_BLOCKS`] after it.
     means: Vec<f64>,
     /// Once the lead-in is over: its rows' and its block means' standard deviations, or
@@ -81,6 +83,7 @@ impl GyroStill {
         if lead_in {
             self.lead = (self.lead.0 + n, self.lead.1 + sum, self.lead.2 + sum2);
             self.means.extend((n >= 5).then_some(mean));
+            self.lead_blocks.extend((n >= 5).then(|| block_stats(n, sum, sum2)));
             return true;
         }
         let Some((std, scatter)) = self.reference() else { return self.white_update(n, sum, sum2) };
@@ -103,8 +106,7 @@ impl GyroStill {
             self.white.clear();
             return false;
         }
-        let mean = sum / n as f64;
-        self.white.push((n, mean, ((sum2 - sum * mean) / (n as f64 - 1.0)).max(0.0)));
+        self.white.push(block_stats(n, sum, sum2));
         if self.white.len() > WHITE_BLOCKS {
             self.white.drain(..1);
         }
@@ -114,6 +116,13 @@ impl GyroStill {
         let still = white_variance_ratio(&self.white).is_some_and(|r| r <= 1.0);
         self.white_stills += still as usize;
         still
+    }
+
+    /// How far the declared lead-in's 1 s means wander beyond its rows' white noise (the
+    /// square root of `white_variance_ratio` over its blocks): about 1 for a standing, far
+    /// more for a lead-in over driving. None as that ratio is.
+    pub fn lead_in_wander(&self) -> Option<f64> {
+        white_variance_ratio(&self.lead_blocks).map(f64::sqrt)
     }
 
     /// The lead-in's rows' and block means' standard deviations, fixed at the first call:
@@ -145,20 +154,11 @@ pub fn white_variance_ratio(blocks: &[(usize, f64, f64)]) -> Option<f64> {
     (blocks.len() >= 3 && row_var > 1e-12 * (1.0 + mean_of_means * mean_of_means)).then(|| means_var / (row_var / rows_per_block))
 }
 
-/// The declared stationary lead-in's blocks of 5 rows or more (rows, mean, row variance):
-/// what `white_variance_ratio` judges a lead-in by.
-pub fn lead_in_blocks(log: &DriveLog, bias_s: f64) -> Vec<(usize, f64, f64)> {
-    let (t, Some(gyro)) = (log.time_s(), log.column(Column::GyroDps)) else { return Vec::new() };
-    let t0 = t.first().copied().unwrap_or(0.0);
-    crate::preprocess::blocks_1hz(t)
-        .take_while(|b| crate::preprocess::block_index(t[b.start], t0) < bias_s)
-        .filter_map(|b| {
-            let mut a = Acc::default();
-            gyro[b].iter().for_each(|&g| a.add(g, None, None, None));
-            let mean = a.sum / a.n as f64;
-            (a.n >= 5).then(|| (a.n, mean, ((a.sum2 - a.sum * mean) / (a.n as f64 - 1.0)).max(0.0)))
-        })
-        .collect()
+/// A block's rows, mean and row variance (sample; 0 at worst) from its count, sum and sum
+/// of squares.
+fn block_stats(n: usize, sum: f64, sum2: f64) -> (usize, f64, f64) {
+    let mean = sum / n as f64;
+    (n, mean, ((sum2 - sum * mean) / (n as f64 - 1.0)).max(0.0))
 }
 
 impl Default for StillOptions {
@@ -207,6 +207,9 @@ pub struct Blocks {
     /// moving (None: they never do, or the log has neither). What ends a declared
     /// stationary lead-in early for the pipeline.
     pub first_moving_s: Option<f64>,
+    /// Without speed or wheels: how far the declared lead-in's 1 s means wander beyond the
+    /// gyro's own noise (`GyroStill::lead_in_wander`), what `check` judges it by.
+    pub lead_in_wander: Option<f64>,
     /// What the still flags were decided from. From the gyro alone (`StillSource::Gyro`) a
     /// still block may be a steady turn, which the gyro's noise cannot tell from a standing.
     pub source: StillSource,
@@ -317,6 +320,9 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<Blocks
     }
     // No usable lead-in to compare the gyro with, and no standing by the white-noise test:
     // no block after the lead-in is still, and the source says why.
+    if source == StillSource::Gyro {
+        out.lead_in_wander = gyro_still.lead_in_wander();
+    }
     if source == StillSource::Gyro && gyro_still.reference().is_none() && gyro_still.white_stills == 0 {
         source = StillSource::None;
     }

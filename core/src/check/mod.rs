@@ -118,16 +118,14 @@ fn gaps(r: &mut CheckReport, log: &DriveLog) {
 }
 
 /// How far a lead-in's 1 s means may wander beyond its rows' white noise (standard
-/// deviations, the ratio's square root) and still pass for a standing: the recorded and
-/// simulated standing lead-ins measure 0.1-1.2, a lead-in over driving 4.5-5.
+/// deviations, `still::Blocks::lead_in_wander`) and still pass for a standing: the recorded
+/// and simulated standing lead-ins measured 0.1-1.2, lead-ins over driving 4.4-5.
 const LEAD_IN_WANDER_MAX: f64 = 3.0;
 
 /// Without speed or wheels, a declared (or the default) lead-in whose 1 s means wander far
 /// more than the gyro's own noise predicts is driving, not standing: its static bias is
 /// taken over driving, and the gyro's standings are judged against it.
-fn lead_in_by_gyro(r: &mut CheckReport, log: &DriveLog, bias_s: f64) {
-    let Some(ratio) = crate::still::white_variance_ratio(&crate::still::lead_in_blocks(log, bias_s)) else { return };
-    let wander = ratio.sqrt();
+fn lead_in_by_gyro(r: &mut CheckReport, bias_s: f64, wander: f64) {
     if wander > LEAD_IN_WANDER_MAX {
         let message = format!(
             "the stationary lead-in (bias_s = {bias_s} s) does not look like a standing: its 1 s means wander {wander:.1}x more than the gyro's own noise predicts (a standing's 0.1-1.2x), so its static bias is taken over driving"
@@ -152,8 +150,8 @@ fn lead_in(r: &mut CheckReport, log: &DriveLog) -> Option<f64> {
             "no speed, wheel travel or stationary lead-in (3 s at 5 Hz or more), and no 10 s standing the gyro shows alone (at 5 Hz or more): no stops for ZARU and the pipeline (which learns the bias from the road alone)";
         r.findings.push(finding(Severity::Info, "no_stops", message.into(), Some("a speed column, or # bias_s: N for a standing start")));
     }
-    if matches!(blocks.source, crate::still::StillSource::Gyro | crate::still::StillSource::None) {
-        lead_in_by_gyro(r, log, bias_s);
+    if let Some(wander) = blocks.lead_in_wander {
+        lead_in_by_gyro(r, bias_s, wander);
     }
     let m = (blocks.first_moving_s? - log.time_s().first()?).floor();
     let k = (m - 1.0).max(0.0);

@@ -225,6 +225,7 @@ fn a_step_just_before_a_stop_is_not_spread_over_the_past() {
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| !(20..660).contains(&i)).collect(),
         first_moving_s: None,
+        lead_in_wander: None,
         source: crate::still::StillSource::Speed,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), 20.0).unwrap();

@@ -14,6 +14,7 @@ fn smoother_of_a_constant_bias_is_constant_and_uses_later_stops() {
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| i >= 300).collect(),
         first_moving_s: None,
+        lead_in_wander: None,
         source: crate::still::StillSource::Speed,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), f64::NEG_INFINITY).unwrap();
@@ -33,6 +34,7 @@ fn smoother_keeps_a_lead_in_it_agrees_with() {
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| i < 20).collect(),
         first_moving_s: None,
+        lead_in_wander: None,
         source: crate::still::StillSource::Speed,
     };
     let tr = run_blocks(&blocks, PipelineParams::default(), 20.0).unwrap();
