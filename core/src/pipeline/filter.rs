@@ -24,8 +24,9 @@
 
 use super::dating;
 use super::evidence::Evidence;
-use super::model::{log_likelihood, BlockRecord, Model, State, H_ROAD, H_STOP};
+use super::model::{log_likelihood, Model, State, H_ROAD, H_STOP};
 use super::params::{PipelineParams, N_MODELS};
+use super::records::Records;
 use super::smoother;
 use crate::error::{Error, Result};
 use nalgebra::{Matrix3, Vector3};
@@ -67,11 +68,10 @@ pub struct Pipeline {
     /// This stop's evidence so far as one change: the bias change, the walk model's integral
     /// correction, and the heading correction applied (deg/s, deg, deg).
     stop_change: (f64, f64, f64),
-    /// Hypotheses whose blocks are recorded for the smoother, and their records
-    /// (block-major: one per recorded hypothesis per block) with the block's weights.
+    /// Hypotheses whose blocks are recorded for the smoother, and their records with the
+    /// block's weights (`records.rs`).
     recorded: Vec<usize>,
-    records: Vec<BlockRecord>,
-    record_weights: Vec<f64>,
+    records: Records,
     /// Sum of each hypothesis' weight over the blocks (to pick the ones to smooth).
     weight_sum: Vec<f64>,
     /// Straight blocks since the last stop evidence (time, rate less the bias used), that
@@ -139,8 +139,7 @@ impl Pipeline {
             evidence: Evidence::default(),
             stop_change: (0.0, 0.0, 0.0),
             recorded: Vec::new(),
-            records: Vec::new(),
-            record_weights: Vec::new(),
+            records: Records::default(),
             weight_sum: vec![0.0; N_MODELS],
             residuals: Vec::new(),
             dating_t0_s: None,
@@ -170,9 +169,11 @@ impl Pipeline {
         self.recorded.clear();
     }
 
-    /// Records these hypotheses' blocks from now on (for `smoothed_bias`).
-    pub fn record(&mut self, hypotheses: Vec<usize>) {
+    /// Records these hypotheses' blocks from now on (for `smoothed_bias`), with room for
+    /// `blocks` blocks reserved at once (`records.rs`).
+    pub fn record(&mut self, hypotheses: Vec<usize>, blocks: usize) {
         self.recorded = hypotheses.into_iter().filter(|&i| i < self.models.len()).collect();
+        self.records = Records::new(self.recorded.iter().map(|&i| self.models[i]).collect(), self.p.road_corr_s, blocks);
     }
 
     /// The turn-on bias, the centre of the biases the filter accepts: the lead-in's, or a
@@ -189,7 +190,7 @@ impl Pipeline {
     /// Rauch-Tung-Striebel smoothing of the recorded hypotheses, mixed with their weights
     /// (renormalised among them) at each block: the smoothed bias per recorded block.
     pub fn smoothed_bias(&self) -> Vec<f64> {
-        smoother::rts_mixed(&self.records, &self.record_weights, self.recorded.len(), &self.p, self.evidence.centre_dps)
+        smoother::rts_mixed(&self.records, &self.p, self.evidence.centre_dps)
     }
 
     /// Normalised hypothesis weights.
@@ -233,7 +234,8 @@ impl Pipeline {
         }
         let dt = self.last_time_s.map_or(0.0, |t| time_s - t);
         self.last_time_s = Some(time_s);
-        if time_s >= self.lead_in_end_s && self.lead_in_seen && !self.warm_up_sized {
+        let sized = time_s >= self.lead_in_end_s && self.lead_in_seen && !self.warm_up_sized;
+        if sized {
             self.size_warm_up();
         }
         let (b_before, p_before) = self.bias();
@@ -278,9 +280,13 @@ impl Pipeline {
         for (s, wi) in self.weight_sum.iter_mut().zip(&w) {
             *s += wi;
         }
-        for (j, &i) in self.recorded.iter().enumerate() {
-            self.records.push(BlockRecord { f: fs[i], prior: priors[j], post: (self.models[i].x, self.models[i].p) });
-            self.record_weights.push(w[i]);
+        if !self.recorded.is_empty() {
+            // The priors are the posteriors before predicted, but where this block sized the
+            // warm-up or re-opened the bias (`records.rs`).
+            self.records.start_block(dt, sized || reopened);
+            for (j, &i) in self.recorded.iter().enumerate() {
+                self.records.push(j, priors[j], (self.models[i].x, self.models[i].p), w[i]);
+            }
         }
         if !stops.is_empty() {
             self.correct_heading_at_stop(&h_before, &w, b_before, time_s);

@@ -11,12 +11,13 @@ mod evidence;
 pub mod filter;
 mod model;
 pub mod params;
+mod records;
 mod smoother;
 pub mod stream;
 
 pub use evidence::half_sample_mode;
 pub use filter::{Pipeline, PipelineOutput};
-pub use model::{BlockRecord, State};
+pub use model::State;
 pub use params::{PipelineParams, N_MODELS, N_ROADS, N_WALKS, N_WARMS};
 pub use smoother::N_SMOOTHED;
 pub use stream::PipelineStream;

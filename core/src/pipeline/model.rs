@@ -31,6 +31,15 @@ pub(super) struct Model {
 /// far below any value that moves a bias in deg/s).
 const TINY: f64 = 1e-100;
 
+/// Sets the entries under [`TINY`] to zero.
+fn flush_tiny(values: &mut [f64]) {
+    for v in values {
+        if v.abs() < TINY {
+            *v = 0.0;
+        }
+    }
+}
+
 pub(super) const H_STOP: RowVector3<f64> = RowVector3::new(1.0, 1.0, 0.0);
 pub(super) const H_ROAD: RowVector3<f64> = RowVector3::new(1.0, 1.0, 1.0);
 
@@ -57,11 +66,9 @@ impl Model {
         // A warm-up term decays without end: after a day or two its state and covariance
         // reach subnormal numbers, on which every operation is many times slower (a 5-day
         // log ran 4x slower per block than an hour's). Values this small are zero.
-        for v in self.x.iter_mut().chain(self.p.iter_mut()).chain(self.p_hx.iter_mut()) {
-            if v.abs() < TINY {
-                *v = 0.0;
-            }
-        }
+        flush_tiny(self.x.as_mut_slice());
+        flush_tiny(self.p.as_mut_slice());
+        flush_tiny(self.p_hx.as_mut_slice());
         f
     }
 
@@ -100,15 +107,6 @@ pub(super) fn log_likelihood(nu: f64, s: f64, k: f64) -> f64 {
     let z2 = nu * nu / s;
     let q = if z2 > k * k { 2.0 * k * z2.sqrt() - k * k } else { z2 };
     -0.5 * q - 0.5 * libm::log(2.0 * std::f64::consts::PI * s)
-}
-
-/// One block of one recorded hypothesis, for the offline smoother: the transition into
-/// the block, the prior and the posterior.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BlockRecord {
-    pub f: Vector3<f64>,
-    pub prior: State,
-    pub post: State,
 }
 
 #[cfg(test)]

@@ -4,12 +4,11 @@
 //! held to the causal heading at stops and bounded like the causal bias.
 
 use super::filter::Pipeline;
-use super::model::BlockRecord;
 use super::params::{PipelineParams, N_MODELS};
+use super::records::Records;
 use super::PipelineTrace;
 use crate::error::Result;
 use crate::still::Blocks;
-use nalgebra::{Matrix3, Vector3};
 
 /// How many hypotheses the offline smoother follows (those with the most weight over the
 /// log): recording all of them would cost memory on long logs for no gain.
@@ -33,7 +32,7 @@ pub(super) fn smoothed_bias(
     let mut g = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
     g.gyro_stills = blocks.source == crate::still::StillSource::Gyro;
     g.restrict(&order);
-    g.record((0..order.len()).collect());
+    g.record((0..order.len()).collect(), blocks.len());
     for i in 0..blocks.len() {
         g.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
     }
@@ -45,37 +44,21 @@ pub(super) fn smoothed_bias(
     Ok(bias)
 }
 
-/// Rauch-Tung-Striebel smoothing of `k` recorded hypotheses (block-major records), mixed
-/// with their weights (renormalised among them) at each block: the bias per block, bounded
-/// like the causal one.
-pub(super) fn rts_mixed(records: &[BlockRecord], weights: &[f64], k: usize, params: &PipelineParams, centre_dps: f64) -> Vec<f64> {
+/// Rauch-Tung-Striebel smoothing of the recorded hypotheses, mixed with their weights
+/// (renormalised among them) at each block: the bias per block, bounded like the causal one.
+pub(super) fn rts_mixed(records: &Records, params: &PipelineParams, centre_dps: f64) -> Vec<f64> {
+    let k = records.k();
     if k == 0 {
         return Vec::new();
     }
-    let n = records.len() / k;
+    let n = records.blocks();
     let mut out = vec![0.0; n];
     let mut norm = vec![0.0; n];
     for j in 0..k {
-        let mut next = Vector3::zeros();
-        for t in (0..n).rev() {
-            let (x, p) = records[t * k + j].post;
-            let xs = if t + 1 == n {
-                x
-            } else {
-                let rec = &records[(t + 1) * k + j];
-                let (xp, q) = rec.prior;
-                let pf = Matrix3::from_fn(|r, c| p[(r, c)] * rec.f[c]);
-                // A hypothesis without a warm-up term has a zero row: regularise.
-                match (q + Matrix3::identity() * 1e-12).try_inverse() {
-                    Some(inv) => x + pf * inv * (next - xp),
-                    None => x,
-                }
-            };
-            next = xs;
-            let w = weights[t * k + j];
+        records.smooth(j, |t, xs, w| {
             out[t] += w * (xs[0] + xs[1]);
             norm[t] += w;
-        }
+        });
     }
     out.iter().zip(&norm).map(|(o, w)| params.bounded_bias_dps(if *w > 0.0 { o / w } else { *o / k as f64 }, centre_dps)).collect()
 }

@@ -17,7 +17,7 @@ proptest::proptest! {
     ) {
         let p = PipelineParams::default();
         let mut f = Pipeline::new(p, 0.0, p.prior_bias_sigma_dps, lead_in_s).unwrap();
-        f.record((0..params::N_MODELS).collect());
+        f.record((0..params::N_MODELS).collect(), blocks.len());
         let mut t = 0.0;
         for (dt, rate, still) in blocks {
             t += dt;
