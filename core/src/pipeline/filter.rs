@@ -244,9 +244,8 @@ impl Pipeline {
         // Predict: each hypothesis' random walk and the road rate; weights forget toward equal.
         let lam = libm::exp(-dt / self.p.forget_s);
         let a = libm::exp(-dt / self.p.road_corr_s);
-        let mut fs = vec![Vector3::zeros(); self.models.len()];
-        for (m, f) in self.models.iter_mut().zip(fs.iter_mut()) {
-            *f = m.predict(dt, a);
+        for m in self.models.iter_mut() {
+            m.predict(dt, a);
             if m.logw.is_finite() {
                 m.logw *= lam;
             }

@@ -51,7 +51,7 @@ impl Model {
     }
 
     /// Predict over dt: bias random walk, warm-up decay, road rate Gauss-Markov.
-    pub(super) fn predict(&mut self, dt: f64, a: f64) -> Vector3<f64> {
+    pub(super) fn predict(&mut self, dt: f64, a: f64) {
         // The integral takes the bias before the block (as the heading integrates it).
         let pb = self.p.row(0) + self.p.row(1);
         self.p_hh += dt * (2.0 * (self.p_hx[0] + self.p_hx[1]) + dt * (pb[0] + pb[1]));
@@ -69,7 +69,6 @@ impl Model {
         flush_tiny(self.x.as_mut_slice());
         flush_tiny(self.p.as_mut_slice());
         flush_tiny(self.p_hx.as_mut_slice());
-        f
     }
 
     pub(super) fn bias(&self) -> (f64, f64) {
