@@ -44,6 +44,22 @@ pub(super) const H_STOP: RowVector3<f64> = RowVector3::new(1.0, 1.0, 0.0);
 pub(super) const H_ROAD: RowVector3<f64> = RowVector3::new(1.0, 1.0, 1.0);
 
 impl Model {
+    /// A hypothesis with these dynamics, its state and weight all zero (for tests).
+    #[cfg(test)]
+    pub(super) fn with_dynamics(walk2: f64, road_var: f64, warm_tau_s: f64) -> Self {
+        Model {
+            walk2,
+            road_var,
+            warm_tau_s,
+            x: Vector3::zeros(),
+            p: Matrix3::zeros(),
+            logw: 0.0,
+            h: 0.0,
+            p_hx: Vector3::zeros(),
+            p_hh: 0.0,
+        }
+    }
+
     /// Diagonal of the transition over dt (road factor `a`).
     pub(super) fn transition(&self, dt: f64, a: f64) -> Vector3<f64> {
         let w = if self.warm_tau_s.is_finite() { libm::exp(-dt / self.warm_tau_s) } else { 1.0 };
@@ -131,17 +147,7 @@ mod tests {
     #[test]
     fn a_stop_corrects_the_bias_integral_hand_worked() {
         let q = 1e-4;
-        let fresh = || Model {
-            walk2: q,
-            road_var: 0.0,
-            warm_tau_s: f64::INFINITY,
-            x: Vector3::zeros(),
-            p: Matrix3::zeros(),
-            logw: 0.0,
-            h: 0.0,
-            p_hx: Vector3::zeros(),
-            p_hh: 0.0,
-        };
+        let fresh = || Model::with_dynamics(q, 0.0, f64::INFINITY);
         let mut m = fresh();
         for _ in 0..10 {
             m.predict(1.0, 0.0);
@@ -176,15 +182,9 @@ mod tests {
     fn a_decayed_warm_up_is_zero_not_subnormal() {
         let q = 1e-8;
         let mut m = Model {
-            walk2: q,
-            road_var: 0.01,
-            warm_tau_s: 200.0,
             x: Vector3::new(0.1, 0.3, 0.0),
             p: Matrix3::from_diagonal(&Vector3::new(0.01, 0.09, 0.01)),
-            logw: 0.0,
-            h: 0.0,
-            p_hx: Vector3::zeros(),
-            p_hh: 0.0,
+            ..Model::with_dynamics(q, 0.01, 200.0)
         };
         for _ in 0..145_000 {
             m.predict(1.0, libm::exp(-0.1));

@@ -122,17 +122,7 @@ mod tests {
     /// block marked changed (a re-opened bias) is smoothed with the prior it was given.
     #[test]
     fn derived_priors_smooth_as_kept_ones_and_a_changed_block_keeps_its_own() {
-        let model = Model {
-            walk2: 1e-4,
-            road_var: 0.09,
-            warm_tau_s: 200.0,
-            x: Vector3::zeros(),
-            p: Matrix3::zeros(),
-            logw: 0.0,
-            h: 0.0,
-            p_hx: Vector3::zeros(),
-            p_hh: 0.0,
-        };
+        let model = Model::with_dynamics(1e-4, 0.09, 200.0);
         let run = |keep_all: bool, reopen: f64| {
             let (mut r, mut kept) = (Records::new(vec![model], 10.0, 3), Vec::new());
             let mut m = Model { x: Vector3::new(0.5, 0.1, 0.0), p: Matrix3::from_diagonal(&Vector3::new(0.04, 0.01, 0.09)), ..model };
