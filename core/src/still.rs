@@ -63,7 +63,7 @@ pub struct GyroStill {
     lead: (usize, f64, f64),
     /// The lead-in's blocks of 5 rows or more: rows, mean, row variance (`block_stats`).
     lead_blocks: Vec<(usize, f64, f64)>,
-    /// Block means: the lead-in's, then the last [`AGREE_BLOCKS`] after it.
+    /// The last [`AGREE_BLOCKS`] block means after the lead-in (started with its last ones).
     means: Vec<f64>,
     /// Once the lead-in is over: its rows' and its block means' standard deviations, or
     /// None when it cannot be used (the white-noise test then decides alone).
@@ -82,7 +82,6 @@ impl GyroStill {
         let mean = sum / n as f64;
         if lead_in {
             self.lead = (self.lead.0 + n, self.lead.1 + sum, self.lead.2 + sum2);
-            self.means.extend((n >= 5).then_some(mean));
             self.lead_blocks.extend((n >= 5).then(|| block_stats(n, sum, sum2)));
             return true;
         }
@@ -131,10 +130,11 @@ impl GyroStill {
     /// with its last block means (a standing goes on).
     pub fn reference(&mut self) -> Option<(f64, f64)> {
         *self.reference.get_or_insert_with(|| {
-            let ((n, sum, sum2), m) = (self.lead, &mut self.means);
+            let (n, sum, sum2) = self.lead;
             let std = ((sum2 - sum * sum / n as f64) / (n as f64 - 1.0)).max(0.0).sqrt();
-            let (k, scatter) = (m.len(), crate::metrics::mean_std(m).1);
-            m.drain(..k.saturating_sub(AGREE_BLOCKS - 1));
+            let m: Vec<f64> = self.lead_blocks.iter().map(|b| b.1).collect();
+            let (k, scatter) = (m.len(), crate::metrics::mean_std(&m).1);
+            self.means = m[k.saturating_sub(AGREE_BLOCKS - 1)..].to_vec();
             (n >= 10 && k >= 3 && std > 0.0 && scatter > 0.0).then_some((std, scatter))
         })
     }
