@@ -4,12 +4,11 @@
 //! heuristic cannot acquire a bias it did not start near, and follows a slow change the bank
 //! lags; x-io Fusion's offset follows any slow rate within 3 deg/s, a bias and a long curve
 //! alike. Over each block the heading moves by the mean of the bank's move and the move of
-//! every expert whose implied bias, averaged over `blend_window_s`, differs from the bank's
-//! by less than `blend_sigmas` of the bank's bias uncertainty, grown between stops as a bias
-//! walk of `blend_walk_dps_per_sqrt_s` since the last stop (there the bank's sigma rests on
-//! road evidence it counts as white over 10 s, so it is too narrow to reject an expert on);
-//! by the bank's alone when none does (an expert diverging, or the bank correcting its
-//! heading at a stop). The experts
+//! every expert whose implied bias differs from the bank's by less than `blend_sigmas` of the
+//! bank's bias uncertainty, grown between stops as a bias walk of `blend_walk_dps_per_sqrt_s`
+//! since the last stop (there the bank's sigma rests on road evidence it counts as white
+//! over 10 s, so it is too narrow to reject an expert on); by the bank's alone when none
+//! does (an expert diverging, or the bank correcting its heading at a stop). The experts
 //! start after the lead-in, at the first block where the bank knows its bias to better than
 //! one of HDR's own correction steps (Table III's i_c, 0.0422 deg/s: HDR's static bias eps0
 //! is a standstill's, known that well), from the bank's bias then; before, the bank's alone.
@@ -28,9 +27,6 @@ struct Experts {
     hdr_deg: f64,
     /// Fusion's algorithm on the 1 s blocks, as on a 1 Hz gyro (its 5 s timeout is 5 blocks).
     fusion: FusionOffset,
-    /// How far each expert's bias (HDR, Fusion) is from the bank's, as their moves say,
-    /// averaged over `window_s`, deg/s.
-    apart_dps: [f64; 2],
 }
 
 /// The blend beside a bank.
@@ -38,7 +34,6 @@ struct Experts {
 pub struct Blend {
     sigmas: f64,
     walk_dps_per_sqrt_s: f64,
-    window_s: f64,
     /// The last block with stop evidence, or the experts' first, s.
     last_stop_s: f64,
     experts: Option<Experts>,
@@ -50,15 +45,14 @@ pub struct Blend {
 
 impl Blend {
     /// `sigmas`: the guard, `blend_sigmas` (0: the bank's output as it is); `walk`: how it
-    /// grows between stops, `blend_walk_dps_per_sqrt_s`; `window`: the time over which the
-    /// disagreement is averaged, `blend_window_s` (0: each block's own).
-    pub fn new(sigmas: f64, walk_dps_per_sqrt_s: f64, window_s: f64) -> Self {
-        Blend { sigmas, walk_dps_per_sqrt_s, window_s, ..Default::default() }
+    /// grows between stops, `blend_walk_dps_per_sqrt_s`.
+    pub fn new(sigmas: f64, walk_dps_per_sqrt_s: f64) -> Self {
+        Blend { sigmas, walk_dps_per_sqrt_s, ..Default::default() }
     }
 
     /// The blend the pipeline's settings ask for (causal, smoothed and streamed alike).
     pub fn of(p: &super::PipelineParams) -> Self {
-        Self::new(p.blend_sigmas, p.blend_walk_dps_per_sqrt_s, p.blend_window_s)
+        Self::new(p.blend_sigmas, p.blend_walk_dps_per_sqrt_s)
     }
 
     /// One block (end time, mean raw rate) and the bank's output on it: the output with the
@@ -76,7 +70,7 @@ impl Blend {
             None => {
                 self.last_stop_s = time_s;
                 let hdr = Hdr::new(table_iii, bank.bias_dps)?;
-                self.experts.insert(Experts { hdr, hdr_deg: 0.0, fusion: FusionOffset::starting_at(1, bank.bias_dps), apart_dps: [0.0; 2] })
+                self.experts.insert(Experts { hdr, hdr_deg: 0.0, fusion: FusionOffset::starting_at(1, bank.bias_dps) })
             }
         };
         let hdr_deg = e.hdr.update(time_s, rate_dps)?.heading_deg;
@@ -91,19 +85,11 @@ impl Blend {
             let dt = time_s - t;
             let bank_move_deg = bank.heading_deg - bank_deg;
             let (mut sum_deg, mut n) = (bank_move_deg, 1.0);
-            // An average, not each block's: HDR's filter and de-lag, and Fusion's timeout, make
-            // one block's move noisy on curves, and a guard on it admits an expert block by
-            // block as the curves fall, whatever the biases (docs/pipeline.md).
-            let a = if self.window_s > 0.0 { dt / self.window_s } else { 1.0 };
-            for (apart_dps, move_deg) in e.apart_dps.iter_mut().zip([hdr_deg - e.hdr_deg, fusion_rate_dps * dt]) {
-                if dt > 0.0 {
-                    // How far the two moved apart over the block: (the bank's bias less the
-                    // expert's, as each integrated it) x dt.
-                    let block_dps = (move_deg - bank_move_deg) / dt;
-                    *apart_dps = if a >= 1.0 { block_dps } else { *apart_dps + a * (block_dps - *apart_dps) };
-                    if apart_dps.abs() < guard_dps {
-                        (sum_deg, n) = (sum_deg + move_deg, n + 1.0);
-                    }
+            for move_deg in [hdr_deg - e.hdr_deg, fusion_rate_dps * dt] {
+                // How far the two moved apart over the block: (the bank's bias less the
+                // expert's, as each integrated it) x dt.
+                if dt > 0.0 && ((move_deg - bank_move_deg) / dt).abs() < guard_dps {
+                    (sum_deg, n) = (sum_deg + move_deg, n + 1.0);
                 }
             }
             let gain_deg = sum_deg / n - bank_move_deg;
@@ -136,11 +122,11 @@ mod tests {
 
     #[test]
     fn agreeing_moves_are_averaged_and_a_diverging_expert_is_left_out() {
-        let mut b = Blend::new(2.0, 0.0, 0.0);
+        let mut b = Blend::new(2.0, 0.0);
         // In the lead-in, with the blend off, or while the bank's bias is less sure than one
         // of HDR's steps (0.0422 deg/s): the bank's output as it is, and no expert started.
         assert_eq!(b.update(false, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
-        assert_eq!(Blend::new(0.0, 0.0, 0.0).update(true, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
+        assert_eq!(Blend::new(0.0, 0.0).update(true, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
         assert_eq!(b.update(true, 0.0, 0.0, bank(0.3, 0.05)).unwrap(), bank(0.3, 0.05));
         assert!(b.experts.is_none());
         // The experts start from the bank's bias (0); their first block moves nothing.
@@ -178,7 +164,7 @@ mod tests {
     #[test]
     fn the_guard_grows_between_stops_and_closes_at_one() {
         let started = |walk: f64| {
-            let mut b = Blend::new(2.0, walk, 0.0);
+            let mut b = Blend::new(2.0, walk);
             b.update(true, 1.0, 0.0, bank(0.0, 0.04)).unwrap();
             b.experts.as_mut().unwrap().fusion = FusionOffset::starting_at(1, 0.5);
             b
@@ -198,50 +184,5 @@ mod tests {
         let m = hdr_move(&grown, 2503.0, 0.0);
         let o = grown.update(true, 2503.0, 0.0, bank(0.0, 0.04)).unwrap();
         assert!((o.heading_deg - before - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg - before, m / 2.0);
-    }
-
-    /// The guard judges the disagreement averaged over `window_s`: one block 0.3 deg/s
-    /// apart (a curve through HDR's filter) does not shut the experts out, a lasting one does;
-    /// with a window of 0 that block alone does.
-    #[test]
-    fn the_guard_judges_the_disagreement_averaged_over_the_window() {
-        let started = |window_s: f64| {
-            let mut b = Blend::new(2.0, 0.0, window_s);
-            b.update(true, 1.0, 0.0, bank(0.0, 0.04)).unwrap();
-            b
-        };
-        // Each block the bank moves 0.3 deg on a rate of 0: Fusion's move is 0, HDR's at
-        // most i_c, so each block is 0.3 deg/s from Fusion's and over 0.25 from HDR's, beyond
-        // the guard of 2 x 0.04. Over a 10 s window the average moves a tenth of the way per
-        // block: Fusion's -0.03, -0.057, -0.0813 deg/s (the bank's bias less its): within 0.08
-        // twice, then out.
-        let mut b = started(10.0);
-        let mut offset = 0.0;
-        for k in 1..=3 {
-            let t = 1.0 + k as f64;
-            let m = hdr_move(&b, t, 0.0);
-            assert!(m.abs() <= 0.0422 + 1e-12, "{m}");
-            let bank_deg = 0.3 * k as f64;
-            let o = b.update(true, t, 0.0, bank(bank_deg, 0.04)).unwrap();
-            let e = b.experts.as_ref().unwrap();
-            let fusion_apart = -0.3 * (1.0 - 0.9f64.powi(k));
-            assert!((e.apart_dps[1] - fusion_apart).abs() < 1e-12, "{} against {fusion_apart}", e.apart_dps[1]);
-            let hdr_in = e.apart_dps[0].abs() < 0.08;
-            let (sum, n) = match (hdr_in, fusion_apart.abs() < 0.08) {
-                (true, true) => (0.3 + m, 3.0),
-                (true, false) => (0.3 + m, 2.0),
-                (false, true) => (0.3, 2.0),
-                (false, false) => (0.3, 1.0),
-            };
-            assert_eq!(fusion_apart.abs() < 0.08, k < 3);
-            offset += sum / n - 0.3;
-            assert!((o.heading_deg - (bank_deg + offset)).abs() < 1e-12, "block {k}: {} against {}", o.heading_deg, bank_deg + offset);
-        }
-        // Both experts in on the first block; HDR out by the third, as Fusion.
-        assert!(b.experts.as_ref().unwrap().apart_dps[0].abs() >= 0.08);
-        // A window of 0: the first block's 0.3 deg/s alone puts both out.
-        let mut b = started(0.0);
-        let o = b.update(true, 2.0, 0.0, bank(0.3, 0.04)).unwrap();
-        assert_eq!(o, bank(0.3, 0.04));
     }
 }

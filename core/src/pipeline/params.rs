@@ -77,10 +77,6 @@ pub struct PipelineParams {
     /// sqrt(s); 0 = the bank's sigma alone. Chosen on the training cases among the bank's
     /// three fastest walks (0.001, 0.003, 0.01; docs/pipeline.md).
     pub blend_walk_dps_per_sqrt_s: f64,
-    /// The guard judges each expert's disagreement with the bank averaged over this time
-    /// (an exponential average of the blocks' disagreements), not one block's, s; 0 = each
-    /// block's own. The road correlation time; chosen on the training cases (docs/pipeline.md).
-    pub blend_window_s: f64,
     /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
     pub bias_s: Option<f64>,
 }
@@ -109,7 +105,6 @@ impl Default for PipelineParams {
             forget_s: 600.0,
             blend_sigmas: 2.0,
             blend_walk_dps_per_sqrt_s: 0.003,
-            blend_window_s: 10.0,
             bias_s: None,
         }
     }
@@ -198,7 +193,7 @@ impl PipelineParams {
         if !(self.huber_k > 0.0) {
             return Err(Error::param("huber_k", format!("{} is not a positive number of sigma", self.huber_k)));
         }
-        for (name, v) in [("min_still_s", self.min_still_s), ("jump_min_s", self.jump_min_s), ("blend_window_s", self.blend_window_s)] {
+        for (name, v) in [("min_still_s", self.min_still_s), ("jump_min_s", self.jump_min_s)] {
             if !(v.is_finite() && (0.0..1e6).contains(&v)) {
                 return Err(Error::param(name, format!("{v} is not a time in [0, 1e6) s")));
             }

@@ -86,9 +86,6 @@ export interface PipelineOptions {
   /** Between stops that guard's sigma grows as a bias walk of this since the last stop,
    * deg/s per sqrt(s) (0.003); 0 = the bank's sigma alone. */
   blend_walk_dps_per_sqrt_s?: number;
-  /** The guard judges each expert's disagreement with the bank averaged over this time, s
-   * (10); 0 = each block's own. */
-  blend_window_s?: number;
   /** @deprecated The name of `blend_sigmas` while it blended HDR alone. */
   hdr_blend_sigmas?: number;
   bias_s?: number | null;
