@@ -27,6 +27,13 @@ fn fail(path: &Path, e: Error) -> Failure {
 }
 
 fn read_log(path: &Path) -> Result<DriveLog, Failure> {
+    if path.is_dir() {
+        let what = match gyrodrift::import::folder_hint(path) {
+            Some(h) => hint_text(&h, "a recording"),
+            None => format!("to score every log in it: `gyrodrift report --dir {}`", path.display()),
+        };
+        return Err(Failure(format!("{}: a folder, not a log file; {what}", path.display())));
+    }
     let file = std::fs::File::open(path).map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
     gyrodrift::parse_log(file).map_err(|e| {
         let mut f = fail(path, e);

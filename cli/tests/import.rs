@@ -383,3 +383,21 @@ fn a_raw_export_given_to_a_method_is_answered_with_the_import_command() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("missing required column time_s") && !err.contains("import preset"), "{err}");
 }
+
+/// A folder given to a method: one line saying so, with the import command when a preset
+/// reads the recording in it, else the folder batch.
+#[test]
+fn a_folder_given_to_a_method_is_answered_with_the_import_or_the_batch() {
+    let phyphox = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/wild/phyphox");
+    let o = run(&["pipeline", s(&phyphox)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("a folder, not a log file") && err.contains("(import preset phyphox): `gyrodrift import"), "{err}");
+    assert!(wild("phyphox").iter().all(|f| err.contains(f.as_str())), "every file: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    let train = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/train");
+    let o = run(&["hdr", s(&train)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("a folder, not a log file; to score every log in it: `gyrodrift report --dir"), "{err}");
+}

@@ -53,6 +53,14 @@ fn meta_of(v: serde_json::Value) -> PyResult<gyrodrift::LogMeta> {
 /// file, line and column (and, for a logger's raw export a preset reads, the `import_files`
 /// call that makes a v1 log of it).
 pub(crate) fn read_path(path: &str) -> PyResult<DriveLog> {
+    let dir = std::path::Path::new(path);
+    if dir.is_dir() {
+        let what = match gyrodrift::import::folder_hint(dir) {
+            Some(h) => hint_text(&h, "a recording"),
+            None => format!("to score every log in it: python -m gyrodrift.fleet {path} --out rows.parquet"),
+        };
+        return Err(value_err(format!("{path}: a folder, not a log file; {what}")));
+    }
     let f = std::fs::File::open(path).map_err(|e| PyOSError::new_err(format!("{path}: cannot open: {e}")))?;
     gyrodrift::parse_log(std::io::BufReader::new(f)).map_err(|e| {
         let hint =

@@ -383,6 +383,16 @@ def test_a_raw_export_read_as_a_log_names_the_import_that_reads_it(samples):
     assert len(log) > 0
 
 
+def test_a_folder_read_as_a_log_names_the_import_or_the_fleet_job(samples):
+    """read_log on a folder: a ValueError saying so, with the import_files call when a preset
+    reads the recording in it, else the fleet job."""
+    with pytest.raises(ValueError, match=r"a folder, not a log file; it looks like a recording of .*import preset phyphox") as e:
+        g.read_log(str(samples / "wild" / "phyphox"))
+    assert "gyrodrift.import_files([" in str(e.value)
+    with pytest.raises(ValueError, match=r"a folder, not a log file; to score every log in it: python -m gyrodrift.fleet"):
+        g.read_log(str(samples / "train"))
+
+
 def test_pipeline_track_is_the_clis_track_csv(cli, samples, tmp_path):
     """Every method's dead-reckoned path: the CLI's `pipeline --track` CSV, column for column;
     without a GPS course the same minus the reference's; without a speed a ValueError."""

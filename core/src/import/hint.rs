@@ -48,16 +48,17 @@ pub fn folder_hints(failed: &[PathBuf], max_folders: usize) -> Vec<ImportHint> {
         }
     }
     folders.truncate(max_folders);
-    folders
-        .into_iter()
-        .filter_map(|dir| {
-            let sniffed: Vec<Sniffed> = files_in(dir)?.iter().take(64).filter_map(|p| head(p)).collect();
-            if sniffed.iter().any(|s| s.header.iter().any(|c| c == "time_s")) {
-                return None;
-            }
-            hint(dir, &sniffed)
-        })
-        .collect()
+    folders.into_iter().filter_map(folder_hint).collect()
+}
+
+/// For a folder given where a log was expected: the preset that reads the files in it (at
+/// most 64 looked at), when one does and none of them is a v1 log; else None.
+pub fn folder_hint(dir: &Path) -> Option<ImportHint> {
+    let sniffed: Vec<Sniffed> = files_in(dir)?.iter().take(64).filter_map(|p| head(p)).collect();
+    if sniffed.iter().any(|s| s.header.iter().any(|c| c == "time_s")) {
+        return None;
+    }
+    hint(dir, &sniffed)
 }
 
 /// One recording of a logger's raw export in a fleet folder: the files a preset reads
@@ -150,6 +151,17 @@ fn hint(dir: &Path, sniffed: &[Sniffed]) -> Option<ImportHint> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A recording's folder given as a whole: the preset and the files it uses; a folder of
+    /// v1 logs, or one that does not exist, none.
+    #[test]
+    fn a_folder_of_a_raw_export_names_its_preset() {
+        let h = folder_hint(&wild("phyphox", "")).unwrap();
+        assert_eq!(h.preset, "phyphox");
+        assert_eq!(h.files.len(), 3, "{h:?}");
+        assert_eq!(folder_hint(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/train")), None);
+        assert_eq!(folder_hint(&wild("nothing", "")), None);
+    }
 
     /// A fleet of raw exports: the Sensor Logger folder's files one recording (the
     /// accelerometer and metadata files it does not use left out), the SensorLog file one

@@ -25,7 +25,7 @@ mod units;
 
 pub use geo::*;
 #[cfg(feature = "fs")]
-pub use hint::{folder_hints, import_hint, recordings, ImportHint, Recording};
+pub use hint::{folder_hint, folder_hints, import_hint, recordings, ImportHint, Recording};
 pub use presets::{detect, detect_and_import, presets, Detection};
 pub use recipe::*;
 pub use recipe_text::*;
