@@ -106,6 +106,9 @@ pub fn read_rows(
         if line_no == 1 && raw.starts_with(b"\xEF\xBB\xBF") {
             raw.drain(..3);
         }
+        if let Some(message) = archive_message(&raw).filter(|_| line_no == 1) {
+            return Err(Error::Line { line: 1, message: message.into() });
+        }
         let text = std::str::from_utf8(&raw).map_err(|_| Error::Line { line: line_no, message: "not valid UTF-8 text".into() })?;
         if !preamble(line_no, text)? {
             break std::mem::take(&mut raw);
@@ -118,6 +121,18 @@ pub fn read_rows(
         Split::Whitespace => whitespace_rows(rest, before, byte, row),
         Split::Csv => csv_rows(rest, b',', before, byte, row),
         Split::Delimited(d) => csv_rows(rest, d, before, byte, row),
+    }
+}
+
+/// What a file that starts with an archive's magic bytes is, for the error (a logger's
+/// export often comes zipped): None for anything else.
+pub fn archive_message(head: &[u8]) -> Option<&'static str> {
+    if head.starts_with(b"PK\x03\x04") {
+        Some("a ZIP archive, not a text table: unzip it and give the files inside")
+    } else if head.starts_with(&[0x1f, 0x8b]) {
+        Some("gzip-compressed, not a text table: decompress it first")
+    } else {
+        None
     }
 }
 
@@ -215,6 +230,12 @@ mod tests {
         let e = rows(b"# \xFF\n", Split::Csv, 0).unwrap_err();
         assert_eq!(e, Error::Line { line: 1, message: "not valid UTF-8 text".into() });
         assert!(matches!(rows(b"x\n", Split::Csv, 3), Err(Error::File(_))));
+        // An archive says what it is (a logger's export often comes zipped), even where its
+        // first line happens to be valid UTF-8.
+        let e = rows(b"PK\x03\x04\x14\x00\n\xFF", Split::Csv, 0).unwrap_err();
+        assert_eq!(e, Error::Line { line: 1, message: "a ZIP archive, not a text table: unzip it and give the files inside".into() });
+        let e = rows(b"\x1f\x8b\x08\x00\xFF", Split::Csv, 0).unwrap_err();
+        assert!(matches!(e, Error::Line { line: 1, ref message } if message.starts_with("gzip-compressed")), "{e:?}");
         assert!(rows(b"", Split::Csv, 0).unwrap().is_empty());
     }
 

@@ -48,6 +48,9 @@ impl Sniffed {
 pub fn sniff(name: &str, head: &[u8]) -> Result<Sniffed> {
     let head = &head[..head.len().min(SNIFF_BYTES)];
     let at = |m: &str| Error::File(format!("{name}: {m}"));
+    if let Some(m) = crate::table::archive_message(head) {
+        return Err(at(m));
+    }
     if head.iter().take(4096).any(|&b| b == 0) {
         return Err(at("a binary file (NUL bytes), not a text table"));
     }
