@@ -13,15 +13,16 @@ use std::path::{Path, PathBuf};
 /// At most this many folders of failed files are looked at for an import hint.
 const MAX_HINT_FOLDERS: usize = 20;
 
-/// Every `*.csv` file under `dir`, sorted, links followed; unreadable entries are errors.
-pub fn collect_logs(dir: &Path) -> Result<Vec<PathBuf>, Failure> {
+/// Every `*.csv` file under `dir` (and `*.zip`, a logger's zipped export, with `zips`),
+/// sorted, links followed; unreadable entries are errors.
+pub fn collect_logs(dir: &Path, zips: bool) -> Result<Vec<PathBuf>, Failure> {
     if !dir.is_dir() {
         return Err(Failure(format!("{}: not a folder", dir.display())));
     }
     let mut files = Vec::new();
     for entry in walkdir::WalkDir::new(dir).follow_links(true) {
         let e = entry.map_err(|e| Failure(format!("{}: {e}", dir.display())))?;
-        let is_csv = e.path().extension().is_some_and(|x| x.eq_ignore_ascii_case("csv"));
+        let is_csv = e.path().extension().is_some_and(|x| x.eq_ignore_ascii_case("csv") || zips && x.eq_ignore_ascii_case("zip"));
         if e.file_type().is_file() && is_csv {
             files.push(e.into_path());
         }
@@ -91,7 +92,7 @@ fn write_rows(out: &Path, rows: &[DriveRow]) -> Result<(), Failure> {
 /// not a failed command (exit 0): a fleet job keeps what it could score; with
 /// `fail_on_error` (a CI job) they make it exit 1 once everything is written.
 pub fn run(dir: &Path, batch: Batch, opts: &FleetOptions, json: bool) -> Result<(), Failure> {
-    let files = collect_logs(dir)?;
+    let files = collect_logs(dir, batch.import)?;
     let mut rows = score_files(&files, batch.jobs, opts)?;
     if batch.import {
         // The raw exports among the failed files: each recording's files leave the error

@@ -126,6 +126,51 @@ fn a_folder_of_raw_exports_gets_one_import_hint_per_recording() {
     assert!(sl.contains("sensor-logger: ") && sl.contains("gyrodrift import ") && sl.contains("Gyroscope.csv"), "{sl}");
 }
 
+/// A logger's zipped export (as Sensor Logger shares one) in a fleet folder: with --import
+/// a drive of its own, scored as the import of its files; a zip no preset reads an error
+/// row saying what it is; without --import zips are not looked at.
+#[test]
+fn with_import_a_zipped_export_is_a_drive_of_its_own() {
+    use std::io::Write;
+    let dir = fleet_dir("zipped");
+    let sl = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/wild/sensor-logger");
+    let zip = |path: PathBuf, entries: &[(&str, Vec<u8>)]| {
+        let mut w = zip::ZipWriter::new(std::fs::File::create(path).unwrap());
+        for (name, bytes) in entries {
+            w.start_file(*name, zip::write::SimpleFileOptions::default()).unwrap();
+            w.write_all(bytes).unwrap();
+        }
+        w.finish().unwrap();
+    };
+    let files = ["Gyroscope.csv", "Gravity.csv", "Location.csv", "Metadata.csv"];
+    let entries: Vec<(String, Vec<u8>)> = files.iter().map(|f| (format!("Drive/{f}"), std::fs::read(sl.join(f)).unwrap())).collect();
+    let refs: Vec<(&str, Vec<u8>)> = entries.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
+    zip(dir.join("day2/drive.zip"), &refs);
+    zip(dir.join("other.zip"), &[("readme.txt", b"hello".to_vec())]);
+    let json = dir.join("rows.json");
+    let o = report_dir(&dir, &["--import", "--out", json.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(stderr.contains("importing 1 recording(s) of raw exports (1 files)"), "{stderr}");
+    let rows: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let drive = rows.iter().find(|r| r["file"].as_str().unwrap().ends_with("drive.zip")).unwrap();
+    assert_eq!(drive["name"], "Gyroscope.csv (Sensor Logger)");
+    assert!(drive["error"].is_null(), "{drive}");
+    let other = rows.iter().find(|r| r["file"].as_str().unwrap().ends_with("other.zip")).unwrap();
+    assert!(other["error"].as_str().unwrap().contains("a ZIP archive, not a text table"), "{other}");
+    // The import of the files themselves scores the same.
+    let out = dir.join("drive.csv");
+    let args: Vec<PathBuf> = files[..3].iter().map(|f| sl.join(f)).collect();
+    let i = Command::new(env!("CARGO_BIN_EXE_gyrodrift")).arg("import").args(&args).arg("--out").arg(&out).output().unwrap();
+    assert!(i.status.success());
+    let h = Command::new(env!("CARGO_BIN_EXE_gyrodrift")).args(["hdr", "--json"]).arg(&out).output().unwrap();
+    let hdr: serde_json::Value = serde_json::from_slice(&h.stdout).unwrap();
+    assert_eq!(drive["e_psi_hdr_deg"], hdr["E_psi_hdr_deg"]);
+    // Without --import: the zips are not logs, and not looked at.
+    let o = report_dir(&dir, &["--json"]);
+    assert!(!String::from_utf8_lossy(&o.stderr).contains(".zip"));
+}
+
 /// With --import the raw exports are scored instead: a drive per recording (a folder of
 /// several files named by the folder, a one-file export by its file), no error rows, each
 /// as its log imported by `gyrodrift import` scores.

@@ -65,8 +65,9 @@ def _score_parquet(path: str, key: str, options: Optional[Mapping[str, Any]]) ->
     return _frame_rows(df, key, options)
 
 
-def find_inputs(spec: str) -> Dict[str, List[Any]]:
-    """What INPUT names: ``{"csv": [paths]}`` or ``{"parquet": [(path, key)]}``."""
+def find_inputs(spec: str, zips: bool = False) -> Dict[str, List[Any]]:
+    """What INPUT names: ``{"csv": [paths]}`` or ``{"parquet": [(path, key)]}``; ``zips``: a
+    folder's ``*.zip`` files too (a logger's zipped exports, for ``--import``)."""
     if os.path.isdir(spec):
         hive = sorted(d for d in os.listdir(spec) if "=" in d and os.path.isdir(os.path.join(spec, d)))
         if hive:
@@ -75,6 +76,8 @@ def find_inputs(spec: str) -> Dict[str, List[Any]]:
         if pq_files:
             return {"parquet": [(p, os.path.splitext(os.path.relpath(p, spec))[0]) for p in pq_files]}
         csv = sorted(glob.glob(os.path.join(spec, "**", "*.csv"), recursive=True))
+        if zips:
+            csv = sorted(csv + glob.glob(os.path.join(spec, "**", "*.zip"), recursive=True))
         if not csv:
             raise ValueError(f"{spec}: no *.csv logs or *.parquet drives in this folder or below")
         return {"csv": csv}
@@ -126,7 +129,7 @@ def run(
     from dask.distributed import Client, LocalCluster, wait
     from dask.distributed import progress as dask_progress
 
-    inputs = find_inputs(spec)
+    inputs = find_inputs(spec, zips=import_raw)
     cluster = None
     if scheduler:
         client = Client(scheduler)

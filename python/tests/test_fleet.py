@@ -138,6 +138,24 @@ def test_a_folder_of_raw_exports_gets_one_import_hint_per_recording(samples, tmp
     assert err.count("it looks like a recording of") == 1 and "(import preset sensorlog)" in err
 
 
+def test_the_fleet_job_with_import_scores_a_zipped_export_as_a_drive(samples, tmp_path):
+    """A logger's zipped export in the folder: with --import a drive of its own, as its files
+    imported give; without, not looked at."""
+    import zipfile
+
+    sl = samples / "wild" / "sensor-logger"
+    with zipfile.ZipFile(tmp_path / "drive.zip", "w", zipfile.ZIP_DEFLATED) as z:
+        for f in sorted(sl.iterdir()):
+            z.write(f, "Drive/" + f.name)
+    shutil.copy(samples / "train" / "city-1.csv", tmp_path / "city-1.csv")
+    assert fleet.find_inputs(str(tmp_path)) == {"csv": [str(tmp_path / "city-1.csv")]}
+    assert fleet.find_inputs(str(tmp_path), zips=True) == {"csv": [str(tmp_path / "city-1.csv"), str(tmp_path / "drive.zip")]}
+    rows = g.score_files([str(tmp_path / "drive.zip")], 1, import_raw=True)
+    assert len(rows) == 1 and rows[0]["error"] is None and rows[0]["name"] == "Gyroscope.csv (Sensor Logger)"
+    log, _, _ = g.import_files([str(sl / f) for f in ("Gyroscope.csv", "Gravity.csv", "Location.csv")])
+    assert rows[0]["e_psi_hdr_deg"] == g.hdr(log)["E_psi_hdr_deg"]
+
+
 def test_score_files_imports_raw_exports_as_the_cli_does(cli, samples, tmp_path):
     wild = samples / "wild"
     paths = sorted(str(p) for p in wild.rglob("*.csv"))

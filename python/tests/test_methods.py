@@ -383,6 +383,25 @@ def test_a_raw_export_read_as_a_log_names_the_import_that_reads_it(samples):
     assert len(log) > 0
 
 
+def test_a_zipped_export_imports_as_its_files_do(samples, tmp_path):
+    """import_files on a ZIP of a recording (as Sensor Logger shares one): the log its files
+    give; read_log on it names that import_files call."""
+    import zipfile
+
+    folder = samples / "wild" / "sensor-logger"
+    files = sorted(folder.iterdir())
+    zpath = tmp_path / "drive.zip"
+    with zipfile.ZipFile(zpath, "w", zipfile.ZIP_DEFLATED) as z:
+        for f in files:
+            z.write(f, "Drive/" + f.name)
+    log, _, detection = g.import_files([str(zpath)])
+    plain, _, _ = g.import_files([str(f) for f in files])
+    assert detection["preset"] == "sensor-logger"
+    assert np.array_equal(log.column("gyro_dps"), plain.column("gyro_dps"))
+    with pytest.raises(ValueError, match=r"a ZIP archive, not a text table.*import preset sensor-logger.*drive\.zip"):
+        g.read_log(str(zpath))
+
+
 def test_a_folder_read_as_a_log_names_the_import_or_the_fleet_job(samples):
     """read_log on a folder: a ValueError saying so, with the import_files call when a preset
     reads the recording in it, else the fleet job."""

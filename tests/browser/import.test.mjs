@@ -4,6 +4,7 @@ import { test } from "node:test";
 import assert from "node:assert/strict";
 import { mkdtempSync, readFileSync, readdirSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
+import { execFileSync } from "node:child_process";
 import { join } from "node:path";
 import { ROOT, cli } from "../node/helpers.mjs";
 import { openDashboard, ARTIFACTS, page } from "./harness.mjs";
@@ -33,6 +34,19 @@ for (const [dir, name] of [["sensorlog", "SensorLog.csv (SensorLog)"], ["sensor-
     assert.equal(await page.locator("#m-improvement").innerText(), native.improvement.toFixed(2));
   });
 }
+
+test("a zipped export (as Sensor Logger shares one) opens by drop alone with the CLI's numbers", async () => {
+  const zip = join(mkdtempSync(join(tmpdir(), "gd-zip-")), "Drive 2026-11-27.zip");
+  const script = "import sys, os, zipfile\nz = zipfile.ZipFile(sys.argv[1], 'w', zipfile.ZIP_DEFLATED)\nfor f in sys.argv[2:]: z.write(f, 'Drive/' + os.path.basename(f))";
+  execFileSync("python3", ["-c", script, zip, ...wildFiles("sensor-logger")]);
+  const before = await page.locator("#logs li").count();
+  await page.locator("#file-input").setInputFiles([zip]);
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li").length > n, before);
+  const li = page.locator("#logs li.selected");
+  assert.match(await li.innerText(), /Gyroscope\.csv \(Sensor Logger\)[\s\S]*imported:/);
+  const native = cliOnRaw([zip]);
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+});
 
 test("the import recipe saves as TOML and, dropped with the files, imports the same log; no fit is a clear error", async () => {
   const files = wildFiles("px4");

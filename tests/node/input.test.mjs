@@ -5,6 +5,7 @@ import { test } from "node:test";
 import assert from "node:assert/strict";
 import { readFileSync, readdirSync, mkdtempSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
+import { execFileSync } from "node:child_process";
 import { join } from "node:path";
 import * as gd from "gyrodrift";
 import { ROOT, SAMPLES, cli, plain, drives } from "./helpers.mjs";
@@ -147,6 +148,16 @@ test("detectImport picks the logger's preset from raw files; importLog on its re
   assert.throws(() => gd.detectImport({ "x.bin": new Uint8Array([0, 1, 2]) }), /x\.bin: a binary file/);
   assert.throws(() => gd.detectImport({ "a.csv": new TextEncoder().encode("alpha;beta\n1;2\n") }), /no logger preset .* a\.csv \(header: alpha, beta\)/);
   assert.throws(() => gd.detectImport({}), /no files/);
+  // The recording zipped, as Sensor Logger exports it (in a folder, deflated): the same
+  // detection and log from the archive alone.
+  const zip = join(mkdtempSync(join(tmpdir(), "gd-zip-")), "drive.zip");
+  execFileSync("python3", ["-c", "import sys, os, zipfile\nz = zipfile.ZipFile(sys.argv[1], 'w', zipfile.ZIP_DEFLATED)\nfor f in sys.argv[3:]: z.write(os.path.join(sys.argv[2], f), 'Drive/' + f)", zip, dir, ...names]);
+  const zipped = { "drive.zip": readFileSync(zip) };
+  const dz = gd.detectImport(zipped);
+  assert.equal(dz.preset, "sensor-logger");
+  assert.deepEqual(dz.used, d.used);
+  assert.deepEqual(Array.from(gd.importLog(dz.recipe, zipped).log.column("gyro_dps")), Array.from(native.column("gyro_dps")));
+  assert.throws(() => gd.detectImport({ "cut.zip": readFileSync(zip).subarray(0, 30) }), /cut\.zip: not a ZIP archive that can be read/);
 });
 
 test("LogBuilder: a log handed over in chunks equals the whole; a bad chunk is refused whole, naming its line and column", () => {

@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use wasm_bindgen::prelude::*;
 
 /// Imports recorded files by a recipe (the same object as the CLI's TOML/JSON recipe):
-/// `files` maps each recipe `file` name to its bytes. Returns `{ log, summary }`; a bad
+/// `files` maps each recipe `file` name to its bytes (a ZIP archive gives the files inside). Returns `{ log, summary }`; a bad
 /// recipe or file throws an Error naming the file, line and column.
 #[wasm_bindgen(js_name = importLog, unchecked_return_type = "ImportResult")]
 pub fn import_log(
@@ -26,7 +26,8 @@ pub fn import_log(
     Ok(out.into())
 }
 
-/// `files` as name -> bytes.
+/// `files` as name -> bytes, a ZIP archive among them as the files inside it (core's
+/// `unzip_all`: a zipped Sensor Logger export imports as it is).
 fn files_map(files: &JsValue) -> JsResult<BTreeMap<String, Vec<u8>>> {
     let obj: &Object =
         files.dyn_ref().filter(|_| files.is_object()).ok_or_else(|| type_err("files: expected an object of name -> Uint8Array"))?;
@@ -37,7 +38,7 @@ fn files_map(files: &JsValue) -> JsResult<BTreeMap<String, Vec<u8>>> {
         let bytes: &Uint8Array = v.dyn_ref().ok_or_else(|| err(format!("files[\"{name}\"]: expected a Uint8Array")))?;
         map.insert(name, bytes.to_vec());
     }
-    Ok(map)
+    import::unzip_all(map).map_err(err)
 }
 
 /// Which logger wrote these raw files (by their names and headers): `{ preset, title,

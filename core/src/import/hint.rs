@@ -91,6 +91,12 @@ pub fn recordings(failed: &[PathBuf]) -> Vec<Recording> {
     }
     let mut out = Vec::new();
     for dir in folders {
+        // A zipped recording is one of its own (`import_paths` unzips it).
+        for p in failed.iter().filter(|p| folder_of(p) == dir && super::starts_as_zip(p)) {
+            if let Some(h) = zip_hint(p) {
+                out.push(Recording { preset: h.preset, label: p.clone(), files: h.files, ignored: Vec::new() });
+            }
+        }
         let mut left: Vec<(&PathBuf, Sniffed)> = failed
             .iter()
             .filter(|p| folder_of(p) == dir)
@@ -125,6 +131,9 @@ pub fn recordings(failed: &[PathBuf]) -> Vec<Recording> {
 /// For a file without a `time_s` column: the preset that reads it, with the files beside it
 /// in its folder (at most 64 looked at), when one does and uses this file; else None.
 pub fn import_hint(path: &Path) -> Option<ImportHint> {
+    if super::starts_as_zip(path) {
+        return zip_hint(path);
+    }
     let me = head(path)?;
     if me.header.iter().any(|c| c == "time_s") {
         return None;
@@ -135,6 +144,16 @@ pub fn import_hint(path: &Path) -> Option<ImportHint> {
     let h = hint(dir, &sniffed)?;
     let name = path.file_name()?;
     h.files.iter().any(|f| f.file_name() == Some(name)).then_some(h)
+}
+
+/// For a ZIP archive: the preset that reads the files inside it, the archive the file to
+/// give (`import_paths` unzips it).
+fn zip_hint(path: &Path) -> Option<ImportHint> {
+    let name = path.file_name()?.to_string_lossy().into_owned();
+    let files = super::unzip_all([(name, std::fs::read(path).ok()?)].into()).ok()?;
+    let sniffed: Vec<Sniffed> = files.iter().filter_map(|(n, b)| sniff(n, b).ok()).collect();
+    let d = detect(&sniffed).ok()?;
+    Some(ImportHint { preset: d.preset, title: d.title, folder: folder_of(path).to_path_buf(), files: vec![path.to_path_buf()] })
 }
 
 /// The preset detected from these heads of `dir`'s files, and the files of it the preset uses.
@@ -151,6 +170,23 @@ fn hint(dir: &Path, sniffed: &[Sniffed]) -> Option<ImportHint> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A zipped recording: the preset of the files inside, the archive the file to import.
+    #[test]
+    fn a_zipped_raw_export_names_its_preset_and_itself() {
+        let dir = std::env::temp_dir().join(format!("gyrodrift-zip-hint-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let read = |f: &str| std::fs::read(wild("sensor-logger", f)).unwrap();
+        let entries = ["Gyroscope.csv", "Gravity.csv", "Location.csv"].map(|f| (format!("Drive/{f}"), read(f)));
+        let refs: Vec<(&str, &[u8])> = entries.iter().map(|(n, b)| (n.as_str(), b.as_slice())).collect();
+        let zip = dir.join("drive.zip");
+        std::fs::write(&zip, super::super::archive::tests::zipped(&refs)).unwrap();
+        let h = import_hint(&zip).unwrap();
+        assert_eq!((h.preset, h.files.clone()), ("sensor-logger", vec![zip.clone()]));
+        let (d, log, _) = super::super::import_paths(&[zip]).unwrap();
+        assert_eq!((d.preset, log.len()), ("sensor-logger", 1000));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     /// A recording's folder given as a whole: the preset and the files it uses; a folder of
     /// v1 logs, or one that does not exist, none.

@@ -10,6 +10,8 @@
 //! or JSON, `recipe_text`), so the import knows no file system; the `fs` feature adds the
 //! native fronts' shared file access (a recipe file, its tables confined to the data folder).
 
+#[cfg(feature = "zip")]
+mod archive;
 mod channels;
 mod geo;
 #[cfg(feature = "fs")]
@@ -23,6 +25,8 @@ mod table;
 mod time;
 mod units;
 
+#[cfg(feature = "zip")]
+pub use archive::{is_zip, unzip_all, MAX_UNZIPPED_BYTES};
 pub use geo::*;
 #[cfg(feature = "fs")]
 pub use hint::{folder_hint, folder_hints, import_hint, recordings, ImportHint, Recording};

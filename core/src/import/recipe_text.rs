@@ -89,9 +89,22 @@ mod files {
 
     /// A logger's raw files given by path, imported by the preset detected from them (as
     /// `detect_and_import`, which names files by their file names): `gyrodrift import
-    /// FILE...`, Python's `import_files`, a fleet's recordings. Two files of one name are
-    /// refused.
+    /// FILE...`, Python's `import_files`, a fleet's recordings. A ZIP archive among them
+    /// gives the files inside it (`unzip_all`). Two files of one name are refused.
     pub fn import_paths(paths: &[PathBuf]) -> Result<(super::super::Detection, DriveLog, ImportSummary)> {
+        if paths.iter().any(|p| starts_as_zip(p)) {
+            let mut given = std::collections::BTreeMap::new();
+            for p in paths {
+                let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| p.display().to_string());
+                let bytes = std::fs::read(p).map_err(|e| Error::File(format!("{}: cannot open: {e}", p.display())))?;
+                if given.insert(name.clone(), bytes).is_some() {
+                    return Err(Error::File(format!("{}: two files are named {name}; import one recording at a time", p.display())));
+                }
+            }
+            let mut files = super::super::unzip_all(given)?;
+            let names: Vec<String> = files.keys().cloned().collect();
+            return super::super::detect_and_import(&names, &mut files);
+        }
         let mut by_name = std::collections::BTreeMap::new();
         let mut names = Vec::new();
         for p in paths {
@@ -108,6 +121,12 @@ mod files {
                 .map_err(|e| Error::File(format!("{}: cannot open: {e}", path.display())))
         };
         super::super::detect_and_import(&names, &mut files)
+    }
+
+    /// Whether the file at `path` starts as a ZIP archive (false when it cannot be read).
+    pub fn starts_as_zip(path: &Path) -> bool {
+        let mut head = [0u8; 4];
+        std::fs::File::open(path).and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head)).is_ok() && super::super::is_zip(&head)
     }
 
     /// Imports by the recipe file at `path`, its files from `data` (default: the recipe's

@@ -1,0 +1,126 @@
+//! ZIP archives among a logger's raw files: Sensor Logger exports a recording as zipped CSV
+//! files, and others are mailed or downloaded zipped. The files inside are taken out by
+//! name, so the presets detect and import them as if they had been given one by one.
+
+use crate::error::{Error, Result};
+use std::collections::BTreeMap;
+use std::io::Read;
+
+/// The most the archives of one import may unpack to, bytes (a zip bomb stops here).
+pub const MAX_UNZIPPED_BYTES: u64 = 1 << 30;
+
+/// Whether bytes start as a ZIP archive does (a local file header).
+pub fn is_zip(bytes: &[u8]) -> bool {
+    bytes.starts_with(b"PK\x03\x04")
+}
+
+/// `files` (name -> bytes) with every ZIP archive among them replaced by the files inside
+/// it, each named by its file name (folders, macOS resource forks under `__MACOSX/` and
+/// `._` files left out). Errors name the archive; two files of one name are refused, as two
+/// given files of one name are.
+pub fn unzip_all(files: BTreeMap<String, Vec<u8>>) -> Result<BTreeMap<String, Vec<u8>>> {
+    if !files.values().any(|b| is_zip(b)) {
+        return Ok(files);
+    }
+    let mut out = BTreeMap::new();
+    let mut budget = MAX_UNZIPPED_BYTES;
+    for (name, bytes) in files {
+        let entries = if is_zip(&bytes) { unzip(&name, bytes, &mut budget)? } else { vec![(name.clone(), bytes)] };
+        for (inner, b) in entries {
+            if out.insert(inner.clone(), b).is_some() {
+                return Err(Error::File(format!("{name}: two files are named {inner}; import one recording at a time")));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The files of one archive, within `budget` bytes unpacked (spent as they unpack).
+fn unzip(name: &str, bytes: Vec<u8>, budget: &mut u64) -> Result<Vec<(String, Vec<u8>)>> {
+    let at = |m: String| Error::File(format!("{name}: {m}"));
+    let mut zip = zip::ZipArchive::new(std::io::Cursor::new(bytes)).map_err(|e| at(format!("not a ZIP archive that can be read ({e})")))?;
+    let mut out: Vec<(String, Vec<u8>)> = Vec::new();
+    for i in 0..zip.len() {
+        let mut f = zip.by_index(i).map_err(|e| at(format!("file {} of the archive: {e}", i + 1)))?;
+        let path = f.name().replace('\\', "/");
+        let file = path.rsplit('/').next().unwrap_or_default().to_string();
+        if f.is_dir() || file.is_empty() || file.starts_with("._") || path.starts_with("__MACOSX/") {
+            continue;
+        }
+        let mut b = Vec::new();
+        f.by_ref().take(*budget + 1).read_to_end(&mut b).map_err(|e| at(format!("{path}: {e}")))?;
+        if b.len() as u64 > *budget {
+            return Err(at(format!("unpacks to more than {} MiB; unzip it and give the files inside", MAX_UNZIPPED_BYTES >> 20)));
+        }
+        *budget -= b.len() as u64;
+        if out.iter().any(|(n, _)| *n == file) {
+            return Err(at(format!("two files are named {file}; import one recording at a time")));
+        }
+        out.push((file, b));
+    }
+    if out.is_empty() {
+        return Err(at("the archive holds no file".into()));
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use std::io::Write;
+
+    /// A zip of `(path, bytes)` entries, deflated.
+    pub(crate) fn zipped(entries: &[(&str, &[u8])]) -> Vec<u8> {
+        let mut w = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+        let opts = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+        for (path, bytes) in entries {
+            w.start_file(*path, opts).unwrap();
+            w.write_all(bytes).unwrap();
+        }
+        w.finish().unwrap().into_inner()
+    }
+
+    /// A zipped recording's files come out by their file names, beside the files given
+    /// unzipped; folders and macOS resource forks are left out.
+    #[test]
+    fn an_archive_is_replaced_by_the_files_inside_it() {
+        let z = zipped(&[("Drive/Gyroscope.csv", b"time,z\n1,2\n"), ("__MACOSX/Drive/._Gyroscope.csv", b"x"), ("Drive/._x", b"y")]);
+        let files = BTreeMap::from([("drive.zip".to_string(), z), ("notes.csv".to_string(), b"a\n".to_vec())]);
+        let out = unzip_all(files).unwrap();
+        assert_eq!(out.keys().collect::<Vec<_>>(), ["Gyroscope.csv", "notes.csv"]);
+        assert_eq!(out["Gyroscope.csv"], b"time,z\n1,2\n");
+        // No archive: the files as they were.
+        let plain = BTreeMap::from([("a.csv".to_string(), b"PK".to_vec())]);
+        assert_eq!(unzip_all(plain.clone()).unwrap(), plain);
+    }
+
+    /// Two files of one name (two recordings in one archive, or an archive's file beside
+    /// the same file given), a broken archive and an empty one are errors naming the archive.
+    #[test]
+    fn ambiguous_broken_or_empty_archives_are_refused() {
+        let two = zipped(&[("a/Gyroscope.csv", b"1"), ("b/Gyroscope.csv", b"2")]);
+        let e = unzip_all(BTreeMap::from([("two.zip".to_string(), two)])).unwrap_err().to_string();
+        assert!(e.contains("two.zip: two files are named Gyroscope.csv"), "{e}");
+        let one = zipped(&[("Gyroscope.csv", b"1")]);
+        let e = unzip_all(BTreeMap::from([("one.zip".to_string(), one), ("Gyroscope.csv".to_string(), b"2".to_vec())])).unwrap_err();
+        assert!(e.to_string().contains("two files are named Gyroscope.csv"), "{e}");
+        let mut cut = zipped(&[("Gyroscope.csv", b"time,z\n1,2\n")]);
+        cut.truncate(20);
+        let e = unzip_all(BTreeMap::from([("cut.zip".to_string(), cut)])).unwrap_err().to_string();
+        assert!(e.starts_with("cut.zip: not a ZIP archive that can be read"), "{e}");
+        let e = unzip_all(BTreeMap::from([("empty.zip".to_string(), zipped(&[("d/__MACOSX/", b"")]))])).unwrap_err().to_string();
+        assert!(e.contains("empty.zip"), "{e}");
+    }
+
+    /// An archive that unpacks beyond the budget stops there, with an error (a zip bomb).
+    #[test]
+    fn an_archive_stops_at_its_budget() {
+        let z = zipped(&[("big.csv", &vec![b'1'; 4096])]);
+        let mut budget = 1000;
+        let e = unzip("bomb.zip", z.clone(), &mut budget).unwrap_err().to_string();
+        assert!(e.contains("bomb.zip: unpacks to more than"), "{e}");
+        let mut budget = 4096;
+        assert_eq!(unzip("ok.zip", z, &mut budget).unwrap()[0].1.len(), 4096);
+        assert_eq!(budget, 0);
+    }
+}
