@@ -112,6 +112,21 @@ pub(crate) mod tests {
         assert!(e.contains("empty.zip"), "{e}");
     }
 
+    proptest::proptest! {
+        /// A damaged archive (bytes changed, cut short) is an error or its files, never a
+        /// panic (in wasm a panic kills the page).
+        #[test]
+        fn a_damaged_archive_never_panics(edits in proptest::collection::vec((0usize..4096, proptest::num::u8::ANY), 1..8), cut in 0usize..4096) {
+            let mut z = zipped(&[("Drive/Gyroscope.csv", b"time,z\n1,2\n3,4\n"), ("Drive/Location.csv", &[b'x'; 300])]);
+            for (i, b) in edits {
+                let n = z.len();
+                z[i % n] = b;
+            }
+            z.truncate(z.len() - cut % z.len());
+            let _ = unzip_all(BTreeMap::from([("d.zip".to_string(), z)]));
+        }
+    }
+
     /// An archive that unpacks beyond the budget stops there, with an error (a zip bomb).
     #[test]
     fn an_archive_stops_at_its_budget() {
