@@ -14,9 +14,10 @@ pub fn is_zip(bytes: &[u8]) -> bool {
     bytes.starts_with(b"PK\x03\x04")
 }
 
-/// `files` (name -> bytes) with every ZIP archive among them replaced by the files inside
-/// it, each named by its file name (folders, macOS resource forks under `__MACOSX/` and
-/// `._` files left out). Errors name the archive; two files of one name are refused, as two
+/// `files` (name -> bytes) with every ZIP archive among them replaced by the text tables
+/// inside it (`.csv`, `.tsv`, `.txt`: what the presets read; a recording's audio or images
+/// are not unpacked), each named by its file name (macOS resource forks under `__MACOSX/`
+/// and `._` files left out). Errors name the archive; two files of one name are refused, as two
 /// given files of one name are.
 pub fn unzip_all(files: BTreeMap<String, Vec<u8>>) -> Result<BTreeMap<String, Vec<u8>>> {
     if !files.values().any(|b| is_zip(b)) {
@@ -44,7 +45,8 @@ fn unzip(name: &str, bytes: Vec<u8>, budget: &mut u64) -> Result<Vec<(String, Ve
         let mut f = zip.by_index(i).map_err(|e| at(format!("file {} of the archive: {e}", i + 1)))?;
         let path = f.name().replace('\\', "/");
         let file = path.rsplit('/').next().unwrap_or_default().to_string();
-        if f.is_dir() || file.is_empty() || file.starts_with("._") || path.starts_with("__MACOSX/") {
+        let table = [".csv", ".tsv", ".txt"].iter().any(|x| file.to_ascii_lowercase().ends_with(x));
+        if f.is_dir() || !table || file.starts_with("._") || path.starts_with("__MACOSX/") {
             continue;
         }
         let mut b = Vec::new();
@@ -59,7 +61,7 @@ fn unzip(name: &str, bytes: Vec<u8>, budget: &mut u64) -> Result<Vec<(String, Ve
         out.push((file, b));
     }
     if out.is_empty() {
-        return Err(at("the archive holds no file".into()));
+        return Err(at("the archive holds no .csv, .tsv or .txt table".into()));
     }
     Ok(out)
 }
@@ -80,11 +82,16 @@ pub(crate) mod tests {
         w.finish().unwrap().into_inner()
     }
 
-    /// A zipped recording's files come out by their file names, beside the files given
-    /// unzipped; folders and macOS resource forks are left out.
+    /// A zipped recording's tables come out by their file names, beside the files given
+    /// unzipped; folders, media and macOS resource forks are left out.
     #[test]
     fn an_archive_is_replaced_by_the_files_inside_it() {
-        let z = zipped(&[("Drive/Gyroscope.csv", b"time,z\n1,2\n"), ("__MACOSX/Drive/._Gyroscope.csv", b"x"), ("Drive/._x", b"y")]);
+        let z = zipped(&[
+            ("Drive/Gyroscope.csv", b"time,z\n1,2\n"),
+            ("__MACOSX/Drive/._Gyroscope.csv", b"x"),
+            ("Drive/._x.csv", b"y"),
+            ("Drive/Microphone.mp4", b"\x00\x01"),
+        ]);
         let files = BTreeMap::from([("drive.zip".to_string(), z), ("notes.csv".to_string(), b"a\n".to_vec())]);
         let out = unzip_all(files).unwrap();
         assert_eq!(out.keys().collect::<Vec<_>>(), ["Gyroscope.csv", "notes.csv"]);
@@ -108,8 +115,8 @@ pub(crate) mod tests {
         cut.truncate(20);
         let e = unzip_all(BTreeMap::from([("cut.zip".to_string(), cut)])).unwrap_err().to_string();
         assert!(e.starts_with("cut.zip: not a ZIP archive that can be read"), "{e}");
-        let e = unzip_all(BTreeMap::from([("empty.zip".to_string(), zipped(&[("d/__MACOSX/", b"")]))])).unwrap_err().to_string();
-        assert!(e.contains("empty.zip"), "{e}");
+        let e = unzip_all(BTreeMap::from([("empty.zip".to_string(), zipped(&[("d/__MACOSX/", b""), ("a.jpg", b"1")]))])).unwrap_err();
+        assert!(e.to_string().contains("empty.zip: the archive holds no .csv, .tsv or .txt table"), "{e}");
     }
 
     proptest::proptest! {
