@@ -154,7 +154,7 @@ fn with_import_a_zipped_export_is_a_drive_of_its_own() {
     assert!(stderr.contains("importing 1 recording(s) of raw exports (1 files)"), "{stderr}");
     let rows: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let drive = rows.iter().find(|r| r["file"].as_str().unwrap().ends_with("drive.zip")).unwrap();
-    assert_eq!(drive["name"], "Gyroscope.csv (Sensor Logger)");
+    assert_eq!(drive["name"], "drive", "named by its archive, as a folder names its recording");
     assert!(drive["error"].is_null(), "{drive}");
     let other = rows.iter().find(|r| r["file"].as_str().unwrap().ends_with("other.zip")).unwrap();
     assert!(other["error"].as_str().unwrap().contains("a ZIP archive, not a text table"), "{other}");

@@ -151,7 +151,7 @@ def test_the_fleet_job_with_import_scores_a_zipped_export_as_a_drive(samples, tm
     assert fleet.find_inputs(str(tmp_path)) == {"csv": [str(tmp_path / "city-1.csv")]}
     assert fleet.find_inputs(str(tmp_path), zips=True) == {"csv": [str(tmp_path / "city-1.csv"), str(tmp_path / "drive.zip")]}
     rows = g.score_files([str(tmp_path / "drive.zip")], 1, import_raw=True)
-    assert len(rows) == 1 and rows[0]["error"] is None and rows[0]["name"] == "Gyroscope.csv (Sensor Logger)"
+    assert len(rows) == 1 and rows[0]["error"] is None and rows[0]["name"] == "drive"
     log, _, _ = g.import_files([str(sl / f) for f in ("Gyroscope.csv", "Gravity.csv", "Location.csv")])
     assert rows[0]["e_psi_hdr_deg"] == g.hdr(log)["E_psi_hdr_deg"]
 

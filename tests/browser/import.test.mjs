@@ -43,7 +43,7 @@ test("a zipped export (as Sensor Logger shares one) opens by drop alone with the
   await page.locator("#file-input").setInputFiles([zip]);
   await page.waitForFunction((n) => document.querySelectorAll("#logs li").length > n, before);
   const li = page.locator("#logs li.selected");
-  assert.match(await li.innerText(), /Gyroscope\.csv \(Sensor Logger\)[\s\S]*imported:/);
+  assert.match(await li.innerText(), /Drive 2026-11-27[\s\S]*imported:/);
   const native = cliOnRaw([zip]);
   assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
 });

@@ -18,8 +18,13 @@ pub fn import_log(
 ) -> JsResult<JsValue> {
     // Through JSON, so unknown (misspelled) fields are refused as the CLI refuses them.
     let recipe: gyrodrift::import::Recipe = serde_json::from_value(js_json("recipe", &recipe)?).map_err(|e| err(format!("recipe: {e}")))?;
-    let mut map = files_map(&files)?;
-    let (log, summary) = gyrodrift::import::import(&recipe, &mut map).map_err(err)?;
+    let raw = raw_files(&files)?;
+    let stem = import::archive_stem(&raw);
+    let mut map = import::unzip_all(raw).map_err(err)?;
+    let (mut log, summary) = gyrodrift::import::import(&recipe, &mut map).map_err(err)?;
+    if stem.is_some() {
+        log.meta.name = stem;
+    }
     let out = Object::new();
     set(&out, "log", &JsValue::from(Log::new(log)))?;
     set(&out, "summary", &to_js(&summary)?)?;
@@ -29,6 +34,11 @@ pub fn import_log(
 /// `files` as name -> bytes, a ZIP archive among them as the files inside it (core's
 /// `unzip_all`: a zipped Sensor Logger export imports as it is).
 fn files_map(files: &JsValue) -> JsResult<BTreeMap<String, Vec<u8>>> {
+    import::unzip_all(raw_files(files)?).map_err(err)
+}
+
+/// `files` as name -> bytes, as given.
+fn raw_files(files: &JsValue) -> JsResult<BTreeMap<String, Vec<u8>>> {
     let obj: &Object =
         files.dyn_ref().filter(|_| files.is_object()).ok_or_else(|| type_err("files: expected an object of name -> Uint8Array"))?;
     let mut map = BTreeMap::new();
@@ -38,7 +48,7 @@ fn files_map(files: &JsValue) -> JsResult<BTreeMap<String, Vec<u8>>> {
         let bytes: &Uint8Array = v.dyn_ref().ok_or_else(|| err(format!("files[\"{name}\"]: expected a Uint8Array")))?;
         map.insert(name, bytes.to_vec());
     }
-    import::unzip_all(map).map_err(err)
+    Ok(map)
 }
 
 /// Which logger wrote these raw files (by their names and headers): `{ preset, title,

@@ -14,6 +14,18 @@ pub fn is_zip(bytes: &[u8]) -> bool {
     bytes.starts_with(b"PK\x03\x04")
 }
 
+/// The name a log imported from `files` takes from its archive: the stem of the one file
+/// given when it is a ZIP archive ("Drive 2026-11-27.zip" -> "Drive 2026-11-27"), as a
+/// folder of raw files names its recording; None otherwise.
+pub fn archive_stem(files: &BTreeMap<String, Vec<u8>>) -> Option<String> {
+    match files.iter().next() {
+        Some((name, bytes)) if files.len() == 1 && is_zip(bytes) => {
+            Some(std::path::Path::new(name).file_stem().map_or_else(|| name.clone(), |s| s.to_string_lossy().into_owned()))
+        }
+        _ => None,
+    }
+}
+
 /// `files` (name -> bytes) with every ZIP archive among them replaced by the text tables
 /// inside it (`.csv`, `.tsv`, `.txt`: what the presets read; a recording's audio or images
 /// are not unpacked), each named by its file name (macOS resource forks under `__MACOSX/`
@@ -99,6 +111,13 @@ pub(crate) mod tests {
         // No archive: the files as they were.
         let plain = BTreeMap::from([("a.csv".to_string(), b"PK".to_vec())]);
         assert_eq!(unzip_all(plain.clone()).unwrap(), plain);
+        // A log from one archive is named by it; from several files, or an archive and a file, not.
+        let one = BTreeMap::from([("Drive 2026-11-27.zip".to_string(), zipped(&[("a.csv", b"1")]))]);
+        assert_eq!(archive_stem(&one).as_deref(), Some("Drive 2026-11-27"));
+        assert_eq!(archive_stem(&plain), None);
+        let mut two = one.clone();
+        two.insert("b.csv".into(), b"2".to_vec());
+        assert_eq!(archive_stem(&two), None);
     }
 
     /// Two files of one name (two recordings in one archive, or an archive's file beside

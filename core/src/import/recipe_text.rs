@@ -101,9 +101,14 @@ mod files {
                     return Err(Error::File(format!("{}: two files are named {name}; import one recording at a time", p.display())));
                 }
             }
+            let stem = super::super::archive_stem(&given);
             let mut files = super::super::unzip_all(given)?;
             let names: Vec<String> = files.keys().cloned().collect();
-            return super::super::detect_and_import(&names, &mut files);
+            let (d, mut log, summary) = super::super::detect_and_import(&names, &mut files)?;
+            if stem.is_some() {
+                log.meta.name = stem;
+            }
+            return Ok((d, log, summary));
         }
         let mut by_name = std::collections::BTreeMap::new();
         let mut names = Vec::new();
