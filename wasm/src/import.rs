@@ -51,7 +51,8 @@ fn raw_files(files: &JsValue) -> JsResult<BTreeMap<String, Vec<u8>>> {
     Ok(map)
 }
 
-/// Which logger wrote these raw files (by their names and headers): `{ preset, title,
+/// Which logger wrote these raw files (by their names and headers; a ZIP archive among
+/// them as the tables inside it): `{ preset, title,
 /// recipe, used: [[role, file]], ignored }`, the recipe ready for `importLog`. Throws an
 /// Error naming the closest preset and the column it lacked when none fits.
 #[wasm_bindgen(js_name = detectImport, unchecked_return_type = "Detection")]
