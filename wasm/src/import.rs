@@ -18,13 +18,7 @@ pub fn import_log(
 ) -> JsResult<JsValue> {
     // Through JSON, so unknown (misspelled) fields are refused as the CLI refuses them.
     let recipe: gyrodrift::import::Recipe = serde_json::from_value(js_json("recipe", &recipe)?).map_err(|e| err(format!("recipe: {e}")))?;
-    let raw = raw_files(&files)?;
-    let stem = import::archive_stem(&raw);
-    let mut map = import::unzip_all(raw).map_err(err)?;
-    let (mut log, summary) = gyrodrift::import::import(&recipe, &mut map).map_err(err)?;
-    if stem.is_some() {
-        log.meta.name = stem;
-    }
+    let (log, summary) = import::import_unzipped(&recipe, raw_files(&files)?).map_err(err)?;
     let out = Object::new();
     set(&out, "log", &JsValue::from(Log::new(log)))?;
     set(&out, "summary", &to_js(&summary)?)?;

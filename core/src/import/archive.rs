@@ -2,7 +2,9 @@
 //! files, and others are mailed or downloaded zipped. The files inside are taken out by
 //! name, so the presets detect and import them as if they had been given one by one.
 
+use super::{Detection, ImportSummary, Recipe};
 use crate::error::{Error, Result};
+use crate::log::DriveLog;
 use std::collections::BTreeMap;
 use std::io::Read;
 
@@ -14,10 +16,37 @@ pub fn is_zip(bytes: &[u8]) -> bool {
     bytes.starts_with(b"PK\x03\x04")
 }
 
+/// `detect_and_import` of in-memory raw files (`gyrodrift import FILE...` when one is a
+/// ZIP archive): an archive among them gives its tables (`unzip_all`), and a log from one
+/// archive is named by it (`archive_stem`).
+pub fn detect_and_import_unzipped(files: BTreeMap<String, Vec<u8>>) -> Result<(Detection, DriveLog, ImportSummary)> {
+    let stem = archive_stem(&files);
+    let mut files = unzip_all(files)?;
+    let names: Vec<String> = files.keys().cloned().collect();
+    let (d, log, summary) = super::detect_and_import(&names, &mut files)?;
+    Ok((d, named(log, stem), summary))
+}
+
+/// `import` of in-memory files by a recipe (the wasm package's `importLog`), likewise.
+pub fn import_unzipped(recipe: &Recipe, files: BTreeMap<String, Vec<u8>>) -> Result<(DriveLog, ImportSummary)> {
+    let stem = archive_stem(&files);
+    let mut files = unzip_all(files)?;
+    let (log, summary) = super::import(recipe, &mut files)?;
+    Ok((named(log, stem), summary))
+}
+
+/// The log named by its archive, when it came from one.
+fn named(mut log: DriveLog, stem: Option<String>) -> DriveLog {
+    if stem.is_some() {
+        log.meta.name = stem;
+    }
+    log
+}
+
 /// The name a log imported from `files` takes from its archive: the stem of the one file
 /// given when it is a ZIP archive ("Drive 2026-11-27.zip" -> "Drive 2026-11-27"), as a
 /// folder of raw files names its recording; None otherwise.
-pub fn archive_stem(files: &BTreeMap<String, Vec<u8>>) -> Option<String> {
+fn archive_stem(files: &BTreeMap<String, Vec<u8>>) -> Option<String> {
     match files.iter().next() {
         Some((name, bytes)) if files.len() == 1 && is_zip(bytes) => {
             Some(std::path::Path::new(name).file_stem().map_or_else(|| name.clone(), |s| s.to_string_lossy().into_owned()))

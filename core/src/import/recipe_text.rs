@@ -92,24 +92,6 @@ mod files {
     /// FILE...`, Python's `import_files`, a fleet's recordings. A ZIP archive among them
     /// gives the files inside it (`unzip_all`). Two files of one name are refused.
     pub fn import_paths(paths: &[PathBuf]) -> Result<(super::super::Detection, DriveLog, ImportSummary)> {
-        if paths.iter().any(|p| starts_as_zip(p)) {
-            let mut given = std::collections::BTreeMap::new();
-            for p in paths {
-                let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| p.display().to_string());
-                let bytes = std::fs::read(p).map_err(|e| Error::File(format!("{}: cannot open: {e}", p.display())))?;
-                if given.insert(name.clone(), bytes).is_some() {
-                    return Err(Error::File(format!("{}: two files are named {name}; import one recording at a time", p.display())));
-                }
-            }
-            let stem = super::super::archive_stem(&given);
-            let mut files = super::super::unzip_all(given)?;
-            let names: Vec<String> = files.keys().cloned().collect();
-            let (d, mut log, summary) = super::super::detect_and_import(&names, &mut files)?;
-            if stem.is_some() {
-                log.meta.name = stem;
-            }
-            return Ok((d, log, summary));
-        }
         let mut by_name = std::collections::BTreeMap::new();
         let mut names = Vec::new();
         for p in paths {
@@ -119,11 +101,20 @@ mod files {
             }
             names.push(name);
         }
+        let open_error = |path: &Path, e: std::io::Error| Error::File(format!("{}: cannot open: {e}", path.display()));
+        if paths.iter().any(|p| starts_as_zip(p)) {
+            // An archive is read whole (its directory is at its end): every file in memory.
+            let mut given = std::collections::BTreeMap::new();
+            for (name, path) in by_name {
+                given.insert(name, std::fs::read(path).map_err(|e| open_error(path, e))?);
+            }
+            return super::super::detect_and_import_unzipped(given);
+        }
         let mut files = |name: &str| -> Result<Box<dyn std::io::Read>> {
             let path = by_name.get(name).ok_or_else(|| Error::File(format!("{name}: not among the files given")))?;
             std::fs::File::open(path)
                 .map(|f| Box::new(std::io::BufReader::new(f)) as Box<dyn std::io::Read>)
-                .map_err(|e| Error::File(format!("{}: cannot open: {e}", path.display())))
+                .map_err(|e| open_error(path, e))
         };
         super::super::detect_and_import(&names, &mut files)
     }
