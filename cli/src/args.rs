@@ -257,7 +257,8 @@ pub(crate) enum Cmd {
         /// --recipe) instead of importing.
         #[arg(long, requires = "files")]
         print_recipe: bool,
-        /// Folder the recipe's `file` paths are relative to (default: the recipe's folder).
+        /// Folder the recipe's `file` paths are relative to (default: the recipe's folder),
+        /// or a logger's zipped export whose tables the recipe names.
         #[arg(long)]
         data: Option<PathBuf>,
         /// Let the recipe read files outside the data folder (absolute paths, `..`, links).

@@ -377,7 +377,8 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
     eprintln!("{note}");
     if print_recipe {
         let text = gyrodrift::import::recipe_value_to_toml(&d.recipe_json).map_err(|e| Failure(e.to_string()))?;
-        return write_stdout(&format!("# gyrodrift import --recipe THIS.toml --data FOLDER (preset {})\n{text}", d.preset));
+        let data = recipe_data(paths);
+        return write_stdout(&format!("# gyrodrift import --recipe THIS.toml --data {data} (preset {})\n{text}", d.preset));
     }
     if out.is_some() || !json {
         write_log(&log, out)?;
@@ -386,8 +387,34 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
         let files: std::collections::BTreeMap<String, String> = d.used.iter().map(|(r, f)| (r.to_string(), f.clone())).collect();
         print_json(&serde_json::json!({ "preset": d.preset, "files": files, "summary": summary }))
     } else {
-        eprintln!("{}", output::import_line(Path::new(&d.used[0].1), &summary));
+        // The line names what was given: the zip, or the gyro's file among the files.
+        let shown = match paths {
+            [one] if import::starts_as_zip(one) => one.clone(),
+            _ => PathBuf::from(&d.used[0].1),
+        };
+        eprintln!("{}", output::import_line(&shown, &summary));
         Ok(())
+    }
+}
+
+/// Where the printed recipe's files are, for its `--data`: the one zip given, or the
+/// folder all the files share (quoted when it has a space), else FOLDER.
+fn recipe_data(paths: &[PathBuf]) -> String {
+    let quoted = |p: &Path| {
+        let s = p.display().to_string();
+        if s.contains(char::is_whitespace) {
+            format!("\"{s}\"")
+        } else {
+            s
+        }
+    };
+    match paths {
+        [one] if gyrodrift::import::starts_as_zip(one) => quoted(one),
+        [first, rest @ ..] if rest.iter().all(|p| p.parent() == first.parent()) => match first.parent() {
+            Some(dir) if !dir.as_os_str().is_empty() => quoted(dir),
+            _ => ".".into(),
+        },
+        _ => "FOLDER".into(),
     }
 }
 

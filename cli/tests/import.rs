@@ -363,6 +363,45 @@ fn import_without_recipe_detects_says_and_prints_a_reusable_recipe() {
     }
 }
 
+/// A logger's zipped export: imported as it is and named by the archive; its printed
+/// recipe says where its data is (the zip, or the files' folder) in a command that runs as
+/// printed, and that recipe on the zip gives the same log.
+#[test]
+fn a_zipped_export_imports_and_its_recipe_reads_the_zip_again() {
+    use std::io::Write;
+    let d = dir("zipped export");
+    let zip = d.join("Drive 2026-11-27.zip");
+    let mut w = zip::ZipWriter::new(std::fs::File::create(&zip).unwrap());
+    for f in wild("sensor-logger") {
+        let name = format!("Drive/{}", PathBuf::from(&f).file_name().unwrap().to_string_lossy());
+        w.start_file(name, zip::write::SimpleFileOptions::default()).unwrap();
+        w.write_all(&std::fs::read(&f).unwrap()).unwrap();
+    }
+    w.finish().unwrap();
+    let direct = d.join("direct.csv");
+    let o = run(&["import", s(&zip), "--out", s(&direct)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("Drive 2026-11-27.zip: 1000 rows"), "{err}");
+    assert_eq!(parse(&direct).meta.name.as_deref(), Some("Drive 2026-11-27"));
+    let o = run(&["import", s(&zip), "--print-recipe"]);
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    let first = text.lines().next().unwrap();
+    assert_eq!(first, format!("# gyrodrift import --recipe THIS.toml --data \"{}\" (preset sensor-logger)", zip.display()));
+    assert!(text.contains("name = \"Drive 2026-11-27\""), "{text}");
+    let recipe = d.join("r.toml");
+    std::fs::write(&recipe, &text).unwrap();
+    let via = d.join("via.csv");
+    let o = run(&["import", "--recipe", s(&recipe), "--data", s(&zip), "--out", s(&via)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read(&via).unwrap(), std::fs::read(&direct).unwrap());
+    // Files from one folder: that folder.
+    let files = wild("sensor-logger");
+    let o = run(&[&["import", "--print-recipe"], files.iter().map(String::as_str).collect::<Vec<_>>().as_slice()].concat());
+    let folder = PathBuf::from(&files[0]).parent().unwrap().display().to_string();
+    assert!(String::from_utf8_lossy(&o.stdout).starts_with(&format!("# gyrodrift import --recipe THIS.toml --data {folder} (")));
+}
+
 /// A logger's raw export given to a method: the error names the file and line, and the
 /// import command that makes a v1 log of it, with the files beside it that the preset uses;
 /// a table no preset reads gets the error alone.

@@ -368,7 +368,7 @@ fn battery_profiles(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
 
 /// Imports recorded files by a recipe (a dict, or the path of a TOML or JSON recipe);
 /// files are read from `data_dir` (default: the recipe's folder, or the working folder for
-/// a dict). Returns `(log, summary)`.
+/// a dict), which may be a logger's zipped export. Returns `(log, summary)`.
 #[pyfunction]
 #[pyo3(signature = (recipe, data_dir=None))]
 fn import_log<'py>(

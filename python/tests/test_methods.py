@@ -400,6 +400,11 @@ def test_a_zipped_export_imports_as_its_files_do(samples, tmp_path):
     assert np.array_equal(log.column("gyro_dps"), plain.column("gyro_dps"))
     with pytest.raises(ValueError, match=r"a ZIP archive, not a text table.*import preset sensor-logger.*drive\.zip"):
         g.read_log(str(zpath))
+    # The detected recipe names the log by the archive, and reads the zip again as its data.
+    assert detection["recipe"]["name"] == "drive"
+    again, _ = g.import_log(detection["recipe"], str(zpath))
+    assert again.name == "drive"
+    assert np.array_equal(again.column("gyro_dps"), log.column("gyro_dps"))
 
 
 def test_a_folder_read_as_a_log_names_the_import_or_the_fleet_job(samples):

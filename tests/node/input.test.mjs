@@ -156,7 +156,11 @@ test("detectImport picks the logger's preset from raw files; importLog on its re
   const dz = gd.detectImport(zipped);
   assert.equal(dz.preset, "sensor-logger");
   assert.deepEqual(dz.used, d.used);
-  assert.deepEqual(Array.from(gd.importLog(dz.recipe, zipped).log.column("gyro_dps")), Array.from(native.column("gyro_dps")));
+  const fromZip = gd.importLog(dz.recipe, zipped).log;
+  assert.deepEqual(Array.from(fromZip.column("gyro_dps")), Array.from(native.column("gyro_dps")));
+  // Named by the archive, in the recipe too (saved and dropped again, it names the log alike).
+  assert.equal(dz.recipe.name, "drive");
+  assert.equal(fromZip.name, "drive");
   assert.throws(() => gd.detectImport({ "cut.zip": readFileSync(zip).subarray(0, 30) }), /cut\.zip: not a ZIP archive that can be read/);
 });
 

@@ -25,12 +25,6 @@ pub fn import_log(
     Ok(out.into())
 }
 
-/// `files` as name -> bytes, a ZIP archive among them as the files inside it (core's
-/// `unzip_all`: a zipped Sensor Logger export imports as it is).
-fn files_map(files: &JsValue) -> JsResult<BTreeMap<String, Vec<u8>>> {
-    import::unzip_all(raw_files(files)?).map_err(err)
-}
-
 /// `files` as name -> bytes, as given.
 fn raw_files(files: &JsValue) -> JsResult<BTreeMap<String, Vec<u8>>> {
     let obj: &Object =
@@ -46,14 +40,12 @@ fn raw_files(files: &JsValue) -> JsResult<BTreeMap<String, Vec<u8>>> {
 }
 
 /// Which logger wrote these raw files (by their names and headers; a ZIP archive among
-/// them as the tables inside it): `{ preset, title,
+/// them as the tables inside it, the recipe then named by the archive): `{ preset, title,
 /// recipe, used: [[role, file]], ignored }`, the recipe ready for `importLog`. Throws an
 /// Error naming the closest preset and the column it lacked when none fits.
 #[wasm_bindgen(js_name = detectImport, unchecked_return_type = "Detection")]
 pub fn detect_import(#[wasm_bindgen(unchecked_param_type = "Record<string, Uint8Array>")] files: JsValue) -> JsResult<JsValue> {
-    let map = files_map(&files)?;
-    let sniffed = map.iter().map(|(n, b)| import::sniff(n, b)).collect::<gyrodrift::Result<Vec<_>>>().map_err(err)?;
-    let d = import::detect(&sniffed).map_err(err)?;
+    let (d, _) = import::detect_unzipped(raw_files(&files)?).map_err(err)?;
     let out = Object::new();
     set(&out, "preset", &d.preset.into())?;
     set(&out, "title", &d.title.into())?;

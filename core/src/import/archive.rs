@@ -16,31 +16,36 @@ pub fn is_zip(bytes: &[u8]) -> bool {
     bytes.starts_with(b"PK\x03\x04")
 }
 
-/// `detect_and_import` of in-memory raw files (`gyrodrift import FILE...` when one is a
-/// ZIP archive): an archive among them gives its tables (`unzip_all`), and a log from one
-/// archive is named by it (`archive_stem`).
-pub fn detect_and_import_unzipped(files: BTreeMap<String, Vec<u8>>) -> Result<(Detection, DriveLog, ImportSummary)> {
+/// The preset that reads in-memory raw files (the wasm package's `detectImport`), a ZIP
+/// archive among them as the tables inside it (`unzip_all`); with those tables. A
+/// recording from one archive is named by it (`archive_stem`) in the detected recipe, so
+/// the log it imports, and the recipe saved and run again, carry the archive's name.
+pub fn detect_unzipped(files: BTreeMap<String, Vec<u8>>) -> Result<(Detection, BTreeMap<String, Vec<u8>>)> {
     let stem = archive_stem(&files);
-    let mut files = unzip_all(files)?;
-    let names: Vec<String> = files.keys().cloned().collect();
-    let (d, log, summary) = super::detect_and_import(&names, &mut files)?;
-    Ok((d, named(log, stem), summary))
-}
-
-/// `import` of in-memory files by a recipe (the wasm package's `importLog`), likewise.
-pub fn import_unzipped(recipe: &Recipe, files: BTreeMap<String, Vec<u8>>) -> Result<(DriveLog, ImportSummary)> {
-    let stem = archive_stem(&files);
-    let mut files = unzip_all(files)?;
-    let (log, summary) = super::import(recipe, &mut files)?;
-    Ok((named(log, stem), summary))
-}
-
-/// The log named by its archive, when it came from one.
-fn named(mut log: DriveLog, stem: Option<String>) -> DriveLog {
-    if stem.is_some() {
-        log.meta.name = stem;
+    let files = unzip_all(files)?;
+    let sniffed = files.iter().map(|(n, b)| super::sniff(n, b)).collect::<Result<Vec<_>>>()?;
+    let mut d = super::detect(&sniffed)?;
+    if let Some(stem) = stem {
+        d.recipe_json["name"] = serde_json::Value::String(stem.clone());
+        d.recipe.name = Some(stem);
     }
-    log
+    Ok((d, files))
+}
+
+/// `detect_and_import` of in-memory raw files (`gyrodrift import FILE...` when one is a
+/// ZIP archive), as `detect_unzipped` detects them.
+pub fn detect_and_import_unzipped(files: BTreeMap<String, Vec<u8>>) -> Result<(Detection, DriveLog, ImportSummary)> {
+    let (d, mut files) = detect_unzipped(files)?;
+    let (log, summary) = super::import(&d.recipe, &mut files)?;
+    Ok((d, log, summary))
+}
+
+/// `import` of in-memory files by a recipe, ZIP archives among them unpacked first
+/// (`unzip_all`): the wasm package's `importLog`, and a recipe whose data is an archive.
+/// The recipe names the log.
+pub fn import_unzipped(recipe: &Recipe, files: BTreeMap<String, Vec<u8>>) -> Result<(DriveLog, ImportSummary)> {
+    let mut files = unzip_all(files)?;
+    super::import(recipe, &mut files)
 }
 
 /// The name a log imported from `files` takes from its archive: the stem of the one file
@@ -165,6 +170,48 @@ pub(crate) mod tests {
         assert!(e.starts_with("cut.zip: not a ZIP archive that can be read"), "{e}");
         let e = unzip_all(BTreeMap::from([("empty.zip".to_string(), zipped(&[("d/__MACOSX/", b""), ("a.jpg", b"1")]))])).unwrap_err();
         assert!(e.to_string().contains("empty.zip: the archive holds no .csv, .tsv or .txt table"), "{e}");
+    }
+
+    /// A zipped recording: the detected recipe names the log by the archive as the import
+    /// does, so the recipe run again on the archive (in memory, or as the data of a recipe
+    /// file: `import --recipe R --data drive.zip`) gives the same log; a table the archive
+    /// lacks is an error listing what it holds.
+    #[cfg(feature = "fs")]
+    #[test]
+    fn the_detected_recipe_reads_the_archive_again() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/wild/sensor-logger");
+        let read = |f: &str| std::fs::read(dir.join(f)).unwrap();
+        let z = zipped(&[
+            ("Drive/Gyroscope.csv", &read("Gyroscope.csv")),
+            ("Drive/Gravity.csv", &read("Gravity.csv")),
+            ("Drive/Location.csv", &read("Location.csv")),
+        ]);
+        let csv = |l: &DriveLog| {
+            let mut v = Vec::new();
+            l.write_csv(&mut v).unwrap();
+            v
+        };
+        let given = BTreeMap::from([("Drive 1.zip".to_string(), z.clone())]);
+        let (d, log, _) = detect_and_import_unzipped(given.clone()).unwrap();
+        assert_eq!(log.meta.name.as_deref(), Some("Drive 1"));
+        assert_eq!(d.recipe_json["name"], "Drive 1");
+        let again = import_unzipped(&super::super::recipe_from_json(&d.recipe_json.to_string()).unwrap(), given).unwrap().0;
+        assert_eq!(csv(&again), csv(&log));
+        let path = std::env::temp_dir().join(format!("gd-archive-{}.zip", std::process::id()));
+        std::fs::write(&path, &z).unwrap();
+        let from_file = super::super::import_from_folder(&d.recipe, &path, false);
+        let mut wrong = d.recipe.clone();
+        wrong.tables[0].file = "Grav.csv".into();
+        let e = super::super::import_from_folder(&wrong, &path, false).unwrap_err().to_string();
+        std::fs::remove_file(&path).unwrap();
+        assert_eq!(csv(&from_file.unwrap().0), csv(&log));
+        assert!(
+            e.contains("gd-archive-")
+                && e.contains(
+                    "Grav.csv: the recipe names this file, but it was not given (given: Gravity.csv, Gyroscope.csv, Location.csv)"
+                ),
+            "{e}"
+        );
     }
 
     proptest::proptest! {

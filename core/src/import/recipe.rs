@@ -436,7 +436,13 @@ impl Files for BTreeMap<String, Vec<u8>> {
     fn open(&mut self, name: &str) -> Result<Box<dyn Read + '_>> {
         match self.get(name) {
             Some(b) => Ok(Box::new(b.as_slice())),
-            None => Err(Error::File(format!("{name}: the recipe names this file, but it was not given"))),
+            None => {
+                let mut given: Vec<&str> = self.keys().map(String::as_str).take(8).collect();
+                if self.len() > given.len() {
+                    given.push("...");
+                }
+                Err(Error::File(format!("{name}: the recipe names this file, but it was not given (given: {})", given.join(", "))))
+            }
         }
     }
 }

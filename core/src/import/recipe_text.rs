@@ -76,8 +76,17 @@ mod files {
         }
     }
 
-    /// Imports by `recipe`, its files read from `root` and confined to it (`confined`).
+    /// Imports by `recipe`, its files read from `root` and confined to it (`confined`); a
+    /// `root` that is a ZIP archive (a logger's zipped export) gives the tables inside it,
+    /// by file name, as `import FILE.zip` reads them (`import_unzipped`).
     pub fn import_from_folder(recipe: &Recipe, root: &Path, allow_outside: bool) -> Result<(DriveLog, ImportSummary)> {
+        if root.is_file() && starts_as_zip(root) {
+            let bytes = std::fs::read(root).map_err(|e| Error::File(format!("{}: cannot open: {e}", root.display())))?;
+            let name = root.file_name().map_or_else(|| root.display().to_string(), |n| n.to_string_lossy().into_owned());
+            let archive = std::collections::BTreeMap::from([(name, bytes)]);
+            return super::super::import_unzipped(recipe, archive)
+                .map_err(|e| Error::In { name: root.display().to_string(), source: Box::new(e) });
+        }
         let mut files = |name: &str| -> Result<Box<dyn std::io::Read>> {
             let path = confined(root, name, allow_outside)?;
             std::fs::File::open(&path)
