@@ -84,8 +84,22 @@ pub fn unzip_all(files: BTreeMap<String, Vec<u8>>) -> Result<BTreeMap<String, Ve
 
 /// The files of one archive, within `budget` bytes unpacked (spent as they unpack).
 fn unzip(name: &str, bytes: Vec<u8>, budget: &mut u64) -> Result<Vec<(String, Vec<u8>)>> {
+    tables(name, std::io::Cursor::new(bytes), budget, u64::MAX)
+}
+
+/// The head (`SNIFF_BYTES`) of each table of the archive read from `reader`, for a preset
+/// to be detected from without unpacking the rest (`report --dir --import` on a fleet of
+/// zipped exports reads each archive whole only to import it).
+pub fn unzip_heads<R: Read + std::io::Seek>(name: &str, reader: R) -> Result<Vec<(String, Vec<u8>)>> {
+    let mut budget = MAX_UNZIPPED_BYTES;
+    tables(name, reader, &mut budget, super::SNIFF_BYTES as u64)
+}
+
+/// The text tables of one archive, each by its file name and cut at `per_file` bytes,
+/// within `budget` bytes unpacked (spent as they unpack).
+fn tables<R: Read + std::io::Seek>(name: &str, reader: R, budget: &mut u64, per_file: u64) -> Result<Vec<(String, Vec<u8>)>> {
     let at = |m: String| Error::File(format!("{name}: {m}"));
-    let mut zip = zip::ZipArchive::new(std::io::Cursor::new(bytes)).map_err(|e| at(format!("not a ZIP archive that can be read ({e})")))?;
+    let mut zip = zip::ZipArchive::new(reader).map_err(|e| at(format!("not a ZIP archive that can be read ({e})")))?;
     let mut out: Vec<(String, Vec<u8>)> = Vec::new();
     for i in 0..zip.len() {
         let mut f = zip.by_index(i).map_err(|e| at(format!("file {} of the archive: {e}", i + 1)))?;
@@ -96,10 +110,11 @@ fn unzip(name: &str, bytes: Vec<u8>, budget: &mut u64) -> Result<Vec<(String, Ve
             continue;
         }
         let mut b = Vec::new();
-        f.by_ref().take(*budget + 1).read_to_end(&mut b).map_err(|e| at(format!("{path}: {e}")))?;
+        f.by_ref().take((*budget).min(per_file).saturating_add(1)).read_to_end(&mut b).map_err(|e| at(format!("{path}: {e}")))?;
         if b.len() as u64 > *budget {
             return Err(at(format!("unpacks to more than {} MiB; unzip it and give the files inside", MAX_UNZIPPED_BYTES >> 20)));
         }
+        b.truncate(per_file.min(usize::MAX as u64) as usize);
         *budget -= b.len() as u64;
         if out.iter().any(|(n, _)| *n == file) {
             return Err(at(format!("two files are named {file}; import one recording at a time")));
@@ -227,6 +242,24 @@ pub(crate) mod tests {
             z.truncate(z.len() - cut % z.len());
             let _ = unzip_all(BTreeMap::from([("d.zip".to_string(), z)]));
         }
+    }
+
+    /// The heads of an archive's tables: each cut at SNIFF_BYTES, the same bytes the full
+    /// unpacking starts with, by the same names and rules.
+    #[test]
+    fn the_heads_are_the_tables_cut_at_the_sniff() {
+        let long = vec![b'7'; 3 * crate::import::SNIFF_BYTES];
+        let z = zipped(&[("Drive/Gyroscope.csv", &long), ("Drive/Location.csv", b"time,bearing\n1,2\n"), ("Drive/a.jpg", b"x")]);
+        let heads = unzip_heads("d.zip", std::io::Cursor::new(z.clone())).unwrap();
+        let full = unzip_all(BTreeMap::from([("d.zip".to_string(), z)])).unwrap();
+        assert_eq!(heads.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(), ["Gyroscope.csv", "Location.csv"]);
+        for (n, b) in &heads {
+            assert_eq!(b.len(), full[n].len().min(crate::import::SNIFF_BYTES), "{n}");
+            assert!(full[n].starts_with(b), "{n}");
+        }
+        let two = zipped(&[("a/Gyroscope.csv", b"1"), ("b/Gyroscope.csv", b"2")]);
+        let e = unzip_heads("two.zip", std::io::Cursor::new(two)).unwrap_err().to_string();
+        assert!(e.contains("two.zip: two files are named Gyroscope.csv"), "{e}");
     }
 
     /// An archive that unpacks beyond the budget stops there, with an error (a zip bomb).

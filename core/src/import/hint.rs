@@ -150,7 +150,8 @@ pub fn import_hint(path: &Path) -> Option<ImportHint> {
 /// give (`import_paths` unzips it).
 fn zip_hint(path: &Path) -> Option<ImportHint> {
     let name = path.file_name()?.to_string_lossy().into_owned();
-    let files = super::unzip_all([(name, std::fs::read(path).ok()?)].into()).ok()?;
+    let file = std::io::BufReader::new(std::fs::File::open(path).ok()?);
+    let files = super::unzip_heads(&name, file).ok()?;
     let sniffed: Vec<Sniffed> = files.iter().filter_map(|(n, b)| sniff(n, b).ok()).collect();
     let d = detect(&sniffed).ok()?;
     Some(ImportHint { preset: d.preset, title: d.title, folder: folder_of(path).to_path_buf(), files: vec![path.to_path_buf()] })

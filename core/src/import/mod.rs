@@ -26,7 +26,7 @@ mod time;
 mod units;
 
 #[cfg(feature = "zip")]
-pub use archive::{detect_and_import_unzipped, detect_unzipped, import_unzipped, is_zip, unzip_all, MAX_UNZIPPED_BYTES};
+pub use archive::{detect_and_import_unzipped, detect_unzipped, import_unzipped, is_zip, unzip_all, unzip_heads, MAX_UNZIPPED_BYTES};
 pub use geo::*;
 #[cfg(feature = "fs")]
 pub use hint::{folder_hint, folder_hints, import_hint, recordings, ImportHint, Recording};
