@@ -4,7 +4,12 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
 #[derive(Parser)]
-#[command(name = "gyrodrift", version, about = "Heading from a cheap yaw-rate gyro: HDR, Gyrodometry, calibration")]
+#[command(
+    name = "gyrodrift",
+    version,
+    about = "Heading from a cheap yaw-rate gyro: HDR, Gyrodometry, calibration",
+    after_help = "A LOG given as `-` is read from standard input: gyrodrift import drive.zip | gyrodrift pipeline -"
+)]
 pub(crate) struct Cli {
     #[command(subcommand)]
     pub(crate) cmd: Cmd,

@@ -1,6 +1,6 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
-use crate::{expand_recipes, fail, import_recipe, output, print_json, read_log, settings, write_stdout, Failure};
+use crate::{expand_recipes, fail, import_recipe, is_stdin, output, print_json, read_log, settings, shown, write_stdout, Failure};
 use gyrodrift::log::accept::{accept, InputPolicy};
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
 use std::path::{Path, PathBuf};
@@ -34,10 +34,13 @@ pub type Input = InputPolicy;
 /// the file stem; the split is said on stderr.
 fn read_checked(path: &Path, input: Input, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
     let drive = read_log(path)?;
-    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let stem = match path.file_stem() {
+        _ if is_stdin(path) => "stdin".to_string(),
+        s => s.map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+    };
     let a = accept(drive, &stem, input, bias_s).map_err(|e| fail(path, e))?;
     for line in a.warnings.iter().chain(&a.split) {
-        eprintln!("{}: {line}", path.display());
+        eprintln!("{}: {line}", shown(path));
     }
     Ok(a.parts)
 }
@@ -431,7 +434,7 @@ pub fn allan(log: &Path, json: bool) -> Result<(), Failure> {
 pub fn check(log: &Path, json: bool) -> Result<(), Failure> {
     let drive = read_log(log)?;
     let r = gyrodrift::check::check(&drive);
-    emit(json, &r, || format!("{}: {}", log.display(), r.to_text()))?;
+    emit(json, &r, || format!("{}: {}", shown(log), r.to_text()))?;
     if r.findings.iter().any(|f| f.severity == gyrodrift::check::Severity::Error) {
         std::process::exit(1);
     }

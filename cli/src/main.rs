@@ -23,10 +23,33 @@ use std::process::ExitCode;
 struct Failure(String);
 
 fn fail(path: &Path, e: Error) -> Failure {
-    Failure(format!("{}: {}", path.display(), e))
+    Failure(format!("{}: {}", shown(path), e))
+}
+
+/// `-` given for a log: the log on standard input (`gyrodrift import drive.zip | gyrodrift
+/// pipeline -`), as the commands write theirs to standard output.
+fn is_stdin(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+/// A log's path as messages name it ("standard input" for `-`).
+fn shown(path: &Path) -> String {
+    if is_stdin(path) {
+        "standard input".into()
+    } else {
+        path.display().to_string()
+    }
 }
 
 fn read_log(path: &Path) -> Result<DriveLog, Failure> {
+    if is_stdin(path) {
+        // Standard input can be read once: `-` given twice would be an empty second log.
+        static READ: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+        if READ.swap(true, std::sync::atomic::Ordering::SeqCst) {
+            return Err(Failure("-: standard input is given twice; it can be read once".into()));
+        }
+        return gyrodrift::parse_log(std::io::stdin().lock()).map_err(|e| fail(path, e));
+    }
     if path.is_dir() {
         let what = match gyrodrift::import::folder_hint(path) {
             Some(h) => hint_text(&h, "a recording"),

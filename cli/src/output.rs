@@ -10,7 +10,7 @@ use std::path::Path;
 pub fn hdr_table(path: &Path, o: &HdrOptions, r: &HdrResult) -> String {
     let p = &o.params;
     let mut s = String::new();
-    let _ = writeln!(s, "{}: HDR, {:.1} min, {}", path.display(), r.duration_min, if r.resampled { "1 Hz blocks" } else { "raw rows" });
+    let _ = writeln!(s, "{}: HDR, {:.1} min, {}", crate::shown(path), r.duration_min, if r.resampled { "1 Hz blocks" } else { "raw rows" });
     let _ =
         writeln!(s, "  parameters   i_c {} deg/s, tau {} s, theta_w {} deg/s, c1 {}, c2 {}", p.i_c_dps, p.tau_s, p.theta_w_dps, p.c1, p.c2);
     let _ = writeln!(s, "               {:>12} {:>18}", "E_psi (deg)", "NE_psi (deg/min)");
@@ -37,7 +37,7 @@ fn trace_hint(traced: bool) -> &'static str {
 /// HDR on a drive without a reference heading: why nothing is scored, and the estimator's figures.
 pub fn hdr_unscored(path: &Path, why: &str, s: &gyrodrift::hdr::HdrSummary, traced: bool) -> String {
     let mut out = String::new();
-    let _ = writeln!(out, "{}: HDR, {:.1} min, not scored: {why}", path.display(), s.duration_min);
+    let _ = writeln!(out, "{}: HDR, {:.1} min, not scored: {why}", crate::shown(path), s.duration_min);
     let _ = writeln!(out, "  heading turned (from 0 at the start; {})", trace_hint(traced));
     let _ = writeln!(out, "    without HDR  {:>10.2} deg", s.heading_change_raw_deg);
     let _ = writeln!(out, "    with HDR     {:>10.2} deg", s.heading_change_hdr_deg);
@@ -54,7 +54,7 @@ pub fn gyrodometry_table(path: &Path, r: &GyrodometryResult) -> String {
     let _ = writeln!(
         s,
         "{}: Gyrodometry, {:.2} min, wheelbase {} m, threshold {} deg/s",
-        path.display(),
+        crate::shown(path),
         r.duration_min,
         r.wheelbase_m,
         r.thres_rate_dps
@@ -78,7 +78,7 @@ pub fn gyrodometry_table(path: &Path, r: &GyrodometryResult) -> String {
 pub fn calibration_table(path: &Path, run: &CalibrationRun) -> String {
     let r = &run.result;
     let mut s = String::new();
-    let _ = writeln!(s, "{}: calibration, p = {}, q = {}, {} data sets", path.display(), r.p, r.q, r.n_sets);
+    let _ = writeln!(s, "{}: calibration, p = {}, q = {}, {} data sets", crate::shown(path), r.p, r.q, r.n_sets);
     let _ = writeln!(s, "  static bias w_s {:.5} deg/s; after compensation w_s* {:.5} deg/s", r.w_s_dps, r.w_s_star_dps);
     let _ = writeln!(s, "  set-level fit residual RMS {:.5} deg/s", r.fit_residual_rms_dps);
     let _ = writeln!(s, "                     {:>16} {:>18} {:>18}", "residual RMS", "360-deg err max", "360-deg err RMS");
@@ -103,7 +103,7 @@ pub fn calibration_table(path: &Path, run: &CalibrationRun) -> String {
 
 pub fn allan_table(path: &Path, r: &AllanResult, c: &AllanConfidence) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "{}: Allan deviation, T0 = {} s", path.display(), trim(r.T0_s));
+    let _ = writeln!(s, "{}: Allan deviation, T0 = {} s", crate::shown(path), trim(r.T0_s));
     let _ = writeln!(s, "  angle random walk   {:.5} deg/sqrt(s) = {:.4} deg/sqrt(h)", r.arw_deg_per_sqrt_s, r.arw_deg_per_sqrt_h);
     let _ = writeln!(
         s,
@@ -217,7 +217,8 @@ pub fn import_line(recipe: &Path, s: &gyrodrift::import::ImportSummary) -> Strin
 
 pub fn pipeline_table(path: &Path, r: &gyrodrift::pipeline::PipelineResult) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "{}: {:.1} min, stops from {} ({:.0} s counted)", path.display(), r.duration_min, r.still_source.name(), r.stop_s);
+    let _ =
+        writeln!(s, "{}: {:.1} min, stops from {} ({:.0} s counted)", crate::shown(path), r.duration_min, r.still_source.name(), r.stop_s);
     let _ = writeln!(s, "                    {:>12} {:>18} {:>12}", "E_psi (deg)", "NE_psi (deg/min)", "vs raw");
     for (name, e, ne) in [
         ("raw", r.E_psi_raw_deg, r.NE_psi_raw_deg_per_min),
@@ -237,8 +238,14 @@ pub fn pipeline_table(path: &Path, r: &gyrodrift::pipeline::PipelineResult) -> S
 /// estimator's figures at the end.
 pub fn pipeline_unscored(path: &Path, why: &str, s: &gyrodrift::pipeline::PipelineSummary, traced: bool) -> String {
     let mut out = String::new();
-    let _ =
-        writeln!(out, "{}: {:.1} min, stops from {} ({:.0} s counted)", path.display(), s.duration_min, s.still_source.name(), s.stop_s);
+    let _ = writeln!(
+        out,
+        "{}: {:.1} min, stops from {} ({:.0} s counted)",
+        crate::shown(path),
+        s.duration_min,
+        s.still_source.name(),
+        s.stop_s
+    );
     let _ = writeln!(out, "  not scored: {why}");
     let _ = writeln!(out, "  heading turned (from 0 at the start; {})", trace_hint(traced));
     let _ = writeln!(out, "    pipeline            {:>10.2} +- {:.2} deg", s.heading_change_deg, s.heading_change_sigma_deg);

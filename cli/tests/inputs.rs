@@ -189,3 +189,48 @@ fn a_log_check_finds_an_error_in_is_refused_unless_ignored() {
     assert!(forced.status.success());
     assert!(String::from_utf8_lossy(&forced.stderr).contains("check: error [gyro_sign]"));
 }
+
+/// `-` reads the log from standard input, so commands chain (`import | inject | pipeline -`):
+/// the same numbers as the file, named "stdin" (or by its `# name:`), errors said as
+/// "standard input: ..."; `-` twice is refused, as standard input can be read once.
+#[test]
+fn a_dash_reads_the_log_from_standard_input() {
+    use std::io::Write;
+    let with_stdin = |args: &[&str], input: &[u8]| {
+        let mut c = bin()
+            .args(args)
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        c.stdin.take().unwrap().write_all(input).unwrap();
+        c.wait_with_output().unwrap()
+    };
+    let text = drive_csv();
+    let p = write("stdin-drive.csv", &text);
+    let from_file = run(&["pipeline", "--json", p.to_str().unwrap()]);
+    let from_stdin = with_stdin(&["pipeline", "--json", "-"], text.as_bytes());
+    assert!(from_stdin.status.success(), "{}", String::from_utf8_lossy(&from_stdin.stderr));
+    assert_eq!(from_stdin.stdout, from_file.stdout);
+    let table = with_stdin(&["hdr", "-"], text.as_bytes());
+    assert!(String::from_utf8_lossy(&table.stdout).starts_with("standard input: HDR"));
+    // Without a `# name:`, in a report beside a file: a row named "stdin".
+    let unnamed: String = text.lines().filter(|l| !l.starts_with("# name:")).map(|l| format!("{l}\n")).collect();
+    let p = write("stdin-drive.csv", &unnamed);
+    let rows = with_stdin(&["report", "--json", "-", p.to_str().unwrap()], unnamed.as_bytes());
+    let v: serde_json::Value = serde_json::from_slice(&rows.stdout).unwrap();
+    let names: Vec<&str> = v["rows"].as_array().unwrap().iter().map(|d| d["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["stdin", "stdin-drive"], "{v}");
+    // Bad or absent input: exit 2, one line naming standard input.
+    for (input, want) in [(&b""[..], "standard input: empty file"), (b"time_s,gyro_dps\n0,x\n", "standard input: line 2, column gyro_dps")]
+    {
+        let o = with_stdin(&["hdr", "-"], input);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2));
+        assert!(err.starts_with(want) && err.lines().count() == 1, "{err}");
+    }
+    let o = with_stdin(&["report", "-", "-"], text.as_bytes());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("standard input is given twice"));
+}
