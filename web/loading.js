@@ -190,12 +190,30 @@ export async function saveRecipe(name, recipe) {
   else download(`${name}.recipe.toml`, res.data, "application/toml");
 }
 
-export async function loadFiles(files) {
+/** A gzip-compressed file (`drive.csv.gz`, as fleets store logs) as the file inside it,
+ * decompressed by the browser's own DecompressionStream; any other file as it is. */
+async function gunzipped(f) {
+  const head = new Uint8Array(await f.slice(0, 2).arrayBuffer());
+  if (head[0] !== 0x1f || head[1] !== 0x8b) return f;
+  const inner = await new Response(f.stream().pipeThrough(new DecompressionStream("gzip"))).blob();
+  return new File([inner], f.name.replace(/\.gz$/i, ""), { type: "text/csv" });
+}
+
+export async function loadFiles(given) {
   // Drive logs v1 open as they are; other files are raw exports, imported together by the
   // preset they fit (a recipe .toml or .json dropped with them is used instead of detection).
   const logs = [];
   const raw = [];
   let recipe = null;
+  const files = [];
+  for (const f of given) {
+    try {
+      files.push(await gunzipped(f));
+    } catch {
+      // The browser says only "Failed to fetch" for a stream that ends inside a block.
+      state.entries.push({ name: f.name, file: f.name, log: null, error: `${f.name}: a damaged or cut gzip file: it cannot be decompressed`, kind: null, headline: "" });
+    }
+  }
   for (const f of files) {
     if (/\.(json|toml)$/i.test(f.name)) {
       try {

@@ -32,7 +32,7 @@ pub(crate) enum GapsArg {
 /// A folder of logs scored as a fleet batch (`report --dir`, `compare --dir`).
 #[derive(clap::Args)]
 pub(crate) struct BatchArgs {
-    /// Every *.csv log under this folder (recursive), in parallel: each drive a row with
+    /// Every *.csv (and *.csv.gz) log under this folder (recursive), in parallel: each drive a row with
     /// every method's E_psi and NE_psi (or its error; the rest go on), the fleet's Table II
     /// printed. --set takes the pipeline's settings here.
     #[arg(long, value_name = "DIR")]

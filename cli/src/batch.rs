@@ -13,8 +13,8 @@ use std::path::{Path, PathBuf};
 /// At most this many folders of failed files are looked at for an import hint.
 const MAX_HINT_FOLDERS: usize = 20;
 
-/// Every `*.csv` file under `dir` (and `*.zip`, a logger's zipped export, with `zips`),
-/// sorted, links followed; unreadable entries are errors.
+/// Every `*.csv` and `*.csv.gz` file under `dir` (and `*.zip`, a logger's zipped export,
+/// with `zips`), sorted, links followed; unreadable entries are errors.
 pub fn collect_logs(dir: &Path, zips: bool) -> Result<Vec<PathBuf>, Failure> {
     if !dir.is_dir() {
         return Err(Failure(format!("{}: not a folder", dir.display())));
@@ -22,7 +22,8 @@ pub fn collect_logs(dir: &Path, zips: bool) -> Result<Vec<PathBuf>, Failure> {
     let mut files = Vec::new();
     for entry in walkdir::WalkDir::new(dir).follow_links(true) {
         let e = entry.map_err(|e| Failure(format!("{}: {e}", dir.display())))?;
-        let is_csv = e.path().extension().is_some_and(|x| x.eq_ignore_ascii_case("csv") || zips && x.eq_ignore_ascii_case("zip"));
+        let name = e.file_name().to_string_lossy().to_ascii_lowercase();
+        let is_csv = name.ends_with(".csv") || name.ends_with(".csv.gz") || zips && name.ends_with(".zip");
         if e.file_type().is_file() && is_csv {
             files.push(e.into_path());
         }
@@ -36,7 +37,7 @@ pub fn collect_logs(dir: &Path, zips: bool) -> Result<Vec<PathBuf>, Failure> {
 
 /// One file's rows: opened here, read and scored by core.
 fn score_file(path: &Path, opts: &FleetOptions) -> Vec<DriveRow> {
-    fleet::score_opened(path, std::fs::File::open(path).map(std::io::BufReader::new), opts)
+    fleet::score_opened(path, gyrodrift::log::file::open_log(path), opts)
 }
 
 /// How the folder is scored: threads, where the rows go, whether raw exports are imported.

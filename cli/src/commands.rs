@@ -34,10 +34,7 @@ pub type Input = InputPolicy;
 /// the file stem; the split is said on stderr.
 fn read_checked(path: &Path, input: Input, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
     let drive = read_log(path)?;
-    let stem = match path.file_stem() {
-        _ if is_stdin(path) => "stdin".to_string(),
-        s => s.map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
-    };
+    let stem = if is_stdin(path) { "stdin".to_string() } else { gyrodrift::log::file::log_stem(path) };
     let a = accept(drive, &stem, input, bias_s).map_err(|e| fail(path, e))?;
     for line in a.warnings.iter().chain(&a.split) {
         eprintln!("{}: {line}", shown(path));

@@ -48,7 +48,8 @@ fn read_log(path: &Path) -> Result<DriveLog, Failure> {
         if READ.swap(true, std::sync::atomic::Ordering::SeqCst) {
             return Err(Failure("-: standard input is given twice; it can be read once".into()));
         }
-        return gyrodrift::parse_log(std::io::stdin().lock()).map_err(|e| fail(path, e));
+        let stdin = gyrodrift::log::file::decompressed(std::io::BufReader::new(std::io::stdin()));
+        return stdin.map_err(Error::from).and_then(gyrodrift::parse_log).map_err(|e| fail(path, e));
     }
     if path.is_dir() {
         let what = match gyrodrift::import::folder_hint(path) {
@@ -57,7 +58,8 @@ fn read_log(path: &Path) -> Result<DriveLog, Failure> {
         };
         return Err(Failure(format!("{}: a folder, not a log file; {what}", path.display())));
     }
-    let file = std::fs::File::open(path).map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
+    // A gzip-compressed log (drive.csv.gz) reads as the plain file.
+    let file = gyrodrift::log::file::open_log(path).map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
     gyrodrift::parse_log(file).map_err(|e| {
         let mut f = fail(path, e);
         if let Some(hint) = import_hint(path) {

@@ -204,3 +204,38 @@ fn with_import_a_folder_of_raw_exports_is_scored_a_drive_per_recording() {
         assert_eq!(got[k], want[0][k], "{k}");
     }
 }
+
+/// Gzip-compressed logs (`drive.csv.gz`, as fleets store them) are logs of the folder too:
+/// scored as the plain file, named by the file without `.csv.gz`; a damaged one is an error
+/// row saying so; and one given to a method reads alike.
+#[test]
+fn gzipped_logs_are_scored_as_the_plain_files() {
+    use std::io::Write;
+    let dir = fleet_dir("fleet-gz");
+    let gz = |from: PathBuf, to: PathBuf, keep: usize| {
+        let mut e = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+        let text = std::fs::read_to_string(&from).unwrap();
+        // Without its `# name:`, so the row is named by the file.
+        let unnamed: String = text.lines().filter(|l| !l.starts_with("# name:")).map(|l| format!("{l}\n")).collect();
+        e.write_all(unnamed.as_bytes()).unwrap();
+        let bytes = e.finish().unwrap();
+        std::fs::write(to, &bytes[..keep.min(bytes.len())]).unwrap();
+    };
+    let plain = dir.join("city-1.csv");
+    gz(plain.clone(), dir.join("day2/city-1z.csv.gz"), usize::MAX);
+    gz(plain.clone(), dir.join("cut.csv.gz"), 300);
+    let json = dir.join("rows.json");
+    let o = report_dir(&dir, &["--out", json.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rows: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let row = |end: &str| rows.iter().find(|r| r["file"].as_str().unwrap().ends_with(end)).unwrap().clone();
+    let (z, p, cut) = (row("city-1z.csv.gz"), row("/city-1.csv"), row("cut.csv.gz"));
+    assert_eq!(z["name"], "city-1z");
+    assert!(z["error"].is_null(), "{z}");
+    for key in ["rows", "e_psi_raw_deg", "e_psi_hdr_deg", "e_psi_pipeline_deg"] {
+        assert_eq!(z[key], p[key], "{key}");
+    }
+    assert!(cut["error"].as_str().unwrap().contains("a damaged or cut gzip file"), "{cut}");
+    let h = |f: &PathBuf| Command::new(env!("CARGO_BIN_EXE_gyrodrift")).args(["hdr", "--json"]).arg(f).output().unwrap().stdout;
+    assert_eq!(h(&dir.join("day2/city-1z.csv.gz")), h(&plain));
+}

@@ -230,7 +230,7 @@ pub fn score_log(file: &str, stem: &str, log: DriveLog, opts: &FleetOptions) -> 
 /// file that could not be opened is one error row.
 pub fn score_opened<R: Read>(path: &std::path::Path, opened: std::io::Result<R>, opts: &FleetOptions) -> Vec<DriveRow> {
     let label = path.display().to_string();
-    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let stem = crate::log::file::log_stem(path);
     match opened {
         Ok(r) => score_reader(&label, &stem, r, opts),
         Err(e) => vec![DriveRow::failed(&label, format!("cannot open: {e}"))],

@@ -75,7 +75,8 @@ def find_inputs(spec: str, zips: bool = False) -> Dict[str, List[Any]]:
         pq_files = sorted(glob.glob(os.path.join(spec, "**", "*.parquet"), recursive=True))
         if pq_files:
             return {"parquet": [(p, os.path.splitext(os.path.relpath(p, spec))[0]) for p in pq_files]}
-        csv = sorted(glob.glob(os.path.join(spec, "**", "*.csv"), recursive=True))
+        csv = sorted(glob.glob(os.path.join(spec, "**", "*.csv"), recursive=True)
+                     + glob.glob(os.path.join(spec, "**", "*.csv.gz"), recursive=True))
         if zips:
             csv = sorted(csv + glob.glob(os.path.join(spec, "**", "*.zip"), recursive=True))
         if not csv:

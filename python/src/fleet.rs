@@ -19,7 +19,7 @@ fn rows_list<'py>(py: Python<'py>, rows: &[DriveRow]) -> PyResult<Bound<'py, PyL
 }
 
 fn score_path(path: &Path, opts: &FleetOptions) -> Vec<DriveRow> {
-    fleet::score_opened(path, std::fs::File::open(path).map(std::io::BufReader::new), opts)
+    fleet::score_opened(path, gyrodrift::log::file::open_log(path), opts)
 }
 
 /// Every part of one log file as row dicts; a file that cannot be read or scored is one row

@@ -61,8 +61,9 @@ pub(crate) fn read_path(path: &str) -> PyResult<DriveLog> {
         };
         return Err(value_err(format!("{path}: a folder, not a log file; {what}")));
     }
-    let f = std::fs::File::open(path).map_err(|e| PyOSError::new_err(format!("{path}: cannot open: {e}")))?;
-    gyrodrift::parse_log(std::io::BufReader::new(f)).map_err(|e| {
+    // A gzip-compressed log (drive.csv.gz) reads as the plain file.
+    let f = gyrodrift::log::file::open_log(dir).map_err(|e| PyOSError::new_err(format!("{path}: cannot open: {e}")))?;
+    gyrodrift::parse_log(f).map_err(|e| {
         let hint =
             gyrodrift::import::import_hint(std::path::Path::new(path)).map_or(String::new(), |h| format!("; {}", hint_text(&h, "a file")));
         value_err(format!("{path}: {e}{hint}"))

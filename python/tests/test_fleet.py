@@ -179,3 +179,21 @@ def test_the_dask_job_imports_raw_exports_with_import(samples, tmp_path, capsys)
     # A folder's files stay in one task, however small the chunks.
     groups = fleet.chunks(sorted(str(p) for p in (tmp_path / "wild").rglob("*.csv")), 1, keep_folders=True)
     assert len(groups) == 5 and all(len({os.path.dirname(p) for p in g}) == 1 for g in groups)
+
+
+def test_gzipped_logs_read_and_score_as_the_plain_files(samples, tmp_path):
+    """A gzip-compressed log (drive.csv.gz, as fleets store them): read_log, score_files and
+    the fleet job's folder listing take it as the plain file, named without .csv.gz."""
+    import gzip
+
+    plain = samples / "train" / "city-1.csv"
+    text = "".join(l for l in plain.read_text().splitlines(keepends=True) if not l.startswith("# name:"))
+    (tmp_path / "day1").mkdir()
+    (tmp_path / "day1" / "city-1.csv.gz").write_bytes(gzip.compress(text.encode()))
+    (tmp_path / "city-1.csv").write_text(text)
+    assert fleet.find_inputs(str(tmp_path)) == {"csv": [str(tmp_path / "city-1.csv"), str(tmp_path / "day1" / "city-1.csv.gz")]}
+    gz = g.read_log(str(tmp_path / "day1" / "city-1.csv.gz"))
+    assert np.array_equal(gz.column("gyro_dps"), g.read_log(str(plain)).column("gyro_dps"))
+    a, b = g.score_files([str(tmp_path / "city-1.csv"), str(tmp_path / "day1" / "city-1.csv.gz")], 1)
+    assert b["name"] == "city-1" and b["error"] is None
+    assert a["e_psi_pipeline_deg"] == b["e_psi_pipeline_deg"]

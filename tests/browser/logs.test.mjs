@@ -5,6 +5,7 @@ import { test } from "node:test";
 import assert from "node:assert/strict";
 import { mkdtempSync, readFileSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
+import { gzipSync } from "node:zlib";
 import { join } from "node:path";
 import { SAMPLES, cli } from "../node/helpers.mjs";
 import { openDashboard, ARTIFACTS, page } from "./harness.mjs";
@@ -29,6 +30,23 @@ test("a loaded log shows the CLI's numbers; a bad one shows line and column and 
   assert.match(await page.locator("#logs li.selected").innerText(), /Rural 3/);
   assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
   await page.screenshot({ path: join(ARTIFACTS, "bad-file.png"), fullPage: true });
+});
+
+test("a gzip-compressed log (drive.csv.gz) opens as the plain file, with the CLI's numbers; a damaged one is a clear error", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-gz-"));
+  const plain = join(SAMPLES, "test", "city-3.csv");
+  const gz = join(dir, "city-3.csv.gz");
+  writeFileSync(gz, gzipSync(readFileSync(plain)));
+  await page.locator("#file-input").setInputFiles([gz]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City 3"));
+  const native = JSON.parse(cli("hdr", gz, "--json"));
+  assert.deepEqual(native, JSON.parse(cli("hdr", plain, "--json")));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  const cut = join(dir, "cut.csv.gz");
+  writeFileSync(cut, gzipSync(readFileSync(plain)).subarray(0, 200));
+  await page.locator("#file-input").setInputFiles([cut]);
+  await page.waitForFunction(() => [...document.querySelectorAll("#logs li.bad")].some((li) => li.innerText.includes("cut.csv.gz: a damaged or cut gzip file")));
+  assert.match(await page.locator("#logs li.selected").innerText(), /City 3/);
 });
 
 test("a log with a clockwise gyro gets a check badge naming the fix; the shipped ones none", async () => {

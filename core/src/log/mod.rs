@@ -343,6 +343,7 @@ pub enum LogKind {
 pub mod accept;
 mod builder;
 pub use builder::LogBuilder;
+pub mod file;
 pub mod gaps;
 mod parse;
 pub use parse::{parse_log, parse_log_progress, parse_log_str, parse_log_with};
