@@ -237,6 +237,18 @@ pub fn score_opened<R: Read>(path: &std::path::Path, opened: std::io::Result<R>,
     }
 }
 
+/// A log file's rows from its bytes, as fetched from an object store (gzip-compressed too):
+/// labelled `file` (its URL), a log without `# name:` named by the file's stem, as
+/// `score_opened` names it.
+#[cfg(feature = "zip")]
+pub fn score_bytes(file: &str, bytes: &[u8], opts: &FleetOptions) -> Vec<DriveRow> {
+    let stem = crate::log::file::log_stem(std::path::Path::new(file));
+    match crate::log::file::decompressed(bytes) {
+        Ok(r) => score_reader(file, &stem, r, opts),
+        Err(e) => vec![DriveRow::failed(file, format!("cannot read: {e}"))],
+    }
+}
+
 /// Parses a v1 log from `reader` and scores it; a parse error is one error row naming the
 /// line and column.
 pub fn score_reader<R: Read>(file: &str, stem: &str, reader: R, opts: &FleetOptions) -> Vec<DriveRow> {

@@ -3,9 +3,11 @@ every method's E_psi and NE_psi per drive written to Parquet, the fleet's Table 
 
     python -m gyrodrift.fleet INPUT --out results.parquet [--scheduler tcp://host:8786]
 
-INPUT is a folder of CSV v1 logs (recursive), a glob of them, or a Parquet dataset with one
-drive per file or per hive partition (``drive=KEY/part-0.parquet``) whose columns are named
-as in CSV v1. Without ``--scheduler`` a LocalCluster starts on this machine; with one, the
+INPUT is a folder of CSV v1 logs (recursive; ``*.csv`` and gzipped ``*.csv.gz``), a glob of
+them, or a Parquet dataset with one drive per file or per hive partition
+(``drive=KEY/part-0.parquet``) whose columns are named as in CSV v1. Each may be a URL of an
+fsspec filesystem instead of a local path (``s3://bucket/drives/``, ``gs://...``; with its
+package installed on the workers, e.g. s3fs): each task fetches its own files. Without ``--scheduler`` a LocalCluster starts on this machine; with one, the
 same code runs on a real cluster (the workers need this package installed). A drive that
 fails is a row with its ``error``; the job goes on. With ``--import`` a logger's raw exports
 among the CSV files are imported by their detected preset and scored, a drive per recording
@@ -25,7 +27,7 @@ import os
 import sys
 from typing import Any, Dict, List, Mapping, Optional, Sequence
 
-from ._core import error_row, folder_hints, score_files, score_log, summary_markdown
+from ._core import error_row, folder_hints, score_bytes, score_files, score_log, summary_markdown
 from .frames import from_pandas, rows_to_pandas
 
 #: Small CSV drives are grouped so that a task reads about this many bytes (fewer when the
@@ -55,19 +57,79 @@ def _score_paths(paths: Sequence[str], options: Optional[Mapping[str, Any]], imp
     return score_files(list(paths), 1, options, import_raw)
 
 
+def is_url(spec: str) -> bool:
+    """Whether ``spec`` names an fsspec filesystem's files (``s3://...``) rather than local ones."""
+    return "://" in spec and not spec.startswith("file://")
+
+
+def score_urls(urls: Sequence[str], options: Optional[Mapping[str, Any]] = None) -> List[dict]:
+    """Log files at fsspec URLs (``s3://bucket/drive.csv.gz``), each fetched here and scored
+    by core from its bytes (``score_bytes``: gzip too, named by the file's stem); a file that
+    cannot be fetched is one row with its error."""
+    import fsspec
+
+    rows: List[dict] = []
+    for url in urls:
+        try:
+            with fsspec.open(url, "rb") as f:
+                data = f.read()
+        except Exception as e:  # a missing or unreadable object is its row's error
+            rows.append(error_row(url, f"cannot open: {e}"))
+            continue
+        rows.extend(score_bytes(url, data, options))
+    return rows
+
+
 def _score_parquet(path: str, key: str, options: Optional[Mapping[str, Any]]) -> List[dict]:
     import pyarrow.parquet as pq
 
     try:
-        df = pq.read_table(path).to_pandas()
+        if is_url(path):
+            import fsspec
+
+            fs, inner = fsspec.core.url_to_fs(path)
+            df = pq.read_table(inner, filesystem=fs).to_pandas()
+        else:
+            df = pq.read_table(path).to_pandas()
     except Exception as e:
         return [error_row(key, f"{path}: {e}")]
     return _frame_rows(df, key, options)
 
 
+def _find_remote(spec: str) -> Dict[str, List[Any]]:
+    """``find_inputs`` on an fsspec filesystem: the same rules, URLs out."""
+    import fsspec
+
+    fs, root = fsspec.core.url_to_fs(spec)
+    url = fs.unstrip_protocol
+    if fs.isdir(root):
+        base = root.rstrip("/")
+        subdirs = sorted(d for d in fs.ls(base, detail=False) if "=" in d.rstrip("/").rsplit("/", 1)[-1] and fs.isdir(d))
+        if subdirs:
+            return {"parquet": [(url(d), d.rstrip("/").rsplit("=", 1)[1]) for d in subdirs]}
+        pq_files = sorted(fs.glob(base + "/**/*.parquet"))
+        if pq_files:
+            return {"parquet": [(url(p), os.path.splitext(p[len(base) + 1:])[0]) for p in pq_files]}
+        csv = sorted(set(fs.glob(base + "/**/*.csv")) | set(fs.glob(base + "/**/*.csv.gz")))
+        if not csv:
+            raise ValueError(f"{spec}: no *.csv logs or *.parquet drives in this folder or below")
+        return {"csv": [url(p) for p in csv]}
+    matched = sorted(fs.glob(root))
+    if not matched:
+        raise ValueError(f"{spec}: no file matches")
+    if all(m.endswith(".parquet") for m in matched):
+        return {"parquet": [(url(m), os.path.splitext(os.path.basename(m))[0]) for m in matched]}
+    return {"csv": [url(m) for m in matched]}
+
+
 def find_inputs(spec: str, zips: bool = False) -> Dict[str, List[Any]]:
     """What INPUT names: ``{"csv": [paths]}`` or ``{"parquet": [(path, key)]}``; ``zips``: a
-    folder's ``*.zip`` files too (a logger's zipped exports, for ``--import``)."""
+    folder's ``*.zip`` files too (a logger's zipped exports, for ``--import``). An fsspec URL
+    (``s3://bucket/drives/``) names that filesystem's files, as URLs."""
+    if is_url(spec):
+        if zips:
+            raise ValueError(f"{spec}: --import reads local folders only (a recording's files are imported together)")
+        return _find_remote(spec)
     if os.path.isdir(spec):
         hive = sorted(d for d in os.listdir(spec) if "=" in d and os.path.isdir(os.path.join(spec, d)))
         if hive:
@@ -90,10 +152,27 @@ def find_inputs(spec: str, zips: bool = False) -> Dict[str, List[Any]]:
     return {"csv": matched}
 
 
-def chunks(paths: Sequence[str], chunk_bytes: int = CHUNK_BYTES, keep_folders: bool = False) -> List[List[str]]:
+def _sizes(paths: Sequence[str]) -> Dict[str, int]:
+    """Each file's size in bytes (0 when it cannot be found), local or at fsspec URLs."""
+    if paths and is_url(paths[0]):
+        import fsspec
+
+        fs, _ = fsspec.core.url_to_fs(paths[0])
+        out = {}
+        for p in paths:
+            try:
+                out[p] = int(fs.size(p) or 0)
+            except (OSError, ValueError):
+                out[p] = 0
+        return out
+    return {p: os.path.getsize(p) if os.path.exists(p) else 0 for p in paths}
+
+
+def chunks(paths: Sequence[str], chunk_bytes: int = CHUNK_BYTES, keep_folders: bool = False, sizes: Optional[Mapping[str, int]] = None) -> List[List[str]]:
     """Paths grouped so that each group reads about ``chunk_bytes`` (a big file alone);
     ``keep_folders``: a folder's files never split between groups (a recording of raw
-    exports is a folder's files together)."""
+    exports is a folder's files together). ``sizes``: the files' sizes (default: looked up)."""
+    sizes = sizes if sizes is not None else _sizes(paths)
     units: Dict[str, List[str]] = {}
     for p in paths:
         units.setdefault(os.path.dirname(p) if keep_folders else p, []).append(p)
@@ -101,7 +180,7 @@ def chunks(paths: Sequence[str], chunk_bytes: int = CHUNK_BYTES, keep_folders: b
     cur: List[str] = []
     size = 0
     for unit in units.values():
-        n = sum(os.path.getsize(p) for p in unit if os.path.exists(p))
+        n = sum(sizes.get(p, 0) for p in unit)
         if cur and size + n > chunk_bytes:
             out.append(cur)
             cur, size = [], 0
@@ -142,9 +221,13 @@ def run(
         if "csv" in inputs:
             # At least about 4 tasks per worker thread, so that no worker idles at the end.
             threads = max(1, sum(client.nthreads().values()))
-            total = sum(os.path.getsize(p) for p in inputs["csv"] if os.path.exists(p))
-            groups = chunks(inputs["csv"], max(1, min(chunk_bytes, total // (4 * threads))), keep_folders=import_raw)
-            futures = client.map(_score_paths, groups, options=opts, import_raw=import_raw, pure=False)
+            sizes = _sizes(inputs["csv"])
+            total = sum(sizes.values())
+            groups = chunks(inputs["csv"], max(1, min(chunk_bytes, total // (4 * threads))), keep_folders=import_raw, sizes=sizes)
+            if is_url(spec):
+                futures = client.map(score_urls, groups, options=opts, pure=False)
+            else:
+                futures = client.map(_score_paths, groups, options=opts, import_raw=import_raw, pure=False)
         else:
             paths, keys = zip(*inputs["parquet"])
             futures = client.map(_score_parquet, list(paths), list(keys), options=opts, pure=False)
@@ -170,7 +253,7 @@ def summary(rows: Any) -> str:
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m gyrodrift.fleet", description=__doc__.split("\n\n")[0])
-    ap.add_argument("input", help="folder of CSV logs, a glob, or a Parquet dataset (a drive per file or per drive=KEY partition)")
+    ap.add_argument("input", help="folder of CSV logs (*.csv, *.csv.gz), a glob, or a Parquet dataset (a drive per file or per drive=KEY partition); local, or an fsspec URL (s3://bucket/drives/)")
     ap.add_argument("--out", help="write the per-drive rows to this Parquet file")
     ap.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster here)")
     ap.add_argument("--workers", type=int, default=2, help="LocalCluster workers (default 2)")

@@ -32,6 +32,17 @@ fn score_file<'py>(py: Python<'py>, path: PathBuf, options: Option<&Bound<'py, P
     rows_list(py, &rows)
 }
 
+/// One log file's rows from its bytes, fetched by the caller (an object store's file, a
+/// gzip-compressed one too): labelled `file` (its URL), a log without `# name:` named by the
+/// file's stem, as `score_file` names it; never an exception.
+#[pyfunction]
+#[pyo3(signature = (file, data, options=None))]
+fn score_bytes<'py>(py: Python<'py>, file: String, data: Vec<u8>, options: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyList>> {
+    let opts = self::options(options)?;
+    let rows = py.detach(|| fleet::score_bytes(&file, &data, &opts));
+    rows_list(py, &rows)
+}
+
 /// Many files on `jobs` threads (0 = one per core), rows in file order. `import_raw`: a
 /// logger's raw exports among them are imported by their detected preset and scored, a
 /// drive per recording (the CLI's `report --dir --import`), after the logs.
@@ -105,6 +116,7 @@ fn row_columns() -> Vec<&'static str> {
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(score_file, m)?)?;
     m.add_function(wrap_pyfunction!(score_files, m)?)?;
+    m.add_function(wrap_pyfunction!(score_bytes, m)?)?;
     m.add_function(wrap_pyfunction!(score_log, m)?)?;
     m.add_function(wrap_pyfunction!(summarize, m)?)?;
     m.add_function(wrap_pyfunction!(summary_markdown, m)?)?;

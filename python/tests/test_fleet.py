@@ -197,3 +197,45 @@ def test_gzipped_logs_read_and_score_as_the_plain_files(samples, tmp_path):
     a, b = g.score_files([str(tmp_path / "city-1.csv"), str(tmp_path / "day1" / "city-1.csv.gz")], 1)
     assert b["name"] == "city-1" and b["error"] is None
     assert a["e_psi_pipeline_deg"] == b["e_psi_pipeline_deg"]
+
+
+def test_dask_on_an_object_store_url_scores_as_the_local_folder(folder, samples, tmp_path):
+    """INPUT as an fsspec URL (s3://... in use; memory:// here, in this process, which the
+    LocalCluster's worker threads share): CSV logs, gzipped ones, a broken one and a missing
+    object score as the same files on disk do, labelled by their URLs; a Parquet dataset
+    partitioned by drive too; --import refuses a URL."""
+    import gzip
+
+    import fsspec
+
+    mem = fsspec.filesystem("memory")
+    root = f"/gd-fleet-{os.getpid()}"
+    local = sorted(folder.rglob("*.csv"))
+    for p in local:
+        rel = p.relative_to(folder).as_posix()
+        data = p.read_bytes()
+        if rel.startswith("sim/sim-00"):
+            mem.pipe(f"{root}/csv/{rel}.gz", gzip.compress(data))
+        else:
+            mem.pipe(f"{root}/csv/{rel}", data)
+    rows = fleet.run(f"memory://{root}/csv", workers=2, chunk_bytes=1_500_000)
+    assert len(rows) == 20 and rows["file"].str.startswith("memory://").all()
+    want = g.rows_to_pandas(g.score_files([str(p) for p in local]))
+    # Labelled by URL instead of path (and a failed file's row named so): the same after the folder.
+    rel = lambda c: c.str.replace(r"^.*/(csv|fleet\d*)/", "", regex=True).str.replace(".gz", "")  # noqa: E731
+    strip = lambda df: df.assign(file=rel(df["file"]), name=rel(df["name"])).sort_values(["file", "part"]).reset_index(drop=True)  # noqa: E731
+    got, exp = strip(rows), strip(want)
+    pd.testing.assert_frame_equal(got.drop(columns=["error"]), exp.drop(columns=["error"]), check_dtype=False)
+    assert (got["error"].notna() == exp["error"].notna()).all()
+    assert fleet.score_urls([f"memory://{root}/csv/none.csv"])[0]["error"].startswith("cannot open")
+    # A Parquet dataset partitioned by drive, on the same filesystem.
+    log = g.read_log(str(samples / "train" / "city-1.csv"))
+    df = g.to_pandas(log)
+    with mem.open(f"{root}/pq/drive=city-1/part-0.parquet", "wb") as f:
+        df.to_parquet(f, index=False)
+    pq_rows = fleet.run(f"memory://{root}/pq", workers=1)
+    assert list(pq_rows["file"]) == ["city-1"]
+    assert pq_rows["ne_psi_pipeline_deg_per_min"][0] == pytest.approx(g.score_log(log, "city-1")[0]["ne_psi_pipeline_deg_per_min"], rel=1e-12)
+    with pytest.raises(ValueError, match="--import reads local folders only"):
+        fleet.find_inputs(f"memory://{root}/csv", zips=True)
+    mem.rm(root, recursive=True)
