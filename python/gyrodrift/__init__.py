@@ -29,7 +29,6 @@ from ._core import (
     import_log,
     oadev,
     pipeline,
-    read_log,
     report,
     row_columns,
     run_gyrodometry,
@@ -48,7 +47,26 @@ from ._core import (
     tune,
     version,
 )
+from . import _core
 from .frames import from_pandas, rows_to_pandas, to_pandas
+from .remote import fetch, is_url
+
+
+def read_log(path: "_core.StrPath") -> Log:
+    """Reads a CSV v1 log file (gzip-compressed too, ``drive.csv.gz``), from a path or an
+    fsspec URL (``s3://bucket/drive.csv``: fetched, then parsed by core). Bad input raises
+    ValueError naming the file, line and column; a file that cannot be opened, OSError."""
+    import os
+
+    spec = os.fspath(path)
+    if isinstance(spec, str) and is_url(spec):
+        data = fetch(spec)
+        try:
+            return Log.from_bytes(data)
+        except ValueError as e:
+            raise ValueError(f"{spec}: {e}") from None
+    return _core.read_log(path)
+
 
 __version__ = version()
 

@@ -29,6 +29,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence
 
 from ._core import error_row, folder_hints, score_bytes, score_files, score_log, summary_markdown
 from .frames import from_pandas, rows_to_pandas
+from .remote import fetch, is_url
 
 #: Small CSV drives are grouped so that a task reads about this many bytes (fewer when the
 #: fleet is small: at least about 4 tasks per worker thread).
@@ -57,24 +58,16 @@ def _score_paths(paths: Sequence[str], options: Optional[Mapping[str, Any]], imp
     return score_files(list(paths), 1, options, import_raw)
 
 
-def is_url(spec: str) -> bool:
-    """Whether ``spec`` names an fsspec filesystem's files (``s3://...``) rather than local ones."""
-    return "://" in spec and not spec.startswith("file://")
-
-
 def score_urls(urls: Sequence[str], options: Optional[Mapping[str, Any]] = None) -> List[dict]:
     """Log files at fsspec URLs (``s3://bucket/drive.csv.gz``), each fetched here and scored
     by core from its bytes (``score_bytes``: gzip too, named by the file's stem); a file that
     cannot be fetched is one row with its error."""
-    import fsspec
-
     rows: List[dict] = []
     for url in urls:
         try:
-            with fsspec.open(url, "rb") as f:
-                data = f.read()
+            data = fetch(url)
         except Exception as e:  # a missing or unreadable object is its row's error
-            rows.append(error_row(url, f"cannot open: {e}"))
+            rows.append(error_row(url, str(e).removeprefix(f"{url}: ")))
             continue
         rows.extend(score_bytes(url, data, options))
     return rows

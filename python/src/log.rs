@@ -109,6 +109,15 @@ impl PyLog {
         py.detach(|| gyrodrift::parse_log_str(text)).map(PyLog::new).map_err(value_err)
     }
 
+    /// Parses a CSV v1 log's bytes, gzip-compressed or not (an object store's file, as the
+    /// wasm package's `Log.fromBytes` takes a file's).
+    #[staticmethod]
+    fn from_bytes(py: Python<'_>, data: Vec<u8>) -> PyResult<PyLog> {
+        let parsed =
+            py.detach(|| gyrodrift::log::file::decompressed(&data[..]).map_err(gyrodrift::Error::from).and_then(gyrodrift::parse_log));
+        parsed.map(PyLog::new).map_err(value_err)
+    }
+
     /// A log from float64 columns named as in CSV v1 (`time_s`, `gyro_dps`, ...; NaN = empty
     /// cell) and optional metadata (`name`, `bias_s`, `wheelbase_m`, ...), checked as the
     /// parser checks a file.

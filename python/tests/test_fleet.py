@@ -239,3 +239,28 @@ def test_dask_on_an_object_store_url_scores_as_the_local_folder(folder, samples,
     with pytest.raises(ValueError, match="--import reads local folders only"):
         fleet.find_inputs(f"memory://{root}/csv", zips=True)
     mem.rm(root, recursive=True)
+
+
+def test_read_log_and_from_bytes_take_a_url_and_gzip(samples):
+    """read_log on an fsspec URL (memory:// here) and Log.from_bytes: the log the file gives,
+    gzipped or not; bad content a ValueError naming the URL, line and column; a missing
+    object an OSError naming it."""
+    import gzip
+
+    import fsspec
+
+    mem = fsspec.filesystem("memory")
+    root = f"/gd-read-{os.getpid()}"
+    text = (samples / "train" / "city-1.csv").read_bytes()
+    mem.pipe(f"{root}/city-1.csv.gz", gzip.compress(text))
+    mem.pipe(f"{root}/bad.csv", b"time_s,gyro_dps\n0,1\n1,x\n")
+    local = g.read_log(str(samples / "train" / "city-1.csv"))
+    for log in (g.read_log(f"memory://{root}/city-1.csv.gz"), g.Log.from_bytes(text), g.Log.from_bytes(gzip.compress(text))):
+        assert log.name == local.name and np.array_equal(log.column("gyro_dps"), local.column("gyro_dps"))
+    with pytest.raises(ValueError, match=rf"memory://{root}/bad.csv: line 3, column gyro_dps"):
+        g.read_log(f"memory://{root}/bad.csv")
+    with pytest.raises(OSError, match=rf"memory://{root}/none.csv: cannot open"):
+        g.read_log(f"memory://{root}/none.csv")
+    with pytest.raises(ValueError, match="a damaged or cut gzip file"):
+        g.Log.from_bytes(gzip.compress(text)[:300])
+    mem.rm(root, recursive=True)
