@@ -1,6 +1,8 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
-use crate::{expand_recipes, fail, import_recipe, is_stdin, output, print_json, read_log, settings, shown, write_stdout, Failure};
+use crate::{
+    expand_recipes, fail, import_recipe, is_stdin, output, print_json, read_log, settings, shell_quoted, shown, write_stdout, Failure,
+};
 use gyrodrift::log::accept::{accept, InputPolicy};
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
 use std::path::{Path, PathBuf};
@@ -398,20 +400,12 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
 }
 
 /// Where the printed recipe's files are, for its `--data`: the one zip given, or the
-/// folder all the files share (quoted when it has a space), else FOLDER.
+/// folder all the files share (quoted as the import hints quote a path), else FOLDER.
 fn recipe_data(paths: &[PathBuf]) -> String {
-    let quoted = |p: &Path| {
-        let s = p.display().to_string();
-        if s.contains(char::is_whitespace) {
-            format!("\"{s}\"")
-        } else {
-            s
-        }
-    };
     match paths {
-        [one] if gyrodrift::import::starts_as_zip(one) => quoted(one),
+        [one] if gyrodrift::import::starts_as_zip(one) => shell_quoted(one),
         [first, rest @ ..] if rest.iter().all(|p| p.parent() == first.parent()) => match first.parent() {
-            Some(dir) if !dir.as_os_str().is_empty() => quoted(dir),
+            Some(dir) if !dir.as_os_str().is_empty() => shell_quoted(dir),
             _ => ".".into(),
         },
         _ => "FOLDER".into(),

@@ -79,17 +79,21 @@ fn import_hint(path: &Path) -> Option<String> {
 /// An import hint in this front's words (`what`: a file, a recording): the `import` command
 /// that makes a v1 log of it.
 fn hint_text(h: &gyrodrift::import::ImportHint, what: &str) -> String {
-    let quoted = |p: &PathBuf| match p.display().to_string() {
-        s if s.contains(char::is_whitespace) => format!("'{s}'"),
-        s => s,
-    };
-    let files: Vec<String> = h.files.iter().map(quoted).collect();
+    let files: Vec<String> = h.files.iter().map(|p| shell_quoted(p)).collect();
     format!(
         "it looks like {what} of {} (import preset {}): `gyrodrift import {} --out drive.csv` makes a v1 drive log of it",
         h.title,
         h.preset,
         files.join(" ")
     )
+}
+
+/// A path as a shell command names it: in single quotes when it has a space.
+fn shell_quoted(p: &Path) -> String {
+    match p.display().to_string() {
+        s if s.contains(char::is_whitespace) => format!("'{s}'"),
+        s => s,
+    }
 }
 
 /// Splits `key=value` (given with `flag`) and parses the value as a number.

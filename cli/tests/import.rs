@@ -387,7 +387,7 @@ fn a_zipped_export_imports_and_its_recipe_reads_the_zip_again() {
     let o = run(&["import", s(&zip), "--print-recipe"]);
     let text = String::from_utf8_lossy(&o.stdout).into_owned();
     let first = text.lines().next().unwrap();
-    assert_eq!(first, format!("# gyrodrift import --recipe THIS.toml --data \"{}\" (preset sensor-logger)", zip.display()));
+    assert_eq!(first, format!("# gyrodrift import --recipe THIS.toml --data '{}' (preset sensor-logger)", zip.display()));
     assert!(text.contains("name = \"Drive 2026-11-27\""), "{text}");
     let recipe = d.join("r.toml");
     std::fs::write(&recipe, &text).unwrap();
