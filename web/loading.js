@@ -190,13 +190,25 @@ export async function saveRecipe(name, recipe) {
   else download(`${name}.recipe.toml`, res.data, "application/toml");
 }
 
-/** A gzip-compressed file (`drive.csv.gz`, as fleets store logs) as the file inside it,
- * decompressed by the browser's own DecompressionStream; any other file as it is. */
-async function gunzipped(f) {
-  const head = new Uint8Array(await f.slice(0, 2).arrayBuffer());
+/** A dropped file as the page reads it: a gzip-compressed one (`drive.csv.gz`, as fleets
+ * store logs) as the file inside it, decompressed by the browser's own
+ * DecompressionStream; any other as it is. Throws the entry's error for a file that cannot
+ * be read (a dropped folder) or decompressed. */
+async function readable(f) {
+  let head;
+  try {
+    head = new Uint8Array(await f.slice(0, 2).arrayBuffer());
+  } catch {
+    throw new Error(`${f.name}: cannot be read (a folder? drop the files in it, or its .zip)`);
+  }
   if (head[0] !== 0x1f || head[1] !== 0x8b) return f;
-  const inner = await new Response(f.stream().pipeThrough(new DecompressionStream("gzip"))).blob();
-  return new File([inner], f.name.replace(/\.gz$/i, ""), { type: "text/csv" });
+  try {
+    const inner = await new Response(f.stream().pipeThrough(new DecompressionStream("gzip"))).blob();
+    return new File([inner], f.name.replace(/\.gz$/i, ""), { type: "text/csv" });
+  } catch {
+    // The browser says only "Failed to fetch" for a stream that ends inside a block.
+    throw new Error(`${f.name}: a damaged or cut gzip file: it cannot be decompressed`);
+  }
 }
 
 export async function loadFiles(given) {
@@ -208,10 +220,9 @@ export async function loadFiles(given) {
   const files = [];
   for (const f of given) {
     try {
-      files.push(await gunzipped(f));
-    } catch {
-      // The browser says only "Failed to fetch" for a stream that ends inside a block.
-      state.entries.push({ name: f.name, file: f.name, log: null, error: `${f.name}: a damaged or cut gzip file: it cannot be decompressed`, kind: null, headline: "" });
+      files.push(await readable(f));
+    } catch (e) {
+      state.entries.push({ name: f.name, file: f.name, log: null, error: e.message, kind: null, headline: "" });
     }
   }
   for (const f of files) {

@@ -47,6 +47,14 @@ test("a gzip-compressed log (drive.csv.gz) opens as the plain file, with the CLI
   await page.locator("#file-input").setInputFiles([cut]);
   await page.waitForFunction(() => [...document.querySelectorAll("#logs li.bad")].some((li) => li.innerText.includes("cut.csv.gz: a damaged or cut gzip file")));
   assert.match(await page.locator("#logs li.selected").innerText(), /City 3/);
+  // A dropped folder is a file the page cannot read (its reads fail): said so, not as gzip.
+  await page.evaluate(async () => {
+    const { loadFiles } = await import("/loading.js");
+    const folder = { name: "Drive 2026-11-27", slice: () => ({ arrayBuffer: () => Promise.reject(new DOMException("unreadable", "NotReadableError")) }) };
+    await loadFiles([folder]);
+  });
+  assert.match(await page.locator("#logs li.bad").last().innerText(), /Drive 2026-11-27: cannot be read \(a folder\? drop the files in it, or its \.zip\)/);
+  assert.match(await page.locator("#logs li.selected").innerText(), /City 3/);
 });
 
 test("a log with a clockwise gyro gets a check badge naming the fix; the shipped ones none", async () => {
