@@ -7,7 +7,7 @@
 import init, * as gd from "./pkg/gyrodrift.js";
 import initPlot from "./pkg/plot/gyrodrift_plot.js";
 import { $, state, defaults, readUrl, urlHash, hdrOptions, PARAMS, GYRO_PARAMS, VIEW_KIND } from "./state.js";
-import { loadFiles, loadSamples } from "./loading.js";
+import { filesOf, loadFiles, loadSamples } from "./loading.js";
 import { buildParams, syncParams, logFor } from "./controls.js";
 import { csvOf, download, pngOf, timeChartsCsv } from "./charts.js";
 import { attachTimeInteraction, attachTrackInteraction } from "./chart-input.js";
@@ -113,7 +113,14 @@ function setupFiles() {
   });
   document.addEventListener("dragover", (ev) => { ev.preventDefault(); document.body.classList.add("dragging"); });
   document.addEventListener("dragleave", () => document.body.classList.remove("dragging"));
-  document.addEventListener("drop", (ev) => { ev.preventDefault(); document.body.classList.remove("dragging"); loadFiles([...ev.dataTransfer.files]); });
+  document.addEventListener("drop", (ev) => {
+    ev.preventDefault();
+    document.body.classList.remove("dragging");
+    // The entries are the drop's only while its event runs: taken now, walked after.
+    const entries = [...(ev.dataTransfer.items ?? [])].map((i) => i.webkitGetAsEntry?.()).filter(Boolean);
+    if (entries.some((e) => e.isDirectory)) filesOf(entries).then(loadFiles);
+    else loadFiles([...ev.dataTransfer.files]);
+  });
 }
 
 /** A link pasted into this tab, or Back and Forward: apply the state it names. */

@@ -211,6 +211,26 @@ async function readable(f) {
   }
 }
 
+/** The files of dropped entries, a dropped folder (an unzipped export, a folder of drives)
+ * as the files in it at any depth, in the order the browser lists them; hidden files
+ * (`.DS_Store`) and macOS resource forks left out, as the zip import leaves them. */
+export async function filesOf(entries) {
+  const out = [];
+  const walk = async (entry) => {
+    if (entry.name.startsWith(".") || entry.name === "__MACOSX") return;
+    if (entry.isFile) out.push(await new Promise((ok, bad) => entry.file(ok, bad)));
+    else if (entry.isDirectory) {
+      const reader = entry.createReader();
+      // readEntries gives a folder in batches until an empty one.
+      for (let batch; (batch = await new Promise((ok, bad) => reader.readEntries(ok, bad))).length; ) {
+        for (const e of batch) await walk(e);
+      }
+    }
+  };
+  for (const e of entries) await walk(e);
+  return out;
+}
+
 export async function loadFiles(given) {
   // Drive logs v1 open as they are; other files are raw exports, imported together by the
   // preset they fit (a recipe .toml or .json dropped with them is used instead of detection).

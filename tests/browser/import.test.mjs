@@ -48,6 +48,24 @@ test("a zipped export (as Sensor Logger shares one) opens by drop alone with the
   assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
 });
 
+test("a dropped folder (an unzipped export) opens as its files do, hidden files left out", async () => {
+  const files = wildFiles("sensor-logger");
+  const contents = files.map((f) => [f.split("/").pop(), readFileSync(f, "utf8")]);
+  const before = await page.locator("#logs li").count();
+  // A folder entry as the browser hands one over (webkitGetAsEntry), with a .DS_Store.
+  await page.evaluate(async (contents) => {
+    const { filesOf, loadFiles } = await import("/loading.js");
+    const fileEntry = (name, body) => ({ name, isFile: true, isDirectory: false, file: (ok) => ok(new File([body], name)) });
+    const children = [...contents.map(([n, body]) => fileEntry(n, body)), fileEntry(".DS_Store", "\u0000\u0001binary")];
+    const batches = [children.slice(0, 2), children.slice(2), []];
+    const folder = { name: "Drive", isFile: false, isDirectory: true, createReader: () => ({ readEntries: (ok) => ok(batches.shift()) }) };
+    await loadFiles(await filesOf([folder]));
+  }, contents);
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li").length > n, before);
+  assert.match(await page.locator("#logs li.selected").innerText(), /Gyroscope\.csv \(Sensor Logger\)[\s\S]*imported:/);
+  assert.equal(await page.locator("#m-e-hdr").innerText(), cliOnRaw(files).E_psi_hdr_deg.toFixed(2));
+});
+
 test("the import recipe saves as TOML and, dropped with the files, imports the same log; no fit is a clear error", async () => {
   const files = wildFiles("px4");
   await page.locator("#file-input").setInputFiles(files);
