@@ -252,7 +252,7 @@ pub(crate) enum Cmd {
     /// (SensorLog, Sensor Logger, phyphox, comma2k19, PX4 ulog2csv, ROS CSV).
     #[command(group(clap::ArgGroup::new("input").required(true).args(["files", "recipe"])))]
     Import {
-        /// The logger's files (without --recipe), or the .zip it shared: a preset is detected
+        /// The logger's files (without --recipe), their folder, or the .zip it shared: a preset is detected
         /// from them.
         #[arg(conflicts_with_all = ["recipe", "data", "allow_outside"])]
         files: Vec<PathBuf>,

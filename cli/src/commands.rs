@@ -389,9 +389,9 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
         let files: std::collections::BTreeMap<String, String> = d.used.iter().map(|(r, f)| (r.to_string(), f.clone())).collect();
         print_json(&serde_json::json!({ "preset": d.preset, "files": files, "summary": summary }))
     } else {
-        // The line names what was given: the zip, or the gyro's file among the files.
+        // The line names what was given: the folder or zip, or the gyro's file among the files.
         let shown = match paths {
-            [one] if import::starts_as_zip(one) => one.clone(),
+            [one] if one.is_dir() || import::starts_as_zip(one) => one.clone(),
             _ => PathBuf::from(&d.used[0].1),
         };
         eprintln!("{}", output::import_line(&shown, &summary));
@@ -399,11 +399,11 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
     }
 }
 
-/// Where the printed recipe's files are, for its `--data`: the one zip given, or the
-/// folder all the files share (quoted as the import hints quote a path), else FOLDER.
+/// Where the printed recipe's files are, for its `--data`: the one folder or zip given, or
+/// the folder all the files share (quoted as the import hints quote a path), else FOLDER.
 fn recipe_data(paths: &[PathBuf]) -> String {
     match paths {
-        [one] if gyrodrift::import::starts_as_zip(one) => shell_quoted(one),
+        [one] if one.is_dir() || gyrodrift::import::starts_as_zip(one) => shell_quoted(one),
         [first, rest @ ..] if rest.iter().all(|p| p.parent() == first.parent()) => match first.parent() {
             Some(dir) if !dir.as_os_str().is_empty() => shell_quoted(dir),
             _ => ".".into(),

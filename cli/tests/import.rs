@@ -402,6 +402,41 @@ fn a_zipped_export_imports_and_its_recipe_reads_the_zip_again() {
     assert!(String::from_utf8_lossy(&o.stdout).starts_with(&format!("# gyrodrift import --recipe THIS.toml --data {folder} (")));
 }
 
+/// A logger's export folder (unzipped) given alone: its files imported (hidden ones left
+/// out), the log and the printed recipe named by the folder, the recipe's `--data` the
+/// folder; a folder among files, or an empty one, is an error saying so.
+#[test]
+fn a_folder_imports_as_its_files_named_by_the_folder() {
+    let d = dir("folder export");
+    let folder = d.join("Drive 2026-11-27");
+    std::fs::create_dir_all(&folder).unwrap();
+    for f in wild("sensor-logger") {
+        std::fs::copy(&f, folder.join(PathBuf::from(&f).file_name().unwrap())).unwrap();
+    }
+    std::fs::write(folder.join(".DS_Store"), b"\x00\x01bin").unwrap();
+    let (from_folder, from_files) = (d.join("folder.csv"), d.join("files.csv"));
+    let o = run(&["import", s(&folder), "--out", s(&from_folder)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("Drive 2026-11-27: 1000 rows"), "{err}");
+    let files = wild("sensor-logger");
+    let o = run(&[&["import", "--out", s(&from_files)], files.iter().map(String::as_str).collect::<Vec<_>>().as_slice()].concat());
+    assert!(o.status.success());
+    let (a, b) = (parse(&from_folder), parse(&from_files));
+    assert_eq!(a.meta.name.as_deref(), Some("Drive 2026-11-27"));
+    assert_eq!((a.time_s(), a.column(gyrodrift::Column::GyroDps)), (b.time_s(), b.column(gyrodrift::Column::GyroDps)));
+    let o = run(&["import", s(&folder), "--print-recipe"]);
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(text.starts_with(&format!("# gyrodrift import --recipe THIS.toml --data '{}' (", folder.display())), "{text}");
+    assert!(text.contains("name = \"Drive 2026-11-27\""), "{text}");
+    let o = run(&["import", s(&folder), &files[0]]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("a folder among files: give the folder alone, or its files"));
+    let empty = d.join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    let o = run(&["import", s(&empty)]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("empty: no files in this folder to import"));
+}
+
 /// A logger's raw export given to a method: the error names the file and line, and the
 /// import command that makes a v1 log of it, with the files beside it that the preset uses;
 /// a table no preset reads gets the error alone.

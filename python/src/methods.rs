@@ -392,7 +392,7 @@ fn import_log<'py>(
     Ok((PyLog::new(log), result_dict(py, &summary)?))
 }
 
-/// A logger's raw files (paths, or the .zip it shared) imported by the preset detected from
+/// A logger's raw files (paths, their folder, or the .zip it shared) imported by the preset detected from
 /// their names and headers: (log, summary, detection) with detection = {preset, title, recipe, used, ignored}.
 #[pyfunction]
 fn import_files<'py>(py: Python<'py>, paths: Vec<std::path::PathBuf>) -> PyResult<(PyLog, Bound<'py, PyDict>, Bound<'py, PyDict>)> {

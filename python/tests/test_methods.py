@@ -407,6 +407,15 @@ def test_a_zipped_export_imports_as_its_files_do(samples, tmp_path):
     assert np.array_equal(again.column("gyro_dps"), log.column("gyro_dps"))
 
 
+def test_import_files_on_a_folder_imports_its_files_named_by_it(samples):
+    """import_files([folder]): an unzipped export as its files, named by the folder."""
+    folder = samples / "wild" / "sensor-logger"
+    log, _, detection = g.import_files([str(folder)])
+    plain, _, _ = g.import_files([str(f) for f in sorted(folder.iterdir())])
+    assert log.name == "sensor-logger" and detection["recipe"]["name"] == "sensor-logger"
+    assert np.array_equal(log.column("gyro_dps"), plain.column("gyro_dps"))
+
+
 def test_a_folder_read_as_a_log_names_the_import_or_the_fleet_job(samples):
     """read_log on a folder: a ValueError saying so, with the import_files call when a preset
     reads the recording in it, else the fleet job."""

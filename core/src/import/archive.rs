@@ -26,8 +26,7 @@ pub fn detect_unzipped(files: BTreeMap<String, Vec<u8>>) -> Result<(Detection, B
     let sniffed = files.iter().map(|(n, b)| super::sniff(n, b)).collect::<Result<Vec<_>>>()?;
     let mut d = super::detect(&sniffed)?;
     if let Some(stem) = stem {
-        d.recipe_json["name"] = serde_json::Value::String(stem.clone());
-        d.recipe.name = Some(stem);
+        d.name(&stem);
     }
     Ok((d, files))
 }

@@ -29,9 +29,11 @@ fn folder_of(path: &Path) -> &Path {
     path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."))
 }
 
-/// The files of a folder, sorted (None when it cannot be read).
-fn files_in(dir: &Path) -> Option<Vec<PathBuf>> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.is_file()).collect();
+/// The files of a folder, sorted, hidden ones (`.DS_Store`) left out (None when it cannot
+/// be read).
+pub(super) fn files_in(dir: &Path) -> Option<Vec<PathBuf>> {
+    let visible = |p: &PathBuf| p.is_file() && !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('.'));
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok().map(|e| e.path())).filter(visible).collect();
     files.sort();
     Some(files)
 }

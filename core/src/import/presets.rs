@@ -307,6 +307,15 @@ pub struct Detection {
     pub ignored: Vec<String>,
 }
 
+impl Detection {
+    /// Names the recording (an archive's or a folder's name) in the recipe, so the log it
+    /// imports, and the recipe saved and run again, carry that name.
+    pub fn name(&mut self, name: &str) {
+        self.recipe_json["name"] = Value::String(name.to_string());
+        self.recipe.name = Some(name.to_string());
+    }
+}
+
 /// The preset ids and titles, for help texts.
 pub fn presets() -> Vec<(&'static str, &'static str)> {
     PRESETS.iter().map(|p| (p.id, p.title)).collect()

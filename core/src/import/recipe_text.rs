@@ -99,8 +99,32 @@ mod files {
     /// A logger's raw files given by path, imported by the preset detected from them (as
     /// `detect_and_import`, which names files by their file names): `gyrodrift import
     /// FILE...`, Python's `import_files`, a fleet's recordings. A ZIP archive among them
-    /// gives the files inside it (`unzip_all`). Two files of one name are refused.
+    /// gives the files inside it (`unzip_all`). Two files of one name are refused. A folder
+    /// given alone gives the files in it (an unzipped export), and names the recording.
     pub fn import_paths(paths: &[PathBuf]) -> Result<(super::super::Detection, DriveLog, ImportSummary)> {
+        match paths {
+            [dir] if dir.is_dir() => {
+                let files = super::super::hint::files_in(dir).unwrap_or_default();
+                if files.is_empty() {
+                    return Err(Error::File(format!("{}: no files in this folder to import", dir.display())));
+                }
+                let (mut d, mut log, summary) = import_files(&files)?;
+                let name = dir.canonicalize().ok().and_then(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()));
+                if let Some(name) = name {
+                    d.name(&name);
+                    log.meta.name = Some(name);
+                }
+                Ok((d, log, summary))
+            }
+            _ => match paths.iter().find(|p| p.is_dir()) {
+                Some(dir) => Err(Error::File(format!("{}: a folder among files: give the folder alone, or its files", dir.display()))),
+                None => import_files(paths),
+            },
+        }
+    }
+
+    /// `import_paths` of files (no folder among them).
+    fn import_files(paths: &[PathBuf]) -> Result<(super::super::Detection, DriveLog, ImportSummary)> {
         let mut by_name = std::collections::BTreeMap::new();
         let mut names = Vec::new();
         for p in paths {
