@@ -377,9 +377,14 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
         note += &format!("; not used: {}", d.ignored.join(", "));
     }
     eprintln!("{note}");
+    // A recording given whole (its folder or zip): what the messages and the recipe name.
+    let whole = match paths {
+        [one] if one.is_dir() || import::starts_as_zip(one) => Some(one),
+        _ => None,
+    };
     if print_recipe {
         let text = gyrodrift::import::recipe_value_to_toml(&d.recipe_json).map_err(|e| Failure(e.to_string()))?;
-        let data = recipe_data(paths);
+        let data = whole.map_or_else(|| files_folder(paths), |w| shell_quoted(w));
         return write_stdout(&format!("# gyrodrift import --recipe THIS.toml --data {data} (preset {})\n{text}", d.preset));
     }
     if out.is_some() || !json {
@@ -390,20 +395,16 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
         print_json(&serde_json::json!({ "preset": d.preset, "files": files, "summary": summary }))
     } else {
         // The line names what was given: the folder or zip, or the gyro's file among the files.
-        let shown = match paths {
-            [one] if one.is_dir() || import::starts_as_zip(one) => one.clone(),
-            _ => PathBuf::from(&d.used[0].1),
-        };
+        let shown = whole.cloned().unwrap_or_else(|| PathBuf::from(&d.used[0].1));
         eprintln!("{}", output::import_line(&shown, &summary));
         Ok(())
     }
 }
 
-/// Where the printed recipe's files are, for its `--data`: the one folder or zip given, or
-/// the folder all the files share (quoted as the import hints quote a path), else FOLDER.
-fn recipe_data(paths: &[PathBuf]) -> String {
+/// The folder the given files share, for the printed recipe's `--data` (quoted as the
+/// import hints quote a path), else FOLDER.
+fn files_folder(paths: &[PathBuf]) -> String {
     match paths {
-        [one] if one.is_dir() || gyrodrift::import::starts_as_zip(one) => shell_quoted(one),
         [first, rest @ ..] if rest.iter().all(|p| p.parent() == first.parent()) => match first.parent() {
             Some(dir) if !dir.as_os_str().is_empty() => shell_quoted(dir),
             _ => ".".into(),

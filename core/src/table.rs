@@ -124,12 +124,22 @@ pub fn read_rows(
     }
 }
 
+/// Whether bytes start as a ZIP archive does (a local file header).
+pub fn is_zip(head: &[u8]) -> bool {
+    head.starts_with(b"PK\x03\x04")
+}
+
+/// Whether bytes start as a gzip stream does.
+pub fn is_gzip(head: &[u8]) -> bool {
+    head.starts_with(&[0x1f, 0x8b])
+}
+
 /// What a file that starts with an archive's magic bytes is, for the error (a logger's
 /// export often comes zipped): None for anything else.
 pub fn archive_message(head: &[u8]) -> Option<&'static str> {
-    if head.starts_with(b"PK\x03\x04") {
+    if is_zip(head) {
         Some("a ZIP archive, not a text table (import reads a logger's zipped export as it is)")
-    } else if head.starts_with(&[0x1f, 0x8b]) {
+    } else if is_gzip(head) {
         Some("gzip-compressed, not a text table: decompress it first")
     } else {
         None

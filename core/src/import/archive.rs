@@ -11,10 +11,7 @@ use std::io::Read;
 /// The most the archives of one import may unpack to, bytes (a zip bomb stops here).
 pub const MAX_UNZIPPED_BYTES: u64 = 1 << 30;
 
-/// Whether bytes start as a ZIP archive does (a local file header).
-pub fn is_zip(bytes: &[u8]) -> bool {
-    bytes.starts_with(b"PK\x03\x04")
-}
+pub use crate::table::is_zip;
 
 /// The preset that reads in-memory raw files (the wasm package's `detectImport`), a ZIP
 /// archive among them as the tables inside it (`unzip_all`); with those tables. A

@@ -4,11 +4,6 @@
 
 use std::path::Path;
 
-/// Whether bytes start as a gzip stream does.
-pub fn is_gzip(head: &[u8]) -> bool {
-    head.starts_with(&[0x1f, 0x8b])
-}
-
 /// The name a log file gives a log without `# name:`: its file name without `.gz`, then
 /// without its extension ("drive.csv.gz" -> "drive", "drive.csv" -> "drive").
 pub fn log_stem(path: &Path) -> String {
@@ -24,7 +19,7 @@ pub fn log_stem(path: &Path) -> String {
 /// multi-member stream, as `cat a.gz b.gz` makes), else as it is.
 #[cfg(feature = "zip")]
 pub fn decompressed<'a, R: std::io::BufRead + Send + 'a>(mut reader: R) -> std::io::Result<Box<dyn std::io::Read + Send + 'a>> {
-    if is_gzip(reader.fill_buf()?) {
+    if crate::table::is_gzip(reader.fill_buf()?) {
         Ok(Box::new(Gunzip(flate2::bufread::MultiGzDecoder::new(reader))))
     } else {
         Ok(Box::new(reader))
