@@ -166,6 +166,7 @@ mod tests {
             rate_dps: vec![0.2, 0.2, 0.4, 1.2, 5.2, 0.0],
             temp_c: vec![f64::NAN; 6],
             still: vec![true, true, true, false, false, true],
+            origin_s: 0.0,
             first_moving_s: None,
             lead_in_wander: None,
             source: crate::still::StillSource::Speed,

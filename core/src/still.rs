@@ -197,6 +197,8 @@ impl StillSource {
 pub struct Blocks {
     /// Stamp of the block's last row (detail 2).
     pub time_s: Vec<f64>,
+    /// Time of the log's first row, which block k counts from (detail 2).
+    pub origin_s: f64,
     /// Mean raw gyro of the block, deg/s.
     pub rate_dps: Vec<f64>,
     /// Mean temperature of the block, deg C (NaN without temperature).
@@ -277,7 +279,7 @@ pub fn blocks(log: &DriveLog, bias_s: f64, opts: &StillOptions) -> Result<Blocks
     } else {
         StillSource::Gyro
     };
-    let mut out = Blocks::default();
+    let mut out = Blocks { origin_s: t0, ..Blocks::default() };
     if t.is_empty() {
         return Err(Error::data("the log has no rows"));
     }

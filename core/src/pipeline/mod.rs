@@ -102,17 +102,27 @@ impl PipelineTrace {
     }
 }
 
+/// The pipeline's clock: time since the log's first row, on a microsecond grid. Its
+/// windows compare whole seconds, which float rounding of epoch-second times (about 2e-7 s
+/// at 1.8e9) would decide; on the grid a log gives the same result wherever its time starts.
+pub(crate) fn clock_s(time_s: f64, origin_s: f64) -> f64 {
+    ((time_s - origin_s) * 1e6).round() / 1e6
+}
+
 /// Runs the filter over the blocks from bias 0 +- the prior, then the smoother
-/// (`smoother.rs`); the heading traces are unaligned. Blocks stamped before `lead_in_end_s` are the lead-in.
+/// (`smoother.rs`); the heading traces are unaligned. Blocks stamped before `lead_in_end_s`
+/// are the lead-in. Every step runs on the pipeline's clock (`clock_s`): the trace's times
+/// are the clock's until the end, when it takes the blocks' stamps.
 pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -> Result<PipelineTrace> {
     let n = blocks.len();
+    let lead_in_end_s = clock_s(lead_in_end_s, blocks.origin_s);
     let mut f = Pipeline::new(params, 0.0, params.prior_bias_sigma_dps, lead_in_end_s)?;
     f.gyro_stills = blocks.source == StillSource::Gyro;
-    let mut tr =
-        PipelineTrace { time_s: blocks.time_s.clone(), final_bias_dps: f64::NAN, final_bias_sigma_dps: f64::NAN, ..Default::default() };
+    let clock = blocks.time_s.iter().map(|&t| clock_s(t, blocks.origin_s)).collect();
+    let mut tr = PipelineTrace { time_s: clock, final_bias_dps: f64::NAN, final_bias_sigma_dps: f64::NAN, ..Default::default() };
     let (mut blend, mut blended) = (blend::Blend::of(&params), Vec::with_capacity(n));
     for i in 0..n {
-        let (t, rate) = (blocks.time_s[i], blocks.rate_dps[i]);
+        let (t, rate) = (tr.time_s[i], blocks.rate_dps[i]);
         let o = f.update(t, rate, blocks.still[i])?;
         tr.heading_deg.push(o.heading_deg);
         tr.heading_sigma_deg.push(o.heading_sigma_deg);
@@ -129,6 +139,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
         (tr.heading_deg[i], tr.bias_dps[i]) = (o.heading_deg, o.bias_dps);
     }
     blend_smoothed(blocks, params, f.lead_in_end_s(), &mut tr)?;
+    tr.time_s.clone_from(&blocks.time_s);
     Ok(tr)
 }
 
@@ -140,9 +151,9 @@ fn blend_smoothed(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64, t
     let mut blend = blend::Blend::of(&params);
     let mut h = 0.0;
     for i in 0..blocks.len() {
-        let (t, rate) = (blocks.time_s[i], blocks.rate_dps[i]);
+        let (t, rate) = (tr.time_s[i], blocks.rate_dps[i]);
         if i > 0 {
-            h += (rate - tr.bias_smoothed_dps[i]) * (t - blocks.time_s[i - 1]);
+            h += (rate - tr.bias_smoothed_dps[i]) * (t - tr.time_s[i - 1]);
         }
         let smoothed = PipelineOutput {
             heading_deg: h,

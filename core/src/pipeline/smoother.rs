@@ -15,7 +15,8 @@ use crate::still::Blocks;
 pub const N_SMOOTHED: usize = 3;
 
 /// The smoothed bias per block, from the causal run `first` (its weight sums pick the
-/// hypotheses) and its trace `tr` (whose stops and heading the result is held to).
+/// hypotheses) and its trace `tr` (whose stops and heading the result is held to; its times
+/// on the pipeline's clock).
 pub(super) fn smoothed_bias(
     blocks: &Blocks,
     params: PipelineParams,
@@ -34,7 +35,7 @@ pub(super) fn smoothed_bias(
     g.restrict(&order);
     g.record((0..order.len()).collect(), blocks.len());
     for i in 0..blocks.len() {
-        g.update(blocks.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
+        g.update(tr.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
     }
     let mut bias = g.smoothed_bias();
     hold_to_stops(tr, &blocks.rate_dps, &mut bias);

@@ -80,7 +80,7 @@ impl PipelineStream {
             return Err(Error::data(format!("pipeline row at {time_s} s: rate {rate_dps} deg/s, time must be finite and increase")));
         }
         if self.filter.is_none() {
-            let lead_in_end_s = time_s + self.lead_in_s();
+            let lead_in_end_s = super::clock_s(time_s + self.lead_in_s(), time_s);
             self.filter = Some(Pipeline::new(self.params, 0.0, self.params.prior_bias_sigma_dps, lead_in_end_s)?);
             self.t0_s = time_s;
         }
@@ -119,13 +119,15 @@ impl PipelineStream {
             false => self.gyro_still.update(opts, o.k < self.lead_in_s(), o.n, o.sum_dps, o.sum2),
         };
         if let Some(filter) = self.filter.as_mut() {
+            // Decisions on the pipeline's clock, as `run_blocks` makes them.
+            let at_s = super::clock_s(o.last_s, self.t0_s);
             if opts.moving_by_speed(o.speeds, o.speed_max_mps) {
-                filter.end_lead_in(o.last_s);
+                filter.end_lead_in(at_s);
             }
             filter.gyro_stills = !self.speed_seen;
             let rate_dps = o.sum_dps / o.n as f64;
-            let bank = filter.update(o.last_s, rate_dps, still)?;
-            let out = self.blend.update(o.last_s >= filter.lead_in_end_s(), o.last_s, rate_dps, bank)?;
+            let bank = filter.update(at_s, rate_dps, still)?;
+            let out = self.blend.update(at_s >= filter.lead_in_end_s(), at_s, rate_dps, bank)?;
             self.last = Some((out, o.last_s));
             self.bias_dps = filter.bias().0;
         }
@@ -133,11 +135,13 @@ impl PipelineStream {
         Ok(())
     }
 
-    /// The last closed block's heading, moved by the open block's mean rate less the bias.
+    /// The last closed block's heading, moved by the open block's mean rate less the bias
+    /// (over the time on the pipeline's clock).
     fn provisional_heading_deg(&self) -> f64 {
         let o = &self.open;
+        let dt_s = |stamp_s| super::clock_s(o.last_s, self.t0_s) - super::clock_s(stamp_s, self.t0_s);
         match self.last {
-            Some((out, stamp_s)) => out.heading_deg + (o.sum_dps / o.n as f64 - self.bias_dps) * (o.last_s - stamp_s),
+            Some((out, stamp_s)) => out.heading_deg + (o.sum_dps / o.n as f64 - self.bias_dps) * dt_s(stamp_s),
             None => 0.0,
         }
     }

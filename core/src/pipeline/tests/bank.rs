@@ -224,6 +224,7 @@ fn a_step_just_before_a_stop_is_not_spread_over_the_past() {
         rate_dps: (0..n).map(|i| bias(i) + wobble(i)).collect(),
         temp_c: vec![f64::NAN; n],
         still: (0..n).map(|i| !(20..660).contains(&i)).collect(),
+        origin_s: 0.0,
         first_moving_s: None,
         lead_in_wander: None,
         source: crate::still::StillSource::Speed,

@@ -4,6 +4,7 @@
 mod bank;
 mod lead_in;
 mod mode;
+mod origin;
 mod properties;
 mod smoothed;
 
