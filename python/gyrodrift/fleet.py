@@ -24,6 +24,7 @@ import argparse
 import glob
 import json
 import os
+import posixpath
 import sys
 from typing import Any, Dict, List, Mapping, Optional, Sequence
 
@@ -89,60 +90,66 @@ def _score_parquet(path: str, key: str, options: Optional[Mapping[str, Any]]) ->
     return _frame_rows(df, key, options)
 
 
-def _find_remote(spec: str) -> Dict[str, List[Any]]:
-    """``find_inputs`` on an fsspec filesystem: the same rules, URLs out."""
-    import fsspec
+class _Listing:
+    """The three questions ``find_inputs`` asks of a filesystem, and the name a found file is
+    given: a local one (paths as given) or an fsspec one (URLs)."""
 
-    fs, root = fsspec.core.url_to_fs(spec)
-    url = fs.unstrip_protocol
-    if fs.isdir(root):
-        base = root.rstrip("/")
-        subdirs = sorted(d for d in fs.ls(base, detail=False) if "=" in d.rstrip("/").rsplit("/", 1)[-1] and fs.isdir(d))
-        if subdirs:
-            return {"parquet": [(url(d), d.rstrip("/").rsplit("=", 1)[1]) for d in subdirs]}
-        pq_files = sorted(fs.glob(base + "/**/*.parquet"))
-        if pq_files:
-            return {"parquet": [(url(p), os.path.splitext(p[len(base) + 1:])[0]) for p in pq_files]}
-        csv = sorted(set(fs.glob(base + "/**/*.csv")) | set(fs.glob(base + "/**/*.csv.gz")))
-        if not csv:
-            raise ValueError(f"{spec}: no *.csv logs or *.parquet drives in this folder or below")
-        return {"csv": [url(p) for p in csv]}
-    matched = sorted(fs.glob(root))
-    if not matched:
-        raise ValueError(f"{spec}: no file matches")
-    if all(m.endswith(".parquet") for m in matched):
-        return {"parquet": [(url(m), os.path.splitext(os.path.basename(m))[0]) for m in matched]}
-    return {"csv": [url(m) for m in matched]}
+    def __init__(self, spec: str) -> None:
+        if is_url(spec):
+            import fsspec
+
+            self.fs, self.root = fsspec.core.url_to_fs(spec)
+            self.root = self.root.rstrip("/") or self.root
+        else:
+            self.fs, self.root = None, spec
+
+    def isdir(self, path: str) -> bool:
+        return self.fs.isdir(path) if self.fs else os.path.isdir(path)
+
+    def subdirs(self, base: str) -> List[str]:
+        if self.fs:
+            return [d.rstrip("/") for d in self.fs.ls(base, detail=False) if self.fs.isdir(d)]
+        return [os.path.join(base, d) for d in os.listdir(base) if os.path.isdir(os.path.join(base, d))]
+
+    def glob(self, pattern: str) -> List[str]:
+        return list(self.fs.glob(pattern)) if self.fs else glob.glob(pattern, recursive=True)
+
+    def below(self, base: str, *parts: str) -> str:
+        return "/".join((base,) + parts) if self.fs else os.path.join(base, *parts)
+
+    def relative(self, path: str, base: str) -> str:
+        return posixpath.relpath(path, base) if self.fs else os.path.relpath(path, base)
+
+    def name(self, path: str) -> str:
+        return self.fs.unstrip_protocol(path) if self.fs else path
 
 
 def find_inputs(spec: str, zips: bool = False) -> Dict[str, List[Any]]:
     """What INPUT names: ``{"csv": [paths]}`` or ``{"parquet": [(path, key)]}``; ``zips``: a
     folder's ``*.zip`` files too (a logger's zipped exports, for ``--import``). An fsspec URL
-    (``s3://bucket/drives/``) names that filesystem's files, as URLs."""
-    if is_url(spec):
-        if zips:
-            raise ValueError(f"{spec}: --import reads local folders only (a recording's files are imported together)")
-        return _find_remote(spec)
-    if os.path.isdir(spec):
-        hive = sorted(d for d in os.listdir(spec) if "=" in d and os.path.isdir(os.path.join(spec, d)))
+    (``s3://bucket/drives/``) names that filesystem's files, as URLs, by the same rules."""
+    if is_url(spec) and zips:
+        raise ValueError(f"{spec}: --import reads local folders only (a recording's files are imported together)")
+    ls = _Listing(spec)
+    base = ls.root
+    if ls.isdir(base):
+        hive = sorted(d for d in ls.subdirs(base) if "=" in os.path.basename(d))
         if hive:
-            return {"parquet": [(os.path.join(spec, d), d.split("=", 1)[1]) for d in hive]}
-        pq_files = sorted(glob.glob(os.path.join(spec, "**", "*.parquet"), recursive=True))
+            return {"parquet": [(ls.name(d), os.path.basename(d).split("=", 1)[1]) for d in hive]}
+        pq_files = sorted(ls.glob(ls.below(base, "**", "*.parquet")))
         if pq_files:
-            return {"parquet": [(p, os.path.splitext(os.path.relpath(p, spec))[0]) for p in pq_files]}
-        csv = sorted(glob.glob(os.path.join(spec, "**", "*.csv"), recursive=True)
-                     + glob.glob(os.path.join(spec, "**", "*.csv.gz"), recursive=True))
-        if zips:
-            csv = sorted(csv + glob.glob(os.path.join(spec, "**", "*.zip"), recursive=True))
+            return {"parquet": [(ls.name(p), os.path.splitext(ls.relative(p, base))[0]) for p in pq_files]}
+        exts = ["*.csv", "*.csv.gz"] + (["*.zip"] if zips else [])
+        csv = sorted({p for e in exts for p in ls.glob(ls.below(base, "**", e))})
         if not csv:
             raise ValueError(f"{spec}: no *.csv logs or *.parquet drives in this folder or below")
-        return {"csv": csv}
-    matched = sorted(glob.glob(spec, recursive=True))
+        return {"csv": [ls.name(p) for p in csv]}
+    matched = sorted(ls.glob(base))
     if not matched:
         raise ValueError(f"{spec}: no file matches")
     if all(m.endswith(".parquet") for m in matched):
-        return {"parquet": [(m, os.path.splitext(os.path.basename(m))[0]) for m in matched]}
-    return {"csv": matched}
+        return {"parquet": [(ls.name(m), os.path.splitext(os.path.basename(m))[0]) for m in matched]}
+    return {"csv": [ls.name(m) for m in matched]}
 
 
 def _sizes(paths: Sequence[str]) -> Dict[str, int]:
