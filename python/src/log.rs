@@ -61,6 +61,11 @@ pub(crate) fn read_path(path: &str) -> PyResult<DriveLog> {
         };
         return Err(value_err(format!("{path}: a folder, not a log file; {what}")));
     }
+    if path.contains("://") && !dir.exists() {
+        return Err(PyOSError::new_err(format!(
+            "{path}: cannot open: Log.read reads local files; gyrodrift.read_log fetches a URL (fsspec)"
+        )));
+    }
     // A gzip-compressed log (drive.csv.gz) reads as the plain file.
     let f = gyrodrift::log::file::open_log(dir).map_err(|e| PyOSError::new_err(format!("{path}: cannot open: {e}")))?;
     gyrodrift::parse_log(f).map_err(|e| {
@@ -96,7 +101,7 @@ fn folder_hints(paths: Vec<std::path::PathBuf>, max_folders: usize) -> Vec<Strin
 
 #[pymethods]
 impl PyLog {
-    /// Reads a CSV v1 log file.
+    /// Reads a CSV v1 log file on this machine (`gyrodrift.read_log` also fetches fsspec URLs).
     #[staticmethod]
     fn read(py: Python<'_>, path: std::path::PathBuf) -> PyResult<PyLog> {
         let p = path.display().to_string();

@@ -261,6 +261,9 @@ def test_read_log_and_from_bytes_take_a_url_and_gzip(samples):
         g.read_log(f"memory://{root}/bad.csv")
     with pytest.raises(OSError, match=rf"memory://{root}/none.csv: cannot open"):
         g.read_log(f"memory://{root}/none.csv")
+    # Log.read is local: a URL given to it says where URLs are read.
+    with pytest.raises(OSError, match=r"Log.read reads local files; gyrodrift.read_log fetches a URL"):
+        g.Log.read(f"memory://{root}/city-1.csv.gz")
     with pytest.raises(ValueError, match="a damaged or cut gzip file"):
         g.Log.from_bytes(gzip.compress(text)[:300])
     mem.rm(root, recursive=True)
