@@ -34,7 +34,7 @@ function tooltip(id, c, ev) {
     const on = gd.valueAt(spec.shade.x, spec.shade.mask, t) > 0.5;
     rows.push(`<tr><td colspan="3">${esc(spec.shade.label)}: <b>${on ? "yes" : "no"}</b></td></tr>`);
   }
-  tip.innerHTML = `<b>t = ${(t / per).toFixed(per === 1 ? 1 : 2)} ${L.x_unit || "s"}</b><table>${rows.join("")}</table>`; // names escaped above
+  tip.innerHTML = `<b>t = ${((t - L.x_origin) / per).toFixed(per === 1 ? 1 : 2)} ${L.x_unit || "s"}</b><table>${rows.join("")}</table>`; // names escaped above
   tip.hidden = false;
   // Beside the cursor, flipped to its left past the middle so it stays inside the chart.
   const x = ev.offsetX, w = c.clientWidth;

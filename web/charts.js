@@ -64,7 +64,13 @@ export function chart(id, spec) {
   const names = (spec.series || []).map((s) => s.name).filter((n) => n && n !== "zero");
   const per = L.x_unit_s;
   const xl = L.x_unit ? `${spec.x_label} (${L.x_unit})` : spec.x_label || "x";
-  c.setAttribute("aria-label", `${spec.title}: ${names.join(", ")}; ${xl} ${r(L.x_min / per)} to ${r(L.x_max / per)}, ${spec.y_label || "y"} ${r(L.y_min)} to ${r(L.y_max)}`);
+  c.setAttribute("aria-label", `${spec.title}: ${names.join(", ")}; ${xl} ${r((L.x_min - L.x_origin) / per)} to ${r((L.x_max - L.x_origin) / per)}, ${spec.y_label || "y"} ${r(L.y_min)} to ${r(L.y_max)}`);
+}
+
+/** Where a log's time axis counts from: its first row's time, read once per log (0 for
+ * most logs; an epoch-stamped log's charts read time since its start, not since 1970). */
+export function originOf(e) {
+  return (e.t0 ??= e.log?.column("time_s")[0] ?? 0);
 }
 
 export function timeRange(t) {

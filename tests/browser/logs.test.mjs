@@ -32,6 +32,25 @@ test("a loaded log shows the CLI's numbers; a bad one shows line and column and 
   await page.screenshot({ path: join(ARTIFACTS, "bad-file.png"), fullPage: true });
 });
 
+test("an epoch-stamped log reads time since its start and gives the pipeline the log from 0 gives", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-epoch-"));
+  const lines = readFileSync(join(SAMPLES, "test", "city-3.csv"), "utf8").split("\n");
+  const h = lines.findIndex((l) => l.startsWith("time_s"));
+  const name = lines.findIndex((l) => l.startsWith("# name:"));
+  lines[name] = "# name: City Epoch";
+  const epoch = join(dir, "city-epoch.csv");
+  writeFileSync(epoch, lines.map((l, i) => (i <= h || !l ? l : l.replace(/^[^,]+/, (t) => (Number(t) + 1763892000).toFixed(3)))).join("\n"));
+  await page.locator("#file-input").setInputFiles([epoch]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City Epoch"));
+  await page.waitForSelector("#m-e-pipeline");
+  const native = JSON.parse(cli("pipeline", join(SAMPLES, "test", "city-3.csv"), "--json"));
+  assert.equal(await page.locator("#m-e-pipeline").innerText(), native.E_psi_pipeline_deg.toFixed(2));
+  const L = await page.evaluate(() => { const l = window.gyrodrift.state.layouts["c-heading"]; return { ...l, x_ticks: Array.from(l.x_ticks) }; });
+  assert.equal(L.x_origin, 1763892000);
+  assert.ok(L.x_ticks.length > 2 && L.x_ticks.every((t) => t >= 0 && t < 100), `ticks ${L.x_ticks}`);
+  assert.match(await page.locator("#c-heading").getAttribute("aria-label"), /time \(min\) 0\.\d+ to \d+\.\d/);
+});
+
 test("a gzip-compressed log (drive.csv.gz) opens as the plain file, with the CLI's numbers; a damaged one is a clear error", async () => {
   const dir = mkdtempSync(join(tmpdir(), "gd-gz-"));
   const plain = join(SAMPLES, "test", "city-3.csv");

@@ -2,7 +2,7 @@
 import * as gd from "../pkg/gyrodrift.js";
 import { $, esc, fmt, state, hdrOptions, COLORS, PALETTE } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
-import { chart, timeRange } from "../charts.js";
+import { chart, originOf, timeRange } from "../charts.js";
 import { showError, render } from "../render.js";
 
 export function renderGyro() {
@@ -24,7 +24,7 @@ export function renderGyro() {
   series.push({ name: "gyro", color: COLORS.gyro, x: t, y: run.trace.heading_gyro_deg });
   series.push({ name: "Gyrodometry", color: COLORS.fused, x: t, y: run.trace.heading_gyrodometry_deg, width: 2 });
   chart("c-gyrodometry", {
-    title: `${e.name}: heading (shaded: gyro increment used)`, x_label: "time", time_x: true, y_label: "heading (deg)", x_range: xr,
+    title: `${e.name}: heading (shaded: gyro increment used)`, x_label: "time", time_x: true, x_origin: originOf(e), y_label: "heading (deg)", x_range: xr,
     cursor_x: state.cursor, series, shade: { x: t, mask: run.trace.used_gyro, color: "#8e44ad", label: "gyro used" },
   });
 }

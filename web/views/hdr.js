@@ -2,7 +2,7 @@
 import * as gd from "../pkg/gyrodrift.js";
 import { $, esc, fmt, state, hdrOptions, COLORS, PALETTE, METRIC_HELP } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
-import { chart } from "../charts.js";
+import { chart, originOf } from "../charts.js";
 import { showError, render } from "../render.js";
 import { perLog } from "../background.js";
 
@@ -65,12 +65,13 @@ export function renderHdr() {
   }
   const pe = pipe.errors && reduce(pipe.errors.time_s, [pipe.errors.pipeline_deg, pipe.errors.smoothed_deg], v);
   const cursor = state.cursor;
-  chart("c-heading", { title: `${e.name}: heading`, x_label: "time", time_x: true, y_label: "heading (deg)", x_range: xr, series, cursor_x: cursor });
+  const x_origin = originOf(e);
+  chart("c-heading", { title: `${e.name}: heading`, x_label: "time", time_x: true, x_origin, y_label: "heading (deg)", x_range: xr, series, cursor_x: cursor });
   // Without a reference there is no error to draw (not the last drive's chart left standing).
   $("c-error").parentElement.hidden = !run.errors;
   if (run.errors) {
     chart("c-error", {
-      title: "heading error (estimate − reference)", x_label: "time", time_x: true, y_label: "error (deg)", x_range: xr, cursor_x: cursor,
+      title: "heading error (estimate − reference)", x_label: "time", time_x: true, x_origin, y_label: "error (deg)", x_range: xr, cursor_x: cursor,
       series: [
         { name: "zero", color: COLORS.zero, x: [xr[0], xr[1]], y: [0, 0] },
         { name: "raw", color: COLORS.raw, x: run.errors.time_s, y: run.errors.raw_deg },
@@ -82,7 +83,7 @@ export function renderHdr() {
     });
   }
   chart("c-rate", {
-    title: "corrected rate ω and drift estimate −I (shaded: turn switch on, HDR correcting)", x_label: "time", time_x: true, y_label: "rate (deg/s)",
+    title: "corrected rate ω and drift estimate −I (shaded: turn switch on, HDR correcting)", x_label: "time", time_x: true, x_origin, y_label: "rate (deg/s)",
     // Around zero, where drift and the turn switch live (turns go off the chart, as in Figs. 3 and 5).
     x_range: xr, y_range: [-(3 * run_theta() + 0.3), 3 * run_theta() + 0.3], cursor_x: cursor,
     shade: { x: t, mask: run.trace.turn_switch, color: "#2e9d5b", label: "turn switch on" },
@@ -188,7 +189,7 @@ function renderColumns(e, overlaid, xr, cursor, v) {
       series.push({ name: `${o.entry.name}: ${c}`, color: PALETTE[(k + 3 + i) % PALETTE.length], width: 2, x: r.x, y: r.ys[0] });
     });
   });
-  chart("c-columns", { title: `${e.name}: log columns`, x_label: "time", time_x: true, y_label: "value (unit in the column's name)", x_range: xr, cursor_x: cursor, series });
+  chart("c-columns", { title: `${e.name}: log columns`, x_label: "time", time_x: true, x_origin: originOf(e), y_label: "value (unit in the column's name)", x_range: xr, cursor_x: cursor, series });
 }
 
 export function run_theta() {
@@ -209,5 +210,5 @@ export function readout() {
   const pt = pipe.trace;
   // The pipeline's heading with its sigma from the bias model (not the gyro's scale or noise).
   const p = pt ? ` · pipeline ${v(pt.time_s, pt.heading_deg)} ± ${v(pt.time_s, pt.heading_sigma_deg)} deg (1σ, bias)` : "";
-  el.textContent = `t = ${fmt(t, 1)} s · reference ${ref} deg · raw ${v(tr.time_s, tr.heading_raw_deg)} deg · HDR ${v(tr.time_s, tr.heading_hdr_deg)} deg${p} · ω ${v(tr.time_s, tr.rate_corrected_dps)} deg/s · −I ${v(tr.time_s, tr.drift_estimate_dps)} deg/s`;
+  el.textContent = `t = ${fmt(t - originOf(lastHdr.entry), 1)} s · reference ${ref} deg · raw ${v(tr.time_s, tr.heading_raw_deg)} deg · HDR ${v(tr.time_s, tr.heading_hdr_deg)} deg${p} · ω ${v(tr.time_s, tr.rate_corrected_dps)} deg/s · −I ${v(tr.time_s, tr.drift_estimate_dps)} deg/s`;
 }

@@ -29,6 +29,8 @@ struct Layout {
     /// The time axis's unit ("" when x is not time) and the seconds it holds (1 when not time).
     x_unit: &'static str,
     x_unit_s: f64,
+    /// Where a time axis counts from, s: a time t is labelled (t - x_origin) / x_unit_s.
+    x_origin: f64,
     /// Where the ticks are, as labelled (in the time unit; log axes as values, not exponents).
     x_ticks: Vec<f64>,
     y_ticks: Vec<f64>,
@@ -104,6 +106,7 @@ pub fn draw_chart(
         ("y_min", layout.y_min),
         ("y_max", layout.y_max),
         ("x_unit_s", layout.x_unit_s),
+        ("x_origin", layout.x_origin),
     ] {
         Reflect::set(&o, &JsValue::from_str(k), &JsValue::from_f64(v))?;
     }
@@ -208,6 +211,8 @@ struct Scale {
     log_y: bool,
     /// Seconds per unit of a time axis (1 otherwise).
     per: f64,
+    /// Where a time axis counts from, s (0 otherwise).
+    origin: f64,
 }
 
 impl Scale {
@@ -215,7 +220,7 @@ impl Scale {
         if self.log_x {
             v.log10()
         } else {
-            v / self.per
+            (v - self.origin) / self.per
         }
     }
     fn ty(self, v: f64) -> f64 {
@@ -332,7 +337,8 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
         Some(u) => format!("{} ({})", spec.x_label, u.name),
         None => spec.x_label.clone(),
     };
-    let sc = Scale { log_x: spec.log_x, log_y: spec.log_y, per };
+    let origin = if unit.is_some() { spec.x_origin } else { 0.0 };
+    let sc = Scale { log_x: spec.log_x, log_y: spec.log_y, per, origin };
     let (cx0, cx1, cy0, cy1) = (sc.tx(x0), sc.tx(x1), sc.ty(y0), sc.ty(y1));
     let font = ("sans-serif", px(13.0)).into_font();
     // Ticks at round values (core's axis): 1-2-5 steps on a linear axis, whole decades on a
@@ -385,6 +391,7 @@ fn draw(root: &DrawingArea<CanvasBackend, Shift>, spec: &Spec) -> Result<Layout,
         y_max: y1,
         x_unit: unit.map_or("", |u| u.name),
         x_unit_s: per,
+        x_origin: origin,
         x_ticks: x_ticks.iter().map(|&v| if spec.log_x { 10f64.powf(v) } else { v }).collect(),
         y_ticks: y_ticks.iter().map(|&v| if spec.log_y { 10f64.powf(v) } else { v }).collect(),
     })

@@ -35,6 +35,9 @@ pub(super) struct Spec {
     /// The x axis is time in seconds: drawn in s, min or h by the span shown (core's
     /// `axis::time_unit`), labelled "<x_label> (<unit>)".
     pub(super) time_x: bool,
+    /// A time axis counts from this time, s (the log's first row: an epoch-stamped log's
+    /// axis reads minutes since its start, not since 1970). Default 0.
+    pub(super) x_origin: f64,
     pub(super) series: Vec<Series>,
     pub(super) shade: Option<Shade>,
     pub(super) cursor_x: Option<f64>,
@@ -123,6 +126,7 @@ impl Spec {
             log_x: flag(v, "log_x"),
             log_y: flag(v, "log_y"),
             time_x: flag(v, "time_x"),
+            x_origin: number(v, "x_origin").filter(|o| o.is_finite()).unwrap_or(0.0),
             series,
             shade,
             cursor_x: number(v, "cursor_x"),

@@ -41,6 +41,9 @@ export interface ChartSpec {
   log_y?: boolean;
   /** x is time in seconds: drawn in s, min or h by the span shown, labelled "x_label (unit)". */
   time_x?: boolean;
+  /** With time_x: the time the axis counts from, s (the log's first row, so that an
+   * epoch-stamped log reads minutes since its start). Default 0. */
+  x_origin?: number;
   /** Draw the legend inside the plot (default true). */
   legend?: boolean;
   /** Equal axes (a track in metres): one unit as long across as up; x_range and y_range are
@@ -68,6 +71,9 @@ export interface ChartLayout {
   x_unit: string;
   /** Seconds in one x_unit (60 for "min"), 1 when x is not time. */
   x_unit_s: number;
+  /** Where the time axis counts from, s (0 when x is not time): a time t reads
+   * (t - x_origin) / x_unit_s. */
+  x_origin: number;
   /** Where the ticks are, as labelled: round values (1, 2 or 5 times a power of ten apart)
    * in the axis's unit, whole decades on a log axis. */
   x_ticks: Float64Array;
