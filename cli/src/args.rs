@@ -21,6 +21,18 @@ pub(crate) struct Cli {
     /// clockwise gyro), whose results would otherwise be absurd and are refused.
     #[arg(long, global = true)]
     pub(crate) ignore_check: bool,
+    /// A log whose time repeats or steps back by at most 1 s (a logger writing a sample twice,
+    /// or a row late): refuse it naming the line, or fix it: rows of one time merged by their
+    /// mean, late rows sorted in, as `import` does (said on stderr). A larger step back is
+    /// always refused.
+    #[arg(long, global = true, value_enum, default_value = "error")]
+    pub(crate) time_order: TimeOrderArg,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub(crate) enum TimeOrderArg {
+    Error,
+    Fix,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]

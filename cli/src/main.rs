@@ -14,6 +14,7 @@ static ALLOC: oom::Graceful = oom::Graceful;
 
 use args::*;
 use clap::Parser;
+use gyrodrift::log::accept::TimeOrder;
 use gyrodrift::sim::{GyroErrors, SimKind, SimRequest};
 use gyrodrift::{battery, DriveLog, Error};
 use std::path::{Path, PathBuf};
@@ -41,6 +42,31 @@ fn shown(path: &Path) -> String {
     }
 }
 
+/// The `--time-order` policy every log is read by (set once, before any is read).
+static TIME_ORDER: std::sync::OnceLock<TimeOrder> = std::sync::OnceLock::new();
+
+/// Parses a v1 log by the `--time-order` policy; what fixing did is said on stderr, and a
+/// refused time order names the option that fixes it.
+fn parse_ordered(path: &Path, reader: impl std::io::Read) -> Result<DriveLog, Failure> {
+    let order = TIME_ORDER.get().copied().unwrap_or_default();
+    match gyrodrift::log::accept::parse_by(reader, order) {
+        Ok((log, fixed)) => {
+            if let Some(f) = fixed {
+                eprintln!("{}: {f}", shown(path));
+            }
+            Ok(log)
+        }
+        Err(e) => {
+            let out_of_order = e.to_string().contains("time must strictly increase");
+            let mut f = fail(path, e);
+            if out_of_order {
+                f.0 += "; `--time-order fix` merges repeated times and sorts rows up to 1 s late in";
+            }
+            Err(f)
+        }
+    }
+}
+
 fn read_log(path: &Path) -> Result<DriveLog, Failure> {
     if is_stdin(path) {
         // Standard input can be read once: `-` given twice would be an empty second log.
@@ -49,7 +75,7 @@ fn read_log(path: &Path) -> Result<DriveLog, Failure> {
             return Err(Failure("-: standard input is given twice; it can be read once".into()));
         }
         let stdin = gyrodrift::log::file::decompressed(std::io::BufReader::new(std::io::stdin()));
-        return stdin.map_err(Error::from).and_then(gyrodrift::parse_log).map_err(|e| fail(path, e));
+        return parse_ordered(path, stdin.map_err(|e| fail(path, Error::from(e)))?);
     }
     if path.is_dir() {
         let what = match gyrodrift::import::folder_hint(path) {
@@ -60,8 +86,7 @@ fn read_log(path: &Path) -> Result<DriveLog, Failure> {
     }
     // A gzip-compressed log (drive.csv.gz) reads as the plain file.
     let file = gyrodrift::log::file::open_log(path).map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
-    gyrodrift::parse_log(file).map_err(|e| {
-        let mut f = fail(path, e);
+    parse_ordered(path, file).map_err(|mut f| {
         if let Some(hint) = import_hint(path) {
             f.0 += &format!("; {hint}");
         }
@@ -165,7 +190,12 @@ fn run(cli: Cli) -> Result<(), Failure> {
         GapsArg::Split => gyrodrift::log::gaps::GapPolicy::Split,
         GapsArg::Error => gyrodrift::log::gaps::GapPolicy::Error,
     };
-    let input = commands::Input { gaps, ignore_check: cli.ignore_check };
+    let time_order = match cli.time_order {
+        TimeOrderArg::Error => TimeOrder::Error,
+        TimeOrderArg::Fix => TimeOrder::Fix,
+    };
+    let _ = TIME_ORDER.set(time_order);
+    let input = commands::Input { gaps, ignore_check: cli.ignore_check, time_order };
     match cli.cmd {
         Cmd::Hdr { log, no_resample, set, json, trace } => c::hdr(&log, !no_resample, &set, json, trace.as_deref(), input),
         Cmd::Pipeline { log, set, json, trace, track } => c::pipeline(&log, &set, json, [trace.as_deref(), track.as_deref()], input),

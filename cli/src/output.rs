@@ -201,16 +201,9 @@ pub fn import_line(recipe: &Path, s: &gyrodrift::import::ImportSummary) -> Strin
     if let Some(l) = s.align_offset_s {
         let _ = write!(out, ", gyro clock shifted by {l:+.2} s");
     }
-    let f = s.time_fixes;
-    for (n, what) in [
-        (f.merged_duplicates, "rows of a repeated time merged"),
-        (f.dropped_duplicates, "rows of a repeated time dropped"),
-        (f.sorted_backward, "late rows put in time order"),
-        (f.dropped_backward, "late rows dropped"),
-    ] {
-        if n > 0 {
-            let _ = write!(out, ", {n} {what}");
-        }
+    let fixed = s.time_fixes.to_text();
+    if !fixed.is_empty() {
+        let _ = write!(out, ", {fixed}");
     }
     out
 }

@@ -146,6 +146,38 @@ fn a_gap_in_time_splits_the_log_or_is_refused() {
     assert!(v.to_string().contains("test drive (part 2 of 2)"), "{v}");
 }
 
+/// A time that repeats (a logger writing a sample twice): refused by default, naming the
+/// line and `--time-order fix`; with it the repeat is merged (said on stderr) and the log
+/// scores as it does without the repeat, here and in `report --dir` (the row's warning).
+#[test]
+fn a_repeated_time_is_refused_or_merged_by_time_order() {
+    let text = drive_csv();
+    let lines: Vec<&str> = text.lines().collect();
+    let h = lines.iter().position(|l| l.starts_with("time_s")).unwrap();
+    let mut with: Vec<&str> = lines[..h + 200].to_vec();
+    with.push(lines[h + 199]);
+    with.extend(&lines[h + 200..]);
+    let plain = write("plain.csv", &text);
+    let dir = std::env::temp_dir().join(format!("gd-time-order-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("repeat.csv");
+    std::fs::write(&p, with.join("\n") + "\n").unwrap();
+    let refused = run(&["hdr", p.to_str().unwrap()]);
+    assert_eq!(refused.status.code(), Some(2));
+    let msg = String::from_utf8_lossy(&refused.stderr);
+    assert!(msg.contains(&format!("line {}, column time_s: time", h + 201)) && msg.contains("`--time-order fix` merges"), "{msg}");
+    let fixed = run(&["hdr", p.to_str().unwrap(), "--json", "--time-order", "fix"]);
+    assert!(fixed.status.success());
+    assert!(String::from_utf8_lossy(&fixed.stderr).contains("repeat.csv: time order: 1 rows of a repeated time merged"));
+    assert_eq!(fixed.stdout, run(&["hdr", plain.to_str().unwrap(), "--json"]).stdout);
+    let rows = dir.join("rows.csv");
+    let batch = run(&["report", "--dir", dir.to_str().unwrap(), "--time-order", "fix", "--out", rows.to_str().unwrap()]);
+    assert!(batch.status.success(), "{}", String::from_utf8_lossy(&batch.stderr));
+    let out = std::fs::read_to_string(&rows).unwrap();
+    assert!(out.contains("time order: 1 rows of a repeated time merged"), "{out}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Out of memory (here a 60 MB address-space limit and a 16 MB log) exits 2 with one line,
 /// never an abort with a backtrace (exit 134).
 #[cfg(unix)]

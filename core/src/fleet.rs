@@ -252,8 +252,17 @@ pub fn score_bytes(file: &str, bytes: &[u8], opts: &FleetOptions) -> Vec<DriveRo
 /// Parses a v1 log from `reader` and scores it; a parse error is one error row naming the
 /// line and column.
 pub fn score_reader<R: Read>(file: &str, stem: &str, reader: R, opts: &FleetOptions) -> Vec<DriveRow> {
-    match crate::log::parse_log(reader) {
-        Ok(log) => score_log(file, stem, log, opts),
+    match crate::log::accept::parse_by(reader, opts.input.time_order) {
+        Ok((log, fixed)) => {
+            let mut rows = score_log(file, stem, log, opts);
+            // What the time-order policy fixed is the rows' first warning.
+            if let Some(f) = fixed {
+                for r in &mut rows {
+                    r.warnings = if r.warnings.is_empty() { f.clone() } else { format!("{f}; {}", r.warnings) };
+                }
+            }
+            rows
+        }
         Err(e) => vec![DriveRow::failed(file, e.to_string())],
     }
 }

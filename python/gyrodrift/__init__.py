@@ -52,20 +52,22 @@ from .frames import from_pandas, rows_to_pandas, to_pandas
 from .remote import fetch, is_url
 
 
-def read_log(path: "_core.StrPath") -> Log:
+def read_log(path: "_core.StrPath", time_order: str = "error") -> Log:
     """Reads a CSV v1 log file (gzip-compressed too, ``drive.csv.gz``), from a path or an
     fsspec URL (``s3://bucket/drive.csv``: fetched, then parsed by core). Bad input raises
-    ValueError naming the file, line and column; a file that cannot be opened, OSError."""
+    ValueError naming the file, line and column; a file that cannot be opened, OSError.
+    ``time_order="fix"``: a time that repeats or steps back by at most 1 s is put in order
+    (rows of one time merged by their mean, late rows sorted in; a UserWarning says so)."""
     import os
 
     spec = os.fspath(path)
     if isinstance(spec, str) and is_url(spec):
         data = fetch(spec)
         try:
-            return Log.from_bytes(data)
+            return Log.from_bytes(data, time_order)
         except ValueError as e:
             raise ValueError(f"{spec}: {e}") from None
-    return _core.read_log(path)
+    return _core.read_log(path, time_order)
 
 
 __version__ = version()

@@ -259,7 +259,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     ap.add_argument("--workers", type=int, default=2, help="LocalCluster workers (default 2)")
     ap.add_argument("--processes", action="store_true", help="LocalCluster workers as processes (default: threads; core releases the GIL)")
     ap.add_argument("--import", dest="import_raw", action="store_true", help="import a logger's raw exports among the files (SensorLog, Sensor Logger, phyphox, ...) and score them, a drive per recording")
-    ap.add_argument("--options", help='fleet options as JSON, e.g. \'{"input": {"gaps": "error"}, "pipeline": {"min_still_s": 3}}\'')
+    ap.add_argument("--options", help='fleet options as JSON, e.g. \'{"input": {"gaps": "error", "time_order": "fix"}, "pipeline": {"min_still_s": 3}}\'')
     ap.add_argument("--fail-on-error", action="store_true", help="exit 1 when a file could not be scored, once every row is written (a CI job); without it a fleet job exits 0")
     args = ap.parse_args(argv)
     try:

@@ -1,6 +1,7 @@
 //! `Log`: a parsed drive log (CSV v1), read from a file or text, or made from numpy columns.
 
 use crate::{array, from_py, result_dict, value_err, values};
+use gyrodrift::log::accept::TimeOrder;
 use gyrodrift::{Column, DriveLog};
 use numpy::PyReadonlyArray1;
 use pyo3::exceptions::{PyKeyError, PyOSError};
@@ -52,7 +53,7 @@ fn meta_of(v: serde_json::Value) -> PyResult<gyrodrift::LogMeta> {
 /// Reads a log file; an unreadable file is an OSError, a bad cell a ValueError naming the
 /// file, line and column (and, for a logger's raw export a preset reads, the `import_files`
 /// call that makes a v1 log of it).
-pub(crate) fn read_path(path: &str) -> PyResult<DriveLog> {
+pub(crate) fn read_path(path: &str, order: TimeOrder) -> PyResult<(DriveLog, Option<String>)> {
     let dir = std::path::Path::new(path);
     if dir.is_dir() {
         let what = match gyrodrift::import::folder_hint(dir) {
@@ -68,11 +69,37 @@ pub(crate) fn read_path(path: &str) -> PyResult<DriveLog> {
     }
     // A gzip-compressed log (drive.csv.gz) reads as the plain file.
     let f = gyrodrift::log::file::open_log(dir).map_err(|e| PyOSError::new_err(format!("{path}: cannot open: {e}")))?;
-    gyrodrift::parse_log(f).map_err(|e| {
+    gyrodrift::log::accept::parse_by(f, order).map_err(|e| {
         let hint =
             gyrodrift::import::import_hint(std::path::Path::new(path)).map_or(String::new(), |h| format!("; {}", hint_text(&h, "a file")));
-        value_err(format!("{path}: {e}{hint}"))
+        value_err(format!("{path}: {e}{order_hint}{hint}", order_hint = time_order_hint(&e)))
     })
+}
+
+/// `time_order` as given ("error" or "fix").
+pub(crate) fn time_order(s: &str) -> PyResult<TimeOrder> {
+    match s {
+        "error" => Ok(TimeOrder::Error),
+        "fix" => Ok(TimeOrder::Fix),
+        _ => Err(value_err(format!("time_order \"{s}\": \"error\" or \"fix\""))),
+    }
+}
+
+/// For a log refused for its time order: the argument that fixes it.
+fn time_order_hint(e: &gyrodrift::Error) -> &'static str {
+    match e.to_string().contains("time must strictly increase") {
+        true => "; time_order=\"fix\" merges repeated times and sorts rows up to 1 s late in",
+        false => "",
+    }
+}
+
+/// The log, and what fixing its time order did as a Python UserWarning (`name`: the file).
+pub(crate) fn warned(py: Python<'_>, name: &str, (log, fixed): (DriveLog, Option<String>)) -> PyResult<PyLog> {
+    if let Some(f) = fixed {
+        let message = std::ffi::CString::new(format!("{name}: {f}")).map_err(value_err)?;
+        PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &message, 1)?;
+    }
+    Ok(PyLog::new(log))
 }
 
 /// An import hint in Python's words (`what`: a file, a recording): the `import_files` call
@@ -102,10 +129,14 @@ fn folder_hints(paths: Vec<std::path::PathBuf>, max_folders: usize) -> Vec<Strin
 #[pymethods]
 impl PyLog {
     /// Reads a CSV v1 log file on this machine (`gyrodrift.read_log` also fetches fsspec URLs).
+    /// `time_order="fix"`: a time that repeats or steps back by at most 1 s is put in order
+    /// (rows of one time merged by their mean, late rows sorted in; a UserWarning says so).
     #[staticmethod]
-    fn read(py: Python<'_>, path: std::path::PathBuf) -> PyResult<PyLog> {
-        let p = path.display().to_string();
-        py.detach(|| read_path(&p)).map(PyLog::new)
+    #[pyo3(signature = (path, time_order="error"))]
+    fn read(py: Python<'_>, path: std::path::PathBuf, time_order: &str) -> PyResult<PyLog> {
+        let (p, order) = (path.display().to_string(), self::time_order(time_order)?);
+        let read = py.detach(|| read_path(&p, order))?;
+        warned(py, &p, read)
     }
 
     /// Parses CSV v1 text.
@@ -116,11 +147,15 @@ impl PyLog {
 
     /// Parses a CSV v1 log's bytes, gzip-compressed or not (an object store's file, as the
     /// wasm package's `Log.fromBytes` takes a file's).
+    /// `time_order` as for `read`.
     #[staticmethod]
-    fn from_bytes(py: Python<'_>, data: Vec<u8>) -> PyResult<PyLog> {
-        let parsed =
-            py.detach(|| gyrodrift::log::file::decompressed(&data[..]).map_err(gyrodrift::Error::from).and_then(gyrodrift::parse_log));
-        parsed.map(PyLog::new).map_err(value_err)
+    #[pyo3(signature = (data, time_order="error"))]
+    fn from_bytes(py: Python<'_>, data: Vec<u8>, time_order: &str) -> PyResult<PyLog> {
+        let order = self::time_order(time_order)?;
+        let parse = |r| gyrodrift::log::accept::parse_by(r, order);
+        let parsed = py.detach(|| gyrodrift::log::file::decompressed(&data[..]).map_err(gyrodrift::Error::from).and_then(parse));
+        let read = parsed.map_err(|e| value_err(format!("{e}{}", time_order_hint(&e))))?;
+        warned(py, "log", read)
     }
 
     /// A log from float64 columns named as in CSV v1 (`time_s`, `gyro_dps`, ...; NaN = empty

@@ -426,9 +426,11 @@ fn static_bias(log: &PyLog, bias_s: Option<f64>) -> PyResult<f64> {
 
 /// Reads a log file (the same as `Log.read`).
 #[pyfunction]
-fn read_log(py: Python<'_>, path: std::path::PathBuf) -> PyResult<PyLog> {
-    let p = path.display().to_string();
-    py.detach(|| read_path(&p)).map(PyLog::new)
+#[pyo3(signature = (path, time_order="error"))]
+fn read_log(py: Python<'_>, path: std::path::PathBuf, time_order: &str) -> PyResult<PyLog> {
+    let (p, order) = (path.display().to_string(), crate::log::time_order(time_order)?);
+    let read = py.detach(|| read_path(&p, order))?;
+    crate::log::warned(py, &p, read)
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

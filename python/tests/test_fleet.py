@@ -267,3 +267,32 @@ def test_read_log_and_from_bytes_take_a_url_and_gzip(samples):
     with pytest.raises(ValueError, match="a damaged or cut gzip file"):
         g.Log.from_bytes(gzip.compress(text)[:300])
     mem.rm(root, recursive=True)
+
+
+def test_a_log_out_of_time_order_is_refused_or_put_in_order(samples, tmp_path):
+    """A v1 log whose time repeats: read_log refuses it naming the line and the argument that
+    fixes it; time_order="fix" merges the repeat (a UserWarning says so) and scores as the
+    log without it; the fleet's options take the same policy, its row warning saying so."""
+    import warnings
+
+    lines = (samples / "train" / "city-1.csv").read_text().splitlines()
+    h = next(i for i, l in enumerate(lines) if l.startswith("time_s"))
+    dup = tmp_path / "dup.csv"
+    dup.write_text("\n".join(lines[: h + 400] + [lines[h + 399]] + lines[h + 400 :]) + "\n")
+    with pytest.raises(ValueError, match=r"line \d+, column time_s: .*repeats.*; time_order=\"fix\" merges"):
+        g.read_log(str(dup))
+    with pytest.warns(UserWarning, match="time order: 1 rows of a repeated time merged"):
+        log = g.read_log(str(dup), time_order="fix")
+    plain = g.read_log(str(samples / "train" / "city-1.csv"))
+    assert np.array_equal(log.column("gyro_dps"), plain.column("gyro_dps"))
+    with pytest.raises(ValueError, match='time_order "sort"'):
+        g.read_log(str(dup), time_order="sort")
+    with pytest.warns(UserWarning, match="log: time order: 1 rows"):
+        assert len(g.Log.from_bytes(dup.read_bytes(), time_order="fix")) == len(plain)
+    # A log in order warns of nothing.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        g.read_log(str(samples / "train" / "city-1.csv"), time_order="fix")
+    rows = g.score_files([str(dup)], options={"input": {"time_order": "fix"}})
+    assert rows[0]["warnings"].startswith("time order: 1 rows of a repeated time merged") and rows[0]["error"] is None
+    assert g.score_files([str(dup)])[0]["error"].endswith("time must strictly increase")

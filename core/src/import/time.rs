@@ -81,6 +81,24 @@ pub struct TimeFixes {
     pub dropped_backward: usize,
 }
 
+impl TimeFixes {
+    /// What the time policies did ("2 rows of a repeated time merged, 1 late rows put in
+    /// time order"; empty when nothing): the import's summary and a fixed log's warning.
+    pub fn to_text(&self) -> String {
+        let said: Vec<String> = [
+            (self.merged_duplicates, "rows of a repeated time merged"),
+            (self.dropped_duplicates, "rows of a repeated time dropped"),
+            (self.sorted_backward, "late rows put in time order"),
+            (self.dropped_backward, "late rows dropped"),
+        ]
+        .iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, what)| format!("{n} {what}"))
+        .collect();
+        said.join(", ")
+    }
+}
+
 /// A row's time against the one before (`prev`) and the latest so far: a repeat or a small
 /// step back is left to the policies unless they say `error`; a step back past
 /// `max_backward_s` is a clock reset, an error naming the line.
@@ -103,6 +121,34 @@ pub(super) fn check_step(spec: &TimeSpec, time: f64, prev: Option<f64>, latest: 
         }
     }
     Ok(())
+}
+
+/// A v1 log's rows in file order (`log::parse_log_in_time_order`) put in time order by the
+/// default policies (rows of one time merged by their mean, rows up to 1 s late sorted in);
+/// a step back past 1 s is a clock reset, an error naming the line.
+pub(crate) fn put_v1_in_time_order(time: &mut Vec<f64>, line: &mut Vec<u64>, cols: &mut [Vec<f64>]) -> Result<TimeFixes> {
+    let spec = TimeSpec {
+        column: None,
+        format: TimeFormat::Seconds,
+        unit: default_time_unit(),
+        period_s: None,
+        relative: false,
+        duplicates: DuplicatePolicy::Mean,
+        backward: BackwardPolicy::Sort,
+        max_backward_s: default_max_backward_s(),
+    };
+    let mut latest = f64::NEG_INFINITY;
+    for (&t, &l) in time.iter().zip(line.iter()) {
+        if latest - t > spec.max_backward_s {
+            let message = format!(
+                "time {t} goes back {:.3} s from {latest}: a clock reset? (rows up to 1 s late are sorted in; split the log there)",
+                latest - t
+            );
+            return Err(Error::Cell { line: l, column: "time_s".into(), message });
+        }
+        latest = latest.max(t);
+    }
+    Ok(put_in_time_order(&spec, time, line, cols))
 }
 
 /// Applies the time policies to rows read in file order: late rows sorted in (a stable sort,

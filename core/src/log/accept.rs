@@ -17,6 +17,34 @@ pub struct InputPolicy {
     pub gaps: GapPolicy,
     /// Run a log even when `check` finds an error in it.
     pub ignore_check: bool,
+    /// A v1 log whose time repeats or steps back a little: refused, or put in time order.
+    pub time_order: TimeOrder,
+}
+
+/// What to do with a v1 log whose time repeats or steps back by at most 1 s (a logger
+/// writing a sample twice, or a row late).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TimeOrder {
+    /// An error naming the line (the default: the log is not what it says).
+    #[default]
+    Error,
+    /// Rows of one time merged by their mean, rows up to 1 s late sorted in, as the import's
+    /// default time policies do (`parse_log_in_time_order`); said in a warning.
+    Fix,
+}
+
+/// Parses a v1 log by the time-order policy: the log, and with `Fix` what fixing did
+/// ("time order: 1 rows of a repeated time merged"; None when nothing needed it).
+pub fn parse_by<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveLog, Option<String>)> {
+    match order {
+        TimeOrder::Error => super::parse_log(reader).map(|log| (log, None)),
+        TimeOrder::Fix => {
+            let (log, fixes) = super::parse_log_in_time_order(reader, Default::default())?;
+            let said = fixes.to_text();
+            Ok((log, (!said.is_empty()).then(|| format!("time order: {said}"))))
+        }
+    }
 }
 
 /// A log taken: its parts (one without gaps), the check's warnings and what splitting did.
@@ -92,7 +120,7 @@ mod tests {
         let a = accept(log.clone(), "g", InputPolicy::default(), None).unwrap();
         assert_eq!(a.parts.len(), 2);
         assert!(a.split.unwrap().contains("split at 1 gap"));
-        let e = accept(log, "g", InputPolicy { gaps: GapPolicy::Error, ignore_check: false }, None).unwrap_err();
+        let e = accept(log, "g", InputPolicy { gaps: GapPolicy::Error, ..Default::default() }, None).unwrap_err();
         assert!(e.to_string().contains("gap of 201.0 s"), "{e}");
     }
 

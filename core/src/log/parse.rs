@@ -56,6 +56,30 @@ impl Header {
 /// As `parse_log_with`, calling `progress(bytes read so far)` every 65 536 rows (for a
 /// progress bar while a large file is parsed off the main thread).
 pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut dyn FnMut(u64)) -> Result<DriveLog> {
+    parse_rows::<true>(reader, opts, progress)
+}
+
+/// A v1 log whose time repeats or steps back a little (a logger writing a sample twice, or a
+/// row late): its rows put in time order by the import's default time policies (rows of one
+/// time merged, each column the mean of its present values; rows up to 1 s late sorted in),
+/// with counts of what they did. A larger step back (a clock reset) is still an error.
+pub fn parse_log_in_time_order<R: Read>(reader: R, opts: ParseOptions) -> Result<(DriveLog, crate::import::TimeFixes)> {
+    let mut log = parse_rows::<false>(reader, opts, &mut |_| {})?;
+    let mut time = log.columns[Column::TimeS.index()].take().unwrap_or_default();
+    let present: Vec<usize> = (0..log.columns.len()).filter(|&i| log.columns[i].is_some()).collect();
+    let mut cols: Vec<Vec<f64>> = present.iter().map(|&i| log.columns[i].take().unwrap_or_default()).collect();
+    let fixes = crate::import::put_v1_in_time_order(&mut time, &mut log.line, &mut cols)?;
+    log.columns[Column::TimeS.index()] = Some(time);
+    for (i, c) in present.into_iter().zip(cols) {
+        log.columns[i] = Some(c);
+    }
+    Ok((log, fixes))
+}
+
+/// The rows of a v1 log; with `STRICT`, time must strictly increase (each row against the one
+/// before), otherwise the rows are left in file order.
+#[inline(always)]
+fn parse_rows<const STRICT: bool>(reader: impl Read, opts: ParseOptions, progress: &mut dyn FnMut(u64)) -> Result<DriveLog> {
     let mut meta = LogMeta::default();
     let mut preamble = |line: u64, text: &str| -> Result<bool> {
         let t = text.trim();
@@ -88,7 +112,7 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
                 opts.max_rows, r.line
             )));
         }
-        data_row(h, &r, &mut prev_time, &mut log)
+        data_row::<STRICT>(h, &r, &mut prev_time, &mut log)
     })?;
     let Some(h) = header else {
         return Err(Error::File("empty file: no header row".into()));
@@ -100,8 +124,9 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
     Ok(log)
 }
 
-/// One data row into the columns; time must be present and strictly increase.
-fn data_row(h: &Header, r: &Row, prev_time: &mut Option<(f64, u64)>, log: &mut DriveLog) -> Result<()> {
+/// One data row into the columns; time must be present and, with `STRICT`, strictly increase.
+#[inline(always)]
+fn data_row<const STRICT: bool>(h: &Header, r: &Row, prev_time: &mut Option<(f64, u64)>, log: &mut DriveLog) -> Result<()> {
     let line = r.line;
     if r.fields.len() != h.map.len() {
         let hint = if r.fields.len() < h.map.len() { " (truncated row?)" } else { "" };
@@ -116,7 +141,7 @@ fn data_row(h: &Header, r: &Row, prev_time: &mut Option<(f64, u64)>, log: &mut D
                 return Err(Error::Cell { line, column: c.name().into(), message: "empty, but every row needs a time".into() });
             }
             if let Some((pt, pl)) = *prev_time {
-                if v <= pt {
+                if STRICT && v <= pt {
                     let what = if v == pt { "repeats" } else { "goes back from" };
                     let message = format!("time {v} {what} {pt} on line {pl}: time must strictly increase");
                     return Err(Error::Cell { line, column: c.name().into(), message });

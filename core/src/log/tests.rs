@@ -154,3 +154,27 @@ fn kind_from_columns() {
     assert_eq!(DriveLog::with_columns(&[Column::OdoLeftM, Column::OdoRightM]).kind(), LogKind::Robot);
     assert_eq!(DriveLog::with_columns(&[Column::TableRateDps]).kind(), LogKind::Turntable);
 }
+
+/// A v1 log whose time repeats or steps back a little reads in time order by the import's
+/// default policies (repeats merged by their mean, late rows sorted in), counted; the strict
+/// parser refuses the same text; a clock reset is an error naming its line.
+#[test]
+fn a_log_out_of_time_order_is_put_in_order_on_request() {
+    let text = "# name: messy\ntime_s,gyro_dps,speed_mps\n0,1,\n1,2,5\n1,4,\n3,5,6\n2.5,7,7\n4,8,8\n";
+    assert!(parse_log_str(text).unwrap_err().to_string().contains("line 5, column time_s: time 1 repeats 1 on line 4"));
+    let (log, fixes) = parse_log_in_time_order(text.as_bytes(), ParseOptions::default()).unwrap();
+    assert_eq!(log.time_s(), &[0.0, 1.0, 2.5, 3.0, 4.0]);
+    assert_eq!(log.column(Column::GyroDps).unwrap(), &[1.0, 3.0, 7.0, 5.0, 8.0]);
+    // The repeat's speed is the mean of its present values: 5 alone.
+    assert_eq!(log.column(Column::SpeedMps).unwrap()[1], 5.0);
+    assert_eq!(log.line, vec![3, 4, 7, 6, 8]);
+    assert_eq!(log.meta.name.as_deref(), Some("messy"));
+    assert_eq!((fixes.merged_duplicates, fixes.sorted_backward), (1, 1));
+    // In order already: the strict parser's log, nothing fixed.
+    let plain = "time_s,gyro_dps\n0,1\n1,2\n";
+    let (log, fixes) = parse_log_in_time_order(plain.as_bytes(), ParseOptions::default()).unwrap();
+    assert_eq!((log, fixes), (parse_log_str(plain).unwrap(), Default::default()));
+    let reset = "time_s,gyro_dps\n0,1\n5,2\n3,3\n";
+    let e = parse_log_in_time_order(reset.as_bytes(), ParseOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("line 4, column time_s: time 3 goes back 2.000 s from 5: a clock reset?"), "{e}");
+}
