@@ -1,7 +1,7 @@
 // The log list, the selection, and the parameter forms.
 import { $, fmt, state, VIEW_KIND, logFor } from "./state.js";
 import { render, scheduleRender } from "./render.js";
-import { saveRecipe } from "./loading.js";
+import { saveRecipe, fixTimeOrder } from "./loading.js";
 import { forget } from "./background.js";
 
 // ---------- list and selection ----------
@@ -17,6 +17,16 @@ export function renderList() {
       text.textContent = e.error;
       li.append(text, removeButton(i, `Dismiss the error of ${e.name}`));
       li.dataset.error = "1";
+      if (e.timeOrder) {
+        const fix = document.createElement("button");
+        fix.type = "button";
+        fix.className = "link fix-order";
+        fix.textContent = "put in time order";
+        fix.title = "Merge rows of one time (each column's mean) and sort rows up to 1 s late in, as gyrodrift --time-order fix";
+        fix.setAttribute("aria-label", `Put ${e.name} in time order and open it`);
+        fix.addEventListener("click", () => fixTimeOrder(e));
+        li.append(fix);
+      }
     } else {
       // the highlighted log is the one the view plots
       if (e === shown) {
@@ -53,6 +63,7 @@ export function renderList() {
         li.append(imp);
       }
       if (e.note) li.append(checkNote("split", "✂ split at a gap in time", [e.note]));
+      if (e.orderNote) li.append(checkNote("split", "⇅ put in time order", [e.orderNote]));
     }
     ul.append(li);
   });

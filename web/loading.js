@@ -76,11 +76,11 @@ export function inWorker(message, transfer, onProgress) {
   });
 }
 
-export async function parseInWorker(file, buffer) {
+export async function parseInWorker(file, buffer, options = {}) {
   const bar = $("progress");
   bar.hidden = false;
   bar.value = 0;
-  const res = await inWorker({ type: "parse", buffer }, [buffer], (f) => {
+  const res = await inWorker({ type: "parse", buffer, ...options }, [buffer], (f) => {
     bar.value = f;
     $("status").textContent = `parsing ${file.name}: ${Math.round(f * 100)} %`;
   });
@@ -306,10 +306,42 @@ export async function loadFiles(given) {
       last = e;
       // Its file, should check find an error the column mapper can fix (remap).
       for (const x of state.entries) if (x.file === f.name && !x.error && !x.source) x.source = f;
+    } else if (TIME_ORDER.test(e.error) && window.Worker) {
+      // A time that repeats or steps back: the list offers to put it in order (fixTimeOrder).
+      Object.assign(e, { source: f, timeOrder: true });
     }
   }
   $("status").textContent = "";
   if (last) selectEntry(state.entries.indexOf(last));
+  else renderList();
+}
+
+/** Core's refusal of a log whose time does not strictly increase. */
+const TIME_ORDER = /time must strictly increase/;
+
+/** A log refused for its time order, read again in the worker (whose module has the fixing
+ * parser) with its time put in order: rows of one time merged by their mean, rows up to 1 s
+ * late sorted in, as the CLI's `--time-order fix`. It takes the error entry's place; what was
+ * fixed is its note. A clock reset stays an error entry. */
+export async function fixTimeOrder(entry) {
+  const f = entry.source;
+  const res = await parseInWorker(f, await f.arrayBuffer(), { timeOrder: "fix" });
+  let built;
+  try {
+    built = res.error ? { error: new Error(res.error) } : { log: await buildInTasks(res.data) };
+  } catch (err) {
+    built = { error: err };
+  }
+  state.entries.splice(state.entries.indexOf(entry), 1);
+  const e = addParsed(f.name, () => {
+    if (built.error) throw built.error;
+    return built.log;
+  }, res.check);
+  if (!e.error) e.orderNote = res.fixed;
+  if (res.key != null && !e.error && !e.note) e.workerKey = res.key;
+  else if (res.key != null) inWorker({ type: "forget", key: res.key }, [], () => {});
+  $("status").textContent = "";
+  if (!e.error) selectEntry(state.entries.indexOf(e));
   else renderList();
 }
 

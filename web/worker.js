@@ -1,7 +1,7 @@
 // Work off the main thread with the whole wasm package (pkg/full: the page's own module has
 // no import, tuning or simulation), so the page never freezes:
 // - parse: a large log, with progress, and its check; the columns go back transferred, not
-//   copied, and the page rebuilds the Log from them;
+//   copied, and the page rebuilds the Log from them; or a log put in time order;
 // - import: raw logger files by their detected preset (or a given recipe); recipes to and
 //   from TOML;
 // - tune: the HDR parameters over the drives' columns, with progress;
@@ -9,7 +9,7 @@
 //   drive with one profile's errors added (to open a case as a log); profiles: their names;
 // - track, pipelineTrack, pipeline: the slow work on a large log this worker parsed and
 //   kept (`key`), so the page's Track view and pipeline never pause it.
-import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog } from "./pkg/full/gyrodrift.js";
+import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog, logInTimeOrder } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 /** Large logs parsed here, kept for later work on them (freed on "forget"). */
@@ -106,12 +106,15 @@ self.onmessage = async (ev) => {
       self.postMessage({ id, data, detection: { ...d, summary } }, buffers(data));
       return;
     }
-    const log = Log.fromBytesWithProgress(new Uint8Array(ev.data.buffer), progressReporter(id));
+    // timeOrder "fix": a time that repeats or steps back a little is put in order (the
+    // page's module refuses such a log), and `fixed` says what was done.
+    const bytes = new Uint8Array(ev.data.buffer);
+    const { log, fixed } = ev.data.timeOrder === "fix" ? logInTimeOrder(bytes) : { log: Log.fromBytesWithProgress(bytes, progressReporter(id)), fixed: "" };
     const data = log.toColumns();
     // `gyrodrift check` here too, so the page does not run it on millions of rows.
     const check = checkLog(log);
     kept.set(id, log);
-    self.postMessage({ id, data, key: id, check }, buffers(data));
+    self.postMessage({ id, data, key: id, check, fixed }, buffers(data));
   } catch (e) {
     self.postMessage({ id, error: e.message });
   }

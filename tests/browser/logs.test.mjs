@@ -51,6 +51,31 @@ test("an epoch-stamped log reads time since its start and gives the pipeline the
   assert.match(await page.locator("#c-heading").getAttribute("aria-label"), /time \(min\) 0\.\d+ to \d+\.\d/);
 });
 
+test("a log whose time repeats is refused, and put in time order on request, with the CLI's numbers", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-order-"));
+  const lines = readFileSync(join(SAMPLES, "test", "rural-3.csv"), "utf8").split("\n");
+  const h = lines.findIndex((l) => l.startsWith("time_s"));
+  lines[lines.findIndex((l) => l.startsWith("# name:"))] = "# name: Rural Repeat";
+  lines.splice(h + 300, 0, lines[h + 299]);
+  const repeat = join(dir, "rural-repeat.csv");
+  writeFileSync(repeat, lines.join("\n"));
+  await page.locator("#file-input").setInputFiles([repeat]);
+  const bad = page.locator("#logs li.bad", { hasText: "rural-repeat.csv" });
+  await bad.waitFor();
+  assert.match(await bad.innerText(), /line \d+, column time_s: time [\d.]+ repeats/);
+  await bad.locator("button.fix-order").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Rural Repeat"));
+  assert.equal(await page.locator("#logs li.bad", { hasText: "rural-repeat.csv" }).count(), 0);
+  assert.match(await page.locator("#logs li.selected").innerText(), /put in time order/);
+  assert.equal(await page.locator("#logs li.selected details.check p").last().textContent(), "1 rows of a repeated time merged");
+  const native = JSON.parse(cli("hdr", repeat, "--json", "--time-order", "fix"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  await page.screenshot({ path: join(ARTIFACTS, "time-order.png"), fullPage: false });
+  // Taken off again: the later tests count the list's check notes.
+  await page.locator("#logs li", { hasText: "Rural Repeat" }).locator("button.remove").click();
+  await page.waitForFunction(() => ![...document.querySelectorAll("#logs li")].some((li) => li.innerText.includes("Rural Repeat")));
+});
+
 test("a gzip-compressed log (drive.csv.gz) opens as the plain file, with the CLI's numbers; a damaged one is a clear error", async () => {
   const dir = mkdtempSync(join(tmpdir(), "gd-gz-"));
   const plain = join(SAMPLES, "test", "city-3.csv");
