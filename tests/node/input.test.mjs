@@ -207,3 +207,16 @@ test("Log.reduceColumns gives reduceSeries' points of the log's own columns, wit
   assert.throws(() => log.reduceColumns(["speed_mps"], {}), /columns/);
   log.free();
 });
+
+test("logInTimeOrder (the full build) reads a log whose time repeats or is a little late, as the CLI's --time-order fix; Log.fromBytes refuses it", () => {
+  const text = "# name: messy\ntime_s,gyro_dps\n0,1\n1,2\n1,4\n3,5\n2.5,7\n4,8\n";
+  const bytes = new TextEncoder().encode(text);
+  assert.throws(() => gd.Log.fromBytes(bytes), /line 5, column time_s: time 1 repeats 1 on line 4/);
+  const { log, fixed } = gd.logInTimeOrder(bytes);
+  assert.deepEqual([...log.column("time_s")], [0, 1, 2.5, 3, 4]);
+  assert.deepEqual([...log.column("gyro_dps")], [1, 3, 7, 5, 8]);
+  assert.equal(fixed, "1 rows of a repeated time merged, 1 late rows put in time order");
+  assert.equal(log.name, "messy");
+  log.free();
+  assert.throws(() => gd.logInTimeOrder(new TextEncoder().encode("time_s,gyro_dps\n0,1\n5,2\n3,3\n")), /line 4, column time_s: time 3 goes back 2\.000 s from 5: a clock reset\?/);
+});
