@@ -88,6 +88,26 @@ export async function parseInWorker(file, buffer, options = {}) {
   return res;
 }
 
+/** A log the worker parsed (`parseInWorker`'s answer) added to the list as `addParsed` adds
+ * one, copied in a chunk per task so none holds the page for long; the check comes from the
+ * worker, which keeps its copy for the slow work (Track, pipeline) unless the log was split
+ * at a gap (its parts are not the worker's log) or failed. */
+async function addWorkerParsed(f, res) {
+  let built;
+  try {
+    built = res.error ? { error: new Error(res.error) } : { log: await buildInTasks(res.data) };
+  } catch (err) {
+    built = { error: err };
+  }
+  const e = addParsed(f.name, () => {
+    if (built.error) throw built.error;
+    return built.log;
+  }, res.check);
+  if (res.key != null && !e.error && !e.note) e.workerKey = res.key;
+  else if (res.key != null) inWorker({ type: "forget", key: res.key }, [], () => {});
+  return e;
+}
+
 /** A name no loaded log has: "City 1", then "City 1 (2)", ... (the list and the URL name logs). */
 function uniqueName(name) {
   const taken = new Set(state.entries.map((e) => e.name));
@@ -272,19 +292,8 @@ export async function loadFiles(given) {
     const buffer = await f.arrayBuffer();
     let e;
     if (buffer.byteLength > WORKER_BYTES && window.Worker) {
-      const res = await parseInWorker(f, buffer);
-      // The log copied in a chunk per task and its first drawing in a task of its own, so
-      // none holds the page for long; the check comes from the worker.
-      let built;
-      try {
-        built = res.error ? { error: new Error(res.error) } : { log: await buildInTasks(res.data) };
-      } catch (err) {
-        built = { error: err };
-      }
-      e = addParsed(f.name, () => {
-        if (built.error) throw built.error;
-        return built.log;
-      }, res.check);
+      e = await addWorkerParsed(f, await parseInWorker(f, buffer));
+      // Its first drawing in a task of its own, so none holds the page for long.
       await nextTask();
       // HDR's preparation (a pass over every row) in a task of its own before the first drawing.
       if (!e.error && !e.note && e.kind === "drive") {
@@ -295,10 +304,6 @@ export async function loadFiles(given) {
         }
         await nextTask();
       }
-      // The worker keeps its copy for the slow work (Track, pipeline) unless the log was
-      // split at a gap (its parts are not the worker's log).
-      if (res.key != null && !e.error && !e.note) e.workerKey = res.key;
-      else if (res.key != null) inWorker({ type: "forget", key: res.key }, [], () => {});
     } else {
       e = addLog(f.name, new Uint8Array(buffer));
     }
@@ -326,20 +331,9 @@ const TIME_ORDER = /time must strictly increase/;
 export async function fixTimeOrder(entry) {
   const f = entry.source;
   const res = await parseInWorker(f, await f.arrayBuffer(), { timeOrder: "fix" });
-  let built;
-  try {
-    built = res.error ? { error: new Error(res.error) } : { log: await buildInTasks(res.data) };
-  } catch (err) {
-    built = { error: err };
-  }
   state.entries.splice(state.entries.indexOf(entry), 1);
-  const e = addParsed(f.name, () => {
-    if (built.error) throw built.error;
-    return built.log;
-  }, res.check);
+  const e = await addWorkerParsed(f, res);
   if (!e.error) e.orderNote = res.fixed;
-  if (res.key != null && !e.error && !e.note) e.workerKey = res.key;
-  else if (res.key != null) inWorker({ type: "forget", key: res.key }, [], () => {});
   $("status").textContent = "";
   if (!e.error) selectEntry(state.entries.indexOf(e));
   else renderList();

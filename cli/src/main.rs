@@ -57,7 +57,7 @@ fn parse_ordered(path: &Path, reader: impl std::io::Read) -> Result<DriveLog, Fa
             Ok(log)
         }
         Err(e) => {
-            let out_of_order = e.to_string().contains("time must strictly increase");
+            let out_of_order = gyrodrift::log::accept::refused_for_time_order(&e);
             let mut f = fail(path, e);
             if out_of_order {
                 f.0 += "; `--time-order fix` merges repeated times and sorts rows up to 1 s late in";

@@ -87,7 +87,7 @@ pub(crate) fn time_order(s: &str) -> PyResult<TimeOrder> {
 
 /// For a log refused for its time order: the argument that fixes it.
 fn time_order_hint(e: &gyrodrift::Error) -> &'static str {
-    match e.to_string().contains("time must strictly increase") {
+    match gyrodrift::log::accept::refused_for_time_order(e) {
         true => "; time_order=\"fix\" merges repeated times and sorts rows up to 1 s late in",
         false => "",
     }

@@ -47,6 +47,12 @@ pub fn parse_by<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveL
     }
 }
 
+/// Whether `e` is the parser's refusal of a time that repeats or steps back (what
+/// `TimeOrder::Fix` fixes): the fronts add the option that fixes it in their own words.
+pub fn refused_for_time_order(e: &Error) -> bool {
+    matches!(e, Error::Cell { column, message, .. } if column == "time_s" && message.ends_with(super::parse::TIME_ORDER_REFUSAL))
+}
+
 /// A log taken: its parts (one without gaps), the check's warnings and what splitting did.
 #[derive(Debug, Clone)]
 pub struct Accepted {

@@ -124,6 +124,10 @@ fn parse_rows<const STRICT: bool>(reader: impl Read, opts: ParseOptions, progres
     Ok(log)
 }
 
+/// How the parser's refusal of a time that repeats or steps back ends (`data_row`;
+/// `accept::refused_for_time_order`, whose CLI and Python hints the tests check).
+pub(super) const TIME_ORDER_REFUSAL: &str = "time must strictly increase";
+
 /// One data row into the columns; time must be present and, with `STRICT`, strictly increase.
 #[inline(always)]
 fn data_row<const STRICT: bool>(h: &Header, r: &Row, prev_time: &mut Option<(f64, u64)>, log: &mut DriveLog) -> Result<()> {
@@ -143,6 +147,8 @@ fn data_row<const STRICT: bool>(h: &Header, r: &Row, prev_time: &mut Option<(f64
             if let Some((pt, pl)) = *prev_time {
                 if STRICT && v <= pt {
                     let what = if v == pt { "repeats" } else { "goes back from" };
+                    // Ends with TIME_ORDER_REFUSAL (a literal here: the const in the format
+                    // string grows the size-capped browser module).
                     let message = format!("time {v} {what} {pt} on line {pl}: time must strictly increase");
                     return Err(Error::Cell { line, column: c.name().into(), message });
                 }
