@@ -7,9 +7,10 @@ import * as plot from "./pkg/plot/gyrodrift_plot.js";
 import { $, COLORS } from "./state.js";
 import { saveRecipe } from "./loading.js";
 
-const TIME_UNITS = ["s", "ms", "us", "ns", "iso8601"];
+const TIME_UNITS = ["s", "ms", "us", "ns", "iso8601", "time_of_day"];
+const TIME_LABELS = { iso8601: "ISO 8601", time_of_day: "time of day (hh:mm:ss)" };
 const RATE_UNITS = ["deg/s", "rad/s", "mrad/s", "deg/h"];
-const SPEED_UNITS = ["m/s", "km/h", "mph"];
+const SPEED_UNITS = ["m/s", "km/h", "mph", "kn"];
 
 /** The first column (as "file index:column") whose name matches, or "". */
 function guess(files, re, not) {
@@ -18,6 +19,7 @@ function guess(files, re, not) {
 }
 
 function timeUnitOf(name) {
+  if (/time.?of.?day|hhmmss|clock/i.test(name)) return "time_of_day";
   if (/iso|date|utc|txt/i.test(name)) return "iso8601";
   if (/\bns\b|_ns|nanos/i.test(name)) return "ns";
   if (/\bus\b|_us|µs|micros/i.test(name)) return "us";
@@ -54,7 +56,7 @@ function buildForm(sniffed, body) {
   const times = sniffed.map((s, i) => {
     const c = s.header.find((h) => /time|stamp|^t$|^t_|_s$/i.test(h)) || s.header[0];
     const col = select(`map-time-${i}`, s.header.map((h) => [h, h]), c, `time column of ${s.name}`);
-    const unit = select(`map-time-unit-${i}`, TIME_UNITS.map((u) => [u, u === "iso8601" ? "ISO 8601" : u]), timeUnitOf(c), `time unit of ${s.name}`);
+    const unit = select(`map-time-unit-${i}`, TIME_UNITS.map((u) => [u, TIME_LABELS[u] ?? u]), timeUnitOf(c), `time unit of ${s.name}`);
     col.addEventListener("change", () => (unit.value = timeUnitOf(col.value)));
     body.append(row(`time of ${s.name}`, col, unit));
     return { col, unit };
@@ -94,7 +96,7 @@ function buildForm(sniffed, body) {
   // Speed and the lead-in.
   const spCol = guess(sniffed, /speed|velocity|vel_m|v_kmh|\bv\b/i, /accuracy/i);
   const sp = select("map-speed", cols, spCol, "speed column");
-  const spUnit = select("map-speed-unit", SPEED_UNITS.map((u) => [u, u]), /kmh|km\/h|kph/i.test(spCol) ? "km/h" : /mph/i.test(spCol) ? "mph" : "m/s", "speed unit");
+  const spUnit = select("map-speed-unit", SPEED_UNITS.map((u) => [u, u]), /kmh|km\/h|kph/i.test(spCol) ? "km/h" : /mph/i.test(spCol) ? "mph" : /knot|\bkn\b|kts/i.test(spCol) ? "kn" : "m/s", "speed unit");
   const lead = document.createElement("input");
   Object.assign(lead, { id: "map-lead", type: "number", min: 0, max: 600, step: 1, value: 0 });
   lead.setAttribute("aria-label", "stationary lead-in, s");
@@ -146,7 +148,7 @@ function recipeOf(f, files, sniffed) {
   r.table = [...used].sort().map((i) => {
     const s = sniffed[i];
     const t = times[i];
-    const time = t.unit.value === "iso8601" ? { column: t.col.value, format: "iso8601" } : { column: t.col.value, unit: t.unit.value };
+    const time = t.unit.value in TIME_LABELS ? { column: t.col.value, format: t.unit.value } : { column: t.col.value, unit: t.unit.value };
     const spec = { id: `t${i}`, file: s.name, time };
     if (s.delimiter !== ",") spec.delimiter = s.delimiter;
     if (s.decimal_comma) spec.decimal_comma = true;

@@ -126,6 +126,9 @@ test("files no preset fits open the mapping panel: guessed columns, live preview
   await page.waitForFunction(() => document.getElementById("mapping-preview").classList.contains("bad"));
   assert.match(await page.locator("#mapping-preview").innerText(), /line 2, column stamp_ms: .* not an ISO 8601 time/);
   assert.equal(await page.locator("#mapping-add").isDisabled(), true);
+  // The time-of-day format is offered too, and refuses a number the same way.
+  await page.locator("#map-time-unit-0").selectOption("time_of_day");
+  await page.waitForFunction(() => /not a time of day/.test(document.getElementById("mapping-preview").textContent));
   await page.locator("#map-time-unit-0").selectOption("ms");
   await page.waitForFunction(() => /4\.0 min/.test(document.getElementById("mapping-preview").textContent));
   await page.locator("#map-lead").fill("20");

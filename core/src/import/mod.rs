@@ -35,7 +35,7 @@ pub use recipe::*;
 pub use recipe_text::*;
 pub use sniff::{sniff, Sniffed, SNIFF_BYTES};
 pub use time::*;
-pub use units::parse_iso8601;
+pub use units::{parse_iso8601, parse_time_of_day};
 
 use crate::error::{Error, Result};
 use crate::log::{Column, DriveLog, LogMeta};

@@ -40,14 +40,16 @@ fn row_time(spec: &TableSpec, scale: f64, time_idx: Option<usize>, time_name: &s
         (Some(p), _) => Ok(row_n as f64 * p),
         (None, Some(j)) => {
             let v = match spec.time.format {
-                TimeFormat::Seconds => cell(fields, j, time_name, line, spec.decimal_comma)? * scale,
-                TimeFormat::Iso8601 => {
+                TimeFormat::Seconds => {
+                    cell(fields, j, time_name, line, spec.decimal_comma).map_err(|e| time_format_hint(e, fields, j))? * scale
+                }
+                TimeFormat::Iso8601 | TimeFormat::TimeOfDay => {
                     let text = fields.get(j).copied().unwrap_or("");
-                    parse_iso8601(text).ok_or_else(|| Error::Cell {
-                        line,
-                        column: time_name.to_string(),
-                        message: format!("\"{text}\" is not an ISO 8601 time"),
-                    })?
+                    let (v, what) = match spec.time.format {
+                        TimeFormat::Iso8601 => (parse_iso8601(text), "an ISO 8601 time"),
+                        _ => (parse_time_of_day(text), "a time of day (hh:mm:ss.fff or hhmmss.fff)"),
+                    };
+                    v.ok_or_else(|| Error::Cell { line, column: time_name.to_string(), message: format!("\"{text}\" is not {what}") })?
                 }
             };
             if v.is_nan() {
@@ -56,6 +58,25 @@ fn row_time(spec: &TableSpec, scale: f64, time_idx: Option<usize>, time_name: &s
             Ok(v)
         }
         (None, None) => Err(recipe_err(&format!("table {}", spec.id), "time needs a column or a period_s")),
+    }
+}
+
+/// A time cell that is not a number but reads as a date-time or a time of day: the error
+/// names the format that reads it.
+fn time_format_hint(e: Error, fields: &[&str], j: usize) -> Error {
+    let text = fields.get(j).copied().unwrap_or("");
+    let format = if parse_iso8601(text).is_some() {
+        "iso8601"
+    } else if parse_time_of_day(text).is_some() {
+        "time_of_day"
+    } else {
+        return e;
+    };
+    match e {
+        Error::Cell { line, column, message } => {
+            Error::Cell { line, column, message: format!("{message}; it reads as a time with time.format = \"{format}\"") }
+        }
+        e => e,
     }
 }
 
@@ -92,6 +113,8 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
     let time_name = spec.time.column.clone().unwrap_or_else(|| "time".into());
     let mut t = Table { file: file.clone(), time_s: Vec::new(), line: Vec::new(), cols: BTreeMap::new(), fixes: TimeFixes::default() };
     let mut latest = f64::NEG_INFINITY;
+    // Days counted on for a time of day (`past_midnight`).
+    let mut day_s = 0.0;
     let mut cols: Vec<Vec<f64>> = Vec::new();
     let mut row_n: u64 = 0;
     let mut on_row = |line: u64, fields: &[&str]| -> Result<()> {
@@ -109,7 +132,10 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
                 return Ok(());
             }
         }
-        let time = row_time(spec, scale, time_idx, &time_name, row_n, line, fields)?;
+        let mut time = row_time(spec, scale, time_idx, &time_name, row_n, line, fields)?;
+        if spec.time.format == TimeFormat::TimeOfDay && spec.time.period_s.is_none() {
+            time = past_midnight(time, &mut day_s, latest);
+        }
         check_step(&spec.time, time, t.time_s.last().copied(), latest, line, &time_name)?;
         latest = latest.max(time);
         for (k, (name, j)) in idx.iter().enumerate() {

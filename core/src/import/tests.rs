@@ -15,6 +15,34 @@ fn iso8601_hand_worked() {
 }
 
 #[test]
+fn time_of_day_hand_worked() {
+    assert_eq!(parse_time_of_day("00:00:00"), Some(0.0));
+    assert_eq!(parse_time_of_day("13:05:09"), Some(13.0 * 3600.0 + 5.0 * 60.0 + 9.0));
+    assert_eq!(parse_time_of_day("9:05:09.25"), Some(9.0 * 3600.0 + 309.25));
+    // a fraction after a colon, as some phone apps write it: 250 = .250 s
+    assert_eq!(parse_time_of_day("13:05:09:250"), Some(47_109.25));
+    // NMEA's hhmmss.ss, and a trailing Z (UTC)
+    assert_eq!(parse_time_of_day("130509.25"), Some(47_109.25));
+    assert_eq!(parse_time_of_day("235959Z"), Some(86_399.0));
+    assert_eq!(parse_time_of_day(" 23:59:60.5 "), Some(86_400.5), "a leap second");
+    for bad in [
+        "",
+        "24:00:00",
+        "12:60:00",
+        "12:5:00",
+        "12:05",
+        "1305.25",
+        "12:05:09.",
+        "12:05:09.x",
+        "2023-08-06 12:05:09",
+        "-1:00:00",
+        "12:05:09:1:2",
+    ] {
+        assert_eq!(parse_time_of_day(bad), None, "{bad}");
+    }
+}
+
+#[test]
 fn course_from_positions_hand_worked() {
     // East 3 m per second: course 90 deg, stamped at segment middles.
     let t = [0.0, 1.0, 2.0, 3.0];
@@ -243,7 +271,53 @@ fn the_heading_gate_reads_its_speed_column_in_its_unit() {
     let refs: Vec<f64> = log.column(Column::RefHeadingDeg).unwrap().iter().copied().filter(|x| x.is_finite()).collect();
     assert_eq!(refs, [-11.0, -12.0]);
     r.heading = serde_json::from_value(serde_json::json!({ "source": "column", "table": "a", "column": "course", "unit": "deg",
-        "positive": "cw", "speed_column": "v", "speed_unit": "knots", "min_speed_mps": 5.0 }))
+        "positive": "cw", "speed_column": "v", "speed_unit": "furlong/fortnight", "min_speed_mps": 5.0 }))
     .unwrap();
     assert!(import(&r, &mut files(csv)).unwrap_err().to_string().contains("heading.speed_unit"));
+}
+
+#[test]
+fn an_nmea_rmc_log_and_a_time_of_day_pass_midnight() {
+    // A GPS logger's $GPRMC sentences (time hhmmss.ss, speed in knots, course cw) and a
+    // gyro's CSV stamped with the time of day, both across midnight; one invalid fix (V)
+    // with its course and speed empty.
+    let rmc = |t: &str, ok: &str, kn: &str, course: &str| format!("$GPRMC,{t},{ok},4220.2340,N,07105.3704,W,{kn},{course},241123,,,A*00\n");
+    let mut gps = String::new();
+    for (t, ok, kn, course) in [("235958.00", "A", "10.0", "80.0"), ("235959.00", "A", "10.0", "90.0"), ("000000.00", "V", "", "")] {
+        gps.push_str(&rmc(t, ok, kn, course));
+    }
+    gps.push_str("$GPGGA,000000.00,4220.2340,N,07105.3704,W,1,09,1.2,16.6,M,-33.8,M,,0000*55\n");
+    gps.push_str(&rmc("000001.00", "A", "20.0", "100.0"));
+    let gyro = "time,w\n23:59:58.0,1\n23:59:58.5,2\n23:59:59.0,3\n23:59:59.5,4\n00:00:00.0,5\n00:00:00.5,6\n00:00:01.0,7\n";
+    let text = r#"{"table": [{"id": "imu", "file": "imu.csv", "time": {"column": "time", "format": "time_of_day"}},
+            {"id": "gps", "file": "gps.nmea", "format": "nmea", "record": "$GPRMC",
+             "columns": ["tag", "time", "status", "lat", "ns", "lon", "ew", "kn", "course", "date", "mv", "mv_ew", "mode"],
+             "time": {"column": "time", "format": "time_of_day"}}],
+        "yaw_rate": {"table": "imu", "column": "w", "unit": "deg/s", "positive": "ccw"},
+        "heading": {"source": "column", "table": "gps", "column": "course", "unit": "deg", "positive": "cw",
+                    "speed_column": "kn", "speed_unit": "kn", "min_speed_mps": 1.0},
+        "speed": {"source": "column", "table": "gps", "column": "kn", "unit": "kn"}}"#;
+    let recipe: Recipe = serde_json::from_str(text).unwrap();
+    let mut files = BTreeMap::from([("imu.csv".to_string(), gyro.as_bytes().to_vec()), ("gps.nmea".to_string(), gps.into_bytes())]);
+    let (log, s) = import(&recipe, &mut files).unwrap();
+    // 23:59:58 is the start; midnight passes without a clock reset: 0.5 s steps throughout
+    assert_eq!(log.time_s(), &[0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0]);
+    assert_eq!(log.column(Column::GyroDps).unwrap(), &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
+    // three valid fixes at 0, 1 and 3 s (courses 80, 90, 100 cw: -80, -90, -100 ccw)
+    assert_eq!(s.n_reference, 3);
+    let r = log.column(Column::RefHeadingDeg).unwrap();
+    let stamped: Vec<(f64, f64)> = log.time_s().iter().zip(r).filter(|(_, v)| v.is_finite()).map(|(t, v)| (*t, *v)).collect();
+    assert_eq!(stamped, [(0.0, -80.0), (1.0, -90.0), (3.0, -100.0)]);
+    // 10 kn = 5.144 m/s; 20 kn = 10.289 m/s
+    let v = log.column(Column::SpeedMps).unwrap();
+    assert!((v[0] - 10.0 * 1852.0 / 3600.0).abs() < 1e-12 && (v[6] - 20.0 * 1852.0 / 3600.0).abs() < 1e-12, "{v:?}");
+    // read as seconds, the time of day is refused naming the format that reads it
+    let secs = recipe_text_seconds(text);
+    let e = import(&secs, &mut files).unwrap_err().to_string();
+    assert!(e.contains("imu.csv: line 2, column time") && e.contains("time.format = \"time_of_day\""), "{e}");
+}
+
+/// The recipe with its time_of_day formats removed (times read as seconds).
+fn recipe_text_seconds(text: &str) -> Recipe {
+    serde_json::from_str(&text.replace(r#", "format": "time_of_day""#, "")).unwrap()
 }

@@ -10,7 +10,9 @@ use super::*;
 pub struct TimeSpec {
     /// The time column; absent = row index times `period_s`.
     pub column: Option<String>,
-    /// `seconds` (numbers, with `unit`) or `iso8601` (e.g. `2023-08-06 10:48:05-04:00`).
+    /// `seconds` (numbers, with `unit`), `iso8601` (e.g. `2023-08-06 10:48:05-04:00`) or
+    /// `time_of_day` (`13:05:09.250`, `13:05:09:250`, NMEA's `130509.25`; no date: the
+    /// day is counted on where the time passes midnight).
     #[serde(default)]
     pub format: TimeFormat,
     /// Unit of numeric times: s, ms, us, ns.
@@ -69,6 +71,17 @@ pub enum TimeFormat {
     #[default]
     Seconds,
     Iso8601,
+    TimeOfDay,
+}
+
+/// A time of day (s since midnight) on the table's own clock: the day it falls in is the
+/// first row's, plus one each time the time of day falls more than 12 h below the latest
+/// time so far (midnight passed). `day_s` carries the days counted so far.
+pub(super) fn past_midnight(time_of_day_s: f64, day_s: &mut f64, latest_s: f64) -> f64 {
+    while time_of_day_s + *day_s < latest_s - 43_200.0 {
+        *day_s += 86_400.0;
+    }
+    time_of_day_s + *day_s
 }
 
 /// Counts of the time policies' work.

@@ -32,7 +32,9 @@ pub(super) fn speed_unit(unit: &str, field: &str) -> Result<f64> {
         "m/s" => 1.0,
         "km/h" => 1.0 / 3.6,
         "mph" => 0.44704,
-        _ => return Err(recipe_err(field, format!("unit \"{unit}\" is not a speed unit (m/s, km/h, mph)"))),
+        // The knot of NMEA's RMC and VTG sentences: one nautical mile (1852 m) per hour.
+        "kn" | "knots" => 1852.0 / 3600.0,
+        _ => return Err(recipe_err(field, format!("unit \"{unit}\" is not a speed unit (m/s, km/h, mph, kn)"))),
     })
 }
 
@@ -44,6 +46,44 @@ pub(super) fn time_unit(unit: &str) -> Result<f64> {
         "ns" => 1e-9,
         _ => return Err(recipe_err("table.time.unit", format!("\"{unit}\" is not a time unit (s, ms, us, ns)"))),
     })
+}
+
+/// Parses a time of day into seconds since midnight: `hh:mm:ss[.fff]` (the hour may have
+/// one digit), `hh:mm:ss:fff` (the fraction after a colon, as some phone apps write it) or
+/// NMEA's `hhmmss[.sss]`, each with an optional `Z`. Loggers write these without a date;
+/// [`super::time`] counts the days as the time passes midnight.
+pub fn parse_time_of_day(s: &str) -> Option<f64> {
+    let s = s.trim();
+    let s = s.strip_suffix(['Z', 'z']).unwrap_or(s);
+    let digits = |t: &str, n: std::ops::RangeInclusive<usize>| n.contains(&t.len()) && t.bytes().all(|c| c.is_ascii_digit());
+    // The fraction of a second, when written (after a point, or after a third colon).
+    let (h, m, sec, frac) = match s.split(':').collect::<Vec<_>>()[..] {
+        [h, m, sec] => match sec.split_once('.') {
+            Some((sec, frac)) => (h, m, sec, Some(frac)),
+            None => (h, m, sec, None),
+        },
+        [h, m, sec, frac] => (h, m, sec, Some(frac)),
+        [hms] => {
+            let (whole, frac) = hms.split_once('.').map_or((hms, None), |(w, f)| (w, Some(f)));
+            if whole.len() != 6 {
+                return None;
+            }
+            (&whole[..2], &whole[2..4], &whole[4..], frac)
+        }
+        _ => return None,
+    };
+    if !(digits(h, 1..=2) && digits(m, 2..=2) && digits(sec, 2..=2) && frac.is_none_or(|f| digits(f, 1..=9))) {
+        return None;
+    }
+    let (h, m, sec): (u32, u32, u32) = (h.parse().ok()?, m.parse().ok()?, sec.parse().ok()?);
+    if h > 23 || m > 59 || sec > 60 {
+        return None;
+    }
+    let frac = match frac {
+        Some(f) => format!("0.{f}").parse::<f64>().ok()?,
+        None => 0.0,
+    };
+    Some(f64::from(h * 3600 + m * 60 + sec) + frac)
 }
 
 /// Parses an ISO 8601 date-time (`YYYY-MM-DD[T ]hh:mm:ss[.fff][Z|±hh:mm]`) into seconds

@@ -77,7 +77,7 @@ export interface TableSpec {
   columns?: string[];
   record?: string;
   time: {
-    column?: string; format?: "seconds" | "iso8601"; unit?: "s" | "ms" | "us" | "ns"; period_s?: number; relative?: boolean;
+    column?: string; format?: "seconds" | "iso8601" | "time_of_day"; unit?: "s" | "ms" | "us" | "ns"; period_s?: number; relative?: boolean;
     /** Rows repeating a time: merged (default), the first kept, or an error. */
     duplicates?: "mean" | "drop" | "error";
     /** Rows a little earlier than the one before (up to max_backward_s, default 1 s): sorted in (default), dropped, or an error. */
@@ -94,9 +94,9 @@ export interface Recipe {
   yaw_rate: RateSpec;
   positions?: { table: string; kind: "latlon" | "utm" | "ecef" | "enu"; columns: string[] };
   heading?:
-    | { source: "column"; table: string; column: string; unit: "deg" | "rad"; positive: Sense; speed_column?: string; speed_unit?: "m/s" | "km/h" | "mph"; min_speed_mps?: number; time_column?: string }
+    | { source: "column"; table: string; column: string; unit: "deg" | "rad"; positive: Sense; speed_column?: string; speed_unit?: "m/s" | "km/h" | "mph" | "kn" | "knots"; min_speed_mps?: number; time_column?: string }
     | { source: "positions"; min_distance_m?: number; min_speed_mps?: number };
-  speed?: { source: "column"; table: string; column: string; unit: "m/s" | "km/h" | "mph"; time_column?: string } | { source: "positions"; window_s?: number };
+  speed?: { source: "column"; table: string; column: string; unit: "m/s" | "km/h" | "mph" | "kn" | "knots"; time_column?: string } | { source: "positions"; window_s?: number };
   odometry?: { table: string; left: string[]; right: string[]; kind: "speed" | "travel"; unit: string; track_m: number };
   temperature?: { table: string; column: string; unit: "C" | "K" | "F" };
   align?: { rate: RateSpec; max_lag_s?: number };
