@@ -66,10 +66,14 @@ pub(crate) struct BatchArgs {
     pub(crate) fail_on_error: bool,
 }
 
+/// What a command's LOG may be.
+const LOG_HELP: &str = "The drive log: a v1 CSV (README, \"The drive-log CSV\"), gzipped or not, or - for standard input; a logger's raw export or its folder is answered with the import that reads it";
+
 #[derive(Subcommand)]
 pub(crate) enum Cmd {
     /// Heuristic Drift Reduction on a drive log, scored against its reference heading.
     Hdr {
+        #[arg(help = LOG_HELP)]
         log: PathBuf,
         /// Run on the raw rows instead of the paper's 1 Hz blocks.
         #[arg(long)]
@@ -87,11 +91,13 @@ pub(crate) enum Cmd {
     /// The recommended drift-reduction pipeline (beyond the paper) against raw, Table-III HDR
     /// and two peers (x-io Fusion offset, zero-rate update at stops).
     Pipeline {
+        #[arg(help = LOG_HELP)]
         log: PathBuf,
         /// Setting: a field of the pipeline's settings (min_still_s, road_gate_dps,
         /// road_sigma_dps, bias_walk_max_dps_per_sqrt_s, still_speed_mps, bias_s, ...).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Print the results as JSON instead of the table.
         #[arg(long)]
         json: bool,
         /// Write the per-block (1 s) trace (CSV) to this file: the causal heading and its
@@ -106,19 +112,23 @@ pub(crate) enum Cmd {
     },
     /// Gyrodometry on a robot log with wheel travel.
     Gyrodometry {
+        #[arg(help = LOG_HELP)]
         log: PathBuf,
         /// Parameter: thres_rate, wheelbase_m, bias_s.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Print the results as JSON instead of the table.
         #[arg(long)]
         json: bool,
     },
     /// Fit the rate x temperature error model to a turntable session.
     Calibrate {
+        #[arg(help = LOG_HELP)]
         log: PathBuf,
         /// Parameter: p, q, bias_s.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Print the results as JSON instead of the table.
         #[arg(long)]
         json: bool,
     },
@@ -131,10 +141,13 @@ pub(crate) enum Cmd {
         /// Parameter: i_c, tau, theta_w, c1, c2, bias_s.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Run HDR on the raw rows instead of the paper's 1 Hz blocks.
         #[arg(long, conflicts_with = "dir")]
         no_resample: bool,
+        /// Print the results as JSON instead of the table.
         #[arg(long, conflicts_with_all = ["markdown", "csv"])]
         json: bool,
+        /// The table as Markdown.
         #[arg(long, conflicts_with_all = ["csv", "dir"])]
         markdown: bool,
         /// The table as CSV (one row per drive, then the average or mean row).
@@ -158,8 +171,10 @@ pub(crate) enum Cmd {
         /// Setting of the pipeline (min_still_s, road_gate_dps, ...).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Print the results as JSON instead of the table.
         #[arg(long, conflicts_with = "csv")]
         json: bool,
+        /// The table as CSV (one row per drive).
         #[arg(long, conflicts_with = "dir")]
         csv: bool,
         /// Tune HDR on these training drives for a "HDR tuned" column.
@@ -195,6 +210,7 @@ pub(crate) enum Cmd {
         /// Pipeline setting (as for `pipeline`).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Print the results as JSON instead of the table.
         #[arg(long)]
         json: bool,
         /// Write one case's log instead ("BASE / PROFILE", as the cases are named), to open
@@ -207,12 +223,16 @@ pub(crate) enum Cmd {
     },
     /// Tune the five HDR parameters on training drives; report Table III vs tuned.
     Tune {
+        /// The drives to tune on (v1 logs with a reference heading), scored leave-one-out.
         #[arg(long, num_args = 1.., required = true)]
         train: Vec<PathBuf>,
+        /// Drives to score Table III and the tuned parameters on, unseen by the tuning.
         #[arg(long, num_args = 1..)]
         test: Vec<PathBuf>,
+        /// Print the results as JSON instead of the table.
         #[arg(long, conflicts_with = "markdown")]
         json: bool,
+        /// The tables as Markdown.
         #[arg(long)]
         markdown: bool,
     },
@@ -226,6 +246,7 @@ pub(crate) enum Cmd {
         /// Length in minutes (drive 20, robot 2.33, static 120 by default).
         #[arg(long)]
         minutes: Option<f64>,
+        /// Seed of the random road, driver and gyro (the same seed, the same log).
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Written as `# name:` in the log.
@@ -243,6 +264,7 @@ pub(crate) enum Cmd {
     /// worse gyro on your own drive. The other columns are kept (cut_lead_in drops the
     /// lead-in rows, gyro_only the speed and wheel columns).
     Inject {
+        #[arg(help = LOG_HELP)]
         log: PathBuf,
         #[command(flatten)]
         errors: ErrorArgs,
@@ -268,6 +290,8 @@ pub(crate) enum Cmd {
         /// from them.
         #[arg(conflicts_with_all = ["recipe", "data", "allow_outside"])]
         files: Vec<PathBuf>,
+        /// The recipe (TOML or JSON) that says how the files become a v1 log
+        /// (sample-logs/recipes/README.md).
         #[arg(long)]
         recipe: Option<PathBuf>,
         /// With FILES: print the detected recipe as TOML (to save, edit and re-use with
@@ -292,10 +316,13 @@ pub(crate) enum Cmd {
     /// drives, per road class: yaw rate while moving, straight runs, slow curvature, curves,
     /// the yaw-rate spectrum, lane-change-like manoeuvres and loops, and their distances.
     Roads {
+        /// Recipes of the recorded drives (a folder's *.toml or files).
         #[arg(long, num_args = 1.., default_value = "sample-logs/recipes")]
         recipes: Vec<PathBuf>,
+        /// Folder the recipes' files are in (default: each recipe's folder).
         #[arg(long)]
         data: Option<PathBuf>,
+        /// Print the results as JSON instead of the table.
         #[arg(long)]
         json: bool,
         /// Also draw the recorded and simulated distributions and spectra per road class into this SVG
@@ -305,13 +332,17 @@ pub(crate) enum Cmd {
     /// What a log looks like before any method runs: rate, gaps, units and sign against the
     /// reference, bias, outliers; each finding with its fix. Exit 1 when it finds an error.
     Check {
+        #[arg(help = LOG_HELP)]
         log: PathBuf,
+        /// Print the results as JSON instead of the table.
         #[arg(long)]
         json: bool,
     },
     /// Overlapping Allan deviation of a (static) gyro log.
     Allan {
+        #[arg(help = LOG_HELP)]
         log: PathBuf,
+        /// Print the results as JSON instead of the table.
         #[arg(long)]
         json: bool,
     },
