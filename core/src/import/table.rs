@@ -117,6 +117,8 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
     let mut day_s = 0.0;
     let mut cols: Vec<Vec<f64>> = Vec::new();
     let mut row_n: u64 = 0;
+    // The first fields of rows `record` left out (up to 5), to name when none was kept.
+    let mut other_records: Vec<String> = Vec::new();
     let mut on_row = |line: u64, fields: &[&str]| -> Result<()> {
         let Some(h) = &header else {
             header = Some(fields.iter().map(|f| f.to_string()).collect());
@@ -129,6 +131,10 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
         }
         if let Some(rec) = &spec.record {
             if fields.first() != Some(&rec.as_str()) {
+                let first = fields.first().copied().unwrap_or("");
+                if other_records.len() < 5 && !other_records.iter().any(|r| r == first) {
+                    other_records.push(first.to_string());
+                }
                 return Ok(());
             }
         }
@@ -170,7 +176,14 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
         return Err(at(Error::File("empty file: no header row".into())));
     }
     if t.time_s.is_empty() {
-        return Err(at(Error::File(format!("table {} has no data rows", spec.id))));
+        let why = match (&spec.record, other_records.is_empty()) {
+            (Some(rec), false) => {
+                let seen: Vec<String> = other_records.iter().map(|r| format!("\"{r}\"")).collect();
+                format!(": no row starts with record \"{rec}\" (rows start with {})", seen.join(", "))
+            }
+            _ => String::new(),
+        };
+        return Err(at(Error::File(format!("table {} has no data rows{why}", spec.id))));
     }
     t.fixes = put_in_time_order(&spec.time, &mut t.time_s, &mut t.line, &mut cols);
     let first = t.time_s[0];

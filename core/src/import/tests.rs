@@ -311,6 +311,13 @@ fn an_nmea_rmc_log_and_a_time_of_day_pass_midnight() {
     // 10 kn = 5.144 m/s; 20 kn = 10.289 m/s
     let v = log.column(Column::SpeedMps).unwrap();
     assert!((v[0] - 10.0 * 1852.0 / 3600.0).abs() < 1e-12 && (v[6] - 20.0 * 1852.0 / 3600.0).abs() < 1e-12, "{v:?}");
+    // a multi-GNSS receiver's talker ($GNRMC): the record that matched nothing is named
+    // with what the rows start with
+    let gn = String::from_utf8(files["gps.nmea"].clone()).unwrap().replace("$GPRMC", "$GNRMC");
+    let mut gn_files = files.clone();
+    gn_files.insert("gps.nmea".to_string(), gn.into_bytes());
+    let e = import(&recipe, &mut gn_files).unwrap_err().to_string();
+    assert!(e.contains("no row starts with record \"$GPRMC\" (rows start with \"$GNRMC\", \"$GPGGA\")"), "{e}");
     // read as seconds, the time of day is refused naming the format that reads it
     let secs = recipe_text_seconds(text);
     let e = import(&secs, &mut files).unwrap_err().to_string();
