@@ -370,7 +370,10 @@ pub fn import(recipe: &Path, data: Option<&Path>, allow_outside: bool, out: Opti
 /// on stderr, then as `import` (or the recipe as TOML with `print_recipe`).
 pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>, json: bool) -> Result<(), Failure> {
     use gyrodrift::import;
-    let (d, log, summary) = import::import_paths(paths).map_err(|e| Failure(e.to_string()))?;
+    let (d, log, summary) = match import::import_paths(paths) {
+        Ok(detected) => detected,
+        Err(e) => return draft_instead(paths, print_recipe, e),
+    };
     let parts: Vec<String> = d.used.iter().map(|(role, f)| format!("{role} = {f}")).collect();
     let mut note = format!("detected preset {} ({}): {}", d.preset, d.title, parts.join(", "));
     if !d.ignored.is_empty() {
@@ -399,6 +402,29 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
         eprintln!("{}", output::import_line(&shown, &summary));
         Ok(())
     }
+}
+
+/// Files no preset reads: with `--print-recipe` a draft recipe from their column names
+/// (each guess listed as a comment to check), else the error with that hint.
+fn draft_instead(paths: &[PathBuf], print_recipe: bool, e: gyrodrift::Error) -> Result<(), Failure> {
+    let draft = match gyrodrift::import::draft_for_paths(paths) {
+        Ok(Some(draft)) => draft,
+        _ => return Err(Failure(e.to_string())),
+    };
+    if !print_recipe {
+        return Err(Failure(format!("{e}; --print-recipe drafts one from the column names")));
+    }
+    let text = gyrodrift::import::recipe_value_to_toml(&draft.recipe_json).map_err(|e| Failure(e.to_string()))?;
+    let data = match paths {
+        [dir] if dir.is_dir() => shell_quoted(dir),
+        _ => files_folder(paths),
+    };
+    let guesses: String = draft.guesses.iter().map(|g| format!("#   {g}\n")).collect();
+    write_stdout(&format!(
+        "# A draft from the column names (no logger preset reads these files): check each guess,\n\
+         # then run gyrodrift import --recipe THIS.toml --data {data} and gyrodrift check on the log.\n\
+         # Guessed:\n{guesses}{text}"
+    ))
 }
 
 /// The folder the given files share, for the printed recipe's `--data` (quoted as the

@@ -475,3 +475,41 @@ fn a_folder_given_to_a_method_is_answered_with_the_import_or_the_batch() {
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("a folder, not a log file; to score every log in it: `gyrodrift report --dir"), "{err}");
 }
+
+/// A logger's own CSV that no preset reads: the import's error offers a draft, and the draft
+/// `--print-recipe` writes from the column names imports it as written (City 1 with ms time,
+/// the course clockwise and the speed in km/h: HDR as on the log itself, the course kept
+/// above the draft's 5 m/s).
+#[test]
+fn files_no_preset_reads_get_a_draft_recipe_from_their_column_names() {
+    let d = dir("draft");
+    let v1 = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/train/city-1.csv");
+    let mut mine = String::from("stamp_ms,gyro_z_dps,course,speed_kmh\n");
+    for line in std::fs::read_to_string(&v1).unwrap().lines().filter(|l| !l.starts_with('#')).skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let num = |s: &str| s.parse::<f64>().ok();
+        let course = num(f[3]).map_or(String::new(), |h| (-h).to_string());
+        mine.push_str(&format!("{},{},{course},{}\n", num(f[0]).unwrap() * 1000.0, f[1], num(f[4]).unwrap() * 3.6));
+    }
+    let file = d.join("my-logger.csv");
+    std::fs::write(&file, mine).unwrap();
+    let o = run(&["import", s(&file)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("--print-recipe drafts one from the column names"), "{err}");
+    let o = run(&["import", s(&file), "--print-recipe"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(text.contains("#   yaw_rate: my-logger.csv column \"gyro_z_dps\", deg/s") && text.contains("unit = \"km/h\""), "{text}");
+    let recipe = d.join("draft.toml");
+    std::fs::write(&recipe, text.as_bytes()).unwrap();
+    let imported = d.join("imported.csv");
+    let o = run(&["import", "--recipe", s(&recipe), "--data", s(&d), "--out", s(&imported)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let hdr = |p: &Path| -> serde_json::Value {
+        let o = run(&["hdr", s(p), "--set", "bias_s=20", "--json"]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let (a, b) = (hdr(&v1)["E_psi_hdr_deg"].as_f64().unwrap(), hdr(&imported)["E_psi_hdr_deg"].as_f64().unwrap());
+    assert!((a - b).abs() < 0.5, "{a} vs {b}");
+}

@@ -13,6 +13,7 @@
 #[cfg(feature = "zip")]
 mod archive;
 mod channels;
+mod draft;
 mod geo;
 #[cfg(feature = "fs")]
 mod hint;
@@ -27,6 +28,7 @@ mod units;
 
 #[cfg(feature = "zip")]
 pub use archive::{detect_and_import_unzipped, detect_unzipped, import_unzipped, is_zip, unzip_all, unzip_heads, MAX_UNZIPPED_BYTES};
+pub use draft::{draft_recipe, Draft};
 pub use geo::*;
 #[cfg(feature = "fs")]
 pub use hint::{folder_hint, folder_hints, import_hint, recordings, ImportHint, Recording};

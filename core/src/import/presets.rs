@@ -359,15 +359,7 @@ pub fn detect(files: &[Sniffed]) -> Result<Detection> {
     v["table"] = tables;
     for t in v["table"].as_array_mut().into_iter().flatten() {
         let Some(s) = files.iter().find(|s| Some(s.name.as_str()) == t["file"].as_str()) else { continue };
-        if s.delimiter != ',' {
-            t["delimiter"] = json!(s.delimiter.to_string());
-        }
-        if s.decimal_comma {
-            t["decimal_comma"] = json!(true);
-        }
-        if s.skip_lines > 0 {
-            t["skip_lines"] = json!(s.skip_lines);
-        }
+        s.set_dialect(t);
     }
     strip_nulls(&mut v);
     let recipe: Recipe = serde_json::from_value(v.clone()).map_err(|e| recipe_err(&format!("preset {}", p.id), e.to_string()))?;

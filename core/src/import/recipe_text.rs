@@ -123,6 +123,31 @@ mod files {
         }
     }
 
+    /// For files no preset reads (a folder given alone: its files): a draft recipe from their
+    /// column names, for `gyrodrift import FILES --print-recipe`. None when a preset reads
+    /// them (its recipe is the one to print) or a file is not a text table.
+    pub fn draft_for_paths(paths: &[PathBuf]) -> Result<Option<super::super::Draft>> {
+        let files = match paths {
+            [dir] if dir.is_dir() => super::super::hint::files_in(dir).unwrap_or_default(),
+            _ => paths.to_vec(),
+        };
+        let mut sniffed = Vec::with_capacity(files.len());
+        for p in &files {
+            let mut head = Vec::new();
+            let opened = std::fs::File::open(p)
+                .and_then(|f| std::io::Read::read_to_end(&mut std::io::Read::take(f, super::super::SNIFF_BYTES as u64), &mut head));
+            let name = p.file_name().map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into_owned());
+            match opened.ok().and_then(|_| super::super::sniff(&name, &head).ok()) {
+                Some(s) => sniffed.push(s),
+                None => return Ok(None),
+            }
+        }
+        if sniffed.is_empty() || super::super::detect(&sniffed).is_ok() {
+            return Ok(None);
+        }
+        super::super::draft_recipe(&sniffed).map(Some)
+    }
+
     /// `import_paths` of files (no folder among them).
     fn import_files(paths: &[PathBuf]) -> Result<(super::super::Detection, DriveLog, ImportSummary)> {
         let mut by_name = std::collections::BTreeMap::new();

@@ -34,6 +34,20 @@ impl Sniffed {
         self.delimiter == ',' && self.find("time_s").is_some() && self.find("gyro_dps").is_some()
     }
 
+    /// A recipe table's dialect fields (JSON) as sniffed: the separator, a decimal comma,
+    /// the lines before the header; the defaults left out.
+    pub(super) fn set_dialect(&self, table: &mut serde_json::Value) {
+        if self.delimiter != ',' {
+            table["delimiter"] = serde_json::json!(self.delimiter.to_string());
+        }
+        if self.decimal_comma {
+            table["decimal_comma"] = serde_json::json!(true);
+        }
+        if self.skip_lines > 0 {
+            table["skip_lines"] = serde_json::json!(self.skip_lines);
+        }
+    }
+
     /// The first header column matching `pattern`: a name, `*suffix` (ends with), or several
     /// such alternatives separated by `|`.
     pub fn find(&self, pattern: &str) -> Option<&str> {

@@ -328,3 +328,37 @@ fn an_nmea_rmc_log_and_a_time_of_day_pass_midnight() {
 fn recipe_text_seconds(text: &str) -> Recipe {
     serde_json::from_str(&text.replace(r#", "format": "time_of_day""#, "")).unwrap()
 }
+
+#[test]
+fn a_draft_recipe_reads_the_columns_by_name_and_imports() {
+    // A logger's own CSV: ms time, a gyro z in deg/s, a course, a speed in km/h, a temperature.
+    let csv = "stamp_ms,acc_z,gyro_z_dps,course,speed_kmh,temp\n0,9.8,1.0,,0,20\n1000,9.8,2.0,10,36,20\n2000,9.8,3.0,20,3.6,21\n";
+    let sniffed = sniff("my-logger.csv", csv.as_bytes()).unwrap();
+    let draft = draft_recipe(std::slice::from_ref(&sniffed)).unwrap();
+    let r = &draft.recipe_json;
+    assert_eq!(r["table"][0]["time"], serde_json::json!({ "column": "stamp_ms", "unit": "ms" }));
+    assert_eq!(r["yaw_rate"]["column"], "gyro_z_dps");
+    assert_eq!(r["yaw_rate"]["unit"], "deg/s");
+    assert_eq!(r["heading"]["column"], "course");
+    assert_eq!(r["heading"]["speed_unit"], "km/h");
+    assert_eq!(r["speed"]["unit"], "km/h");
+    assert_eq!(r["temperature"]["column"], "temp");
+    assert!(draft.guesses.iter().any(|g| g.starts_with("yaw_rate: my-logger.csv column \"gyro_z_dps\", deg/s")), "{:?}", draft.guesses);
+    let recipe: Recipe = serde_json::from_value(r.clone()).unwrap();
+    let mut files = BTreeMap::from([("my-logger.csv".to_string(), csv.as_bytes().to_vec())]);
+    let (log, s) = import(&recipe, &mut files).unwrap();
+    assert_eq!(log.time_s(), &[0.0, 1.0, 2.0]);
+    assert_eq!(log.column(Column::GyroDps).unwrap(), &[1.0, 2.0, 3.0]);
+    // 36 km/h = 10 m/s passes the 5 m/s gate (course 10 cw = -10), 3.6 km/h does not
+    assert_eq!(s.n_reference, 1);
+    assert_eq!(log.column(Column::SpeedMps).unwrap(), &[0.0, 10.0, 1.0]);
+    // positions when there is no course; a time of day by its name; rad/s by default
+    let s2 = sniff("b.csv", b"clock,wz,latitude,longitude\n").unwrap();
+    let d2 = draft_recipe(&[s2]).unwrap().recipe_json;
+    assert_eq!(d2["table"][0]["time"]["format"], "time_of_day");
+    assert_eq!((d2["yaw_rate"]["column"].as_str(), d2["yaw_rate"]["unit"].as_str()), (Some("wz"), Some("rad/s")));
+    assert_eq!(d2["positions"]["columns"], serde_json::json!(["latitude", "longitude"]));
+    // no yaw rate by name: an error naming the headers
+    let e = draft_recipe(&[sniff("c.csv", b"t,a,b\n").unwrap()]).unwrap_err().to_string();
+    assert!(e.contains("no column reads as a yaw rate") && e.contains("c.csv: t, a, b"), "{e}");
+}

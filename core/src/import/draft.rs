@@ -1,0 +1,163 @@
+//! A draft recipe for files no preset reads, guessed from their column names: each file's
+//! time and its format, the yaw rate (one axis) and its unit, the reference heading (a
+//! course column, or latitude and longitude) and the speed. A draft is a starting point
+//! to check and edit (`gyrodrift import FILES --print-recipe`), never imported unseen:
+//! names say little about signs and axes, and `check` then says what is off.
+
+use super::sniff::Sniffed;
+use super::*;
+use serde_json::{json, Value};
+
+/// A draft recipe and, per guess, what it was read from.
+#[derive(Debug, Clone)]
+pub struct Draft {
+    pub recipe_json: Value,
+    /// One line per guess ("yaw_rate: gyro.csv column gz, rad/s: ..."), for the user to check.
+    pub guesses: Vec<String>,
+}
+
+/// `name` in lower case contains `a`, then later `b` (a regex `a.*b`).
+fn then(name: &str, a: &str, b: &str) -> bool {
+    name.find(a).is_some_and(|i| name[i + a.len()..].contains(b))
+}
+
+/// `name` has `word` as a whole token (letters and digits around it are other words).
+fn word(name: &str, word: &str) -> bool {
+    name.match_indices(word).any(|(i, _)| {
+        let before = name[..i].chars().next_back();
+        let after = name[i + word.len()..].chars().next();
+        !before.is_some_and(char::is_alphanumeric) && !after.is_some_and(char::is_alphanumeric)
+    })
+}
+
+/// The time format or unit a time column's name suggests.
+fn time_of(name: &str) -> Value {
+    let n = name.to_lowercase();
+    if n.contains("time_of_day") || n.contains("timeofday") || n.contains("hhmmss") || n.contains("clock") {
+        json!({ "column": name, "format": "time_of_day" })
+    } else if n.contains("iso") || n.contains("date") || n.contains("utc") {
+        json!({ "column": name, "format": "iso8601" })
+    } else {
+        let unit = match () {
+            _ if word(&n, "ns") || n.contains("_ns") || n.contains("nanos") => "ns",
+            _ if word(&n, "us") || n.contains("_us") || n.contains("micros") => "us",
+            _ if word(&n, "ms") || n.contains("_ms") || n.contains("millis") => "ms",
+            _ => "s",
+        };
+        json!({ "column": name, "unit": unit })
+    }
+}
+
+/// A file's time column: the first whose name says time, else the first column.
+fn time_column(s: &Sniffed) -> &str {
+    let says_time = |h: &&String| {
+        let n = h.to_lowercase();
+        n.contains("time") || n.contains("stamp") || n == "t" || n.starts_with("t_") || n.ends_with("_s")
+    };
+    s.header.iter().find(says_time).or(s.header.first()).map_or("", String::as_str)
+}
+
+/// The first column, over every file, that `fits` and is not the file's time: (file index, name).
+fn find(files: &[Sniffed], fits: impl Fn(&str) -> bool) -> Option<(usize, String)> {
+    files.iter().enumerate().find_map(|(i, s)| {
+        let time = time_column(s);
+        s.header.iter().find(|h| h.as_str() != time && fits(&h.to_lowercase())).map(|h| (i, h.clone()))
+    })
+}
+
+fn speed_unit_of(n: &str) -> &'static str {
+    match () {
+        _ if n.contains("kmh") || n.contains("km/h") || n.contains("kph") => "km/h",
+        _ if n.contains("mph") => "mph",
+        _ if n.contains("knot") || word(n, "kn") || n.contains("kts") => "kn",
+        _ => "m/s",
+    }
+}
+
+/// A draft recipe for `files` (sniffed heads) from their column names, or an error when
+/// no column reads as a yaw rate.
+pub fn draft_recipe(files: &[Sniffed]) -> Result<Draft> {
+    let table = |i: usize| format!("t{i}");
+    let mut guesses = Vec::new();
+    let at = |i: usize, c: &str| format!("{} column \"{c}\"", files[i].name);
+    // The yaw rate: a z axis or a yaw rate by name, else any gyro or rate.
+    let z_axis = |n: &str| then(n, "gyro", "z") || word(n, "wz") || word(n, "w_z") || then(n, "yaw", "rate") || then(n, "angular", "z");
+    let any_rate = |n: &str| n.contains("gyro") || n.contains("yaw") || n.contains("rate");
+    let (gi, gyro) = find(files, z_axis).or_else(|| find(files, any_rate)).ok_or_else(|| {
+        let headers: Vec<String> = files.iter().map(|s| format!("{}: {}", s.name, s.header.join(", "))).collect();
+        Error::File(format!(
+            "no column reads as a yaw rate by its name (gyro z, yaw rate, wz) in {}; write the recipe (sample-logs/recipes/README.md)",
+            headers.join("; ")
+        ))
+    })?;
+    let g = gyro.to_lowercase();
+    let (unit, why) = match () {
+        _ if g.contains("rad") => ("rad/s", "the name says rad"),
+        _ if g.contains("deg") || g.contains("dps") => ("deg/s", "the name says deg/s"),
+        _ => ("rad/s", "no unit in the name: phones and ROS write rad/s"),
+    };
+    guesses.push(format!("yaw_rate: {}, {unit} ({why}), counter-clockwise positive (z up; `check` says if not)", at(gi, &gyro)));
+    let mut r = json!({ "name": format!("{} (draft)", files[gi].stem()), "bias_s": 0,
+        "yaw_rate": { "table": table(gi), "column": gyro, "unit": unit, "positive": "ccw" } });
+    let mut used = vec![gi];
+    // The speed, then the reference heading: a course column (gated by the speed in its
+    // table), or positions.
+    let speed =
+        find(files, |n| (n.contains("speed") || n.contains("velocity") || n.contains("vel_m") || word(n, "v")) && !n.contains("accuracy"));
+    if let Some((si, sc)) = &speed {
+        let unit = speed_unit_of(&sc.to_lowercase());
+        guesses.push(format!("speed: {}, {unit}", at(*si, sc)));
+        r["speed"] = json!({ "source": "column", "table": table(*si), "column": sc, "unit": unit });
+        used.push(*si);
+    }
+    let course =
+        find(files, |n| ["course", "bearing", "heading", "direction", "cog"].iter().any(|w| n.contains(w)) && !n.contains("accuracy"));
+    let lat_lon = files.iter().enumerate().find_map(|(i, s)| {
+        let col = |w: &str| s.header.iter().find(|h| h.to_lowercase().contains(w)).cloned();
+        Some((i, col("lat")?, col("lon")?))
+    });
+    if let Some((hi, hc)) = course {
+        let unit = if hc.to_lowercase().contains("rad") { "rad" } else { "deg" };
+        guesses.push(format!("heading: {}, {unit}, clockwise from north (a GPS course)", at(hi, &hc)));
+        let mut h = json!({ "source": "column", "table": table(hi), "column": hc, "unit": unit, "positive": "cw" });
+        if let Some((_, sc)) = speed.as_ref().filter(|(si, _)| *si == hi) {
+            h["speed_column"] = json!(sc);
+            h["speed_unit"] = json!(speed_unit_of(&sc.to_lowercase()));
+            h["min_speed_mps"] = json!(5.0);
+            guesses.push("heading: kept above 5 m/s (a course is noise at walking pace)".into());
+        }
+        r["heading"] = h;
+        used.push(hi);
+    } else if let Some((pi, lat, lon)) = lat_lon {
+        guesses.push(format!("heading: the course between positions, {} and \"{lon}\" in degrees", at(pi, &lat)));
+        r["positions"] = json!({ "table": table(pi), "kind": "latlon", "columns": [lat, lon] });
+        r["heading"] = json!({ "source": "positions" });
+        used.push(pi);
+    } else {
+        guesses.push("heading: none found (no course, bearing or latitude column): nothing will be scored".into());
+    }
+    if let Some((ti, tc)) = find(files, |n| n.contains("temp")) {
+        guesses.push(format!("temperature: {}, deg C", at(ti, &tc)));
+        r["temperature"] = json!({ "table": table(ti), "column": tc, "unit": "C" });
+        used.push(ti);
+    }
+    used.sort_unstable();
+    used.dedup();
+    let tables: Vec<Value> = used
+        .iter()
+        .map(|&i| {
+            let s = &files[i];
+            let time = time_of(time_column(s));
+            let what = time.get("format").or(time.get("unit")).and_then(Value::as_str).unwrap_or("s");
+            guesses.push(format!("time of {}: column \"{}\", {what}", s.name, time_column(s)));
+            let mut t = json!({ "id": table(i), "file": s.name, "time": time });
+            s.set_dialect(&mut t);
+            t
+        })
+        .collect();
+    r["table"] = json!(tables);
+    guesses.push("bias_s: 0 (set the seconds the log starts standing still, if it does)".into());
+    // A draft must parse as a recipe (its units and fields the import knows).
+    serde_json::from_value::<Recipe>(r.clone()).map_err(|e| recipe_err("draft", e.to_string()))?;
+    Ok(Draft { recipe_json: r, guesses })
+}
