@@ -403,6 +403,15 @@ fn import_files<'py>(py: Python<'py>, paths: Vec<std::path::PathBuf>) -> PyResul
     Ok((PyLog::new(log), result_dict(py, &summary)?, result_dict(py, &detection)?))
 }
 
+/// For raw files no preset reads (paths, or their folder): a draft recipe from their column
+/// names, {recipe, guesses}, each guess a line to check before `import_log(recipe, folder)`.
+#[pyfunction]
+fn draft_recipe<'py>(py: Python<'py>, paths: Vec<std::path::PathBuf>) -> PyResult<Bound<'py, PyDict>> {
+    let sniffed = gyrodrift::import::sniff_paths(&paths).map_err(value_err)?;
+    let d = gyrodrift::import::draft_recipe(&sniffed).map_err(value_err)?;
+    result_dict(py, &serde_json::json!({ "recipe": d.recipe_json, "guesses": d.guesses }))
+}
+
 /// The default settings of a method: "hdr", "pipeline", "gyrodometry", "calibration", "tune".
 #[pyfunction]
 fn defaults<'py>(py: Python<'py>, method: &str) -> PyResult<Bound<'py, PyDict>> {
@@ -454,6 +463,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(battery_profiles, m)?)?;
     m.add_function(wrap_pyfunction!(import_log, m)?)?;
     m.add_function(wrap_pyfunction!(import_files, m)?)?;
+    m.add_function(wrap_pyfunction!(draft_recipe, m)?)?;
     m.add_function(wrap_pyfunction!(defaults, m)?)?;
     m.add_function(wrap_pyfunction!(static_bias, m)?)?;
     m.add_function(wrap_pyfunction!(read_log, m)?)?;

@@ -336,6 +336,25 @@ def test_import_files_detects_the_preset_and_equals_the_cli(cli, samples, tmp_pa
         g.import_files([str(odd)])
 
 
+def test_draft_recipe_from_column_names_imports_as_the_cli_prints_it(cli, tmp_path):
+    mine = tmp_path / "my-logger.csv"
+    mine.write_text("stamp_ms,gyro_z_dps,course,speed_kmh\n0,1,,0\n1000,2,10,36\n2000,3,20,3.6\n")
+    d = g.draft_recipe([str(mine)])
+    assert d["recipe"]["table"][0]["time"] == {"column": "stamp_ms", "unit": "ms"}
+    assert any(x.startswith('yaw_rate: my-logger.csv column "gyro_z_dps", deg/s') for x in d["guesses"])
+    log, summary = g.import_log(d["recipe"], str(tmp_path))
+    assert list(log.column("gyro_dps")) == [1.0, 2.0, 3.0]
+    assert summary["n_reference"] == 1  # 36 km/h passes the draft's 5 m/s, 3.6 does not
+    printed = tmp_path / "draft.toml"
+    printed.write_text(cli("import", str(mine), "--print-recipe"))
+    log2, _ = g.import_log(str(printed), str(tmp_path))
+    assert log2.to_csv() == log.to_csv()
+    bad = tmp_path / "c.csv"
+    bad.write_text("t,a,b\n")
+    with pytest.raises(ValueError, match="no column reads as a yaw rate"):
+        g.draft_recipe([str(bad)])
+
+
 def test_the_type_stubs_name_exactly_what_the_module_has():
     import ast
     import pathlib

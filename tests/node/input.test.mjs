@@ -220,3 +220,22 @@ test("logInTimeOrder (the full build) reads a log whose time repeats or is a lit
   log.free();
   assert.throws(() => gd.logInTimeOrder(new TextEncoder().encode("time_s,gyro_dps\n0,1\n5,2\n3,3\n")), /line 4, column time_s: time 3 goes back 2\.000 s from 5: a clock reset\?/);
 });
+
+test("draftRecipe drafts a recipe from raw files' column names as the CLI's --print-recipe does", () => {
+  const csv = new TextEncoder().encode("stamp_ms,gyro_z_dps,course,speed_kmh\n0,1,,0\n1000,2,10,36\n2000,3,20,3.6\n");
+  const files = { "my-logger.csv": csv };
+  const d = gd.draftRecipe(files);
+  assert.deepEqual(d.recipe.table[0].time, { column: "stamp_ms", unit: "ms" });
+  assert.equal(d.recipe.yaw_rate.unit, "deg/s");
+  assert.ok(d.guesses.some((g) => g.startsWith('yaw_rate: my-logger.csv column "gyro_z_dps", deg/s')), d.guesses.join("\n"));
+  const { log, summary } = gd.importLog(d.recipe, files);
+  assert.deepEqual(Array.from(log.column("gyro_dps")), [1, 2, 3]);
+  assert.equal(summary.n_reference, 1); // 36 km/h passes the draft's 5 m/s, 3.6 does not
+  // The same draft as the CLI prints (its TOML after the comment lines).
+  const dir = mkdtempSync(join(tmpdir(), "gd-draft-"));
+  writeFileSync(join(dir, "my-logger.csv"), csv);
+  const printed = cli("import", join(dir, "my-logger.csv"), "--print-recipe");
+  assert.deepEqual(gd.recipeFromToml(printed), d.recipe);
+  assert.throws(() => gd.draftRecipe({ "c.csv": new TextEncoder().encode("t,a,b\n") }), /no column reads as a yaw rate/);
+  assert.throws(() => gd.draftRecipe(5), TypeError);
+});

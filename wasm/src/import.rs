@@ -69,6 +69,20 @@ pub fn detect_import(#[wasm_bindgen(unchecked_param_type = "Record<string, Uint8
     Ok(out.into())
 }
 
+/// For raw files no preset reads: a draft recipe from their column names, `{ recipe,
+/// guesses }` (each guess a line to check before use; core's `draft_recipe`). Throws when
+/// a file is not a text table or no column reads as a yaw rate.
+#[wasm_bindgen(js_name = draftRecipe, unchecked_return_type = "Draft")]
+pub fn draft_recipe(#[wasm_bindgen(unchecked_param_type = "Record<string, Uint8Array>")] files: JsValue) -> JsResult<JsValue> {
+    let sniffed: Vec<import::Sniffed> =
+        raw_files(&files)?.iter().map(|(name, bytes)| import::sniff(name, bytes)).collect::<Result<_, _>>().map_err(err)?;
+    let d = import::draft_recipe(&sniffed).map_err(err)?;
+    let out = Object::new();
+    set(&out, "recipe", &to_js(&d.recipe_json)?)?;
+    set(&out, "guesses", &to_js(&d.guesses)?)?;
+    Ok(out.into())
+}
+
 /// A recipe as TOML text (the format of `sample-logs/recipes`, `gyrodrift import --recipe`),
 /// checked as a recipe first (core's `recipe_value_to_toml`).
 #[wasm_bindgen(js_name = recipeToToml)]

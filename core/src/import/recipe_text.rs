@@ -123,25 +123,33 @@ mod files {
         }
     }
 
-    /// For files no preset reads (a folder given alone: its files): a draft recipe from their
-    /// column names, for `gyrodrift import FILES --print-recipe`. None when a preset reads
-    /// them (its recipe is the one to print) or a file is not a text table.
-    pub fn draft_for_paths(paths: &[PathBuf]) -> Result<Option<super::super::Draft>> {
+    /// The heads of files given by path (a folder given alone: its files), sniffed; an error
+    /// names a file that cannot be read or is not a text table.
+    pub fn sniff_paths(paths: &[PathBuf]) -> Result<Vec<super::super::Sniffed>> {
         let files = match paths {
             [dir] if dir.is_dir() => super::super::hint::files_in(dir).unwrap_or_default(),
             _ => paths.to_vec(),
         };
-        let mut sniffed = Vec::with_capacity(files.len());
-        for p in &files {
+        let read_head = |p: &Path| -> std::io::Result<Vec<u8>> {
             let mut head = Vec::new();
-            let opened = std::fs::File::open(p)
-                .and_then(|f| std::io::Read::read_to_end(&mut std::io::Read::take(f, super::super::SNIFF_BYTES as u64), &mut head));
-            let name = p.file_name().map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into_owned());
-            match opened.ok().and_then(|_| super::super::sniff(&name, &head).ok()) {
-                Some(s) => sniffed.push(s),
-                None => return Ok(None),
-            }
-        }
+            std::io::Read::read_to_end(&mut std::io::Read::take(std::fs::File::open(p)?, super::super::SNIFF_BYTES as u64), &mut head)?;
+            Ok(head)
+        };
+        files
+            .iter()
+            .map(|p| {
+                let name = p.file_name().map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into_owned());
+                let head = read_head(p).map_err(|e| Error::File(format!("{}: cannot open: {e}", p.display())))?;
+                super::super::sniff(&name, &head)
+            })
+            .collect()
+    }
+
+    /// For files no preset reads: a draft recipe from their column names, for `gyrodrift
+    /// import FILES --print-recipe`. None when a preset reads them (its recipe is the one
+    /// to print) or a file is not a text table.
+    pub fn draft_for_paths(paths: &[PathBuf]) -> Result<Option<super::super::Draft>> {
+        let Ok(sniffed) = sniff_paths(paths) else { return Ok(None) };
         if sniffed.is_empty() || super::super::detect(&sniffed).is_ok() {
             return Ok(None);
         }

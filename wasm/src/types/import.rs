@@ -132,6 +132,12 @@ export interface Detection {
   /** Files no part of the preset took. */
   ignored: string[];
 }
+/** A draft recipe from raw files' column names (`draftRecipe`): check each guess before use. */
+export interface Draft {
+  recipe: Recipe;
+  /** One line per guess: which column was read as what, and why. */
+  guesses: string[];
+}
 
 export interface ImportResult {
   log: Log;
