@@ -239,3 +239,32 @@ test("draftRecipe drafts a recipe from raw files' column names as the CLI's --pr
   assert.throws(() => gd.draftRecipe({ "c.csv": new TextEncoder().encode("t,a,b\n") }), /no column reads as a yaw rate/);
   assert.throws(() => gd.draftRecipe(5), TypeError);
 });
+
+test("importLog reads a GPX track (format gpx) as the CLI does: the heading from its positions", () => {
+  const pts = [[42.0, 11.0], [42.0, 11.0001], [42.0, 11.0002], [42.0, 11.0003], [42.0001, 11.0003], [42.0002, 11.0003]];
+  const trk = pts.map(([lat, lon], k) => `<trkpt lat="${lat}" lon="${lon}"><time>2026-11-27T10:00:0${k}Z</time></trkpt>`).join("");
+  const gpx = `<?xml version="1.0"?><gpx version="1.1" creator="t" xmlns="http://www.topografix.com/GPX/1/1"><trk><trkseg>${trk}</trkseg></trk></gpx>`;
+  let imu = "time,w\n";
+  for (let i = 0; i <= 50; i++) imu += `2026-11-27 10:00:0${Math.floor(i / 10)}.${i % 10}Z,0\n`;
+  const enc = (s) => new TextEncoder().encode(s);
+  const files = { "imu.csv": enc(imu), "drive.gpx": enc(gpx) };
+  const recipe = {
+    table: [{ id: "imu", file: "imu.csv", time: { column: "time", format: "iso8601" } }, { id: "trk", file: "drive.gpx", format: "gpx" }],
+    yaw_rate: { table: "imu", column: "w", unit: "deg/s", positive: "ccw" },
+    positions: { table: "trk", kind: "latlon", columns: ["lat", "lon"] },
+    heading: { source: "positions" },
+    speed: { source: "positions" },
+  };
+  const { log, summary } = gd.importLog(recipe, files);
+  assert.equal(summary.n_reference, 5);
+  const ref = Array.from(log.column("ref_heading_deg")).filter(Number.isFinite);
+  assert.deepEqual(ref.map((h) => Math.round(h) + 0), [-90, -90, -90, 0, 0]); // + 0: north as 0, not -0
+  const dir = mkdtempSync(join(tmpdir(), "gd-gpx-"));
+  writeFileSync(join(dir, "imu.csv"), files["imu.csv"]);
+  writeFileSync(join(dir, "drive.gpx"), files["drive.gpx"]);
+  writeFileSync(join(dir, "r.json"), JSON.stringify(recipe));
+  const out = join(dir, "out.csv");
+  cli("import", "--recipe", join(dir, "r.json"), "--out", out);
+  assert.deepEqual(Array.from(gd.Log.parse(readFileSync(out, "utf8")).column("ref_heading_deg")), Array.from(log.column("ref_heading_deg")));
+  assert.throws(() => gd.importLog(recipe, { ...files, "drive.gpx": enc("<gpx") }), /drive\.gpx: not a GPX file/);
+});

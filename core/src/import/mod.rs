@@ -15,6 +15,7 @@ mod archive;
 mod channels;
 mod draft;
 mod geo;
+mod gpx;
 #[cfg(feature = "fs")]
 mod hint;
 mod merge;

@@ -50,6 +50,11 @@ impl Recipe {
                 return Err(recipe_err(&at("offset_s"), format!("{} is not a finite time", t.offset_s)));
             }
             match (t.time.column.is_some(), t.time.period_s) {
+                // A GPX table is timed by its points' own <time>.
+                (true, _) | (_, Some(_)) if t.format == TableFormat::Gpx => {
+                    return Err(recipe_err(&at("time"), "a GPX table is timed by its points' <time>: no column or period_s"))
+                }
+                _ if t.format == TableFormat::Gpx => {}
                 (true, Some(_)) => return Err(recipe_err(&at("time"), "give a column or a period_s, not both")),
                 (false, None) => return Err(recipe_err(&at("time"), "needs a column or a period_s")),
                 (_, Some(p)) if !(p.is_finite() && p > 0.0) => {
@@ -100,6 +105,8 @@ pub struct TableSpec {
     pub decimal_comma: bool,
     /// Keep only the rows whose first field equals this (e.g. `odom3`, `$VNYMR`).
     pub record: Option<String>,
+    /// The rows' time (required, but for a GPX table, which its points' `<time>` time).
+    #[serde(default)]
     pub time: TimeSpec,
     /// Added to this table's times, seconds (a known clock offset).
     #[serde(default)]
@@ -121,6 +128,9 @@ pub enum TableFormat {
     Whitespace,
     /// NMEA-like sentences: comma-separated, a trailing `*hh` checksum stripped.
     Nmea,
+    /// A GPX file's track points (`<trkpt>`), in the columns `lat`, `lon`, `ele` and
+    /// `speed` (GPX 1.0's, m/s), timed by their `<time>` (s since 1970, UTC).
+    Gpx,
 }
 
 /// Which way a positive value turns the vehicle, seen from above.

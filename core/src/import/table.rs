@@ -101,6 +101,9 @@ fn resolve_columns(spec: &TableSpec, wanted: &BTreeSet<String>, h: &[String]) ->
 
 /// Reads the columns `wanted` (and the time) of one table, streaming.
 pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mut dyn Files) -> Result<Table> {
+    if spec.format == TableFormat::Gpx {
+        return super::gpx::read_gpx(spec, wanted, files);
+    }
     let file = spec.file.clone();
     let at = |e: Error| -> Error { e.within(&file) };
     let scale = time_unit(&spec.time.unit)?;
@@ -185,6 +188,13 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
         };
         return Err(at(Error::File(format!("table {} has no data rows{why}", spec.id))));
     }
+    finish_table(spec, &mut t, idx.into_iter().map(|(name, _)| name), cols);
+    Ok(t)
+}
+
+/// A table's rows as read (in file order, steps checked): put in time order by the time
+/// policies, made relative and offset as the spec says, and given their named columns.
+pub(super) fn finish_table(spec: &TableSpec, t: &mut Table, names: impl Iterator<Item = String>, mut cols: Vec<Vec<f64>>) {
     t.fixes = put_in_time_order(&spec.time, &mut t.time_s, &mut t.line, &mut cols);
     let first = t.time_s[0];
     for x in t.time_s.iter_mut() {
@@ -193,10 +203,9 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
         }
         *x += spec.offset_s;
     }
-    for ((name, _), v) in idx.into_iter().zip(cols) {
+    for (name, v) in names.zip(cols) {
         t.cols.insert(name, v);
     }
-    Ok(t)
 }
 
 /// Times, yaw rates (deg/s, CCW positive) and, when projected, the up vector.

@@ -362,3 +362,65 @@ fn a_draft_recipe_reads_the_columns_by_name_and_imports() {
     let e = draft_recipe(&[sniff("c.csv", b"t,a,b\n").unwrap()]).unwrap_err().to_string();
     assert!(e.contains("no column reads as a yaw rate") && e.contains("c.csv: t, a, b"), "{e}");
 }
+
+/// Without the `gpx` feature (the size-budgeted wasm module's build) a GPX table is refused
+/// by name.
+#[cfg(not(feature = "gpx"))]
+#[test]
+fn a_gpx_table_without_the_feature_is_refused_by_name() {
+    let text = r#"{"table": [{"id": "trk", "file": "drive.gpx", "format": "gpx"}],
+        "yaw_rate": {"table": "trk", "column": "lat", "unit": "deg/s", "positive": "ccw"}}"#;
+    let mut files = BTreeMap::from([("drive.gpx".to_string(), b"<gpx/>".to_vec())]);
+    let e = import(&serde_json::from_str(text).unwrap(), &mut files).unwrap_err().to_string();
+    assert!(e.contains("table trk") && e.contains("reads no GPX"), "{e}");
+}
+
+#[cfg(feature = "gpx")]
+#[test]
+fn a_gpx_track_gives_the_heading_from_its_positions() {
+    // A recorded track (GPX 1.1): 8.3 m/s east for 3 s, then north; a gyro in ISO time.
+    let mut gpx = String::from(
+        r#"<?xml version="1.0" encoding="UTF-8"?>
+<gpx version="1.1" creator="test" xmlns="http://www.topografix.com/GPX/1/1"><trk><name>drive</name><trkseg>"#,
+    );
+    let pts = [(42.0, 11.0), (42.0, 11.0001), (42.0, 11.0002), (42.0, 11.0003), (42.0001, 11.0003), (42.0002, 11.0003)];
+    for (k, (lat, lon)) in pts.iter().enumerate() {
+        gpx.push_str(&format!(r#"<trkpt lat="{lat}" lon="{lon}"><ele>100</ele><time>2026-11-27T10:00:0{k}Z</time></trkpt>"#));
+    }
+    gpx.push_str("</trkseg></trk></gpx>\n");
+    let mut gyro = String::from("time,w\n");
+    for i in 0..=50 {
+        gyro.push_str(&format!("2026-11-27 10:00:0{}.{}Z,{}\n", i / 10, i % 10, if i == 35 { 90.0 } else { 0.0 }));
+    }
+    let text = r#"{"table": [{"id": "imu", "file": "imu.csv", "time": {"column": "time", "format": "iso8601"}},
+            {"id": "trk", "file": "drive.gpx", "format": "gpx"}],
+        "yaw_rate": {"table": "imu", "column": "w", "unit": "deg/s", "positive": "ccw"},
+        "positions": {"table": "trk", "kind": "latlon", "columns": ["lat", "lon"]},
+        "heading": {"source": "positions"}, "speed": {"source": "positions"}}"#;
+    let recipe: Recipe = serde_json::from_str(text).unwrap();
+    let mut files = BTreeMap::from([("imu.csv".to_string(), gyro.into_bytes()), ("drive.gpx".to_string(), gpx.into_bytes())]);
+    let (log, s) = import(&recipe, &mut files).unwrap();
+    let r = log.column(Column::RefHeadingDeg).unwrap();
+    let stamped: Vec<(f64, f64)> = log.time_s().iter().zip(r).filter(|(_, v)| v.is_finite()).map(|(t, v)| (*t, *v)).collect();
+    // courses stamped at the segments' middles: east (90 cw = -90 ccw) at 0.5, 1.5, 2.5 s,
+    // then north (0) at 3.5 and 4.5 s
+    assert_eq!(s.n_reference, 5, "{stamped:?}");
+    for (k, &(t, h)) in stamped.iter().enumerate() {
+        let want = if k < 3 { -90.0 } else { 0.0 };
+        assert!((t - (k as f64 + 0.5)).abs() < 1e-9 && (h - want).abs() < 0.1, "{stamped:?}");
+    }
+    // 0.0001 deg of longitude at 42 deg north: about 8.3 m/s
+    let v = log.column(Column::SpeedMps).unwrap();
+    assert!((v[10] - 8.27).abs() < 0.05, "{}", v[10]);
+    // a column a GPX table does not have, a point without a time, a file that is not GPX
+    let bad = text.replace(r#""columns": ["lat", "lon"]"#, r#""columns": ["lat", "long"]"#);
+    let e = import(&serde_json::from_str(&bad).unwrap(), &mut files).unwrap_err().to_string();
+    assert!(e.contains("long") && e.contains("a GPX table has: lat, lon, ele, speed"), "{e}");
+    let g = String::from_utf8(files["drive.gpx"].clone()).unwrap().replacen("<time>2026-11-27T10:00:02Z</time>", "", 1);
+    files.insert("drive.gpx".into(), g.into_bytes());
+    let e = import(&recipe, &mut files).unwrap_err().to_string();
+    assert!(e.contains("drive.gpx") && e.contains("track point 3: no <time>"), "{e}");
+    files.insert("drive.gpx".into(), b"time,lat,lon\n".to_vec());
+    let e = import(&recipe, &mut files).unwrap_err().to_string();
+    assert!(e.contains("drive.gpx: not a GPX file"), "{e}");
+}

@@ -37,6 +37,23 @@ pub struct TimeSpec {
     pub max_backward_s: f64,
 }
 
+/// The serde defaults: no column (a recipe must name one, or a period), seconds, the
+/// default policies.
+impl Default for TimeSpec {
+    fn default() -> Self {
+        TimeSpec {
+            column: None,
+            format: TimeFormat::Seconds,
+            unit: default_time_unit(),
+            period_s: None,
+            relative: false,
+            duplicates: DuplicatePolicy::Mean,
+            backward: BackwardPolicy::Sort,
+            max_backward_s: default_max_backward_s(),
+        }
+    }
+}
+
 pub(super) fn default_max_backward_s() -> f64 {
     1.0
 }
@@ -140,16 +157,7 @@ pub(super) fn check_step(spec: &TimeSpec, time: f64, prev: Option<f64>, latest: 
 /// default policies (rows of one time merged by their mean, rows up to 1 s late sorted in);
 /// a step back past 1 s is a clock reset, an error naming the line.
 pub(crate) fn put_v1_in_time_order(time: &mut Vec<f64>, line: &mut Vec<u64>, cols: &mut [Vec<f64>]) -> Result<TimeFixes> {
-    let spec = TimeSpec {
-        column: None,
-        format: TimeFormat::Seconds,
-        unit: default_time_unit(),
-        period_s: None,
-        relative: false,
-        duplicates: DuplicatePolicy::Mean,
-        backward: BackwardPolicy::Sort,
-        max_backward_s: default_max_backward_s(),
-    };
+    let spec = TimeSpec::default();
     let mut latest = f64::NEG_INFINITY;
     for (&t, &l) in time.iter().zip(line.iter()) {
         if latest - t > spec.max_backward_s {

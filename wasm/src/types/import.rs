@@ -69,14 +69,15 @@ export interface RateSpec {
 export interface TableSpec {
   id: string;
   file: string;
-  format?: "csv" | "whitespace" | "nmea";
+  format?: "csv" | "whitespace" | "nmea" | "gpx";
   /** Separator of a csv table (default ","), and numbers written with a decimal comma. */
   delimiter?: "," | ";" | "\t" | "|";
   decimal_comma?: boolean;
   skip_lines?: number;
   columns?: string[];
   record?: string;
-  time: {
+  /** The rows' time; absent for a GPX table (its points' `<time>`). */
+  time?: {
     column?: string; format?: "seconds" | "iso8601" | "time_of_day"; unit?: "s" | "ms" | "us" | "ns"; period_s?: number; relative?: boolean;
     /** Rows repeating a time: merged (default), the first kept, or an error. */
     duplicates?: "mean" | "drop" | "error";
