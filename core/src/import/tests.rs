@@ -37,6 +37,8 @@ fn time_of_day_hand_worked() {
         "2023-08-06 12:05:09",
         "-1:00:00",
         "12:05:09:1:2",
+        "1é345",
+        "12345é",
     ] {
         assert_eq!(parse_time_of_day(bad), None, "{bad}");
     }
@@ -288,7 +290,8 @@ fn an_nmea_rmc_log_and_a_time_of_day_pass_midnight() {
     }
     gps.push_str("$GPGGA,000000.00,4220.2340,N,07105.3704,W,1,09,1.2,16.6,M,-33.8,M,,0000*55\n");
     gps.push_str(&rmc("000001.00", "A", "20.0", "100.0"));
-    let gyro = "time,w\n23:59:58.0,1\n23:59:58.5,2\n23:59:59.0,3\n23:59:59.5,4\n00:00:00.0,5\n00:00:00.5,6\n00:00:01.0,7\n";
+    // The row of 23:59:59.5 is written late, after midnight's: sorted in on its own day.
+    let gyro = "time,w\n23:59:58.0,1\n23:59:58.5,2\n23:59:59.0,3\n00:00:00.0,5\n23:59:59.5,4\n00:00:00.5,6\n00:00:01.0,7\n";
     let text = r#"{"table": [{"id": "imu", "file": "imu.csv", "time": {"column": "time", "format": "time_of_day"}},
             {"id": "gps", "file": "gps.nmea", "format": "nmea", "record": "$GPRMC",
              "columns": ["tag", "time", "status", "lat", "ns", "lon", "ew", "kn", "course", "date", "mv", "mv_ew", "mode"],

@@ -93,12 +93,18 @@ pub enum TimeFormat {
 
 /// A time of day (s since midnight) on the table's own clock: the day it falls in is the
 /// first row's, plus one each time the time of day falls more than 12 h below the latest
-/// time so far (midnight passed). `day_s` carries the days counted so far.
+/// time so far (midnight passed); a row more than 12 h above it is a late row of the day
+/// before (written just after midnight passed). `day_s` carries the days counted so far.
 pub(super) fn past_midnight(time_of_day_s: f64, day_s: &mut f64, latest_s: f64) -> f64 {
     while time_of_day_s + *day_s < latest_s - 43_200.0 {
         *day_s += 86_400.0;
     }
-    time_of_day_s + *day_s
+    let t = time_of_day_s + *day_s;
+    if t > latest_s + 43_200.0 && *day_s > 0.0 {
+        t - 86_400.0
+    } else {
+        t
+    }
 }
 
 /// Counts of the time policies' work.

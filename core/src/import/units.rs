@@ -65,7 +65,8 @@ pub fn parse_time_of_day(s: &str) -> Option<f64> {
         [h, m, sec, frac] => (h, m, sec, Some(frac)),
         [hms] => {
             let (whole, frac) = hms.split_once('.').map_or((hms, None), |(w, f)| (w, Some(f)));
-            if whole.len() != 6 {
+            // Six ASCII digits before the slicing (a multi-byte character is no digit).
+            if whole.len() != 6 || !whole.bytes().all(|c| c.is_ascii_digit()) {
                 return None;
             }
             (&whole[..2], &whole[2..4], &whole[4..], frac)
