@@ -125,6 +125,17 @@ proptest::proptest! {
         let _ = import(&recipe(), &mut files);
     }
 
+    /// Arbitrary text as a time of day, an ISO 8601 time, or a time column of either
+    /// format: a time or None (an error naming the line), never a panic.
+    #[test]
+    fn time_texts_never_panic(text in "\\PC{0,14}", digits in "[0-9:.Zé ]{0,14}") {
+        for t in [&text, &digits] {
+            let _ = (parse_time_of_day(t), parse_iso8601(t));
+        }
+        let csv = format!("t,w\n{digits},1\n{text},2\n");
+        let _ = import(&one_table(r#", "format": "time_of_day""#), &mut files(&csv));
+    }
+
     /// CSV-shaped rows with odd numbers (huge, tiny, negative times).
     #[test]
     fn import_numbers_never_panic(rows in proptest::collection::vec((-1e12f64..1e12, -1e6f64..1e6), 0..60)) {
