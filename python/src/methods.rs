@@ -407,8 +407,8 @@ fn import_files<'py>(py: Python<'py>, paths: Vec<std::path::PathBuf>) -> PyResul
 /// names, {recipe, guesses}, each guess a line to check before `import_log(recipe, folder)`.
 #[pyfunction]
 fn draft_recipe<'py>(py: Python<'py>, paths: Vec<std::path::PathBuf>) -> PyResult<Bound<'py, PyDict>> {
-    let sniffed = gyrodrift::import::sniff_paths(&paths).map_err(value_err)?;
-    let d = gyrodrift::import::draft_recipe(&sniffed).map_err(value_err)?;
+    let heads = gyrodrift::import::read_heads(&paths).map_err(value_err)?;
+    let d = gyrodrift::import::draft_recipe(&heads).map_err(value_err)?;
     result_dict(py, &serde_json::json!({ "recipe": d.recipe_json, "guesses": d.guesses }))
 }
 

@@ -74,9 +74,8 @@ pub fn detect_import(#[wasm_bindgen(unchecked_param_type = "Record<string, Uint8
 /// a file is not a text table or no column reads as a yaw rate.
 #[wasm_bindgen(js_name = draftRecipe, unchecked_return_type = "Draft")]
 pub fn draft_recipe(#[wasm_bindgen(unchecked_param_type = "Record<string, Uint8Array>")] files: JsValue) -> JsResult<JsValue> {
-    let sniffed: Vec<import::Sniffed> =
-        raw_files(&files)?.iter().map(|(name, bytes)| import::sniff(name, bytes)).collect::<Result<_, _>>().map_err(err)?;
-    let d = import::draft_recipe(&sniffed).map_err(err)?;
+    let heads: Vec<(String, Vec<u8>)> = raw_files(&files)?.into_iter().collect();
+    let d = import::draft_recipe(&heads).map_err(err)?;
     let out = Object::new();
     set(&out, "recipe", &to_js(&d.recipe_json)?)?;
     set(&out, "guesses", &to_js(&d.guesses)?)?;

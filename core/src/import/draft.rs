@@ -1,10 +1,10 @@
 //! A draft recipe for files no preset reads, guessed from their column names: each file's
 //! time and its format, the yaw rate (one axis) and its unit, the reference heading (a
-//! course column, or latitude and longitude) and the speed. A draft is a starting point
+//! course column, a GPX track's positions, or latitude and longitude) and the speed. A draft is a starting point
 //! to check and edit (`gyrodrift import FILES --print-recipe`), never imported unseen:
 //! names say little about signs and axes, and `check` then says what is off.
 
-use super::sniff::Sniffed;
+use super::sniff::{first_row, Sniffed};
 use super::*;
 use serde_json::{json, Value};
 
@@ -30,10 +30,17 @@ fn word(name: &str, word: &str) -> bool {
     })
 }
 
-/// The time format or unit a time column's name suggests.
-fn time_of(name: &str) -> Value {
+/// The time format or unit a time column's value (its first row's) or name suggests.
+fn time_of(name: &str, value: &str) -> Value {
     let n = name.to_lowercase();
-    if n.contains("time_of_day") || n.contains("timeofday") || n.contains("hhmmss") || n.contains("clock") {
+    if parse_iso8601(value).is_some() {
+        json!({ "column": name, "format": "iso8601" })
+    } else if (value.contains(':') && parse_time_of_day(value).is_some())
+        || n.contains("time_of_day")
+        || n.contains("timeofday")
+        || n.contains("hhmmss")
+        || n.contains("clock")
+    {
         json!({ "column": name, "format": "time_of_day" })
     } else if n.contains("iso") || n.contains("date") || n.contains("utc") {
         json!({ "column": name, "format": "iso8601" })
@@ -57,9 +64,14 @@ fn time_column(s: &Sniffed) -> &str {
     s.header.iter().find(says_time).or(s.header.first()).map_or("", String::as_str)
 }
 
+/// A GPX file (by its name): a track read whole, not a table of columns.
+fn is_gpx(s: &Sniffed) -> bool {
+    s.name.to_lowercase().ends_with(".gpx")
+}
+
 /// The first column, over every file, that `fits` and is not the file's time: (file index, name).
 fn find(files: &[Sniffed], fits: impl Fn(&str) -> bool) -> Option<(usize, String)> {
-    files.iter().enumerate().find_map(|(i, s)| {
+    files.iter().enumerate().filter(|(_, s)| !is_gpx(s)).find_map(|(i, s)| {
         let time = time_column(s);
         s.header.iter().find(|h| h.as_str() != time && fits(&h.to_lowercase())).map(|h| (i, h.clone()))
     })
@@ -74,9 +86,15 @@ fn speed_unit_of(n: &str) -> &'static str {
     }
 }
 
-/// A draft recipe for `files` (sniffed heads) from their column names, or an error when
-/// no column reads as a yaw rate.
-pub fn draft_recipe(files: &[Sniffed]) -> Result<Draft> {
+/// A draft recipe for files (name, the head of its bytes) from their column names and
+/// first rows, or an error when a file is not a text table or no column reads as a yaw rate.
+pub fn draft_recipe(heads: &[(String, Vec<u8>)]) -> Result<Draft> {
+    let files: Vec<Sniffed> = heads.iter().map(|(name, head)| sniff(name, head)).collect::<Result<_>>()?;
+    let rows: Vec<Vec<String>> = files.iter().zip(heads).map(|(s, (_, head))| first_row(s, head)).collect();
+    draft_from(&files, &rows)
+}
+
+fn draft_from(files: &[Sniffed], rows: &[Vec<String>]) -> Result<Draft> {
     let table = |i: usize| format!("t{i}");
     let mut guesses = Vec::new();
     let at = |i: usize, c: &str| format!("{} column \"{c}\"", files[i].name);
@@ -112,7 +130,8 @@ pub fn draft_recipe(files: &[Sniffed]) -> Result<Draft> {
     }
     let course =
         find(files, |n| ["course", "bearing", "heading", "direction", "cog"].iter().any(|w| n.contains(w)) && !n.contains("accuracy"));
-    let lat_lon = files.iter().enumerate().find_map(|(i, s)| {
+    let gpx = files.iter().position(is_gpx);
+    let lat_lon = files.iter().enumerate().filter(|(_, s)| !is_gpx(s)).find_map(|(i, s)| {
         let col = |w: &str| s.header.iter().find(|h| h.to_lowercase().contains(w)).cloned();
         Some((i, col("lat")?, col("lon")?))
     });
@@ -128,6 +147,18 @@ pub fn draft_recipe(files: &[Sniffed]) -> Result<Draft> {
         }
         r["heading"] = h;
         used.push(hi);
+    } else if let Some(pi) = gpx {
+        guesses.push(format!(
+            "heading: the course between the positions of the GPX track {} (its clock is UTC: so must the gyro's be)",
+            files[pi].name
+        ));
+        r["positions"] = json!({ "table": table(pi), "kind": "latlon", "columns": ["lat", "lon"] });
+        r["heading"] = json!({ "source": "positions" });
+        if speed.is_none() {
+            guesses.push("speed: from the GPX track's positions".into());
+            r["speed"] = json!({ "source": "positions" });
+        }
+        used.push(pi);
     } else if let Some((pi, lat, lon)) = lat_lon {
         guesses.push(format!("heading: the course between positions, {} and \"{lon}\" in degrees", at(pi, &lat)));
         r["positions"] = json!({ "table": table(pi), "kind": "latlon", "columns": [lat, lon] });
@@ -147,7 +178,12 @@ pub fn draft_recipe(files: &[Sniffed]) -> Result<Draft> {
         .iter()
         .map(|&i| {
             let s = &files[i];
-            let time = time_of(time_column(s));
+            if is_gpx(s) {
+                return json!({ "id": table(i), "file": s.name, "format": "gpx" });
+            }
+            let column = time_column(s);
+            let value = s.header.iter().position(|h| h == column).and_then(|j| rows[i].get(j)).map_or("", String::as_str);
+            let time = time_of(column, value);
             let what = time.get("format").or(time.get("unit")).and_then(Value::as_str).unwrap_or("s");
             guesses.push(format!("time of {}: column \"{}\", {what}", s.name, time_column(s)));
             let mut t = json!({ "id": table(i), "file": s.name, "time": time });

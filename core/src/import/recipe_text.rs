@@ -123,9 +123,9 @@ mod files {
         }
     }
 
-    /// The heads of files given by path (a folder given alone: its files), sniffed; an error
-    /// names a file that cannot be read or is not a text table.
-    pub fn sniff_paths(paths: &[PathBuf]) -> Result<Vec<super::super::Sniffed>> {
+    /// The heads (the first `SNIFF_BYTES`) of files given by path, by file name (a folder
+    /// given alone: its files); an error names a file that cannot be read.
+    pub fn read_heads(paths: &[PathBuf]) -> Result<Vec<(String, Vec<u8>)>> {
         let files = match paths {
             [dir] if dir.is_dir() => super::super::hint::files_in(dir).unwrap_or_default(),
             _ => paths.to_vec(),
@@ -139,8 +139,7 @@ mod files {
             .iter()
             .map(|p| {
                 let name = p.file_name().map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into_owned());
-                let head = read_head(p).map_err(|e| Error::File(format!("{}: cannot open: {e}", p.display())))?;
-                super::super::sniff(&name, &head)
+                Ok((name, read_head(p).map_err(|e| Error::File(format!("{}: cannot open: {e}", p.display())))?))
             })
             .collect()
     }
@@ -149,11 +148,12 @@ mod files {
     /// import FILES --print-recipe`. None when a preset reads them (its recipe is the one
     /// to print) or a file is not a text table.
     pub fn draft_for_paths(paths: &[PathBuf]) -> Result<Option<super::super::Draft>> {
-        let Ok(sniffed) = sniff_paths(paths) else { return Ok(None) };
-        if sniffed.is_empty() || super::super::detect(&sniffed).is_ok() {
-            return Ok(None);
+        let Ok(heads) = read_heads(paths) else { return Ok(None) };
+        let sniffed: Option<Vec<_>> = heads.iter().map(|(name, head)| super::super::sniff(name, head).ok()).collect();
+        match sniffed {
+            Some(s) if !s.is_empty() && super::super::detect(&s).is_err() => super::super::draft_recipe(&heads).map(Some),
+            _ => Ok(None),
         }
-        super::super::draft_recipe(&sniffed).map(Some)
     }
 
     /// `import_paths` of files (no folder among them).

@@ -95,6 +95,15 @@ pub fn sniff(name: &str, head: &[u8]) -> Result<Sniffed> {
     Ok(Sniffed { name: name.to_string(), delimiter, decimal_comma, skip_lines, header })
 }
 
+/// The first data row of a sniffed head (after its skipped lines, its header and any blank
+/// or comment lines), split as the header was; empty when the head holds none.
+pub(super) fn first_row(s: &Sniffed, head: &[u8]) -> Vec<String> {
+    let text = String::from_utf8_lossy(&head[..head.len().min(SNIFF_BYTES)]);
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let mut lines = text.split('\n').map(|l| l.trim_end_matches('\r')).skip(s.skip_lines + 1);
+    lines.find(|l| !l.trim().is_empty() && !l.starts_with('#')).map_or_else(Vec::new, |l| split_line(l, s.delimiter))
+}
+
 fn count_outside_quotes(line: &str, d: char) -> usize {
     let mut quoted = false;
     line.chars()

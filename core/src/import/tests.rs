@@ -347,8 +347,8 @@ fn recipe_text_seconds(text: &str) -> Recipe {
 fn a_draft_recipe_reads_the_columns_by_name_and_imports() {
     // A logger's own CSV: ms time, a gyro z in deg/s, a course, a speed in km/h, a temperature.
     let csv = "stamp_ms,acc_z,gyro_z_dps,course,speed_kmh,temp\n0,9.8,1.0,,0,20\n1000,9.8,2.0,10,36,20\n2000,9.8,3.0,20,3.6,21\n";
-    let sniffed = sniff("my-logger.csv", csv.as_bytes()).unwrap();
-    let draft = draft_recipe(std::slice::from_ref(&sniffed)).unwrap();
+    let head = |name: &str, text: &str| (name.to_string(), text.as_bytes().to_vec());
+    let draft = draft_recipe(&[head("my-logger.csv", csv)]).unwrap();
     let r = &draft.recipe_json;
     assert_eq!(r["table"][0]["time"], serde_json::json!({ "column": "stamp_ms", "unit": "ms" }));
     assert_eq!(r["yaw_rate"]["column"], "gyro_z_dps");
@@ -367,13 +367,22 @@ fn a_draft_recipe_reads_the_columns_by_name_and_imports() {
     assert_eq!(s.n_reference, 1);
     assert_eq!(log.column(Column::SpeedMps).unwrap(), &[0.0, 10.0, 1.0]);
     // positions when there is no course; a time of day by its name; rad/s by default
-    let s2 = sniff("b.csv", b"clock,wz,latitude,longitude\n").unwrap();
-    let d2 = draft_recipe(&[s2]).unwrap().recipe_json;
+    let d2 = draft_recipe(&[head("b.csv", "clock,wz,latitude,longitude\n")]).unwrap().recipe_json;
     assert_eq!(d2["table"][0]["time"]["format"], "time_of_day");
     assert_eq!((d2["yaw_rate"]["column"].as_str(), d2["yaw_rate"]["unit"].as_str()), (Some("wz"), Some("rad/s")));
     assert_eq!(d2["positions"]["columns"], serde_json::json!(["latitude", "longitude"]));
+    // a GPX track beside the gyro: the heading and speed from its positions; the gyro's
+    // time read as ISO 8601 from its first row (its name says nothing), or a time of day
+    let g = head("drive.gpx", "<?xml version=\"1.0\"?>\n<gpx version=\"1.1\"><trk><trkseg>\n");
+    let d3 = draft_recipe(&[head("imu.csv", "time,gyro_z\n2026-11-27T10:00:00.1Z,0.5\n"), g]).unwrap().recipe_json;
+    assert_eq!(d3["table"][0]["time"], serde_json::json!({ "column": "time", "format": "iso8601" }));
+    let d4 = draft_recipe(&[head("imu.csv", "# app 1.0\ntime;gyro_z\n\n10:00:00.125;0,5\n")]).unwrap().recipe_json;
+    assert_eq!(d4["table"][0]["time"], serde_json::json!({ "column": "time", "format": "time_of_day" }));
+    assert_eq!(d3["table"][1], serde_json::json!({ "id": "t1", "file": "drive.gpx", "format": "gpx" }));
+    assert_eq!(d3["positions"], serde_json::json!({ "table": "t1", "kind": "latlon", "columns": ["lat", "lon"] }));
+    assert_eq!((d3["heading"]["source"].as_str(), d3["speed"]["source"].as_str()), (Some("positions"), Some("positions")));
     // no yaw rate by name: an error naming the headers
-    let e = draft_recipe(&[sniff("c.csv", b"t,a,b\n").unwrap()]).unwrap_err().to_string();
+    let e = draft_recipe(&[head("c.csv", "t,a,b\n")]).unwrap_err().to_string();
     assert!(e.contains("no column reads as a yaw rate") && e.contains("c.csv: t, a, b"), "{e}");
 }
 
