@@ -159,6 +159,34 @@ function recipeOf(f, files, sniffed) {
 }
 
 /**
+ * The panel's first choices ({field id: value}) from core's draft recipe for `files`
+ * (`draftRecipe`, which reads the column names and first rows): the time of each file, the
+ * yaw rate, the reference and the speed. Fields the draft leaves out keep the guesses.
+ */
+export function draftChoices(draft, files) {
+  const out = {};
+  if (!draft) return out;
+  const index = new Map(draft.table.map((t) => [t.id, files.findIndex((f) => f.name === t.file)]));
+  const at = (spec, column = spec.column) => `${index.get(spec.table)}:${column}`;
+  for (const t of draft.table) {
+    const i = index.get(t.id);
+    if (i < 0 || !t.time?.column) continue;
+    out[`map-time-${i}`] = t.time.column;
+    out[`map-time-unit-${i}`] = t.time.format && t.time.format !== "seconds" ? t.time.format : (t.time.unit ?? "s");
+  }
+  const { yaw_rate: y, heading: h, speed: sp, positions: p } = draft;
+  if (y?.column) Object.assign(out, { "map-rate": at(y), "map-rate-unit": y.unit, "map-rate-sense": y.positive });
+  if (h?.source === "column") {
+    Object.assign(out, { "map-ref-mode": "column", "map-ref": at(h), "map-ref-unit": h.unit, "map-ref-sense": h.positive });
+    if (h.min_speed_mps != null) out["map-ref-min-speed"] = String(h.min_speed_mps);
+  } else if (h?.source === "positions" && p?.kind === "latlon") {
+    Object.assign(out, { "map-ref-mode": "positions", "map-lat": at(p, p.columns[0]), "map-lon": at(p, p.columns[1]) });
+  }
+  if (sp?.source === "column") Object.assign(out, { "map-speed": at(sp), "map-speed-unit": sp.unit });
+  return out;
+}
+
+/**
  * Opens the panel for `files` ([{name, bytes}]) with `why` (the detection's error).
  * `importer(recipe)` imports in the worker: {data, detection} or {error}. `preset` sets
  * fields by id over the guesses ({"map-rate-sense": "cw"}: a check error's fix), `intro` says

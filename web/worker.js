@@ -2,14 +2,14 @@
 // no import, tuning or simulation), so the page never freezes:
 // - parse: a large log, with progress, and its check; the columns go back transferred, not
 //   copied, and the page rebuilds the Log from them; or a log put in time order;
-// - import: raw logger files by their detected preset (or a given recipe); recipes to and
-//   from TOML;
+// - import: raw logger files by their detected preset (or a given recipe; with none fitting,
+//   core's draft recipe for the mapping panel); recipes to and from TOML;
 // - tune: the HDR parameters over the drives' columns, with progress;
 // - battery: the robustness battery's error profiles on the drives' columns; case: one
 //   drive with one profile's errors added (to open a case as a log); profiles: their names;
 // - track, pipelineTrack, pipeline: the slow work on a large log this worker parsed and
 //   kept (`key`), so the page's Track view and pipeline never pause it.
-import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog, logInTimeOrder } from "./pkg/full/gyrodrift.js";
+import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, draftRecipe, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog, logInTimeOrder } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 /** Large logs parsed here, kept for later work on them (freed on "forget"). */
@@ -97,7 +97,13 @@ self.onmessage = async (ev) => {
           ? { preset: "recipe", title: ev.data.title || "your recipe", recipe: ev.data.recipe, used: [], ignored: [] }
           : detectImport(ev.data.files);
       } catch (e) {
-        self.postMessage({ id, error: e.message, stage: "detect" });
+        // No preset fits: core's draft from the column names and first rows, when it has
+        // one, sets the mapping panel's first choices.
+        let draft = null;
+        try {
+          draft = draftRecipe(ev.data.files).recipe;
+        } catch {}
+        self.postMessage({ id, error: e.message, stage: "detect", draft });
         return;
       }
       const { log, summary } = importLog(d.recipe, ev.data.files);

@@ -153,6 +153,16 @@ test("files no preset fits open the mapping panel: guessed columns, live preview
   await page.waitForSelector("#mapping[open]");
   await page.locator("#mapping-cancel").click();
   await page.waitForFunction(() => [...document.querySelectorAll("#logs li.bad")].some((l) => l.innerText.includes("my-logger.csv: no logger preset")));
+  // The first choices are core's draft (draftRecipe), which reads the first row too: a time
+  // column named "time" holding ISO 8601 is chosen as such, where the names alone say seconds.
+  const iso = join(dir, "iso-logger.csv");
+  writeFileSync(iso, "time,gyro_z\n2026-11-27T10:00:00.0Z,0.01\n2026-11-27T10:00:00.1Z,0.02\n");
+  await page.locator("#file-input").setInputFiles([iso]);
+  await page.waitForSelector("#mapping[open]");
+  assert.equal(await page.locator("#map-time-unit-0").inputValue(), "iso8601");
+  assert.equal(await page.locator("#map-rate").inputValue(), "0:gyro_z");
+  assert.equal(await page.locator("#map-rate-unit").inputValue(), "rad/s");
+  await page.locator("#mapping-cancel").click();
 });
 
 test("a large raw export is imported in the Web Worker with the CLI's numbers", async () => {
