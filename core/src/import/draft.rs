@@ -1,8 +1,9 @@
-//! A draft recipe for files no preset reads, guessed from their column names: each file's
-//! time and its format, the yaw rate (one axis) and its unit, the reference heading (a
-//! course column, a GPX track's positions, or latitude and longitude) and the speed. A draft is a starting point
-//! to check and edit (`gyrodrift import FILES --print-recipe`), never imported unseen:
-//! names say little about signs and axes, and `check` then says what is off.
+//! A draft recipe for files no preset reads, guessed from their column names and first
+//! rows: each file's time and its format, the yaw rate (one axis) and its unit, the
+//! reference heading (a course column, a GPX track's positions, or latitude and longitude)
+//! and the speed. A draft is a starting point to check and edit (`gyrodrift import FILES
+//! --print-recipe`), never imported unseen: names say little about signs and axes, and
+//! `check` then says what is off.
 
 use super::sniff::{first_row, Sniffed};
 use super::*;
@@ -55,13 +56,18 @@ fn time_of(name: &str, value: &str) -> Value {
     }
 }
 
-/// A file's time column: the first whose name says time, else the first column.
+/// A file's time column: the first whose name says time or stamp, else one named like a time
+/// in seconds (`t`, `t_...`, `..._s`), else the first column.
 fn time_column(s: &Sniffed) -> &str {
-    let says_time = |h: &&String| {
+    let named = |h: &&String| {
         let n = h.to_lowercase();
-        n.contains("time") || n.contains("stamp") || n == "t" || n.starts_with("t_") || n.ends_with("_s")
+        n.contains("time") || n.contains("stamp")
     };
-    s.header.iter().find(says_time).or(s.header.first()).map_or("", String::as_str)
+    let like = |h: &&String| {
+        let n = h.to_lowercase();
+        n == "t" || n.starts_with("t_") || n.ends_with("_s")
+    };
+    s.header.iter().find(named).or_else(|| s.header.iter().find(like)).or(s.header.first()).map_or("", String::as_str)
 }
 
 /// A GPX file (by its name): a track read whole, not a table of columns.
@@ -94,106 +100,139 @@ pub fn draft_recipe(heads: &[(String, Vec<u8>)]) -> Result<Draft> {
     draft_from(&files, &rows)
 }
 
-fn draft_from(files: &[Sniffed], rows: &[Vec<String>]) -> Result<Draft> {
-    let table = |i: usize| format!("t{i}");
-    let mut guesses = Vec::new();
-    let at = |i: usize, c: &str| format!("{} column \"{c}\"", files[i].name);
-    // The yaw rate: a z axis or a yaw rate by name, else any gyro or rate.
-    let z_axis = |n: &str| then(n, "gyro", "z") || word(n, "wz") || word(n, "w_z") || then(n, "yaw", "rate") || then(n, "angular", "z");
-    let any_rate = |n: &str| n.contains("gyro") || n.contains("yaw") || n.contains("rate");
-    let (gi, gyro) = find(files, z_axis).or_else(|| find(files, any_rate)).ok_or_else(|| {
-        let headers: Vec<String> = files.iter().map(|s| format!("{}: {}", s.name, s.header.join(", "))).collect();
-        Error::File(format!(
-            "no column reads as a yaw rate by its name (gyro z, yaw rate, wz) in {}; write the recipe (sample-logs/recipes/README.md)",
-            headers.join("; ")
-        ))
-    })?;
-    let g = gyro.to_lowercase();
-    let (unit, why) = match () {
-        _ if g.contains("rad") => ("rad/s", "the name says rad"),
-        _ if g.contains("deg") || g.contains("dps") => ("deg/s", "the name says deg/s"),
-        _ => ("rad/s", "no unit in the name: phones and ROS write rad/s"),
-    };
-    guesses.push(format!("yaw_rate: {}, {unit} ({why}), counter-clockwise positive (z up; `check` says if not)", at(gi, &gyro)));
-    let mut r = json!({ "name": format!("{} (draft)", files[gi].stem()), "bias_s": 0,
-        "yaw_rate": { "table": table(gi), "column": gyro, "unit": unit, "positive": "ccw" } });
-    let mut used = vec![gi];
-    // The speed, then the reference heading: a course column (gated by the speed in its
-    // table), or positions.
-    let speed =
-        find(files, |n| (n.contains("speed") || n.contains("velocity") || n.contains("vel_m") || word(n, "v")) && !n.contains("accuracy"));
-    if let Some((si, sc)) = &speed {
-        let unit = speed_unit_of(&sc.to_lowercase());
-        guesses.push(format!("speed: {}, {unit}", at(*si, sc)));
-        r["speed"] = json!({ "source": "column", "table": table(*si), "column": sc, "unit": unit });
-        used.push(*si);
+/// What the draft has so far: the recipe, the guesses, the files (indices) it reads.
+struct Drafting<'a> {
+    files: &'a [Sniffed],
+    r: Value,
+    guesses: Vec<String>,
+    used: Vec<usize>,
+}
+
+fn table(i: usize) -> String {
+    format!("t{i}")
+}
+
+impl Drafting<'_> {
+    fn at(&self, i: usize, c: &str) -> String {
+        format!("{} column \"{c}\"", self.files[i].name)
     }
-    let course =
-        find(files, |n| ["course", "bearing", "heading", "direction", "cog"].iter().any(|w| n.contains(w)) && !n.contains("accuracy"));
-    let gpx = files.iter().position(is_gpx);
-    let lat_lon = files.iter().enumerate().filter(|(_, s)| !is_gpx(s)).find_map(|(i, s)| {
-        let col = |w: &str| s.header.iter().find(|h| h.to_lowercase().contains(w)).cloned();
-        Some((i, col("lat")?, col("lon")?))
-    });
-    if let Some((hi, hc)) = course {
-        let unit = if hc.to_lowercase().contains("rad") { "rad" } else { "deg" };
-        guesses.push(format!("heading: {}, {unit}, clockwise from north (a GPS course)", at(hi, &hc)));
-        let mut h = json!({ "source": "column", "table": table(hi), "column": hc, "unit": unit, "positive": "cw" });
-        if let Some((_, sc)) = speed.as_ref().filter(|(si, _)| *si == hi) {
-            h["speed_column"] = json!(sc);
-            h["speed_unit"] = json!(speed_unit_of(&sc.to_lowercase()));
-            h["min_speed_mps"] = json!(5.0);
-            guesses.push("heading: kept above 5 m/s (a course is noise at walking pace)".into());
+
+    /// The yaw rate: a z axis or a yaw rate by name, else any gyro or rate; its unit by name.
+    fn yaw_rate(&mut self) -> Result<String> {
+        let files = self.files;
+        let z_axis = |n: &str| then(n, "gyro", "z") || word(n, "wz") || word(n, "w_z") || then(n, "yaw", "rate") || then(n, "angular", "z");
+        let any_rate = |n: &str| n.contains("gyro") || n.contains("yaw") || n.contains("rate");
+        let (gi, gyro) = find(files, z_axis).or_else(|| find(files, any_rate)).ok_or_else(|| {
+            let headers: Vec<String> = files.iter().map(|s| format!("{}: {}", s.name, s.header.join(", "))).collect();
+            Error::File(format!(
+                "no column reads as a yaw rate by its name (gyro z, yaw rate, wz) in {}; write the recipe (sample-logs/recipes/README.md)",
+                headers.join("; ")
+            ))
+        })?;
+        let g = gyro.to_lowercase();
+        let (unit, why) = match () {
+            _ if g.contains("rad") => ("rad/s", "the name says rad"),
+            _ if g.contains("deg") || g.contains("dps") => ("deg/s", "the name says deg/s"),
+            _ => ("rad/s", "no unit in the name: phones and ROS write rad/s"),
+        };
+        let guess = format!("yaw_rate: {}, {unit} ({why}), counter-clockwise positive (z up; `check` says if not)", self.at(gi, &gyro));
+        self.guesses.push(guess);
+        self.r = json!({ "name": format!("{} (draft)", files[gi].stem()), "bias_s": 0,
+            "yaw_rate": { "table": table(gi), "column": gyro, "unit": unit, "positive": "ccw" } });
+        self.used.push(gi);
+        Ok(g)
+    }
+
+    /// The speed, then the reference heading: a course column (gated by the speed in its
+    /// table), a GPX track's positions, or latitude and longitude columns.
+    fn speed_and_reference(&mut self, gyro: &str) {
+        let files = self.files;
+        let speed = find(files, |n| {
+            (n.contains("speed") || n.contains("velocity") || n.contains("vel_m") || word(n, "v")) && !n.contains("accuracy")
+        });
+        if let Some((si, sc)) = &speed {
+            let unit = speed_unit_of(&sc.to_lowercase());
+            self.guesses.push(format!("speed: {}, {unit}", self.at(*si, sc)));
+            self.r["speed"] = json!({ "source": "column", "table": table(*si), "column": sc, "unit": unit });
+            self.used.push(*si);
         }
-        r["heading"] = h;
-        used.push(hi);
-    } else if let Some(pi) = gpx {
-        guesses.push(format!(
-            "heading: the course between the positions of the GPX track {} (its clock is UTC: so must the gyro's be)",
-            files[pi].name
-        ));
-        r["positions"] = json!({ "table": table(pi), "kind": "latlon", "columns": ["lat", "lon"] });
-        r["heading"] = json!({ "source": "positions" });
-        if speed.is_none() {
-            guesses.push("speed: from the GPX track's positions".into());
-            r["speed"] = json!({ "source": "positions" });
+        let courses = ["course", "bearing", "heading", "direction", "cog"];
+        let course = find(files, |n| n != gyro && courses.iter().any(|w| n.contains(w)) && !n.contains("accuracy"));
+        let lat_lon = files.iter().enumerate().filter(|(_, s)| !is_gpx(s)).find_map(|(i, s)| {
+            let col = |w: &str| s.header.iter().find(|h| h.to_lowercase().contains(w)).cloned();
+            Some((i, col("lat")?, col("lon")?))
+        });
+        if let Some((hi, hc)) = course {
+            let unit = if hc.to_lowercase().contains("rad") { "rad" } else { "deg" };
+            self.guesses.push(format!("heading: {}, {unit}, clockwise from north (a GPS course)", self.at(hi, &hc)));
+            let mut h = json!({ "source": "column", "table": table(hi), "column": hc, "unit": unit, "positive": "cw" });
+            if let Some((_, sc)) = speed.as_ref().filter(|(si, _)| *si == hi) {
+                h["speed_column"] = json!(sc);
+                h["speed_unit"] = json!(speed_unit_of(&sc.to_lowercase()));
+                h["min_speed_mps"] = json!(5.0);
+                self.guesses.push("heading: kept above 5 m/s (a course is noise at walking pace)".into());
+            }
+            self.r["heading"] = h;
+            self.used.push(hi);
+        } else if let Some(pi) = files.iter().position(is_gpx) {
+            self.guesses.push(format!(
+                "heading: the course between the positions of the GPX track {} (its clock is UTC: so must the gyro's be)",
+                files[pi].name
+            ));
+            self.r["positions"] = json!({ "table": table(pi), "kind": "latlon", "columns": ["lat", "lon"] });
+            self.r["heading"] = json!({ "source": "positions" });
+            if speed.is_none() {
+                self.guesses.push("speed: from the GPX track's positions".into());
+                self.r["speed"] = json!({ "source": "positions" });
+            }
+            self.used.push(pi);
+        } else if let Some((pi, lat, lon)) = lat_lon {
+            self.guesses.push(format!("heading: the course between positions, {} and \"{lon}\" in degrees", self.at(pi, &lat)));
+            self.r["positions"] = json!({ "table": table(pi), "kind": "latlon", "columns": [lat, lon] });
+            self.r["heading"] = json!({ "source": "positions" });
+            self.used.push(pi);
+        } else {
+            self.guesses.push("heading: none found (no course, bearing or latitude column): nothing will be scored".into());
         }
-        used.push(pi);
-    } else if let Some((pi, lat, lon)) = lat_lon {
-        guesses.push(format!("heading: the course between positions, {} and \"{lon}\" in degrees", at(pi, &lat)));
-        r["positions"] = json!({ "table": table(pi), "kind": "latlon", "columns": [lat, lon] });
-        r["heading"] = json!({ "source": "positions" });
-        used.push(pi);
-    } else {
-        guesses.push("heading: none found (no course, bearing or latitude column): nothing will be scored".into());
     }
-    if let Some((ti, tc)) = find(files, |n| n.contains("temp")) {
-        guesses.push(format!("temperature: {}, deg C", at(ti, &tc)));
-        r["temperature"] = json!({ "table": table(ti), "column": tc, "unit": "C" });
-        used.push(ti);
-    }
-    used.sort_unstable();
-    used.dedup();
-    let tables: Vec<Value> = used
-        .iter()
-        .map(|&i| {
-            let s = &files[i];
+
+    /// One table per file the draft reads: a GPX track as it is, the others timed by their
+    /// time column (format from its first row's value, else its name) in their dialect.
+    fn tables(&mut self, rows: &[Vec<String>]) {
+        self.used.sort_unstable();
+        self.used.dedup();
+        let mut tables = Vec::new();
+        for &i in &self.used {
+            let s = &self.files[i];
             if is_gpx(s) {
-                return json!({ "id": table(i), "file": s.name, "format": "gpx" });
+                tables.push(json!({ "id": table(i), "file": s.name, "format": "gpx" }));
+                continue;
             }
             let column = time_column(s);
             let value = s.header.iter().position(|h| h == column).and_then(|j| rows[i].get(j)).map_or("", String::as_str);
             let time = time_of(column, value);
             let what = time.get("format").or(time.get("unit")).and_then(Value::as_str).unwrap_or("s");
-            guesses.push(format!("time of {}: column \"{}\", {what}", s.name, time_column(s)));
+            self.guesses.push(format!("time of {}: column \"{column}\", {what}", s.name));
             let mut t = json!({ "id": table(i), "file": s.name, "time": time });
             s.set_dialect(&mut t);
-            t
-        })
-        .collect();
-    r["table"] = json!(tables);
-    guesses.push("bias_s: 0 (set the seconds the log starts standing still, if it does)".into());
+            tables.push(t);
+        }
+        self.r["table"] = json!(tables);
+    }
+}
+
+fn draft_from(files: &[Sniffed], rows: &[Vec<String>]) -> Result<Draft> {
+    let mut d = Drafting { files, r: Value::Null, guesses: Vec::new(), used: Vec::new() };
+    let gyro = d.yaw_rate()?;
+    d.speed_and_reference(&gyro);
+    if let Some((ti, tc)) = find(files, |n| n.contains("temp")) {
+        d.guesses.push(format!("temperature: {}, deg C", d.at(ti, &tc)));
+        d.r["temperature"] = json!({ "table": table(ti), "column": tc, "unit": "C" });
+        d.used.push(ti);
+    }
+    d.tables(rows);
+    d.guesses.push("bias_s: 0 (set the seconds the log starts standing still, if it does)".into());
     // A draft must parse as a recipe (its units and fields the import knows).
-    serde_json::from_value::<Recipe>(r.clone()).map_err(|e| recipe_err("draft", e.to_string()))?;
-    Ok(Draft { recipe_json: r, guesses })
+    serde_json::from_value::<Recipe>(d.r.clone()).map_err(|e| recipe_err("draft", e.to_string()))?;
+    Ok(Draft { recipe_json: d.r, guesses: d.guesses })
 }

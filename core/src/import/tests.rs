@@ -381,6 +381,9 @@ fn a_draft_recipe_reads_the_columns_by_name_and_imports() {
     assert_eq!(d3["table"][1], serde_json::json!({ "id": "t1", "file": "drive.gpx", "format": "gpx" }));
     assert_eq!(d3["positions"], serde_json::json!({ "table": "t1", "kind": "latlon", "columns": ["lat", "lon"] }));
     assert_eq!((d3["heading"]["source"].as_str(), d3["speed"]["source"].as_str()), (Some("positions"), Some("positions")));
+    // a rate in rad/s named "..._s" before the time column is not taken for the time
+    let d5 = draft_recipe(&[head("d.csv", "gyro_z_rad_s,timestamp\n0.1,5\n")]).unwrap().recipe_json;
+    assert_eq!((d5["table"][0]["time"]["column"].as_str(), d5["yaw_rate"]["column"].as_str()), (Some("timestamp"), Some("gyro_z_rad_s")));
     // no yaw rate by name: an error naming the headers
     let e = draft_recipe(&[head("c.csv", "t,a,b\n")]).unwrap_err().to_string();
     assert!(e.contains("no column reads as a yaw rate") && e.contains("c.csv: t, a, b"), "{e}");
