@@ -7,12 +7,21 @@ use super::*;
 pub(super) fn local_en(spec: &PositionsSpec, t: &Table) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
     let need = match spec.kind {
         PositionKind::Ecef => 3,
+        PositionKind::Nmea => 4,
         _ => 2,
     };
     if spec.columns.len() != need {
         return Err(recipe_err("positions.columns", format!("{:?} positions need {need} columns", spec.kind)));
     }
     let c: Vec<&[f64]> = spec.columns.iter().map(|n| t.col(n, "positions")).collect::<Result<_>>()?;
+    // NMEA's positions in decimal degrees, then as latlon.
+    let degrees: [Vec<f64>; 2];
+    let (kind, c, need) = if spec.kind == PositionKind::Nmea {
+        degrees = [nmea_degrees(c[0], c[1]), nmea_degrees(c[2], c[3])];
+        (PositionKind::Latlon, vec![degrees[0].as_slice(), degrees[1].as_slice()], 2)
+    } else {
+        (spec.kind, c, need)
+    };
     let mut time = Vec::new();
     let (mut e, mut nn) = (Vec::new(), Vec::new());
     let first = (0..t.time_s.len()).find(|&i| (0..need).all(|j| c[j][i].is_finite()));
@@ -22,7 +31,7 @@ pub(super) fn local_en(spec: &PositionsSpec, t: &Table) -> Result<(Vec<f64>, Vec
     // WGS84
     const A: f64 = 6_378_137.0;
     const E2: f64 = 6.694_379_990_14e-3;
-    let (lat0, lon0) = match spec.kind {
+    let (lat0, lon0) = match kind {
         PositionKind::Latlon => (c[0][i0].to_radians(), c[1][i0].to_radians()),
         PositionKind::Ecef => {
             let (x, y, z) = (c[0][i0], c[1][i0], c[2][i0]);
@@ -44,8 +53,11 @@ pub(super) fn local_en(spec: &PositionsSpec, t: &Table) -> Result<(Vec<f64>, Vec
         if !(0..need).all(|j| c[j][i].is_finite()) {
             continue;
         }
-        let (de, dn) = match spec.kind {
-            PositionKind::Latlon => ((c[1][i].to_radians() - lon0) * r_n * libm::cos(lat0), (c[0][i].to_radians() - lat0) * r_m),
+        let (de, dn) = match kind {
+            // (NMEA's positions are latlon here, converted above.)
+            PositionKind::Latlon | PositionKind::Nmea => {
+                ((c[1][i].to_radians() - lon0) * r_n * libm::cos(lat0), (c[0][i].to_radians() - lat0) * r_m)
+            }
             PositionKind::Utm | PositionKind::Enu => (c[0][i] - c[0][i0], c[1][i] - c[1][i0]),
             PositionKind::Ecef => {
                 let d = [c[0][i] - c[0][i0], c[1][i] - c[1][i0], c[2][i] - c[2][i0]];
@@ -58,6 +70,18 @@ pub(super) fn local_en(spec: &PositionsSpec, t: &Table) -> Result<(Vec<f64>, Vec
         nn.push(dn);
     }
     Ok((time, e, nn))
+}
+
+/// NMEA's `ddmm.mmmm` (or `dddmm.mmmm`) with its hemisphere (+1 for N or E, -1 for S or W,
+/// as an NMEA table reads the letters) in signed decimal degrees: 4220.2340 N = 42.33723.
+pub(super) fn nmea_degrees(ddmm: &[f64], hemisphere: &[f64]) -> Vec<f64> {
+    ddmm.iter()
+        .zip(hemisphere)
+        .map(|(&v, &h)| {
+            let d = (v / 100.0).trunc();
+            h * (d + (v - 100.0 * d) / 60.0)
+        })
+        .collect()
 }
 
 /// Course over ground (deg, clockwise from north) between positions at least

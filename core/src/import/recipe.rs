@@ -205,7 +205,8 @@ pub(super) fn default_gravity_s() -> f64 {
 #[serde(deny_unknown_fields)]
 pub struct PositionsSpec {
     pub table: String,
-    /// latlon (deg), utm (easting, northing m), ecef (x, y, z m) or enu (east, north m).
+    /// latlon (deg), utm (easting, northing m), ecef (x, y, z m), enu (east, north m) or
+    /// nmea (NMEA's ddmm.mmmm latitude, its N/S, dddmm.mmmm longitude, its E/W: 4 columns).
     pub kind: PositionKind,
     pub columns: Vec<String>,
 }
@@ -217,6 +218,7 @@ pub enum PositionKind {
     Utm,
     Ecef,
     Enu,
+    Nmea,
 }
 
 /// The reference heading: an angle column, or the course of the positions. Written flat

@@ -450,3 +450,51 @@ fn a_gpx_track_gives_the_heading_from_its_positions() {
     let e = import(&recipe, &mut files).unwrap_err().to_string();
     assert!(e.contains("drive.gpx: not a GPX file"), "{e}");
 }
+
+#[test]
+fn nmea_positions_read_ddmm_and_their_hemisphere() {
+    // The NEU VN-100 drive's $GPGGA 4220.2340,N,07105.3704,W beside its own decimal columns
+    // (42.33723333333333, -71.08950666666667; real-logs/neu-vn100-car/first_test).
+    let d = geo::nmea_degrees(&[4220.2340, 07105.3704, 3330.0], &[1.0, -1.0, -1.0]);
+    assert!((d[0] - 42.33723333333333).abs() < 1e-12 && (d[1] + 71.08950666666667).abs() < 1e-12, "{d:?}");
+    assert!((d[2] + 33.5).abs() < 1e-12, "30 minutes south: {}", d[2]);
+    // A GGA-only log (no course): east at about 8.3 m/s for 3 s, then north; the course from
+    // the positions, read as ddmm.mmmm with their N/S and E/W.
+    let mut gps = String::new();
+    let pts = [
+        ("4200.0000", "01100.0000"),
+        ("4200.0000", "01100.0060"),
+        ("4200.0000", "01100.0120"),
+        ("4200.0000", "01100.0180"),
+        ("4200.0060", "01100.0180"),
+        ("4200.0120", "01100.0180"),
+    ];
+    for (k, (lat, lon)) in pts.iter().enumerate() {
+        gps.push_str(&format!("$GPGGA,10000{k}.00,{lat},N,{lon},E,1,09,1.2,16.6,M,-33.8,M,,0000*55\n"));
+    }
+    let mut gyro = String::from("time,w\n");
+    for i in 0..=50 {
+        gyro.push_str(&format!("10:00:0{}.{},0\n", i / 10, i % 10));
+    }
+    let text = r#"{"table": [{"id": "imu", "file": "imu.csv", "time": {"column": "time", "format": "time_of_day"}},
+            {"id": "gps", "file": "gps.nmea", "format": "nmea", "record": "$GPGGA",
+             "columns": ["tag", "time", "lat", "ns", "lon", "ew", "fix", "sats", "hdop", "alt", "m", "geoid", "m2", "age", "station"],
+             "time": {"column": "time", "format": "time_of_day"}}],
+        "yaw_rate": {"table": "imu", "column": "w", "unit": "deg/s", "positive": "ccw"},
+        "positions": {"table": "gps", "kind": "nmea", "columns": ["lat", "ns", "lon", "ew"]},
+        "heading": {"source": "positions"}, "speed": {"source": "positions"}}"#;
+    let recipe: Recipe = serde_json::from_str(text).unwrap();
+    let mut files = BTreeMap::from([("imu.csv".to_string(), gyro.into_bytes()), ("gps.nmea".to_string(), gps.into_bytes())]);
+    let (log, s) = import(&recipe, &mut files).unwrap();
+    let r = log.column(Column::RefHeadingDeg).unwrap();
+    let stamped: Vec<(f64, f64)> = log.time_s().iter().zip(r).filter(|(_, v)| v.is_finite()).map(|(t, v)| (*t, *v)).collect();
+    assert_eq!(s.n_reference, 5, "{stamped:?}");
+    for (k, &(t, h)) in stamped.iter().enumerate() {
+        let want = if k < 3 { -90.0 } else { 0.0 };
+        assert!((t - (k as f64 + 0.5)).abs() < 1e-9 && (h - want).abs() < 0.1, "{stamped:?}");
+    }
+    // nmea positions need their four columns
+    let bad = text.replace(r#"["lat", "ns", "lon", "ew"]"#, r#"["lat", "lon"]"#);
+    let e = import(&serde_json::from_str(&bad).unwrap(), &mut files).unwrap_err().to_string();
+    assert!(e.contains("positions need 4 columns"), "{e}");
+}

@@ -93,7 +93,7 @@ export interface Recipe {
   bias_s?: number;
   table: TableSpec[];
   yaw_rate: RateSpec;
-  positions?: { table: string; kind: "latlon" | "utm" | "ecef" | "enu"; columns: string[] };
+  positions?: { table: string; kind: "latlon" | "utm" | "ecef" | "enu" | "nmea"; columns: string[] };
   heading?:
     | { source: "column"; table: string; column: string; unit: "deg" | "rad"; positive: Sense; speed_column?: string; speed_unit?: "m/s" | "km/h" | "mph" | "kn" | "knots"; min_speed_mps?: number; time_column?: string }
     | { source: "positions"; min_distance_m?: number; min_speed_mps?: number };
