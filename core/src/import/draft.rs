@@ -96,8 +96,13 @@ fn speed_unit_of(n: &str) -> &'static str {
 /// first rows, or an error when a file is not a text table or no column reads as a yaw rate.
 pub fn draft_recipe(heads: &[(String, Vec<u8>)]) -> Result<Draft> {
     let files: Vec<Sniffed> = heads.iter().map(|(name, head)| sniff(name, head)).collect::<Result<_>>()?;
+    draft_sniffed(&files, heads)
+}
+
+/// [`draft_recipe`] of heads already sniffed (`files`, in the order of `heads`).
+pub(super) fn draft_sniffed(files: &[Sniffed], heads: &[(String, Vec<u8>)]) -> Result<Draft> {
     let rows: Vec<Vec<String>> = files.iter().zip(heads).map(|(s, (_, head))| first_row(s, head)).collect();
-    draft_from(&files, &rows)
+    draft_from(files, &rows)
 }
 
 /// What the draft has so far: the recipe, the guesses, the files (indices) it reads.

@@ -7,6 +7,7 @@
 use super::*;
 
 /// The columns a GPX table has.
+#[cfg(feature = "gpx")]
 const GPX_COLUMNS: [&str; 4] = ["lat", "lon", "ele", "speed"];
 
 #[cfg(feature = "gpx")]
@@ -50,6 +51,5 @@ pub(super) fn read_gpx(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mut 
 
 #[cfg(not(feature = "gpx"))]
 pub(super) fn read_gpx(spec: &TableSpec, _: &BTreeSet<String>, _: &mut dyn Files) -> Result<Table> {
-    let _ = GPX_COLUMNS;
     Err(recipe_err(&format!("table {}", spec.id), "this build reads no GPX (the gyrodrift crate's gpx feature)"))
 }

@@ -17,11 +17,16 @@ pub struct ImportHint {
     pub files: Vec<PathBuf>,
 }
 
+/// The head of a file: its first `SNIFF_BYTES`, what detection and drafts read.
+pub(super) fn read_head(p: &Path) -> std::io::Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    std::fs::File::open(p)?.take(SNIFF_BYTES as u64).read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
 /// The head of a file, sniffed (None when it cannot be read or is not a table).
 fn head(p: &Path) -> Option<Sniffed> {
-    let mut bytes = Vec::new();
-    std::fs::File::open(p).ok()?.take(SNIFF_BYTES as u64).read_to_end(&mut bytes).ok()?;
-    sniff(&p.file_name()?.to_string_lossy(), &bytes).ok()
+    sniff(&p.file_name()?.to_string_lossy(), &read_head(p).ok()?).ok()
 }
 
 /// The folder a file is in ("." for a bare name).

@@ -130,18 +130,18 @@ mod files {
             [dir] if dir.is_dir() => super::super::hint::files_in(dir).unwrap_or_default(),
             _ => paths.to_vec(),
         };
-        let read_head = |p: &Path| -> std::io::Result<Vec<u8>> {
-            let mut head = Vec::new();
-            std::io::Read::read_to_end(&mut std::io::Read::take(std::fs::File::open(p)?, super::super::SNIFF_BYTES as u64), &mut head)?;
-            Ok(head)
-        };
         files
             .iter()
             .map(|p| {
-                let name = p.file_name().map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into_owned());
-                Ok((name, read_head(p).map_err(|e| Error::File(format!("{}: cannot open: {e}", p.display())))?))
+                let head = super::super::hint::read_head(p).map_err(|e| Error::File(format!("{}: cannot open: {e}", p.display())))?;
+                Ok((file_name(p), head))
             })
             .collect()
+    }
+
+    /// A path's file name, as recipes and detection name files (the whole path without one).
+    fn file_name(p: &Path) -> String {
+        p.file_name().map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into_owned())
     }
 
     /// For files no preset reads: a draft recipe from their column names, for `gyrodrift
@@ -151,7 +151,7 @@ mod files {
         let Ok(heads) = read_heads(paths) else { return Ok(None) };
         let sniffed: Option<Vec<_>> = heads.iter().map(|(name, head)| super::super::sniff(name, head).ok()).collect();
         match sniffed {
-            Some(s) if !s.is_empty() && super::super::detect(&s).is_err() => super::super::draft_recipe(&heads).map(Some),
+            Some(s) if !s.is_empty() && super::super::detect(&s).is_err() => super::super::draft::draft_sniffed(&s, &heads).map(Some),
             _ => Ok(None),
         }
     }
@@ -161,7 +161,7 @@ mod files {
         let mut by_name = std::collections::BTreeMap::new();
         let mut names = Vec::new();
         for p in paths {
-            let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| p.display().to_string());
+            let name = file_name(p);
             if by_name.insert(name.clone(), p).is_some() {
                 return Err(Error::File(format!("{}: two files are named {name}; import one recording at a time", p.display())));
             }

@@ -116,7 +116,7 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
     let time_name = spec.time.column.clone().unwrap_or_else(|| "time".into());
     let mut t = Table { file: file.clone(), time_s: Vec::new(), line: Vec::new(), cols: BTreeMap::new(), fixes: TimeFixes::default() };
     let mut latest = f64::NEG_INFINITY;
-    let nmea_table = spec.format == TableFormat::Nmea;
+    let nmea = spec.format == TableFormat::Nmea;
     // Days counted on for a time of day (`past_midnight`).
     let mut day_s = 0.0;
     let mut cols: Vec<Vec<f64>> = Vec::new();
@@ -150,7 +150,7 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
         latest = latest.max(time);
         for (k, (name, j)) in idx.iter().enumerate() {
             // NMEA's hemisphere letters as a sign, for positions.kind = "nmea".
-            let v = match (nmea_table, fields.get(*j).copied()) {
+            let v = match (nmea, fields.get(*j).copied()) {
                 (true, Some("N" | "E")) => 1.0,
                 (true, Some("S" | "W")) => -1.0,
                 _ => cell(fields, *j, name, line, spec.decimal_comma)?,
@@ -167,7 +167,6 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
         _ if spec.delimiter == ',' => Split::Csv,
         _ => Split::Delimited(spec.delimiter as u8),
     };
-    let nmea = spec.format == TableFormat::Nmea;
     let mut each = |r: Row| -> Result<()> {
         if !nmea {
             return on_row(r.line, r.fields);

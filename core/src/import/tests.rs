@@ -258,8 +258,7 @@ fn a_slow_sensor_in_fast_rows_gives_one_sample_per_own_time_at_that_time() {
     let recipe: Recipe = serde_json::from_str(text).unwrap();
     let (log, s) = import(&recipe, &mut files(&csv)).unwrap();
     assert_eq!(s.n_reference, 5, "one sample per fix, not one per row");
-    let r = log.column(Column::RefHeadingDeg).unwrap();
-    let stamped: Vec<(f64, f64)> = log.time_s().iter().zip(r).filter(|(_, v)| v.is_finite()).map(|(t, v)| (*t, *v)).collect();
+    let stamped = reference_samples(&log);
     // fix k is stamped at its own time k on the rows' clock (1000 s removed by the smallest
     // delay, which is the 0 s of the first rows), not 0.3 s late; values 0, 10, ... deg
     for (k, &(t, v)) in stamped.iter().enumerate() {
@@ -319,8 +318,7 @@ fn an_nmea_rmc_log_and_a_time_of_day_pass_midnight() {
     assert_eq!(log.column(Column::GyroDps).unwrap(), &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
     // three valid fixes at 0, 1 and 3 s (courses 80, 90, 100 cw: -80, -90, -100 ccw)
     assert_eq!(s.n_reference, 3);
-    let r = log.column(Column::RefHeadingDeg).unwrap();
-    let stamped: Vec<(f64, f64)> = log.time_s().iter().zip(r).filter(|(_, v)| v.is_finite()).map(|(t, v)| (*t, *v)).collect();
+    let stamped = reference_samples(&log);
     assert_eq!(stamped, [(0.0, -80.0), (1.0, -90.0), (3.0, -100.0)]);
     // 10 kn = 5.144 m/s; 20 kn = 10.289 m/s
     let v = log.column(Column::SpeedMps).unwrap();
@@ -426,15 +424,9 @@ fn a_gpx_track_gives_the_heading_from_its_positions() {
     let recipe: Recipe = serde_json::from_str(text).unwrap();
     let mut files = BTreeMap::from([("imu.csv".to_string(), gyro.into_bytes()), ("drive.gpx".to_string(), gpx.into_bytes())]);
     let (log, s) = import(&recipe, &mut files).unwrap();
-    let r = log.column(Column::RefHeadingDeg).unwrap();
-    let stamped: Vec<(f64, f64)> = log.time_s().iter().zip(r).filter(|(_, v)| v.is_finite()).map(|(t, v)| (*t, *v)).collect();
-    // courses stamped at the segments' middles: east (90 cw = -90 ccw) at 0.5, 1.5, 2.5 s,
-    // then north (0) at 3.5 and 4.5 s
+    let stamped = reference_samples(&log);
     assert_eq!(s.n_reference, 5, "{stamped:?}");
-    for (k, &(t, h)) in stamped.iter().enumerate() {
-        let want = if k < 3 { -90.0 } else { 0.0 };
-        assert!((t - (k as f64 + 0.5)).abs() < 1e-9 && (h - want).abs() < 0.1, "{stamped:?}");
-    }
+    assert_east_then_north(&stamped);
     // 0.0001 deg of longitude at 42 deg north: about 8.3 m/s
     let v = log.column(Column::SpeedMps).unwrap();
     assert!((v[10] - 8.27).abs() < 0.05, "{}", v[10]);
@@ -486,15 +478,26 @@ fn nmea_positions_read_ddmm_and_their_hemisphere() {
     let recipe: Recipe = serde_json::from_str(text).unwrap();
     let mut files = BTreeMap::from([("imu.csv".to_string(), gyro.into_bytes()), ("gps.nmea".to_string(), gps.into_bytes())]);
     let (log, s) = import(&recipe, &mut files).unwrap();
-    let r = log.column(Column::RefHeadingDeg).unwrap();
-    let stamped: Vec<(f64, f64)> = log.time_s().iter().zip(r).filter(|(_, v)| v.is_finite()).map(|(t, v)| (*t, *v)).collect();
+    let stamped = reference_samples(&log);
     assert_eq!(s.n_reference, 5, "{stamped:?}");
-    for (k, &(t, h)) in stamped.iter().enumerate() {
-        let want = if k < 3 { -90.0 } else { 0.0 };
-        assert!((t - (k as f64 + 0.5)).abs() < 1e-9 && (h - want).abs() < 0.1, "{stamped:?}");
-    }
+    assert_east_then_north(&stamped);
     // nmea positions need their four columns
     let bad = text.replace(r#"["lat", "ns", "lon", "ew"]"#, r#"["lat", "lon"]"#);
     let e = import(&serde_json::from_str(&bad).unwrap(), &mut files).unwrap_err().to_string();
     assert!(e.contains("positions need 4 columns"), "{e}");
+}
+
+/// The log's reference samples: (time, heading) where the heading is given.
+fn reference_samples(log: &crate::log::DriveLog) -> Vec<(f64, f64)> {
+    let r = log.column(Column::RefHeadingDeg).unwrap();
+    log.time_s().iter().zip(r).filter(|(_, v)| v.is_finite()).map(|(t, v)| (*t, *v)).collect()
+}
+
+/// Courses from positions driven east for 3 s, then north, a point a second: stamped at the
+/// segments' middles, east (90 cw = -90 ccw) at 0.5, 1.5, 2.5 s, then north (0).
+fn assert_east_then_north(stamped: &[(f64, f64)]) {
+    for (k, &(t, h)) in stamped.iter().enumerate() {
+        let want = if k < 3 { -90.0 } else { 0.0 };
+        assert!((t - (k as f64 + 0.5)).abs() < 1e-9 && (h - want).abs() < 0.1, "{stamped:?}");
+    }
 }
