@@ -2,7 +2,7 @@
 import * as gd from "./pkg/gyrodrift.js";
 import { $, fmt, state, hdrOptions, SAMPLES } from "./state.js";
 import { renderList, selectEntry } from "./controls.js";
-import { openMapping, draftChoices } from "./mapping.js";
+import { openMapping } from "./mapping.js";
 import { download } from "./charts.js";
 
 export function addLog(name, bytes) {
@@ -189,7 +189,7 @@ async function importRaw(files, recipe) {
   if (res.stage === "detect") {
     // No preset fits: the user maps the columns (cancel keeps the error entry).
     const named = files.map((f) => ({ name: f.name, bytes: bytes[f.name] }));
-    const mapped = await openMapping(named, res.error, (r) => importer(r, "your column mapping"), draftChoices(res.draft, named));
+    const mapped = await openMapping(named, res.error, (r) => importer(r, "your column mapping"), res.guesses);
     if (mapped) res = { ...mapped.res, detection: { ...mapped.res.detection, recipe: mapped.recipe } };
   }
   const before = state.entries.length;

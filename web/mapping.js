@@ -12,19 +12,27 @@ const TIME_LABELS = { iso8601: "ISO 8601", time_of_day: "time of day (hh:mm:ss)"
 const RATE_UNITS = ["deg/s", "rad/s", "mrad/s", "deg/h"];
 const SPEED_UNITS = ["m/s", "km/h", "mph", "kn"];
 
-/** The first column (as "file index:column") whose name matches, or "". */
-function guess(files, re, not) {
-  for (const [i, f] of files.entries()) for (const c of f.header) if (re.test(c) && !(not && not.test(c))) return `${i}:${c}`;
-  return "";
+/**
+ * Core's guesses (`columnGuesses`: its `files` in name order) put in the panel's terms: a
+ * guessed column as the panel's value ("file index:column", "" for none), and the reading
+ * of the column a panel value names.
+ */
+function inPanel(g, sniffed) {
+  const panelIndex = (c) => sniffed.findIndex((s) => s.name === g?.files[c.file]?.name);
+  const value = (c) => (c && panelIndex(c) >= 0 ? `${panelIndex(c)}:${c.column}` : "");
+  const reading = (v) => {
+    const k = v.indexOf(":");
+    const file = k < 0 ? undefined : g?.files.find((f) => f.name === sniffed[Number(v.slice(0, k))]?.name);
+    return file?.columns.find((c) => c.name === v.slice(k + 1));
+  };
+  return { value, reading, file: (i) => g?.files.find((f) => f.name === sniffed[i].name) };
 }
 
-function timeUnitOf(name) {
-  if (/time.?of.?day|hhmmss|clock/i.test(name)) return "time_of_day";
-  if (/iso|date|utc|txt/i.test(name)) return "iso8601";
-  if (/\bns\b|_ns|nanos/i.test(name)) return "ns";
-  if (/\bus\b|_us|µs|micros/i.test(name)) return "us";
-  if (/\bms\b|_ms|millis/i.test(name)) return "ms";
-  return "s";
+/** `unit` follows the column chosen in `col`: core's reading of it as `kind`, else `fallback`. */
+function follow(reading, col, unit, kind, fallback, prefix = "") {
+  const set = () => (unit.value = reading(prefix + col.value)?.[kind] ?? fallback);
+  set();
+  col.addEventListener("change", set);
 }
 
 function select(id, options, value, label) {
@@ -45,64 +53,65 @@ function row(label, ...controls) {
 }
 
 /**
- * The form's fields for the sniffed files, appended to `body`, each guessed from the
- * headers: the time of each file, the yaw rate (one axis, or three on gravity), the
- * reference heading, the speed and the lead-in.
+ * The form's fields for the sniffed files, appended to `body`, first chosen as core's
+ * reading of the columns (`g`, `columnGuesses`; null leaves them to the first columns): the
+ * time of each file, the yaw rate (one axis, or three on gravity), the reference heading, the
+ * speed and the lead-in. A unit follows its column when another is chosen.
  */
-function buildForm(sniffed, body) {
+function buildForm(sniffed, g, body) {
   const cols = [["", "—"]];
   sniffed.forEach((s, i) => s.header.forEach((c) => cols.push([`${i}:${c}`, sniffed.length > 1 ? `${s.name} › ${c}` : c])));
+  const { value: ref, reading, file } = inPanel(g, sniffed);
   // Time of each file.
   const times = sniffed.map((s, i) => {
-    const c = s.header.find((h) => /time|stamp|^t$|^t_|_s$/i.test(h)) || s.header[0];
-    const col = select(`map-time-${i}`, s.header.map((h) => [h, h]), c, `time column of ${s.name}`);
-    const unit = select(`map-time-unit-${i}`, TIME_UNITS.map((u) => [u, TIME_LABELS[u] ?? u]), timeUnitOf(c), `time unit of ${s.name}`);
-    col.addEventListener("change", () => (unit.value = timeUnitOf(col.value)));
+    const col = select(`map-time-${i}`, s.header.map((h) => [h, h]), file(i)?.time_column ?? s.header[0], `time column of ${s.name}`);
+    const unit = select(`map-time-unit-${i}`, TIME_UNITS.map((u) => [u, TIME_LABELS[u] ?? u]), "s", `time unit of ${s.name}`);
+    follow(reading, col, unit, "time", "s", `${i}:`);
     body.append(row(`time of ${s.name}`, col, unit));
     return { col, unit };
   });
 
   // Yaw rate: one axis or three on gravity.
-  const gyroCol = guess(sniffed, /gyro.*z|w_?z\b|yaw.?rate|rate.*z|angular.*z/i) || guess(sniffed, /gyro|rate|yaw/i);
   const mode = select("map-rate-mode", [["one", "one axis"], ["three", "three axes, projected on gravity"]], "one", "yaw rate from");
-  const rate = select("map-rate", cols, gyroCol, "yaw rate column");
-  const axes = ["x", "y", "z"].map((a) => select(`map-axis-${a}`, cols, guess(sniffed, new RegExp(`gyro.*${a}|w_?${a}\\b|angular.*${a}`, "i")), `gyro ${a} column`));
-  const acc = ["x", "y", "z"].map((a) => select(`map-acc-${a}`, cols, guess(sniffed, new RegExp(`(acc|grav).*${a}|a_?${a}\\b`, "i")), `accelerometer ${a} column`));
-  const rateUnit = select("map-rate-unit", RATE_UNITS.map((u) => [u, u]), /rad/i.test(gyroCol) ? "rad/s" : /deg|dps/i.test(gyroCol) ? "deg/s" : "rad/s", "yaw rate unit");
+  const rate = select("map-rate", cols, ref(g?.yaw_rate), "yaw rate column");
+  const axes = ["x", "y", "z"].map((a, k) => select(`map-axis-${a}`, cols, ref(g?.gyro_axes?.[k]), `gyro ${a} column`));
+  const acc = ["x", "y", "z"].map((a, k) => select(`map-acc-${a}`, cols, ref(g?.accel_axes?.[k]), `accelerometer ${a} column`));
+  const rateUnit = select("map-rate-unit", RATE_UNITS.map((u) => [u, u]), "rad/s", "yaw rate unit");
+  follow(reading, rate, rateUnit, "rate_unit", "rad/s");
   const sense = select("map-rate-sense", [["ccw", "left turn positive (ccw)"], ["cw", "right turn positive (cw)"]], "ccw", "yaw rate sign");
   const oneRow = row("gyro column", rate);
   const threeRow = row("gyro x, y, z / accel x, y, z", ...axes, ...acc);
   body.append(row("yaw rate", mode, rateUnit, sense), oneRow, threeRow);
 
   // Reference heading.
-  const refCol = guess(sniffed, /course|bearing|heading|direction|cog/i, /accuracy/i);
-  const lat = guess(sniffed, /lat/i);
-  const refMode = select("map-ref-mode", [["none", "none"], ["column", "a heading column"], ["positions", "positions (lat, lon)"]], refCol ? "column" : lat ? "positions" : "none", "reference from");
-  const ref = select("map-ref", cols, refCol, "reference heading column");
-  const refUnit = select("map-ref-unit", [["deg", "deg"], ["rad", "rad"]], /rad/i.test(refCol) ? "rad" : "deg", "reference unit");
+  const p = g?.lat_lon;
+  const refMode = select("map-ref-mode", [["none", "none"], ["column", "a heading column"], ["positions", "positions (lat, lon)"]], g?.course ? "column" : p ? "positions" : "none", "reference from");
+  const ref_ = select("map-ref", cols, ref(g?.course), "reference heading column");
+  const refUnit = select("map-ref-unit", [["deg", "deg"], ["rad", "rad"]], "deg", "reference unit");
+  follow(reading, ref_, refUnit, "angle_unit", "deg");
   const refSense = select("map-ref-sense", [["cw", "clockwise from north (GPS course)"], ["ccw", "counter-clockwise"]], "cw", "reference sign");
-  const latSel = select("map-lat", cols, lat, "latitude column");
-  const lonSel = select("map-lon", cols, guess(sniffed, /lon/i), "longitude column");
+  const latSel = select("map-lat", cols, p ? ref({ file: p.file, column: p.lat }) : "", "latitude column");
+  const lonSel = select("map-lon", cols, p ? ref({ file: p.file, column: p.lon }) : "", "longitude column");
   // A GPS course means nothing at a standstill: with a speed, headings below this are dropped.
   const minSpeed = document.createElement("input");
   Object.assign(minSpeed, { id: "map-ref-min-speed", type: "number", min: 0, max: 50, step: 0.5, value: 5 });
   minSpeed.setAttribute("aria-label", "reference heading only above this speed, m/s (with a speed column)");
   minSpeed.title = "reference heading only above this speed, m/s (with a speed column): a GPS course means nothing at a standstill";
   const above = Object.assign(document.createElement("span"), { textContent: "above (m/s)", className: "map-note" });
-  const refRow = row("heading column", ref, refUnit, refSense, above, minSpeed);
+  const refRow = row("heading column", ref_, refUnit, refSense, above, minSpeed);
   const posRow = row("latitude, longitude", latSel, lonSel);
   body.append(row("reference", refMode), refRow, posRow);
 
   // Speed and the lead-in.
-  const spCol = guess(sniffed, /speed|velocity|vel_m|v_kmh|\bv\b/i, /accuracy/i);
-  const sp = select("map-speed", cols, spCol, "speed column");
-  const spUnit = select("map-speed-unit", SPEED_UNITS.map((u) => [u, u]), /kmh|km\/h|kph/i.test(spCol) ? "km/h" : /mph/i.test(spCol) ? "mph" : /knot|\bkn\b|kts/i.test(spCol) ? "kn" : "m/s", "speed unit");
+  const sp = select("map-speed", cols, ref(g?.speed), "speed column");
+  const spUnit = select("map-speed-unit", SPEED_UNITS.map((u) => [u, u]), "m/s", "speed unit");
+  follow(reading, sp, spUnit, "speed_unit", "m/s");
   const lead = document.createElement("input");
   Object.assign(lead, { id: "map-lead", type: "number", min: 0, max: 600, step: 1, value: 0 });
   lead.setAttribute("aria-label", "stationary lead-in, s");
   body.append(row("speed (optional)", sp, spUnit), row("stationary lead-in, s", lead));
 
-  return { times, mode, rate, axes, acc, rateUnit, sense, oneRow, threeRow, refMode, ref, refUnit, refSense, minSpeed, latSel, lonSel, refRow, posRow, sp, spUnit, lead };
+  return { times, mode, rate, axes, acc, rateUnit, sense, oneRow, threeRow, refMode, ref: ref_, refUnit, refSense, minSpeed, latSel, lonSel, refRow, posRow, sp, spUnit, lead };
 }
 
 /** Shows the rows the chosen modes use. */
@@ -159,48 +168,21 @@ function recipeOf(f, files, sniffed) {
 }
 
 /**
- * The panel's first choices ({field id: value}) from core's draft recipe for `files`
- * (`draftRecipe`, which reads the column names and first rows): the time of each file, the
- * yaw rate, the reference and the speed. Fields the draft leaves out keep the guesses.
- */
-export function draftChoices(draft, files) {
-  const out = {};
-  if (!draft) return out;
-  const index = new Map(draft.table.map((t) => [t.id, files.findIndex((f) => f.name === t.file)]));
-  const at = (spec, column = spec.column) => `${index.get(spec.table)}:${column}`;
-  for (const t of draft.table) {
-    const i = index.get(t.id);
-    if (i < 0 || !t.time?.column) continue;
-    out[`map-time-${i}`] = t.time.column;
-    out[`map-time-unit-${i}`] = t.time.format && t.time.format !== "seconds" ? t.time.format : (t.time.unit ?? "s");
-  }
-  const { yaw_rate: y, heading: h, speed: sp, positions: p } = draft;
-  if (y?.column) Object.assign(out, { "map-rate": at(y), "map-rate-unit": y.unit, "map-rate-sense": y.positive });
-  if (h?.source === "column") {
-    Object.assign(out, { "map-ref-mode": "column", "map-ref": at(h), "map-ref-unit": h.unit, "map-ref-sense": h.positive });
-    if (h.min_speed_mps != null) out["map-ref-min-speed"] = String(h.min_speed_mps);
-  } else if (h?.source === "positions" && p?.kind === "latlon") {
-    Object.assign(out, { "map-ref-mode": "positions", "map-lat": at(p, p.columns[0]), "map-lon": at(p, p.columns[1]) });
-  }
-  if (sp?.source === "column") Object.assign(out, { "map-speed": at(sp), "map-speed-unit": sp.unit });
-  return out;
-}
-
-/**
  * Opens the panel for `files` ([{name, bytes}]) with `why` (the detection's error).
- * `importer(recipe)` imports in the worker: {data, detection} or {error}. `preset` sets
- * fields by id over the guesses ({"map-rate-sense": "cw"}: a check error's fix), `intro` says
- * what the panel is for. Resolves with the last good import {res, recipe}, or null when
- * cancelled.
+ * `importer(recipe)` imports in the worker: {data, detection} or {error}. `guesses` is core's
+ * reading of the columns (`columnGuesses`, from the worker; null: none), the first choices.
+ * `preset` sets fields by id over them ({"map-rate-sense": "cw"}: a check error's fix),
+ * `intro` says what the panel is for. Resolves with the last good import {res, recipe}, or
+ * null when cancelled.
  */
-export function openMapping(files, why, importer, preset = {}, intro = "No preset fits these files. Say which column is what; the preview imports as you choose.") {
+export function openMapping(files, why, importer, guesses, preset = {}, intro = "No preset fits these files. Say which column is what; the preview imports as you choose.") {
   const sniffed = files.map((f) => gd.sniffFile(f.name, f.bytes.subarray(0, 65536)));
   const dlg = $("mapping");
   $("mapping-why").textContent = why;
   $("mapping-intro").textContent = intro;
   const body = $("mapping-fields");
   body.replaceChildren();
-  const form = buildForm(sniffed, body);
+  const form = buildForm(sniffed, guesses, body);
   for (const [id, value] of Object.entries(preset)) {
     const el = body.querySelector(`#${id}`);
     if (el) el.value = value;

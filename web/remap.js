@@ -34,7 +34,8 @@ export async function remap(entry) {
   const preset = Object.assign({ "map-lead": String(lead), "map-ref-sense": "ccw", "map-ref-min-speed": "0" }, ...fixes.map((x) => MAPPER_FIX[x.code]));
   const why = `${entry.name}: ${fixes.map((x) => x.message).join("; ")}.`;
   const intro = "The fix is filled in below: check that the gyro, integrated, now follows the reference in the preview, then add the log (the one opened stays until you remove it).";
-  const mapped = await openMapping([{ name: f.name, bytes: bytes[f.name] }], why, importer, preset, intro);
+  const guesses = (await inWorker({ type: "guess", files: bytes }, [], () => {})).data ?? null;
+  const mapped = await openMapping([{ name: f.name, bytes: bytes[f.name] }], why, importer, guesses, preset, intro);
   if (!mapped) return;
   const added = addParsed(`${entry.name} (fixed)`, () => {
     const log = gd.Log.fromColumns(mapped.res.data);

@@ -3,17 +3,29 @@
 // - parse: a large log, with progress, and its check; the columns go back transferred, not
 //   copied, and the page rebuilds the Log from them; or a log put in time order;
 // - import: raw logger files by their detected preset (or a given recipe; with none fitting,
-//   core's draft recipe for the mapping panel); recipes to and from TOML;
+//   core's reading of their columns for the mapping panel); guess: that reading alone;
+//   recipes to and from TOML;
 // - tune: the HDR parameters over the drives' columns, with progress;
 // - battery: the robustness battery's error profiles on the drives' columns; case: one
 //   drive with one profile's errors added (to open a case as a log); profiles: their names;
 // - track, pipelineTrack, pipeline: the slow work on a large log this worker parsed and
 //   kept (`key`), so the page's Track view and pipeline never pause it.
-import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, draftRecipe, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog, logInTimeOrder } from "./pkg/full/gyrodrift.js";
+import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, columnGuesses, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog, logInTimeOrder } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 /** Large logs parsed here, kept for later work on them (freed on "forget"). */
 const kept = new Map();
+
+/** Core's reading of raw files' columns (`columnGuesses`), or null for a file that is not a
+ * text table (the panel then starts from its first columns). */
+function guessesOf(files) {
+  try {
+    // Core reads each file's head only: copy no more into the module.
+    return columnGuesses(Object.fromEntries(Object.entries(files).map(([name, b]) => [name, b.subarray(0, 65536)])));
+  } catch {
+    return null;
+  }
+}
 
 /** The typed arrays' buffers inside a result, to transfer instead of copy. */
 function buffers(v, out = []) {
@@ -90,6 +102,7 @@ self.onmessage = async (ev) => {
     }
     if (type === "toml-out") return self.postMessage({ id, data: recipeToToml(ev.data.recipe) });
     if (type === "toml-in") return self.postMessage({ id, data: recipeFromToml(ev.data.text) });
+    if (type === "guess") return self.postMessage({ id, data: guessesOf(ev.data.files) });
     if (type === "import") {
       let d;
       try {
@@ -97,13 +110,9 @@ self.onmessage = async (ev) => {
           ? { preset: "recipe", title: ev.data.title || "your recipe", recipe: ev.data.recipe, used: [], ignored: [] }
           : detectImport(ev.data.files);
       } catch (e) {
-        // No preset fits: core's draft from the column names and first rows, when it has
-        // one, sets the mapping panel's first choices.
-        let draft = null;
-        try {
-          draft = draftRecipe(ev.data.files).recipe;
-        } catch {}
-        self.postMessage({ id, error: e.message, stage: "detect", draft });
+        // No preset fits: core's reading of the column names and first rows sets the
+        // mapping panel's first choices.
+        self.postMessage({ id, error: e.message, stage: "detect", guesses: guessesOf(ev.data.files) });
         return;
       }
       const { log, summary } = importLog(d.recipe, ev.data.files);

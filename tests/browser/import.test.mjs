@@ -153,15 +153,34 @@ test("files no preset fits open the mapping panel: guessed columns, live preview
   await page.waitForSelector("#mapping[open]");
   await page.locator("#mapping-cancel").click();
   await page.waitForFunction(() => [...document.querySelectorAll("#logs li.bad")].some((l) => l.innerText.includes("my-logger.csv: no logger preset")));
-  // The first choices are core's draft (draftRecipe), which reads the first row too: a time
-  // column named "time" holding ISO 8601 is chosen as such, where the names alone say seconds.
-  const iso = join(dir, "iso-logger.csv");
-  writeFileSync(iso, "time,gyro_z\n2026-11-27T10:00:00.0Z,0.01\n2026-11-27T10:00:00.1Z,0.02\n");
-  await page.locator("#file-input").setInputFiles([iso]);
+  // The first choices are core's reading of the columns (columnGuesses), which reads the
+  // first row too: a time column named "time" holding ISO 8601 is chosen as such, where the
+  // names alone say seconds. Two files: each column found in its own file (core lists the
+  // files in name order, the panel in the order dropped), three axes, positions, knots.
+  const imu = join(dir, "z-imu.csv");
+  writeFileSync(imu, "time,gyro_x,gyro_y,gyro_z,acc_x,acc_y,acc_z\n2026-11-27T10:00:00.0Z,0,0,0.01,0,0,9.8\n2026-11-27T10:00:00.1Z,0,0,0.02,0,0,9.8\n");
+  const gps = join(dir, "a-gps.csv");
+  writeFileSync(gps, "utc,lat,lon,speed_kn\n2026-11-27T10:00:00Z,42,11,10\n");
+  await page.locator("#file-input").setInputFiles([imu, gps]);
   await page.waitForSelector("#mapping[open]");
-  assert.equal(await page.locator("#map-time-unit-0").inputValue(), "iso8601");
-  assert.equal(await page.locator("#map-rate").inputValue(), "0:gyro_z");
+  const z = (await page.locator("#map-time-0").getAttribute("aria-label")).includes("z-imu.csv") ? 0 : 1;
+  const a = 1 - z;
+  assert.equal(await page.locator(`#map-time-${z}`).inputValue(), "time");
+  assert.equal(await page.locator(`#map-time-unit-${z}`).inputValue(), "iso8601");
+  assert.equal(await page.locator(`#map-time-${a}`).inputValue(), "utc");
+  assert.equal(await page.locator(`#map-time-unit-${a}`).inputValue(), "iso8601");
+  assert.equal(await page.locator("#map-rate").inputValue(), `${z}:gyro_z`);
   assert.equal(await page.locator("#map-rate-unit").inputValue(), "rad/s");
+  assert.deepEqual(await Promise.all(["#map-axis-x", "#map-acc-z"].map((id) => page.locator(id).inputValue())), [`${z}:gyro_x`, `${z}:acc_z`]);
+  assert.equal(await page.locator("#map-ref-mode").inputValue(), "positions");
+  assert.deepEqual(await Promise.all(["#map-lat", "#map-lon"].map((id) => page.locator(id).inputValue())), [`${a}:lat`, `${a}:lon`]);
+  assert.equal(await page.locator("#map-speed").inputValue(), `${a}:speed_kn`);
+  assert.equal(await page.locator("#map-speed-unit").inputValue(), "kn");
+  // A unit follows the column chosen, as core reads that column's name.
+  await page.locator("#map-speed").selectOption(`${z}:gyro_x`);
+  assert.equal(await page.locator("#map-speed-unit").inputValue(), "m/s");
+  await page.locator(`#map-time-${z}`).selectOption("gyro_y");
+  assert.equal(await page.locator(`#map-time-unit-${z}`).inputValue(), "s");
   await page.locator("#mapping-cancel").click();
 });
 

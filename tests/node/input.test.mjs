@@ -240,6 +240,34 @@ test("draftRecipe drafts a recipe from raw files' column names as the CLI's --pr
   assert.throws(() => gd.draftRecipe(5), TypeError);
 });
 
+test("columnGuesses reads every column as each kind it could be, the draft's reading", () => {
+  const enc = (s) => new TextEncoder().encode(s);
+  const files = {
+    "imu.csv": enc("clock,gyro_x,gyro_y,gyro_z_rad,acc_x,acc_y,acc_z\n10:00:00.125,0,0,0,0,0,9.8\n"),
+    "gps.csv": enc("t_ms,lat,lon,heading_rad,speed_kmh\n0,42,11,1,36\n"),
+  };
+  const g = gd.columnGuesses(files);
+  // The files in name order; a column's `file` indexes them.
+  assert.deepEqual(g.files.map((f) => [f.name, f.time_column]), [["gps.csv", "t_ms"], ["imu.csv", "clock"]]);
+  const col = (i, name) => g.files[i].columns.find((c) => c.name === name);
+  assert.equal(col(1, "clock").time, "time_of_day");
+  assert.equal(col(0, "t_ms").time, "ms");
+  assert.equal(col(1, "gyro_z_rad").rate_unit, "rad/s");
+  assert.equal(col(0, "heading_rad").angle_unit, "rad");
+  assert.equal(col(0, "speed_kmh").speed_unit, "km/h");
+  assert.deepEqual(g.yaw_rate, { file: 1, column: "gyro_z_rad" });
+  assert.deepEqual(g.gyro_axes.map((c) => c.column), ["gyro_x", "gyro_y", "gyro_z_rad"]);
+  assert.deepEqual(g.accel_axes.map((c) => c.column), ["acc_x", "acc_y", "acc_z"]);
+  assert.deepEqual(g.course, { file: 0, column: "heading_rad" });
+  assert.deepEqual(g.lat_lon, { file: 0, lat: "lat", lon: "lon" });
+  assert.equal(g.temperature, undefined);
+  // The draft recipe reads the files the same way.
+  const d = gd.draftRecipe(files).recipe;
+  assert.deepEqual([d.yaw_rate.column, d.heading.column, d.speed.unit], ["gyro_z_rad", "heading_rad", "km/h"]);
+  assert.throws(() => gd.columnGuesses({ "b.bin": new Uint8Array([0, 159, 146, 150, 0, 1]) }), /b\.bin/);
+  assert.throws(() => gd.columnGuesses(5), TypeError);
+});
+
 test("importLog reads a GPX track (format gpx) as the CLI does: the heading from its positions", () => {
   const pts = [[42.0, 11.0], [42.0, 11.0001], [42.0, 11.0002], [42.0, 11.0003], [42.0001, 11.0003], [42.0002, 11.0003]];
   const trk = pts.map(([lat, lon], k) => `<trkpt lat="${lat}" lon="${lon}"><time>2026-11-27T10:00:0${k}Z</time></trkpt>`).join("");

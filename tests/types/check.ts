@@ -1,6 +1,6 @@
 // Compiled with `tsc --noEmit`: the package's types describe options and results (no `any`).
-import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, isDriveLog, pipeline, runPipeline, pipelineTrack, track, compare, checkLog, battery, batteryMarkdown, PipelineEstimator, addGyroErrors, batteryProfiles } from "gyrodrift";
-import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, PipelineResult, PipelineRun, PipelineTracks, Tracks, Compare, CheckReport, CheckFinding, GapSplit, Battery, BatteryCase, PipelineState, GyroErrors, BatteryProfile } from "gyrodrift";
+import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, draftRecipe, columnGuesses, isDriveLog, pipeline, runPipeline, pipelineTrack, track, compare, checkLog, battery, batteryMarkdown, PipelineEstimator, addGyroErrors, batteryProfiles } from "gyrodrift";
+import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, Draft, ColumnGuesses, PipelineResult, PipelineRun, PipelineTracks, Tracks, Compare, CheckReport, CheckFinding, GapSplit, Battery, BatteryCase, PipelineState, GyroErrors, BatteryProfile } from "gyrodrift";
 
 const log: Log = Log.parse("time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1,0\n");
 const opts: HdrOptions = { i_c_dps: 0.0422, tau_s: 0.75, resample: true };
@@ -38,7 +38,12 @@ const det: Detection = detectImport({ "Gyroscope.csv": new Uint8Array(0) });
 const detected: ImportResult = importLog(det.recipe, {});
 const roles: [string, string][] = det.used;
 const isLog: boolean = isDriveLog("a.csv", new Uint8Array(0));
-void detected; void roles; void isLog;
+const draft: Draft = draftRecipe({ "mine.csv": new Uint8Array(0) });
+const draftLines: string[] = draft.guesses;
+const guessed: ColumnGuesses = columnGuesses({ "mine.csv": new Uint8Array(0) });
+const rateColumn: string | undefined = guessed.yaw_rate?.column;
+const timeUnit: "s" | "ms" | "us" | "ns" | "iso8601" | "time_of_day" = guessed.files[0].columns[0].time;
+void detected; void roles; void isLog; void draftLines; void rateColumn; void timeUnit;
 const rows: number = imp.log.rowCount + imp.summary.n_reference;
 const pr: PipelineResult = pipeline(log, { road_gate_dps: 0.5, still: { still_speed_mps: 0.3 } });
 const pe: number = pr.E_psi_pipeline_deg + pr.NE_psi_pipeline_deg_per_min + pr.improvement_pipeline;

@@ -82,6 +82,18 @@ pub fn draft_recipe(#[wasm_bindgen(unchecked_param_type = "Record<string, Uint8A
     Ok(out.into())
 }
 
+/// What raw files' columns are, read from their names and first rows (core's
+/// `column_guesses`): each file's time column and every column's time format and units,
+/// then the columns guessed for the yaw rate, three gyro and accelerometer axes, a course,
+/// latitude and longitude, a speed and a temperature (each by its file's index in `files`,
+/// which lists them in name order). The dashboard's column mapper starts from these.
+/// Throws when a file is not a text table.
+#[wasm_bindgen(js_name = columnGuesses, unchecked_return_type = "ColumnGuesses")]
+pub fn column_guesses(#[wasm_bindgen(unchecked_param_type = "Record<string, Uint8Array>")] files: JsValue) -> JsResult<JsValue> {
+    let heads: Vec<(String, Vec<u8>)> = raw_files(&files)?.into_iter().collect();
+    to_js(&import::column_guesses(&heads).map_err(err)?)
+}
+
 /// A recipe as TOML text (the format of `sample-logs/recipes`, `gyrodrift import --recipe`),
 /// checked as a recipe first (core's `recipe_value_to_toml`).
 #[wasm_bindgen(js_name = recipeToToml)]

@@ -16,6 +16,7 @@ mod channels;
 mod draft;
 mod geo;
 mod gpx;
+mod guess;
 #[cfg(feature = "fs")]
 mod hint;
 mod merge;
@@ -31,6 +32,7 @@ mod units;
 pub use archive::{detect_and_import_unzipped, detect_unzipped, import_unzipped, is_zip, unzip_all, unzip_heads, MAX_UNZIPPED_BYTES};
 pub use draft::{draft_recipe, Draft};
 pub use geo::*;
+pub use guess::{column_guesses, guess_columns, ColumnReading, ColumnRef, FileGuess, Guesses, LatLon};
 #[cfg(feature = "fs")]
 pub use hint::{folder_hint, folder_hints, import_hint, recordings, ImportHint, Recording};
 pub use presets::{detect, detect_and_import, presets, Detection};

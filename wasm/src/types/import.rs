@@ -140,6 +140,35 @@ export interface Draft {
   guesses: string[];
 }
 
+/** A column of one of the files: its index in `ColumnGuesses.files` (the files in name order) and its name. */
+export interface ColumnRef {
+  file: number;
+  column: string;
+}
+/** What a column's name (and first value) says it is, read as each kind it could be. */
+export interface ColumnReading {
+  name: string;
+  /** As a time: a unit or a format. */
+  time: "s" | "ms" | "us" | "ns" | "iso8601" | "time_of_day";
+  rate_unit: "rad/s" | "deg/s";
+  speed_unit: "m/s" | "km/h" | "mph" | "kn";
+  angle_unit: "deg" | "rad";
+}
+/** What raw files' columns are (`columnGuesses`), by name; a role no column reads as is left out. */
+export interface ColumnGuesses {
+  /** The files in name order. */
+  files: { name: string; gpx: boolean; time_column: string; columns: ColumnReading[] }[];
+  yaw_rate?: ColumnRef;
+  /** Gyro x, y, z in one file. */
+  gyro_axes?: ColumnRef[];
+  /** Accelerometer (or gravity) x, y, z in one file. */
+  accel_axes?: ColumnRef[];
+  course?: ColumnRef;
+  lat_lon?: { file: number; lat: string; lon: string };
+  speed?: ColumnRef;
+  temperature?: ColumnRef;
+}
+
 export interface ImportResult {
   log: Log;
   summary: ImportSummary;

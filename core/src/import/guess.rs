@@ -1,0 +1,291 @@
+//! What raw columns are, read from their names and first values: each file's time column
+//! and, for every column, the time format and the rate, speed and angle units its name (or
+//! value) says; then the columns that read as the yaw rate, three gyro and three
+//! accelerometer axes, a course, latitude and longitude, a speed and a temperature. The
+//! draft recipe (`draft.rs`) and the dashboard's column mapper both start from these, so a
+//! raw file is read one way wherever it is opened.
+
+use super::sniff::{first_row, sniff, Sniffed};
+use super::units::{parse_iso8601, parse_time_of_day};
+use crate::error::Result;
+use serde::Serialize;
+
+/// A column of one of the files: its index among them and its name.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ColumnRef {
+    pub file: usize,
+    pub column: String,
+}
+
+/// What one column's name (and first value) says, read as each kind it could be.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ColumnReading {
+    pub name: String,
+    /// As a time: "s", "ms", "us", "ns" (a unit) or "iso8601", "time_of_day" (a format).
+    pub time: &'static str,
+    /// As a rate: "rad/s" or "deg/s" (rad/s when the name says no unit: phones and ROS).
+    pub rate_unit: &'static str,
+    /// As a speed: "m/s", "km/h", "mph" or "kn".
+    pub speed_unit: &'static str,
+    /// As a heading: "deg" or "rad".
+    pub angle_unit: &'static str,
+}
+
+/// One file: its name, whether it is a GPX track (read whole, not by columns), its time
+/// column and the reading of each column.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FileGuess {
+    pub name: String,
+    pub gpx: bool,
+    pub time_column: String,
+    pub columns: Vec<ColumnReading>,
+}
+
+/// Latitude and longitude columns of one file, in degrees.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LatLon {
+    pub file: usize,
+    pub lat: String,
+    pub lon: String,
+}
+
+/// The columns each role is guessed to be, by name; `None` where no column reads so.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Guesses {
+    pub files: Vec<FileGuess>,
+    /// A z axis or a yaw rate by name, else any gyro or rate.
+    pub yaw_rate: Option<ColumnRef>,
+    /// Gyro x, y, z, all in one file (for a yaw rate projected on gravity).
+    pub gyro_axes: Option<Vec<ColumnRef>>,
+    /// Accelerometer (or gravity) x, y, z, all in one file.
+    pub accel_axes: Option<Vec<ColumnRef>>,
+    /// A course, bearing or heading column (never the yaw rate's).
+    pub course: Option<ColumnRef>,
+    pub lat_lon: Option<LatLon>,
+    pub speed: Option<ColumnRef>,
+    pub temperature: Option<ColumnRef>,
+}
+
+/// `name` in lower case contains `a`, then later `b` (a regex `a.*b`).
+pub(super) fn then(name: &str, a: &str, b: &str) -> bool {
+    name.find(a).is_some_and(|i| name[i + a.len()..].contains(b))
+}
+
+/// `name` has `word` as a whole token (letters and digits around it are other words).
+pub(super) fn word(name: &str, word: &str) -> bool {
+    name.match_indices(word).any(|(i, _)| {
+        let before = name[..i].chars().next_back();
+        let after = name[i + word.len()..].chars().next();
+        !before.is_some_and(char::is_alphanumeric) && !after.is_some_and(char::is_alphanumeric)
+    })
+}
+
+/// The time format or unit a time column's value (its first row's) or name suggests.
+pub fn time_reading(name: &str, value: &str) -> &'static str {
+    let n = name.to_lowercase();
+    let clock = ["time_of_day", "timeofday", "hhmmss", "clock"];
+    if parse_iso8601(value).is_some() {
+        "iso8601"
+    } else if (value.contains(':') && parse_time_of_day(value).is_some()) || clock.iter().any(|w| n.contains(w)) {
+        "time_of_day"
+    } else if n.contains("iso") || n.contains("date") || n.contains("utc") {
+        "iso8601"
+    } else if word(&n, "ns") || n.contains("_ns") || n.contains("nanos") {
+        "ns"
+    } else if word(&n, "us") || n.contains("_us") || n.contains("micros") || n.contains('µ') {
+        "us"
+    } else if word(&n, "ms") || n.contains("_ms") || n.contains("millis") {
+        "ms"
+    } else {
+        "s"
+    }
+}
+
+/// A rate's unit by its column name, and why.
+pub fn rate_unit_of(name: &str) -> (&'static str, &'static str) {
+    let n = name.to_lowercase();
+    match () {
+        _ if n.contains("rad") => ("rad/s", "the name says rad"),
+        _ if n.contains("deg") || n.contains("dps") => ("deg/s", "the name says deg/s"),
+        _ => ("rad/s", "no unit in the name: phones and ROS write rad/s"),
+    }
+}
+
+/// A speed's unit by its column name (m/s unless it says otherwise).
+pub fn speed_unit_of(name: &str) -> &'static str {
+    let n = name.to_lowercase();
+    match () {
+        _ if n.contains("kmh") || n.contains("km/h") || n.contains("kph") => "km/h",
+        _ if n.contains("mph") => "mph",
+        _ if n.contains("knot") || word(&n, "kn") || n.contains("kts") => "kn",
+        _ => "m/s",
+    }
+}
+
+/// A heading's unit by its column name (degrees unless it says rad).
+pub fn angle_unit_of(name: &str) -> &'static str {
+    if name.to_lowercase().contains("rad") {
+        "rad"
+    } else {
+        "deg"
+    }
+}
+
+/// A file's time column: the first whose name says time or stamp, else one named like a time
+/// in seconds (`t`, `t_...`, `..._s`), else the first column.
+fn time_column(s: &Sniffed) -> &str {
+    let named = |h: &&String| {
+        let n = h.to_lowercase();
+        n.contains("time") || n.contains("stamp")
+    };
+    let like = |h: &&String| {
+        let n = h.to_lowercase();
+        n == "t" || n.starts_with("t_") || n.ends_with("_s")
+    };
+    s.header.iter().find(named).or_else(|| s.header.iter().find(like)).or(s.header.first()).map_or("", String::as_str)
+}
+
+/// A GPX file (by its name): a track read whole, not a table of columns.
+fn is_gpx(s: &Sniffed) -> bool {
+    s.name.to_lowercase().ends_with(".gpx")
+}
+
+/// The guesses for files (name, the head of their bytes), or an error naming a file that is
+/// not a text table.
+pub fn column_guesses(heads: &[(String, Vec<u8>)]) -> Result<Guesses> {
+    let files: Vec<Sniffed> = heads.iter().map(|(name, head)| sniff(name, head)).collect::<Result<_>>()?;
+    let rows: Vec<Vec<String>> = files.iter().zip(heads).map(|(s, (_, head))| first_row(s, head)).collect();
+    Ok(guess_columns(&files, &rows))
+}
+
+/// Reads sniffed files (`rows`: each one's first data row, in the same order).
+pub fn guess_columns(files: &[Sniffed], rows: &[Vec<String>]) -> Guesses {
+    let per_file = files
+        .iter()
+        .zip(rows)
+        .map(|(s, row)| FileGuess {
+            name: s.name.clone(),
+            gpx: is_gpx(s),
+            time_column: time_column(s).to_string(),
+            columns: s
+                .header
+                .iter()
+                .enumerate()
+                .map(|(j, h)| ColumnReading {
+                    name: h.clone(),
+                    time: time_reading(h, row.get(j).map_or("", String::as_str)),
+                    rate_unit: rate_unit_of(h).0,
+                    speed_unit: speed_unit_of(h),
+                    angle_unit: angle_unit_of(h),
+                })
+                .collect(),
+        })
+        .collect();
+    // The first column, over every file, that `fits` (its name in lower case) and is not
+    // the file's time.
+    let find = |fits: &dyn Fn(&str) -> bool| {
+        files.iter().enumerate().filter(|(_, s)| !is_gpx(s)).find_map(|(i, s)| {
+            let time = time_column(s);
+            s.header.iter().find(|h| h.as_str() != time && fits(&h.to_lowercase())).map(|h| ColumnRef { file: i, column: h.clone() })
+        })
+    };
+    let z_axis = |n: &str| then(n, "gyro", "z") || word(n, "wz") || word(n, "w_z") || then(n, "yaw", "rate") || then(n, "angular", "z");
+    let any_rate = |n: &str| n.contains("gyro") || n.contains("yaw") || n.contains("rate");
+    let yaw_rate = find(&z_axis).or_else(|| find(&any_rate));
+    let gyro = yaw_rate.as_ref().map(|c| c.column.to_lowercase()).unwrap_or_default();
+    let triad = |fits: &dyn Fn(&str, &str) -> bool| {
+        let axes: Vec<ColumnRef> = ["x", "y", "z"].iter().filter_map(|a| find(&|n| fits(n, a))).collect();
+        let distinct =
+            axes.len() == 3 && axes[0].column != axes[1].column && axes[1].column != axes[2].column && axes[0].column != axes[2].column;
+        (distinct && axes.iter().all(|c| c.file == axes[0].file)).then_some(axes)
+    };
+    let course_words = ["course", "bearing", "heading", "direction", "cog"];
+    Guesses {
+        files: per_file,
+        gyro_axes: triad(&|n, a| then(n, "gyro", a) || word(n, &format!("w{a}")) || word(n, &format!("w_{a}")) || then(n, "angular", a)),
+        accel_axes: triad(&|n, a| {
+            (then(n, "acc", a) || then(n, "grav", a) || word(n, &format!("a{a}")) || word(n, &format!("a_{a}"))) && !n.contains("accuracy")
+        }),
+        course: find(&|n| n != gyro && course_words.iter().any(|w| n.contains(w)) && !n.contains("accuracy")),
+        lat_lon: files.iter().enumerate().filter(|(_, s)| !is_gpx(s)).find_map(|(i, s)| {
+            let col = |w: &str| s.header.iter().find(|h| h.to_lowercase().contains(w)).cloned();
+            Some(LatLon { file: i, lat: col("lat")?, lon: col("lon")? })
+        }),
+        speed: find(&|n| (n.contains("speed") || n.contains("velocity") || n.contains("vel_m") || word(n, "v")) && !n.contains("accuracy")),
+        temperature: find(&|n| n.contains("temp")),
+        yaw_rate,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn guesses(files: &[(&str, &str)]) -> Guesses {
+        let heads: Vec<(String, Vec<u8>)> = files.iter().map(|(n, t)| (n.to_string(), t.as_bytes().to_vec())).collect();
+        column_guesses(&heads).unwrap()
+    }
+
+    fn at(file: usize, column: &str) -> ColumnRef {
+        ColumnRef { file, column: column.into() }
+    }
+
+    #[test]
+    fn each_column_is_read_as_every_kind_it_could_be() {
+        let g = guesses(&[("p.csv", "stamp_ms,yaw_rate_dps,course_rad,speed_kmh,wall\n5,1,2,3,10:00:00.5\n")]);
+        let f = &g.files[0];
+        assert_eq!(f.time_column, "stamp_ms");
+        let by = |c: &str| f.columns.iter().find(|r| r.name == c).unwrap().clone();
+        assert_eq!(by("stamp_ms").time, "ms");
+        assert_eq!(by("yaw_rate_dps").rate_unit, "deg/s");
+        assert_eq!(by("course_rad").angle_unit, "rad");
+        assert_eq!(by("course_rad").rate_unit, "rad/s");
+        assert_eq!(by("speed_kmh").speed_unit, "km/h");
+        // A time of day by its value, whatever the name.
+        assert_eq!(by("wall").time, "time_of_day");
+        assert_eq!((by("wall").speed_unit, by("wall").angle_unit), ("m/s", "deg"));
+        assert_eq!(g.yaw_rate, Some(at(0, "yaw_rate_dps")));
+        assert_eq!(g.course, Some(at(0, "course_rad")));
+        assert_eq!(g.speed, Some(at(0, "speed_kmh")));
+        assert_eq!((g.gyro_axes.clone(), g.lat_lon.clone(), g.temperature.clone()), (None, None, None));
+    }
+
+    #[test]
+    fn time_units_and_formats_by_name_and_value() {
+        for (name, value, want) in [
+            ("t", "1.5", "s"),
+            ("time_ns", "", "ns"),
+            ("t (us)", "", "us"),
+            ("time µs", "", "us"),
+            ("millis", "", "ms"),
+            ("utc", "", "iso8601"),
+            ("time", "2026-11-27T10:00:00Z", "iso8601"),
+            ("time", "235959.50", "s"),
+            ("hhmmss", "235959.50", "time_of_day"),
+            ("time", "23:59:59.5", "time_of_day"),
+        ] {
+            assert_eq!(time_reading(name, value), want, "{name} = {value}");
+        }
+    }
+
+    #[test]
+    fn three_axes_in_one_file_are_found_and_the_course_is_never_the_gyro() {
+        let imu = "time,gyro_x,gyro_y,gyro_z,acc_x,acc_y,acc_z,temp_c\n0,1,2,3,4,5,6,7\n";
+        let gps = "time,latitude,longitude,bearing,accuracy_speed,speed\n0,1,2,3,4,5\n";
+        let g = guesses(&[("imu.csv", imu), ("gps.csv", gps)]);
+        assert_eq!(g.yaw_rate, Some(at(0, "gyro_z")));
+        assert_eq!(g.gyro_axes, Some(vec![at(0, "gyro_x"), at(0, "gyro_y"), at(0, "gyro_z")]));
+        assert_eq!(g.accel_axes, Some(vec![at(0, "acc_x"), at(0, "acc_y"), at(0, "acc_z")]));
+        assert_eq!(g.temperature, Some(at(0, "temp_c")));
+        assert_eq!(g.lat_lon, Some(LatLon { file: 1, lat: "latitude".into(), lon: "longitude".into() }));
+        assert_eq!(g.course, Some(at(1, "bearing")));
+        // "accuracy_speed" says speed but is not one.
+        assert_eq!(g.speed, Some(at(1, "speed")));
+        // A heading rate is the yaw rate, not the course.
+        let g = guesses(&[("a.csv", "t,heading_rate,v\n0,1,2\n")]);
+        assert_eq!((g.yaw_rate, g.course, g.speed), (Some(at(0, "heading_rate")), None, Some(at(0, "v"))));
+        // Axes split over two files are not a triad; the z axis is still the yaw rate.
+        let g = guesses(&[("a.csv", "t,gyro_x,gyro_y\n0,1,2\n"), ("b.csv", "t,gyro_z\n0,1\n")]);
+        assert_eq!((g.yaw_rate, g.gyro_axes), (Some(at(1, "gyro_z")), None));
+    }
+}
