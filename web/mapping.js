@@ -72,7 +72,7 @@ function buildForm(sniffed, g, body) {
   });
 
   // Yaw rate: one axis or three on gravity.
-  const mode = select("map-rate-mode", [["one", "one axis"], ["three", "three axes, projected on gravity"]], "one", "yaw rate from");
+  const mode = select("map-rate-mode", [["one", "one axis"], ["three", "three axes, projected on gravity"]], g?.yaw_from_axes ? "three" : "one", "yaw rate from");
   const rate = select("map-rate", cols, ref(g?.yaw_rate), "yaw rate column");
   const axes = ["x", "y", "z"].map((a, k) => select(`map-axis-${a}`, cols, ref(g?.gyro_axes?.[k]), `gyro ${a} column`));
   const acc = ["x", "y", "z"].map((a, k) => select(`map-acc-${a}`, cols, ref(g?.accel_axes?.[k]), `accelerometer ${a} column`));

@@ -171,6 +171,7 @@ test("files no preset fits open the mapping panel: guessed columns, live preview
   assert.equal(await page.locator(`#map-time-unit-${a}`).inputValue(), "iso8601");
   assert.equal(await page.locator("#map-rate").inputValue(), `${z}:gyro_z`);
   assert.equal(await page.locator("#map-rate-unit").inputValue(), "rad/s");
+  assert.equal(await page.locator("#map-rate-mode").inputValue(), "three"); // right in any mounting
   assert.deepEqual(await Promise.all(["#map-axis-x", "#map-acc-z"].map((id) => page.locator(id).inputValue())), [`${z}:gyro_x`, `${z}:acc_z`]);
   assert.equal(await page.locator("#map-ref-mode").inputValue(), "positions");
   assert.deepEqual(await Promise.all(["#map-lat", "#map-lon"].map((id) => page.locator(id).inputValue())), [`${a}:lat`, `${a}:lon`]);

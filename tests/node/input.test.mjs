@@ -243,7 +243,7 @@ test("draftRecipe drafts a recipe from raw files' column names as the CLI's --pr
 test("columnGuesses reads every column as each kind it could be, the draft's reading", () => {
   const enc = (s) => new TextEncoder().encode(s);
   const files = {
-    "imu.csv": enc("clock,gyro_x,gyro_y,gyro_z_rad,acc_x,acc_y,acc_z\n10:00:00.125,0,0,0,0,0,9.8\n"),
+    "imu.csv": enc("clock,gyro_x_rad,gyro_y_rad,gyro_z_rad,acc_x,acc_y,acc_z\n10:00:00.125,0,0,0,0,0,9.8\n"),
     "gps.csv": enc("t_ms,lat,lon,heading_rad,speed_kmh\n0,42,11,1,36\n"),
   };
   const g = gd.columnGuesses(files);
@@ -256,14 +256,15 @@ test("columnGuesses reads every column as each kind it could be, the draft's rea
   assert.equal(col(0, "heading_rad").angle_unit, "rad");
   assert.equal(col(0, "speed_kmh").speed_unit, "km/h");
   assert.deepEqual(g.yaw_rate, { file: 1, column: "gyro_z_rad" });
-  assert.deepEqual(g.gyro_axes.map((c) => c.column), ["gyro_x", "gyro_y", "gyro_z_rad"]);
+  assert.deepEqual(g.gyro_axes.map((c) => c.column), ["gyro_x_rad", "gyro_y_rad", "gyro_z_rad"]);
   assert.deepEqual(g.accel_axes.map((c) => c.column), ["acc_x", "acc_y", "acc_z"]);
   assert.deepEqual(g.course, { file: 0, column: "heading_rad" });
   assert.deepEqual(g.lat_lon, { file: 0, lat: "lat", lon: "lon" });
   assert.equal(g.temperature, undefined);
   // The draft recipe reads the files the same way.
+  assert.equal(g.yaw_from_axes, true);
   const d = gd.draftRecipe(files).recipe;
-  assert.deepEqual([d.yaw_rate.column, d.heading.column, d.speed.unit], ["gyro_z_rad", "heading_rad", "km/h"]);
+  assert.deepEqual([d.yaw_rate.axes, d.yaw_rate.gravity.axes, d.heading.column, d.speed.unit], [["gyro_x_rad", "gyro_y_rad", "gyro_z_rad"], ["acc_x", "acc_y", "acc_z"], "heading_rad", "km/h"]);
   assert.throws(() => gd.columnGuesses({ "b.bin": new Uint8Array([0, 159, 146, 150, 0, 1]) }), /b\.bin/);
   assert.throws(() => gd.columnGuesses(5), TypeError);
 });

@@ -1,5 +1,6 @@
 //! A draft recipe for files no preset reads, guessed from their column names and first
-//! rows: each file's time and its format, the yaw rate (one axis) and its unit, the
+//! rows: each file's time and its format, the yaw rate (one axis, or three gyro axes
+//! projected on an accelerometer's up) and its unit, the
 //! reference heading (a course column, a GPX track's positions, or latitude and longitude)
 //! and the speed. A draft is a starting point to check and edit (`gyrodrift import FILES
 //! --print-recipe`), never imported unseen: names say little about signs and axes, and
@@ -40,6 +41,11 @@ struct Drafting<'a> {
     used: Vec<usize>,
 }
 
+/// The columns' names.
+fn names(c: &[ColumnRef]) -> Vec<&str> {
+    c.iter().map(|c| c.column.as_str()).collect()
+}
+
 fn table(i: usize) -> String {
     format!("t{i}")
 }
@@ -60,10 +66,28 @@ impl Drafting<'_> {
             ))
         })?;
         let (unit, why) = rate_unit_of(&gyro.column);
-        let guess = format!("yaw_rate: {}, {unit} ({why}), counter-clockwise positive (z up; `check` says if not)", self.at(&gyro));
-        self.guesses.push(guess);
-        self.r = json!({ "name": format!("{} (draft)", files[gyro.file].stem()), "bias_s": 0,
-            "yaw_rate": { "table": table(gyro.file), "column": gyro.column, "unit": unit, "positive": "ccw" } });
+        let mut y = json!({ "table": table(gyro.file), "column": gyro.column, "unit": unit, "positive": "ccw" });
+        match (&self.g.gyro_axes, &self.g.accel_axes) {
+            (Some(g), Some(a)) if self.g.yaw_from_axes => {
+                self.guesses.push(format!(
+                    "yaw_rate: {} columns {} projected on the up of {} columns {} (their mean over the first 10 s; an accelerometer reads +g up at rest, `check` says if not), so any mounting reads the yaw rate; {unit} ({why})",
+                    files[g[0].file].name,
+                    names(g).join(", "),
+                    files[a[0].file].name,
+                    names(a).join(", ")
+                ));
+                let mut gravity = json!({ "axes": names(a), "first_s": 10 });
+                if a[0].file != g[0].file {
+                    gravity["table"] = json!(table(a[0].file));
+                    self.used.push(a[0].file);
+                }
+                y = json!({ "table": table(g[0].file), "axes": names(g), "gravity": gravity, "unit": unit, "positive": "ccw" });
+            }
+            _ => self
+                .guesses
+                .push(format!("yaw_rate: {}, {unit} ({why}), counter-clockwise positive (z up; `check` says if not)", self.at(&gyro))),
+        }
+        self.r = json!({ "name": format!("{} (draft)", files[gyro.file].stem()), "bias_s": 0, "yaw_rate": y });
         self.used.push(gyro.file);
         Ok(())
     }

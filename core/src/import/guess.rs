@@ -59,6 +59,10 @@ pub struct Guesses {
     pub gyro_axes: Option<Vec<ColumnRef>>,
     /// Accelerometer (or gravity) x, y, z, all in one file.
     pub accel_axes: Option<Vec<ColumnRef>>,
+    /// The yaw rate is better read as the gyro axes projected on the accelerometer's up
+    /// (both triads found, the yaw-rate guess one of the gyro axes): right in any mounting,
+    /// where one axis is the yaw rate only when it points up.
+    pub yaw_from_axes: bool,
     /// A course, bearing or heading column (never the yaw rate's).
     pub course: Option<ColumnRef>,
     pub lat_lon: Option<LatLon>,
@@ -150,6 +154,23 @@ fn is_gpx(s: &Sniffed) -> bool {
     s.name.to_lowercase().ends_with(".gpx")
 }
 
+/// Three columns of one file named alike but for the axis letter, x, y and z at one place
+/// (`gyro_x`, `gyroRotationY(rad/s)`), the x one's name (in lower case) `fits`; the first
+/// such over the files.
+fn triad(files: &[Sniffed], fits: impl Fn(&str) -> bool) -> Option<Vec<ColumnRef>> {
+    files.iter().enumerate().filter(|(_, s)| !is_gpx(s)).find_map(|(i, s)| {
+        let lower: Vec<String> = s.header.iter().map(|h| h.to_lowercase()).collect();
+        let at = |name: &str| lower.iter().position(|m| m == name);
+        lower.iter().enumerate().filter(|(_, n)| fits(n)).find_map(|(x, n)| {
+            n.match_indices('x').find_map(|(k, _)| {
+                let with = |a: &str| at(&format!("{}{a}{}", &n[..k], &n[k + 1..]));
+                let axes = [x, with("y")?, with("z")?];
+                Some(axes.iter().map(|&j| ColumnRef { file: i, column: s.header[j].clone() }).collect())
+            })
+        })
+    })
+}
+
 /// The guesses for files (name, the head of their bytes), or an error naming a file that is
 /// not a text table.
 pub fn column_guesses(heads: &[(String, Vec<u8>)]) -> Result<Guesses> {
@@ -193,19 +214,15 @@ pub fn guess_columns(files: &[Sniffed], rows: &[Vec<String>]) -> Guesses {
     let any_rate = |n: &str| n.contains("gyro") || n.contains("yaw") || n.contains("rate");
     let yaw_rate = find(&z_axis).or_else(|| find(&any_rate));
     let gyro = yaw_rate.as_ref().map(|c| c.column.to_lowercase()).unwrap_or_default();
-    let triad = |fits: &dyn Fn(&str, &str) -> bool| {
-        let axes: Vec<ColumnRef> = ["x", "y", "z"].iter().filter_map(|a| find(&|n| fits(n, a))).collect();
-        let distinct =
-            axes.len() == 3 && axes[0].column != axes[1].column && axes[1].column != axes[2].column && axes[0].column != axes[2].column;
-        (distinct && axes.iter().all(|c| c.file == axes[0].file)).then_some(axes)
-    };
     let course_words = ["course", "bearing", "heading", "direction", "cog"];
+    let gyro_axes = triad(files, |n| n.contains("gyro") || n.contains("angular") || n == "wx" || n == "w_x");
+    let accel_axes = triad(files, |n| (n.contains("acc") || n.contains("grav") || n == "ax" || n == "a_x") && !n.contains("accuracy"));
+    let yaw_from_axes = accel_axes.is_some() && gyro_axes.as_ref().is_some_and(|g| yaw_rate.as_ref().is_some_and(|y| g.contains(y)));
     Guesses {
         files: per_file,
-        gyro_axes: triad(&|n, a| then(n, "gyro", a) || word(n, &format!("w{a}")) || word(n, &format!("w_{a}")) || then(n, "angular", a)),
-        accel_axes: triad(&|n, a| {
-            (then(n, "acc", a) || then(n, "grav", a) || word(n, &format!("a{a}")) || word(n, &format!("a_{a}"))) && !n.contains("accuracy")
-        }),
+        gyro_axes,
+        accel_axes,
+        yaw_from_axes,
         course: find(&|n| n != gyro && course_words.iter().any(|w| n.contains(w)) && !n.contains("accuracy")),
         lat_lon: files.iter().enumerate().filter(|(_, s)| !is_gpx(s)).find_map(|(i, s)| {
             let col = |w: &str| s.header.iter().find(|h| h.to_lowercase().contains(w)).cloned();
@@ -276,6 +293,7 @@ mod tests {
         assert_eq!(g.yaw_rate, Some(at(0, "gyro_z")));
         assert_eq!(g.gyro_axes, Some(vec![at(0, "gyro_x"), at(0, "gyro_y"), at(0, "gyro_z")]));
         assert_eq!(g.accel_axes, Some(vec![at(0, "acc_x"), at(0, "acc_y"), at(0, "acc_z")]));
+        assert!(g.yaw_from_axes);
         assert_eq!(g.temperature, Some(at(0, "temp_c")));
         assert_eq!(g.lat_lon, Some(LatLon { file: 1, lat: "latitude".into(), lon: "longitude".into() }));
         assert_eq!(g.course, Some(at(1, "bearing")));
@@ -286,6 +304,18 @@ mod tests {
         assert_eq!((g.yaw_rate, g.course, g.speed), (Some(at(0, "heading_rate")), None, Some(at(0, "v"))));
         // Axes split over two files are not a triad; the z axis is still the yaw rate.
         let g = guesses(&[("a.csv", "t,gyro_x,gyro_y\n0,1,2\n"), ("b.csv", "t,gyro_z\n0,1\n")]);
-        assert_eq!((g.yaw_rate, g.gyro_axes), (Some(at(1, "gyro_z")), None));
+        assert_eq!((g.yaw_rate, g.gyro_axes, g.yaw_from_axes), (Some(at(1, "gyro_z")), None, false));
+        // Named as CoreMotion names them (the axis letter inside the name), "y" in "gravity" no axis.
+        let g = guesses(&[(
+            "log.csv",
+            "t,gyroRotationX(rad/s),gyroRotationY(rad/s),gyroRotationZ(rad/s),gravity_x,gravity_y,gravity_z\n0,1,2,3,4,5,6\n",
+        )]);
+        let names = |c: Option<Vec<ColumnRef>>| c.unwrap_or_default().into_iter().map(|c| c.column).collect::<Vec<_>>();
+        assert_eq!(names(g.gyro_axes), ["gyroRotationX(rad/s)", "gyroRotationY(rad/s)", "gyroRotationZ(rad/s)"]);
+        assert_eq!(names(g.accel_axes), ["gravity_x", "gravity_y", "gravity_z"]);
+        assert!(g.yaw_from_axes);
+        // A yaw-rate column beside the axes is read as it is.
+        let g = guesses(&[("a.csv", "t,yaw_rate,gyro_x,gyro_y,gyro_z,ax,ay,az\n0,1,2,3,4,5,6,7\n")]);
+        assert_eq!((g.yaw_rate, g.accel_axes.is_some(), g.yaw_from_axes), (Some(at(0, "yaw_rate")), true, false));
     }
 }

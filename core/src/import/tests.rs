@@ -387,6 +387,39 @@ fn a_draft_recipe_reads_the_columns_by_name_and_imports() {
     assert!(e.contains("no column reads as a yaw rate") && e.contains("c.csv: t, a, b"), "{e}");
 }
 
+#[test]
+fn a_draft_reads_three_gyro_axes_on_the_accelerometers_up_so_any_mounting_turns_the_right_way() {
+    // An IMU mounted x forward, y right, z down (the VN-100's frame): a left turn of 0.2 rad/s
+    // reads -0.2 on its z axis, the accelerometer -g on z. A second file holds the gravity
+    // of a phone logger that writes it apart.
+    let imu = "time,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z\n0,0,0,-0.2,0,0,-9.81\n1,0,0,-0.2,0,0,-9.81\n2,0,0,-0.2,0,0,-9.81\n";
+    let draft = draft_recipe(&[("imu.csv".to_string(), imu.as_bytes().to_vec())]).unwrap();
+    let r = &draft.recipe_json;
+    assert_eq!(r["yaw_rate"]["axes"], serde_json::json!(["gyro_x", "gyro_y", "gyro_z"]));
+    assert_eq!(r["yaw_rate"]["gravity"], serde_json::json!({ "axes": ["accel_x", "accel_y", "accel_z"], "first_s": 10 }));
+    assert!(
+        draft.guesses.iter().any(|g| g.contains("projected on the up of imu.csv columns accel_x, accel_y, accel_z")),
+        "{:?}",
+        draft.guesses
+    );
+    let recipe: Recipe = serde_json::from_value(r.clone()).unwrap();
+    let mut files = BTreeMap::from([("imu.csv".to_string(), imu.as_bytes().to_vec())]);
+    let (log, _) = import(&recipe, &mut files).unwrap();
+    for w in log.column(Column::GyroDps).unwrap() {
+        assert!((w - 0.2f64.to_degrees()).abs() < 1e-9, "{w}: a left turn is counter-clockwise positive");
+    }
+    // The accelerometer in its own file: the gravity names its table, which the draft reads.
+    let gyro = "time,gyro_x,gyro_y,gyro_z\n0,0,0,-0.2\n";
+    let grav = "time,gravity_x,gravity_y,gravity_z\n0,0,0,-9.81\n";
+    let heads = [("gyro.csv".to_string(), gyro.as_bytes().to_vec()), ("gravity.csv".to_string(), grav.as_bytes().to_vec())];
+    let r = draft_recipe(&heads).unwrap().recipe_json;
+    assert_eq!((r["yaw_rate"]["table"].as_str(), r["yaw_rate"]["gravity"]["table"].as_str()), (Some("t0"), Some("t1")));
+    assert_eq!(r["table"].as_array().map(Vec::len), Some(2));
+    // Without an accelerometer, the z axis alone.
+    let r = draft_recipe(&heads[..1]).unwrap().recipe_json;
+    assert_eq!(r["yaw_rate"]["column"], "gyro_z");
+}
+
 /// Without the `gpx` feature (the size-budgeted wasm module's build) a GPX table is refused
 /// by name.
 #[cfg(not(feature = "gpx"))]

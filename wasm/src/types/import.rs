@@ -163,6 +163,8 @@ export interface ColumnGuesses {
   gyro_axes?: ColumnRef[];
   /** Accelerometer (or gravity) x, y, z in one file. */
   accel_axes?: ColumnRef[];
+  /** The yaw rate is better read as the gyro axes projected on the accelerometer's up (any mounting). */
+  yaw_from_axes: boolean;
   course?: ColumnRef;
   lat_lon?: { file: number; lat: string; lon: string };
   speed?: ColumnRef;
