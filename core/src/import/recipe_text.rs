@@ -102,35 +102,40 @@ mod files {
     /// gives the files inside it (`unzip_all`). Two files of one name are refused. A folder
     /// given alone gives the files in it (an unzipped export), and names the recording.
     pub fn import_paths(paths: &[PathBuf]) -> Result<(super::super::Detection, DriveLog, ImportSummary)> {
+        let (mut d, mut log, summary) = import_files(&given_files(paths)?)?;
+        if let [dir] = paths {
+            let name = dir.is_dir().then(|| dir.canonicalize().ok()).flatten();
+            if let Some(name) = name.and_then(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())) {
+                d.name(&name);
+                log.meta.name = Some(name);
+            }
+        }
+        Ok((d, log, summary))
+    }
+
+    /// The files paths give: a folder given alone, the files in it (an unzipped export);
+    /// else the paths, none of them a folder.
+    fn given_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
         match paths {
             [dir] if dir.is_dir() => {
                 let files = super::super::hint::files_in(dir).unwrap_or_default();
                 if files.is_empty() {
                     return Err(Error::File(format!("{}: no files in this folder to import", dir.display())));
                 }
-                let (mut d, mut log, summary) = import_files(&files)?;
-                let name = dir.canonicalize().ok().and_then(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()));
-                if let Some(name) = name {
-                    d.name(&name);
-                    log.meta.name = Some(name);
-                }
-                Ok((d, log, summary))
+                Ok(files)
             }
             _ => match paths.iter().find(|p| p.is_dir()) {
                 Some(dir) => Err(Error::File(format!("{}: a folder among files: give the folder alone, or its files", dir.display()))),
-                None => import_files(paths),
+                None => Ok(paths.to_vec()),
             },
         }
     }
 
     /// The heads (the first `SNIFF_BYTES`) of files given by path, by file name (a folder
-    /// given alone: its files); an error names a file that cannot be read.
+    /// given alone: its files, as `import_paths` reads them); an error names a file that
+    /// cannot be read, an empty folder or a folder among files.
     pub fn read_heads(paths: &[PathBuf]) -> Result<Vec<(String, Vec<u8>)>> {
-        let files = match paths {
-            [dir] if dir.is_dir() => super::super::hint::files_in(dir).unwrap_or_default(),
-            _ => paths.to_vec(),
-        };
-        files
+        given_files(paths)?
             .iter()
             .map(|p| {
                 let head = super::super::hint::read_head(p).map_err(|e| Error::File(format!("{}: cannot open: {e}", p.display())))?;
