@@ -412,6 +412,15 @@ fn draft_recipe<'py>(py: Python<'py>, paths: Vec<std::path::PathBuf>) -> PyResul
     result_dict(py, &serde_json::json!({ "recipe": d.recipe_json, "guesses": d.guesses }))
 }
 
+/// What raw files' columns are (paths, or their folder), read from their names and first
+/// rows as the draft reads them: {files, yaw_rate, gyro_axes, ...}, each column by its file's
+/// index in `files` (the paths' order).
+#[pyfunction]
+fn column_guesses<'py>(py: Python<'py>, paths: Vec<std::path::PathBuf>) -> PyResult<Bound<'py, PyDict>> {
+    let heads = gyrodrift::import::read_heads(&paths).map_err(value_err)?;
+    result_dict(py, &gyrodrift::import::column_guesses(&heads).map_err(value_err)?)
+}
+
 /// The default settings of a method: "hdr", "pipeline", "gyrodometry", "calibration", "tune".
 #[pyfunction]
 fn defaults<'py>(py: Python<'py>, method: &str) -> PyResult<Bound<'py, PyDict>> {
@@ -464,6 +473,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(import_log, m)?)?;
     m.add_function(wrap_pyfunction!(import_files, m)?)?;
     m.add_function(wrap_pyfunction!(draft_recipe, m)?)?;
+    m.add_function(wrap_pyfunction!(column_guesses, m)?)?;
     m.add_function(wrap_pyfunction!(defaults, m)?)?;
     m.add_function(wrap_pyfunction!(static_bias, m)?)?;
     m.add_function(wrap_pyfunction!(read_log, m)?)?;

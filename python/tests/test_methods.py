@@ -355,6 +355,23 @@ def test_draft_recipe_from_column_names_imports_as_the_cli_prints_it(cli, tmp_pa
         g.draft_recipe([str(bad)])
 
 
+def test_column_guesses_read_each_column_as_the_draft_does(tmp_path):
+    imu = tmp_path / "imu.csv"
+    imu.write_text("time,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z\n0,0,0,-0.2,0,0,-9.81\n")
+    gps = tmp_path / "gps.csv"
+    gps.write_text("time,lat,lon,speed_kmh\n0,42,11,36\n")
+    guesses = g.column_guesses([str(imu), str(gps)])
+    assert [f["name"] for f in guesses["files"]] == ["imu.csv", "gps.csv"]  # the paths' order
+    assert guesses["yaw_rate"] == {"file": 0, "column": "gyro_z"}
+    assert guesses["yaw_from_axes"] is True
+    assert guesses["lat_lon"] == {"file": 1, "lat": "lat", "lon": "lon"}
+    speed = next(c for c in guesses["files"][1]["columns"] if c["name"] == "speed_kmh")
+    assert speed["speed_unit"] == "km/h"
+    assert g.draft_recipe([str(imu), str(gps)])["recipe"]["yaw_rate"]["axes"] == ["gyro_x", "gyro_y", "gyro_z"]
+    with pytest.raises(ValueError, match="a folder among files"):
+        g.column_guesses([str(imu), str(tmp_path)])
+
+
 def test_the_type_stubs_name_exactly_what_the_module_has():
     import ast
     import pathlib
