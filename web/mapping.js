@@ -6,6 +6,7 @@ import * as gd from "./pkg/gyrodrift.js";
 import * as plot from "./pkg/plot/gyrodrift_plot.js";
 import { $, COLORS } from "./state.js";
 import { saveRecipe } from "./loading.js";
+import { sizeCanvas } from "./charts.js";
 
 const TIME_UNITS = ["s", "ms", "us", "ns", "iso8601", "time_of_day"];
 const TIME_LABELS = { iso8601: "ISO 8601", time_of_day: "time of day (hh:mm:ss)" };
@@ -251,12 +252,14 @@ export function openMapping(files, why, importer, guesses, preset = {}, intro = 
 /** Integrated gyro against the reference, from the imported columns. */
 function drawPreview(data) {
   const c = $("mapping-plot");
+  // Drawn at the size the panel shows it, in device pixels (a phone's 2-3x too).
+  const dpr = sizeCanvas(c);
   const log = gd.Log.fromColumns(data);
   try {
     const run = gd.runHdr(log, {}); // the lead-in of the mapping (the log's bias_s)
     const series = [{ name: "gyro, integrated", color: COLORS.raw, x: run.trace.time_s, y: run.trace.heading_raw_deg }];
     if (run.reference) series.push({ name: "reference", color: COLORS.ref, x: run.reference.time_s, y: run.reference.heading_deg, points: true });
-    plot.drawChart(c, { title: "preview: heading (gyro integrated from the lead-in bias)", x_label: "time", time_x: true, y_label: "heading (deg)", series, legend: true, dpr: window.devicePixelRatio || 1 });
+    plot.drawChart(c, { title: "gyro integrated from the lead-in bias", x_label: "time", time_x: true, y_label: "heading (deg)", series, legend: true, dpr });
   } catch (e) {
     c.getContext("2d").clearRect(0, 0, c.width, c.height);
   } finally {

@@ -133,6 +133,11 @@ test("files no preset fits open the mapping panel: guessed columns, live preview
   await page.waitForFunction(() => /4\.0 min/.test(document.getElementById("mapping-preview").textContent));
   await page.locator("#map-lead").fill("20");
   await page.waitForFunction(() => /4\.0 min/.test(document.getElementById("mapping-preview").textContent) && !document.getElementById("mapping-add").disabled);
+  // The preview is drawn at the size shown, in device pixels.
+  assert.ok(await page.evaluate(() => {
+    const c = document.getElementById("mapping-plot");
+    return c.width === Math.round(c.clientWidth * devicePixelRatio) && c.height === Math.round(c.clientHeight * devicePixelRatio);
+  }));
   await page.screenshot({ path: join(ARTIFACTS, "mapping.png") });
   const [dl] = await Promise.all([page.waitForEvent("download"), page.locator("#mapping-save").click()]);
   const recipe = join(dir, "mine.toml");
