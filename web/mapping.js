@@ -62,7 +62,7 @@ function row(label, ...controls) {
 function buildForm(sniffed, g, body) {
   const cols = [["", "—"]];
   sniffed.forEach((s, i) => s.header.forEach((c) => cols.push([`${i}:${c}`, sniffed.length > 1 ? `${s.name} › ${c}` : c])));
-  const { value: ref, reading, file } = inPanel(g, sniffed);
+  const { value: guessed, reading, file } = inPanel(g, sniffed);
   // Time of each file.
   const times = sniffed.map((s, i) => {
     const col = select(`map-time-${i}`, s.header.map((h) => [h, h]), file(i)?.time_column ?? s.header[0], `time column of ${s.name}`);
@@ -74,9 +74,9 @@ function buildForm(sniffed, g, body) {
 
   // Yaw rate: one axis or three on gravity.
   const mode = select("map-rate-mode", [["one", "one axis"], ["three", "three axes, projected on gravity"]], g?.yaw_from_axes ? "three" : "one", "yaw rate from");
-  const rate = select("map-rate", cols, ref(g?.yaw_rate), "yaw rate column");
-  const axes = ["x", "y", "z"].map((a, k) => select(`map-axis-${a}`, cols, ref(g?.gyro_axes?.[k]), `gyro ${a} column`));
-  const acc = ["x", "y", "z"].map((a, k) => select(`map-acc-${a}`, cols, ref(g?.accel_axes?.[k]), `accelerometer ${a} column`));
+  const rate = select("map-rate", cols, guessed(g?.yaw_rate), "yaw rate column");
+  const axes = ["x", "y", "z"].map((a, k) => select(`map-axis-${a}`, cols, guessed(g?.gyro_axes?.[k]), `gyro ${a} column`));
+  const acc = ["x", "y", "z"].map((a, k) => select(`map-acc-${a}`, cols, guessed(g?.accel_axes?.[k]), `accelerometer ${a} column`));
   const rateUnit = select("map-rate-unit", RATE_UNITS.map((u) => [u, u]), "rad/s", "yaw rate unit");
   follow(reading, rate, rateUnit, "rate_unit", "rad/s");
   const sense = select("map-rate-sense", [["ccw", "left turn positive (ccw)"], ["cw", "right turn positive (cw)"]], "ccw", "yaw rate sign");
@@ -87,24 +87,24 @@ function buildForm(sniffed, g, body) {
   // Reference heading.
   const p = g?.lat_lon;
   const refMode = select("map-ref-mode", [["none", "none"], ["column", "a heading column"], ["positions", "positions (lat, lon)"]], g?.course ? "column" : p ? "positions" : "none", "reference from");
-  const ref_ = select("map-ref", cols, ref(g?.course), "reference heading column");
+  const ref = select("map-ref", cols, guessed(g?.course), "reference heading column");
   const refUnit = select("map-ref-unit", [["deg", "deg"], ["rad", "rad"]], "deg", "reference unit");
-  follow(reading, ref_, refUnit, "angle_unit", "deg");
+  follow(reading, ref, refUnit, "angle_unit", "deg");
   const refSense = select("map-ref-sense", [["cw", "clockwise from north (GPS course)"], ["ccw", "counter-clockwise"]], "cw", "reference sign");
-  const latSel = select("map-lat", cols, p ? ref({ file: p.file, column: p.lat }) : "", "latitude column");
-  const lonSel = select("map-lon", cols, p ? ref({ file: p.file, column: p.lon }) : "", "longitude column");
+  const latSel = select("map-lat", cols, p ? guessed({ file: p.file, column: p.lat }) : "", "latitude column");
+  const lonSel = select("map-lon", cols, p ? guessed({ file: p.file, column: p.lon }) : "", "longitude column");
   // A GPS course means nothing at a standstill: with a speed, headings below this are dropped.
   const minSpeed = document.createElement("input");
   Object.assign(minSpeed, { id: "map-ref-min-speed", type: "number", min: 0, max: 50, step: 0.5, value: 5 });
   minSpeed.setAttribute("aria-label", "reference heading only above this speed, m/s (with a speed column)");
   minSpeed.title = "reference heading only above this speed, m/s (with a speed column): a GPS course means nothing at a standstill";
   const above = Object.assign(document.createElement("span"), { textContent: "above (m/s)", className: "map-note" });
-  const refRow = row("heading column", ref_, refUnit, refSense, above, minSpeed);
+  const refRow = row("heading column", ref, refUnit, refSense, above, minSpeed);
   const posRow = row("latitude, longitude", latSel, lonSel);
   body.append(row("reference", refMode), refRow, posRow);
 
   // Speed and the lead-in.
-  const sp = select("map-speed", cols, ref(g?.speed), "speed column");
+  const sp = select("map-speed", cols, guessed(g?.speed), "speed column");
   const spUnit = select("map-speed-unit", SPEED_UNITS.map((u) => [u, u]), "m/s", "speed unit");
   follow(reading, sp, spUnit, "speed_unit", "m/s");
   const lead = document.createElement("input");
@@ -112,7 +112,7 @@ function buildForm(sniffed, g, body) {
   lead.setAttribute("aria-label", "stationary lead-in, s");
   body.append(row("speed (optional)", sp, spUnit), row("stationary lead-in, s", lead));
 
-  return { times, mode, rate, axes, acc, rateUnit, sense, oneRow, threeRow, refMode, ref: ref_, refUnit, refSense, minSpeed, latSel, lonSel, refRow, posRow, sp, spUnit, lead };
+  return { times, mode, rate, axes, acc, rateUnit, sense, oneRow, threeRow, refMode, ref, refUnit, refSense, minSpeed, latSel, lonSel, refRow, posRow, sp, spUnit, lead };
 }
 
 /** Shows the rows the chosen modes use. */
