@@ -60,6 +60,11 @@ pub(crate) struct BatchArgs {
     /// scored, a drive per recording (a file, or a folder of several), instead of failing.
     #[arg(long, requires = "dir")]
     pub(crate) import: bool,
+    /// With --dir: files that are not v1 logs are imported by this recipe (TOML or JSON;
+    /// a logger of your own) and scored, a drive per recording: a folder holding the files
+    /// the recipe names, or, for a recipe of one table, each such file whatever its name.
+    #[arg(long, value_name = "RECIPE", requires = "dir", conflicts_with = "import")]
+    pub(crate) recipe: Option<PathBuf>,
     /// With --dir: exit 1 when a file could not be scored (after every row is written and
     /// the summary printed), as a CI job wants; without it a fleet job keeps exit 0.
     #[arg(long, requires = "dir")]

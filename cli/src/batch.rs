@@ -3,10 +3,12 @@
 //! `fleet` (a file that fails is a row with its error; the rest go on); the rows go to
 //! `--out` (Parquet, CSV or JSON by extension), the fleet's Table II to stdout. With
 //! `--import`, a logger's raw exports among them are imported and scored, a drive per
-//! recording (core's `import::recordings`).
+//! recording (core's `import::recordings`); with `--recipe`, the files one recipe reads
+//! (`import::recipe_recordings`).
 
 use crate::{print_json, write_stdout, Failure};
 use gyrodrift::fleet::{self, DriveRow, FleetOptions};
+use gyrodrift::import::Recipe;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -14,8 +16,10 @@ use std::path::{Path, PathBuf};
 const MAX_HINT_FOLDERS: usize = 20;
 
 /// Every `*.csv` and `*.csv.gz` file under `dir` (and `*.zip`, a logger's zipped export,
-/// with `zips`), sorted, links followed; unreadable entries are errors.
-pub fn collect_logs(dir: &Path, zips: bool) -> Result<Vec<PathBuf>, Failure> {
+/// with `zips`; files ending as a recipe's tables do, with `recipe`), sorted, links
+/// followed; unreadable entries are errors.
+pub fn collect_logs(dir: &Path, zips: bool, recipe: Option<&Recipe>) -> Result<Vec<PathBuf>, Failure> {
+    let ends = recipe.map(Recipe::file_endings).unwrap_or_default();
     if !dir.is_dir() {
         return Err(Failure(format!("{}: not a folder", dir.display())));
     }
@@ -23,7 +27,10 @@ pub fn collect_logs(dir: &Path, zips: bool) -> Result<Vec<PathBuf>, Failure> {
     for entry in walkdir::WalkDir::new(dir).follow_links(true) {
         let e = entry.map_err(|e| Failure(format!("{}: {e}", dir.display())))?;
         let name = e.file_name().to_string_lossy().to_ascii_lowercase();
-        let is_csv = name.ends_with(".csv") || name.ends_with(".csv.gz") || zips && name.ends_with(".zip");
+        let is_csv = name.ends_with(".csv")
+            || name.ends_with(".csv.gz")
+            || zips && name.ends_with(".zip")
+            || ends.iter().any(|x| name.ends_with(x.as_str()));
         if e.file_type().is_file() && is_csv {
             files.push(e.into_path());
         }
@@ -45,6 +52,8 @@ pub struct Batch<'a> {
     pub jobs: usize,
     pub out: Option<&'a Path>,
     pub import: bool,
+    /// Files that are not v1 logs are read by this recipe (`--recipe`).
+    pub recipe: Option<&'a Recipe>,
     /// Exit 1 when a file could not be scored (`--fail-on-error`).
     pub fail_on_error: bool,
 }
@@ -93,15 +102,16 @@ fn write_rows(out: &Path, rows: &[DriveRow]) -> Result<(), Failure> {
 /// not a failed command (exit 0): a fleet job keeps what it could score; with
 /// `fail_on_error` (a CI job) they make it exit 1 once everything is written.
 pub fn run(dir: &Path, batch: Batch, opts: &FleetOptions, json: bool) -> Result<(), Failure> {
-    let files = collect_logs(dir, batch.import)?;
+    let files = collect_logs(dir, batch.import, batch.recipe)?;
     let mut rows = score_files(&files, batch.jobs, opts)?;
-    if batch.import {
+    if batch.import || batch.recipe.is_some() {
         // The raw exports among the failed files: each recording's files leave the error
         // rows, and the recording is scored as a drive of its own.
-        let recs = fleet::take_recordings(&mut rows);
+        let recs = fleet::take_recordings(&mut rows, batch.recipe);
         let n_files: usize = recs.iter().map(|r| r.files.len() + r.ignored.len()).sum();
-        eprintln!("importing {} recording(s) of raw exports ({n_files} files)", recs.len());
-        rows.extend(score_units(&recs, batch.jobs, |r| fleet::score_recording(r, opts))?);
+        let by = if batch.recipe.is_some() { "by the recipe" } else { "of raw exports" };
+        eprintln!("importing {} recording(s) {by} ({n_files} files)", recs.len());
+        rows.extend(score_units(&recs, batch.jobs, |r| fleet::score_recording(r, batch.recipe, opts))?);
     }
     if let Some(out) = batch.out {
         write_rows(out, &rows)?;

@@ -201,10 +201,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Cmd::Pipeline { log, set, json, trace, track } => c::pipeline(&log, &set, json, [trace.as_deref(), track.as_deref()], input),
         Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json, input),
         Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json),
-        Cmd::Report { batch: BatchArgs { dir: Some(dir), jobs, out, import, fail_on_error }, set, json, .. }
-        | Cmd::Compare { batch: BatchArgs { dir: Some(dir), jobs, out, import, fail_on_error }, set, json, .. } => {
+        Cmd::Report { batch: BatchArgs { dir: Some(dir), jobs, out, import, recipe, fail_on_error }, set, json, .. }
+        | Cmd::Compare { batch: BatchArgs { dir: Some(dir), jobs, out, import, recipe, fail_on_error }, set, json, .. } => {
             let opts = gyrodrift::fleet::FleetOptions { input, pipeline: settings(&set)? };
-            batch::run(&dir, batch::Batch { jobs, out: out.as_deref(), import, fail_on_error }, &opts, json)
+            let recipe = recipe.map(|r| gyrodrift::import::read_recipe(&r)).transpose().map_err(|e| Failure(e.to_string()))?;
+            batch::run(&dir, batch::Batch { jobs, out: out.as_deref(), import, recipe: recipe.as_ref(), fail_on_error }, &opts, json)
         }
         Cmd::Compare { files, set, json, csv, tune_on, .. } => c::compare(&files, &set, json, csv, &tune_on, input),
         Cmd::Report { files, set, json, csv, compare: true, tune_on, .. } => c::compare(&files, &set, json, csv, &tune_on, input),

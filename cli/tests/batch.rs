@@ -239,3 +239,90 @@ fn gzipped_logs_are_scored_as_the_plain_files() {
     let h = |f: &PathBuf| Command::new(env!("CARGO_BIN_EXE_gyrodrift")).args(["hdr", "--json"]).arg(f).output().unwrap().stdout;
     assert_eq!(h(&dir.join("day2/city-1z.csv.gz")), h(&plain));
 }
+
+/// With --recipe a fleet of one logger no preset knows is scored: a recipe of one table reads
+/// each of its files whatever its name (.txt files too, as the recipe's table ends), a recipe
+/// of several tables each folder holding the files it names; each drive named by its file or
+/// folder and scored as `gyrodrift import --recipe` of it scores; v1 logs beside them as logs.
+#[test]
+fn with_recipe_a_fleet_of_ones_own_logger_is_scored_a_drive_per_recording() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fleet-recipe");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("week2")).unwrap();
+    let samples = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs");
+    // City 1 and Highway 3 as a logger of our own writes them: ms, deg/s, a clockwise course, km/h.
+    let mine = |v1: &str| -> String {
+        let mut out = String::from("stamp_ms;gyro_z_dps;course;speed_kmh\n");
+        for line in std::fs::read_to_string(samples.join(v1)).unwrap().lines().filter(|l| !l.starts_with('#')).skip(1) {
+            let f: Vec<&str> = line.split(',').collect();
+            let num = |s: &str| s.parse::<f64>().ok();
+            let course = num(f[3]).map_or(String::new(), |h| (-h).to_string());
+            out.push_str(&format!("{};{};{course};{}\n", num(f[0]).unwrap() * 1000.0, f[1], num(f[4]).unwrap() * 3.6));
+        }
+        out
+    };
+    std::fs::write(dir.join("monday.txt"), mine("train/city-1.csv")).unwrap();
+    std::fs::write(dir.join("week2/tuesday.txt"), mine("test/highway-3.csv")).unwrap();
+    std::fs::copy(samples.join("train/city-2.csv"), dir.join("city-2.csv")).unwrap();
+    let recipe = dir.join("mine.toml");
+    std::fs::write(
+        &recipe,
+        "bias_s = 20\n[[table]]\nid = \"log\"\nfile = \"drive.txt\"\ndelimiter = \";\"\ntime = { column = \"stamp_ms\", unit = \"ms\" }\n\
+         [yaw_rate]\ntable = \"log\"\ncolumn = \"gyro_z_dps\"\nunit = \"deg/s\"\npositive = \"ccw\"\n\
+         [heading]\nsource = \"column\"\ntable = \"log\"\ncolumn = \"course\"\nunit = \"deg\"\npositive = \"cw\"\n\
+         [speed]\nsource = \"column\"\ntable = \"log\"\ncolumn = \"speed_kmh\"\nunit = \"km/h\"\n",
+    )
+    .unwrap();
+    let json = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fleet-recipe-rows.json");
+    let o = report_dir(&dir, &["--recipe", recipe.to_str().unwrap(), "--out", json.to_str().unwrap()]);
+    let (stdout, stderr) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{stderr}");
+    assert!(stderr.contains("importing 2 recording(s) by the recipe (2 files)"), "{stderr}");
+    assert!(stdout.starts_with("3 files, 3 drives scored") && stdout.contains("0 errors"), "{stdout}");
+    let rows: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let mut names: Vec<&str> = rows.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    names.sort();
+    assert_eq!(names, ["City 2", "monday", "tuesday"]);
+    // Each as its own import scores.
+    let run = |args: &[&str]| Command::new(env!("CARGO_BIN_EXE_gyrodrift")).args(args).output().unwrap();
+    let one = dir.join("one");
+    std::fs::create_dir_all(&one).unwrap();
+    std::fs::copy(dir.join("week2/tuesday.txt"), one.join("drive.txt")).unwrap();
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fleet-recipe-tuesday.csv");
+    let i = run(&["import", "--recipe", recipe.to_str().unwrap(), "--data", one.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(i.status.success(), "{}", String::from_utf8_lossy(&i.stderr));
+    let hdr: serde_json::Value = serde_json::from_slice(&run(&["hdr", "--json", out.to_str().unwrap()]).stdout).unwrap();
+    let tuesday = rows.iter().find(|r| r["name"] == "tuesday").unwrap();
+    assert_eq!(tuesday["e_psi_hdr_deg"], hdr["E_psi_hdr_deg"]);
+    // A recipe of two tables: a folder holding both files is one recording (its other files
+    // part of it), named by the folder.
+    let two = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fleet-recipe-two");
+    let _ = std::fs::remove_dir_all(&two);
+    std::fs::create_dir_all(two.join("car-7")).unwrap();
+    let text = mine("train/city-1.csv");
+    let (mut gyro, mut gps) = (String::from("t;w\n"), String::from("t;cog\n"));
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(';').collect();
+        gyro.push_str(&format!("{};{}\n", f[0], f[1]));
+        if !f[2].is_empty() && f[3].parse::<f64>().unwrap() > 18.0 {
+            gps.push_str(&format!("{};{}\n", f[0], f[2]));
+        }
+    }
+    std::fs::write(two.join("car-7/gyro.csv"), gyro).unwrap();
+    std::fs::write(two.join("car-7/gps.csv"), gps).unwrap();
+    std::fs::write(two.join("car-7/notes.csv"), "a,b\n1,2\n").unwrap();
+    let recipe2 = two.join("two.json");
+    std::fs::write(
+        &recipe2,
+        r#"{"bias_s": 20, "table": [{"id": "g", "file": "gyro.csv", "delimiter": ";", "time": {"column": "t", "unit": "ms"}},
+            {"id": "p", "file": "gps.csv", "delimiter": ";", "time": {"column": "t", "unit": "ms"}}],
+            "yaw_rate": {"table": "g", "column": "w", "unit": "deg/s", "positive": "ccw"},
+            "heading": {"source": "column", "table": "p", "column": "cog", "unit": "deg", "positive": "cw"}}"#,
+    )
+    .unwrap();
+    let o = report_dir(&two, &["--recipe", recipe2.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    // Its notes.csv is part of the recording, not an error.
+    assert_eq!((summary["scored"].as_u64(), summary["errors"].as_u64()), (Some(1), Some(0)), "{summary}");
+}

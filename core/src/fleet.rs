@@ -270,26 +270,39 @@ pub fn score_reader<R: Read>(file: &str, stem: &str, reader: R, opts: &FleetOpti
 /// The recordings of a logger's raw exports among the files of `rows` that failed
 /// (`import::recordings`), their files' error rows taken out of `rows`: what `--import`
 /// scores instead (`score_recording`).
+/// With a `recipe`, the recordings it reads (`import::recipe_recordings`) instead of the
+/// presets'.
 #[cfg(feature = "fs")]
-pub fn take_recordings(rows: &mut Vec<DriveRow>) -> Vec<crate::import::Recording> {
+pub fn take_recordings(rows: &mut Vec<DriveRow>, recipe: Option<&crate::import::Recipe>) -> Vec<crate::import::Recording> {
     let failed: Vec<std::path::PathBuf> = rows.iter().filter(|r| r.error.is_some()).map(|r| std::path::PathBuf::from(&r.file)).collect();
-    let recs = crate::import::recordings(&failed);
+    let recs = match recipe {
+        Some(r) => crate::import::recipe_recordings(&failed, r),
+        None => crate::import::recordings(&failed),
+    };
     let taken: std::collections::HashSet<String> =
         recs.iter().flat_map(|r| r.files.iter().chain(&r.ignored).map(|p| p.display().to_string())).collect();
     rows.retain(|r| r.error.is_none() || !taken.contains(&r.file));
     recs
 }
 
-/// One recording of raw exports (`import::Recording`) imported by the preset detected
-/// from its files and scored as a drive labelled by its file or folder: named by the import
-/// (a one-file export's file and preset), or by the folder when it has several files, whose
-/// first file would name every folder alike. An import that fails is one error row.
+/// One recording of raw exports (`import::Recording`) imported by `recipe`, or by the
+/// preset detected from its files, and scored as a drive labelled by its file or folder:
+/// named by the import (a one-file export's file and preset; a recipe's name is the
+/// recording's file stem), or by the folder when it has several files, whose first file would
+/// name every folder alike. An import that fails is one error row.
 #[cfg(feature = "fs")]
-pub fn score_recording(rec: &crate::import::Recording, opts: &FleetOptions) -> Vec<DriveRow> {
+pub fn score_recording(rec: &crate::import::Recording, recipe: Option<&crate::import::Recipe>, opts: &FleetOptions) -> Vec<DriveRow> {
     let label = rec.label.display().to_string();
     let stem = rec.label.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    match crate::import::import_paths(&rec.files) {
-        Ok((_, mut log, _)) => {
+    let imported = match recipe {
+        Some(r) => crate::import::import_recording(r, rec).map(|(mut log, _)| {
+            log.meta.name = Some(stem.clone());
+            log
+        }),
+        None => crate::import::import_paths(&rec.files).map(|(_, log, _)| log),
+    };
+    match imported {
+        Ok(mut log) => {
             if rec.files.len() > 1 {
                 log.meta.name = Some(stem.clone());
             }

@@ -11,7 +11,10 @@ package installed on the workers, e.g. s3fs): each task fetches its own files. W
 same code runs on a real cluster (the workers need this package installed). A drive that
 fails is a row with its ``error``; the job goes on. With ``--import`` a logger's raw exports
 among the CSV files are imported by their detected preset and scored, a drive per recording
-(a folder's files stay in one task), as ``gyrodrift report --dir --import``.
+(a folder's files stay in one task), as ``gyrodrift report --dir --import``; with ``--recipe
+FILE`` (a logger of your own) the files that are not v1 logs are read by that recipe, a drive
+per recording (a folder holding the files it names; each file, for a recipe of one table),
+as ``gyrodrift report --dir --recipe``.
 
 The scoring is core's (``score_files``, ``score_log``): nothing is computed here but the
 plumbing. ``score_frame`` is the per-drive function for engines that hand over a pandas
@@ -28,7 +31,7 @@ import posixpath
 import sys
 from typing import Any, Dict, List, Mapping, Optional, Sequence
 
-from ._core import error_row, folder_hints, score_bytes, score_files, score_log, summary_markdown
+from ._core import error_row, folder_hints, recipe_endings, score_bytes, score_files, score_log, summary_markdown
 from .frames import from_pandas, rows_to_pandas
 from .remote import fetch, is_url
 
@@ -55,8 +58,8 @@ def _frame_rows(df: Any, key: Optional[str], options: Optional[Mapping[str, Any]
     return score_log(log, key, options)
 
 
-def _score_paths(paths: Sequence[str], options: Optional[Mapping[str, Any]], import_raw: bool = False) -> List[dict]:
-    return score_files(list(paths), 1, options, import_raw)
+def _score_paths(paths: Sequence[str], options: Optional[Mapping[str, Any]], import_raw: bool = False, recipe: Any = None) -> List[dict]:
+    return score_files(list(paths), 1, options, import_raw, recipe)
 
 
 def score_urls(urls: Sequence[str], options: Optional[Mapping[str, Any]] = None) -> List[dict]:
@@ -124,12 +127,13 @@ class _Listing:
         return self.fs.unstrip_protocol(path) if self.fs else path
 
 
-def find_inputs(spec: str, zips: bool = False) -> Dict[str, List[Any]]:
+def find_inputs(spec: str, zips: bool = False, endings: Sequence[str] = ()) -> Dict[str, List[Any]]:
     """What INPUT names: ``{"csv": [paths]}`` or ``{"parquet": [(path, key)]}``; ``zips``: a
-    folder's ``*.zip`` files too (a logger's zipped exports, for ``--import``). An fsspec URL
-    (``s3://bucket/drives/``) names that filesystem's files, as URLs, by the same rules."""
-    if is_url(spec) and zips:
-        raise ValueError(f"{spec}: --import reads local folders only (a recording's files are imported together)")
+    folder's ``*.zip`` files too (a logger's zipped exports, for ``--import``); ``endings``:
+    files ending so too (a recipe's tables, ``recipe_endings``, for ``--recipe``). An fsspec
+    URL (``s3://bucket/drives/``) names that filesystem's files, as URLs, by the same rules."""
+    if is_url(spec) and (zips or endings):
+        raise ValueError(f"{spec}: --import and --recipe read local folders only (a recording's files are imported together)")
     ls = _Listing(spec)
     base = ls.root
     if ls.isdir(base):
@@ -139,7 +143,7 @@ def find_inputs(spec: str, zips: bool = False) -> Dict[str, List[Any]]:
         pq_files = sorted(ls.glob(ls.below(base, "**", "*.parquet")))
         if pq_files:
             return {"parquet": [(ls.name(p), os.path.splitext(ls.relative(p, base))[0]) for p in pq_files]}
-        exts = ["*.csv", "*.csv.gz"] + (["*.zip"] if zips else [])
+        exts = ["*.csv", "*.csv.gz"] + (["*.zip"] if zips else []) + ["*" + e for e in endings]
         csv = sorted({p for e in exts for p in ls.glob(ls.below(base, "**", e))})
         if not csv:
             raise ValueError(f"{spec}: no *.csv logs or *.parquet drives in this folder or below")
@@ -201,15 +205,20 @@ def run(
     chunk_bytes: int = CHUNK_BYTES,
     processes: bool = False,
     import_raw: bool = False,
+    recipe: Any = None,
 ) -> Any:
     """Scores every drive of ``spec`` on Dask; returns the rows as a DataFrame (and writes
     them to ``out`` as Parquet when given). The LocalCluster's workers are threads of this
     process unless ``processes``: core releases the GIL while it scores, so threads run in
-    parallel without pickling rows between processes (measured faster: docs/fleet.md)."""
+    parallel without pickling rows between processes (measured faster: docs/fleet.md).
+    ``recipe`` (a path or a dict): the files that are not v1 logs are read by it."""
     from dask.distributed import Client, LocalCluster, wait
     from dask.distributed import progress as dask_progress
 
-    inputs = find_inputs(spec, zips=import_raw)
+    if recipe is not None and not isinstance(recipe, Mapping):
+        recipe = os.path.abspath(recipe)  # the workers' working folder may differ
+    inputs = find_inputs(spec, zips=import_raw, endings=recipe_endings(recipe) if recipe is not None else ())
+    by_folder = import_raw or recipe is not None
     cluster = None
     if scheduler:
         client = Client(scheduler)
@@ -223,11 +232,11 @@ def run(
             threads = max(1, sum(client.nthreads().values()))
             sizes = _sizes(inputs["csv"])
             total = sum(sizes.values())
-            groups = chunks(inputs["csv"], max(1, min(chunk_bytes, total // (4 * threads))), keep_folders=import_raw, sizes=sizes)
+            groups = chunks(inputs["csv"], max(1, min(chunk_bytes, total // (4 * threads))), keep_folders=by_folder, sizes=sizes)
             if is_url(spec):
                 futures = client.map(score_urls, groups, options=opts, pure=False)
             else:
-                futures = client.map(_score_paths, groups, options=opts, import_raw=import_raw, pure=False)
+                futures = client.map(_score_paths, groups, options=opts, import_raw=import_raw, recipe=recipe, pure=False)
         else:
             paths, keys = zip(*inputs["parquet"])
             futures = client.map(_score_parquet, list(paths), list(keys), options=opts, pure=False)
@@ -259,12 +268,15 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     ap.add_argument("--workers", type=int, default=2, help="LocalCluster workers (default 2)")
     ap.add_argument("--processes", action="store_true", help="LocalCluster workers as processes (default: threads; core releases the GIL)")
     ap.add_argument("--import", dest="import_raw", action="store_true", help="import a logger's raw exports among the files (SensorLog, Sensor Logger, phyphox, ...) and score them, a drive per recording")
+    ap.add_argument("--recipe", help="read the files that are not v1 logs by this recipe (TOML or JSON; a logger of your own), a drive per recording: a folder holding the files it names, or each file for a recipe of one table")
     ap.add_argument("--options", help='fleet options as JSON, e.g. \'{"input": {"gaps": "error", "time_order": "fix"}, "pipeline": {"min_still_s": 3}}\'')
     ap.add_argument("--fail-on-error", action="store_true", help="exit 1 when a file could not be scored, once every row is written (a CI job); without it a fleet job exits 0")
     args = ap.parse_args(argv)
     try:
         options = json.loads(args.options) if args.options else None
-        rows = run(args.input, args.out, args.scheduler, args.workers, options, processes=args.processes, import_raw=args.import_raw)
+        if args.recipe and args.import_raw:
+            raise ValueError("give --import (the presets) or --recipe (yours), not both")
+        rows = run(args.input, args.out, args.scheduler, args.workers, options, processes=args.processes, import_raw=args.import_raw, recipe=args.recipe)
     except (ValueError, OSError) as e:
         print(f"gyrodrift.fleet: {e}", file=sys.stderr)
         return 2

@@ -43,26 +43,38 @@ fn score_bytes<'py>(py: Python<'py>, file: String, data: Vec<u8>, options: Optio
     rows_list(py, &rows)
 }
 
+/// How the file names a recipe (a path or a dict) reads end (".txt", ".csv"): what a fleet
+/// folder's files are collected by.
+#[pyfunction]
+fn recipe_endings(recipe: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
+    Ok(crate::methods::recipe_arg(recipe)?.0.file_endings())
+}
+
 /// Many files on `jobs` threads (0 = one per core), rows in file order. `import_raw`: a
 /// logger's raw exports among them are imported by their detected preset and scored, a
-/// drive per recording (the CLI's `report --dir --import`), after the logs.
+/// drive per recording (the CLI's `report --dir --import`), after the logs. `recipe` (a
+/// path or a dict): the files that are not v1 logs are read by it instead, a drive per
+/// recording (a folder holding the files it names; each file, for a recipe of one table:
+/// the CLI's `report --dir --recipe`).
 #[pyfunction]
-#[pyo3(signature = (paths, jobs=0, options=None, import_raw=false))]
+#[pyo3(signature = (paths, jobs=0, options=None, import_raw=false, recipe=None))]
 fn score_files<'py>(
     py: Python<'py>,
     paths: Vec<PathBuf>,
     jobs: usize,
     options: Option<&Bound<'py, PyAny>>,
     import_raw: bool,
+    recipe: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyList>> {
     let opts = self::options(options)?;
+    let recipe = recipe.map(|r| crate::methods::recipe_arg(r).map(|(r, _)| r)).transpose()?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build().map_err(value_err)?;
     let rows: Vec<DriveRow> = py.detach(|| {
         pool.install(|| {
             let mut rows: Vec<DriveRow> = paths.par_iter().flat_map_iter(|p| score_path(p, &opts)).collect();
-            if import_raw {
-                let recs = fleet::take_recordings(&mut rows);
-                rows.extend(recs.par_iter().flat_map_iter(|r| fleet::score_recording(r, &opts)).collect::<Vec<_>>());
+            if import_raw || recipe.is_some() {
+                let recs = fleet::take_recordings(&mut rows, recipe.as_ref());
+                rows.extend(recs.par_iter().flat_map_iter(|r| fleet::score_recording(r, recipe.as_ref(), &opts)).collect::<Vec<_>>());
             }
             rows
         })
@@ -116,6 +128,7 @@ fn row_columns() -> Vec<&'static str> {
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(score_file, m)?)?;
     m.add_function(wrap_pyfunction!(score_files, m)?)?;
+    m.add_function(wrap_pyfunction!(recipe_endings, m)?)?;
     m.add_function(wrap_pyfunction!(score_bytes, m)?)?;
     m.add_function(wrap_pyfunction!(score_log, m)?)?;
     m.add_function(wrap_pyfunction!(summarize, m)?)?;

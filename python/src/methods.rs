@@ -366,6 +366,21 @@ fn battery_profiles(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
     to_py(py, &v)?.into_bound(py).cast_into::<PyList>().map_err(|_| value_err("profiles that are not a list"))
 }
 
+/// A recipe given as the path of a TOML or JSON file (read by core, JSON by its extension)
+/// or as a dict (the same object as JSON), and the folder of its file.
+pub(crate) fn recipe_arg(recipe: &Bound<'_, PyAny>) -> PyResult<(gyrodrift::import::Recipe, Option<std::path::PathBuf>)> {
+    if let Ok(path) = recipe.extract::<std::path::PathBuf>() {
+        if !path.is_file() {
+            return Err(pyo3::exceptions::PyOSError::new_err(format!("{}: cannot read: no such file", path.display())));
+        }
+        let r = gyrodrift::import::read_recipe(&path).map_err(value_err)?;
+        Ok((r, Some(path.parent().map(|p| p.to_path_buf()).unwrap_or_default())))
+    } else {
+        let r = serde_json::from_value(from_py("recipe", recipe)?).map_err(|e| value_err(format!("recipe: {e}")))?;
+        Ok((r, None))
+    }
+}
+
 /// Imports recorded files by a recipe (a dict, or the path of a TOML or JSON recipe);
 /// files are read from `data_dir` (default: the recipe's folder, or the working folder for
 /// a dict), which may be a logger's zipped export. Returns `(log, summary)`.
@@ -376,18 +391,9 @@ fn import_log<'py>(
     recipe: &Bound<'py, PyAny>,
     data_dir: Option<std::path::PathBuf>,
 ) -> PyResult<(PyLog, Bound<'py, PyDict>)> {
-    // A path is read by core (TOML, or JSON by extension); a dict is the same object as JSON.
     // The files are confined to the data folder, links followed, as the CLI confines them.
-    let (parsed, root): (gyrodrift::import::Recipe, std::path::PathBuf) = if let Ok(path) = recipe.extract::<std::path::PathBuf>() {
-        if !path.is_file() {
-            return Err(pyo3::exceptions::PyOSError::new_err(format!("{}: cannot read: no such file", path.display())));
-        }
-        let r = gyrodrift::import::read_recipe(&path).map_err(value_err)?;
-        (r, data_dir.unwrap_or_else(|| path.parent().map(|p| p.to_path_buf()).unwrap_or_default()))
-    } else {
-        let r = serde_json::from_value(from_py("recipe", recipe)?).map_err(|e| value_err(format!("recipe: {e}")))?;
-        (r, data_dir.unwrap_or_default())
-    };
+    let (parsed, folder) = recipe_arg(recipe)?;
+    let root = data_dir.or(folder).unwrap_or_default();
     let (log, summary) = py.detach(|| gyrodrift::import::import_from_folder(&parsed, &root, false)).map_err(value_err)?;
     Ok((PyLog::new(log), result_dict(py, &summary)?))
 }

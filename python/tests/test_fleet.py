@@ -181,6 +181,49 @@ def test_the_dask_job_imports_raw_exports_with_import(samples, tmp_path, capsys)
     assert len(groups) == 5 and all(len({os.path.dirname(p) for p in g}) == 1 for g in groups)
 
 
+def _as_my_logger(v1_path):
+    """A v1 log as a logger of our own writes it: ms, deg/s, a clockwise course, km/h, ';'."""
+    out = ["stamp_ms;gyro_z_dps;course;speed_kmh"]
+    for line in v1_path.read_text().splitlines():
+        if line.startswith("#") or line.startswith("time_s"):
+            continue
+        f = line.split(",")
+        course = "" if f[3] == "" else repr(-float(f[3]))
+        out.append(f"{float(f[0]) * 1000};{f[1]};{course};{float(f[4]) * 3.6}")
+    return "\n".join(out) + "\n"
+
+
+MY_RECIPE = {
+    "bias_s": 20,
+    "table": [{"id": "log", "file": "drive.txt", "delimiter": ";", "time": {"column": "stamp_ms", "unit": "ms"}}],
+    "yaw_rate": {"table": "log", "column": "gyro_z_dps", "unit": "deg/s", "positive": "ccw"},
+    "heading": {"source": "column", "table": "log", "column": "course", "unit": "deg", "positive": "cw"},
+    "speed": {"source": "column", "table": "log", "column": "speed_kmh", "unit": "km/h"},
+}
+
+
+def test_a_fleet_of_ones_own_logger_is_scored_by_a_recipe_as_the_cli_does(cli, samples, tmp_path):
+    d = tmp_path / "mine"
+    (d / "week2").mkdir(parents=True)
+    (d / "monday.txt").write_text(_as_my_logger(samples / "train" / "city-1.csv"))
+    (d / "week2" / "tuesday.txt").write_text(_as_my_logger(samples / "test" / "highway-3.csv"))
+    recipe = tmp_path / "mine.json"
+    recipe.write_text(json.dumps(MY_RECIPE))
+    assert g.recipe_endings(str(recipe)) == [".txt"] and g.recipe_endings(MY_RECIPE) == [".txt"]
+    paths = sorted(str(p) for p in d.rglob("*.txt"))
+    rows = g.score_files(paths, 2, recipe=MY_RECIPE)
+    assert sorted(r["name"] for r in rows) == ["monday", "tuesday"] and not any(r["error"] for r in rows)
+    out = tmp_path / "rows.json"
+    cli("report", "--dir", str(d), "--recipe", str(recipe), "--out", str(out))
+    want = {r["file"]: r for r in json.loads(out.read_text())}
+    for r in rows:
+        assert r["ne_psi_pipeline_deg_per_min"] == want[r["file"]]["ne_psi_pipeline_deg_per_min"], r["file"]
+    # The Dask job: --recipe finds the .txt files and gives the same rows.
+    frame = fleet.run(str(d), workers=2, progress=False, recipe=str(recipe))
+    assert sorted(frame["name"]) == ["monday", "tuesday"] and frame["error"].isna().all()
+    assert fleet.main([str(d), "--workers", "2", "--recipe", str(recipe), "--import"]) == 2
+
+
 def test_gzipped_logs_read_and_score_as_the_plain_files(samples, tmp_path):
     """A gzip-compressed log (drive.csv.gz, as fleets store them): read_log, score_files and
     the fleet job's folder listing take it as the plain file, named without .csv.gz."""
@@ -236,7 +279,7 @@ def test_dask_on_an_object_store_url_scores_as_the_local_folder(folder, samples,
     pq_rows = fleet.run(f"memory://{root}/pq", workers=1)
     assert list(pq_rows["file"]) == ["city-1"]
     assert pq_rows["ne_psi_pipeline_deg_per_min"][0] == pytest.approx(g.score_log(log, "city-1")[0]["ne_psi_pipeline_deg_per_min"], rel=1e-12)
-    with pytest.raises(ValueError, match="--import reads local folders only"):
+    with pytest.raises(ValueError, match="--import and --recipe read local folders only"):
         fleet.find_inputs(f"memory://{root}/csv", zips=True)
     mem.rm(root, recursive=True)
 

@@ -2,7 +2,9 @@
 //! presets reads: which preset, and which files (it and those beside it in its folder) to
 //! import, so a front can answer the parse error with the import that makes a v1 log of it.
 
-use super::{detect, sniff, Sniffed, SNIFF_BYTES};
+use super::{detect, sniff, ImportSummary, Recipe, Sniffed, SNIFF_BYTES};
+use crate::error::{Error, Result};
+use crate::log::DriveLog;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
@@ -133,6 +135,54 @@ pub fn recordings(failed: &[PathBuf]) -> Vec<Recording> {
         }
     }
     out
+}
+
+/// The recordings one recipe reads among files that failed to read as v1 logs (`report
+/// --dir --recipe`, a fleet of one logger no preset knows), folder by folder in the order
+/// they first appear: a folder holding every file the recipe names (by its name, in the
+/// folder) is one recording of them, named by the folder, whose other failed files it takes
+/// as `ignored` (by the file, for a recipe of one table); else, for a recipe of one table,
+/// each of the folder's failed files is a recording read as that table. Other files are
+/// left out.
+pub fn recipe_recordings(failed: &[PathBuf], recipe: &Recipe) -> Vec<Recording> {
+    let mut folders: Vec<&Path> = Vec::new();
+    for p in failed {
+        let dir = folder_of(p);
+        if !folders.contains(&dir) {
+            folders.push(dir);
+        }
+    }
+    let mut out = Vec::new();
+    for dir in folders {
+        let named: Vec<PathBuf> = recipe.tables.iter().map(|t| dir.join(&t.file)).collect();
+        if !named.is_empty() && named.iter().all(|f| f.is_file()) {
+            let (label, ignored) = match named.as_slice() {
+                [one] => (one.clone(), Vec::new()),
+                _ => {
+                    (dir.to_path_buf(), failed.iter().filter(|p| folder_of(p) == dir && !named.iter().any(|n| n == *p)).cloned().collect())
+                }
+            };
+            out.push(Recording { preset: "recipe", label, files: named, ignored });
+        } else if recipe.tables.len() == 1 {
+            for p in failed.iter().filter(|p| folder_of(p) == dir) {
+                out.push(Recording { preset: "recipe", label: p.clone(), files: vec![p.clone()], ignored: Vec::new() });
+            }
+        }
+    }
+    out
+}
+
+/// A recording read by `recipe`: its files from their folder, a recipe of one table reading
+/// the recording's one file whatever its name (`recipe_recordings`).
+pub fn import_recording(recipe: &Recipe, rec: &Recording) -> Result<(DriveLog, ImportSummary)> {
+    let Some(first) = rec.files.first() else {
+        return Err(Error::File(format!("{}: no files in this recording", rec.label.display())));
+    };
+    let mut recipe = recipe.clone();
+    if let ([table], [file]) = (recipe.tables.as_mut_slice(), rec.files.as_slice()) {
+        table.file = file.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    }
+    super::import_from_folder(&recipe, folder_of(first), false)
 }
 
 /// For a file without a `time_s` column: the preset that reads it, with the files beside it

@@ -33,6 +33,19 @@ pub struct Recipe {
 }
 
 impl Recipe {
+    /// How its tables' file names end (".txt", ".csv"; lower case, each once): what a fleet
+    /// folder's files must end with to be read by it.
+    pub fn file_endings(&self) -> Vec<String> {
+        let mut out: Vec<String> = Vec::new();
+        for t in &self.tables {
+            let ext = std::path::Path::new(&t.file).extension().map(|e| format!(".{}", e.to_string_lossy().to_ascii_lowercase()));
+            if let Some(e) = ext.filter(|e| !out.contains(e)) {
+                out.push(e);
+            }
+        }
+        out
+    }
+
     /// What can be checked before any file is opened: metadata text, numbers finite and in
     /// range, time given one way per table.
     pub fn validate(&self) -> Result<()> {
