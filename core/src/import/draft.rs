@@ -1,13 +1,13 @@
 //! A draft recipe for files no preset reads, guessed from their column names and first
 //! rows: each file's time and its format, the yaw rate (one axis, or three gyro axes
-//! projected on an accelerometer's up) and its unit, the
-//! reference heading (a course column, a GPX track's positions, or latitude and longitude)
-//! and the speed. A draft is a starting point to check and edit (`gyrodrift import FILES
-//! --print-recipe`), never imported unseen: names say little about signs and axes, and
-//! `check` then says what is off.
+//! projected on an accelerometer's up) and its unit, the reference heading (a course
+//! column, an NMEA log's RMC course or GGA positions, a GPX track's positions, or latitude
+//! and longitude) and the speed. A draft is a starting point to check and edit (`gyrodrift
+//! import FILES --print-recipe`), never imported unseen: names say little about signs and
+//! axes, and `check` then says what is off.
 
 use super::guess::{angle_unit_of, guess_columns, rate_unit_of, speed_unit_of, ColumnRef, Guesses};
-use super::sniff::{first_row, Sniffed};
+use super::sniff::Sniffed;
 use super::*;
 use serde_json::{json, Value};
 
@@ -28,9 +28,13 @@ pub fn draft_recipe(heads: &[(String, Vec<u8>)]) -> Result<Draft> {
 
 /// [`draft_recipe`] of heads already sniffed (`files`, in the order of `heads`).
 pub(super) fn draft_sniffed(files: &[Sniffed], heads: &[(String, Vec<u8>)]) -> Result<Draft> {
-    let rows: Vec<Vec<String>> = files.iter().zip(heads).map(|(s, (_, head))| first_row(s, head)).collect();
-    draft_from(files, &rows)
+    draft_from(files, heads)
 }
+
+/// The fields of NMEA's RMC and GGA sentences, as a draft names them.
+const RMC_FIELDS: [&str; 13] = ["tag", "time", "status", "lat", "ns", "lon", "ew", "knots", "course", "date", "mv", "mv_ew", "mode"];
+const GGA_FIELDS: [&str; 15] =
+    ["tag", "time", "lat", "ns", "lon", "ew", "quality", "sats", "hdop", "alt", "alt_unit", "geoid", "geoid_unit", "age", "station"];
 
 /// What the draft has so far: the recipe, the guesses, the files (indices) it reads.
 struct Drafting<'a> {
@@ -92,8 +96,14 @@ impl Drafting<'_> {
         Ok(())
     }
 
+    /// The first NMEA log whose sentence to read is of `kind` ("RMC", "GGA"), and that sentence.
+    fn nmea(&self, kind: &str) -> Option<(usize, String)> {
+        self.g.files.iter().enumerate().find_map(|(i, f)| f.nmea.clone().filter(|t| t.ends_with(kind)).map(|t| (i, t)))
+    }
+
     /// The speed, then the reference heading: a course column (gated by the speed in its
-    /// table), a GPX track's positions, or latitude and longitude columns.
+    /// table), an NMEA log's RMC course, a GPX track's positions, an NMEA log's GGA
+    /// positions, or latitude and longitude columns.
     fn speed_and_reference(&mut self) {
         let files = self.files;
         let speed = self.g.speed.clone();
@@ -115,6 +125,18 @@ impl Drafting<'_> {
             }
             self.r["heading"] = h;
             self.used.push(c.file);
+        } else if let Some((ni, tag)) = self.nmea("RMC") {
+            self.guesses.push(format!(
+                "heading: the course of {}'s {tag} sentences, kept above 3 m/s (its clock is the UTC time of day: so must the gyro's be)",
+                files[ni].name
+            ));
+            self.r["heading"] = json!({ "source": "column", "table": table(ni), "column": "course", "unit": "deg", "positive": "cw",
+                "speed_column": "knots", "speed_unit": "kn", "min_speed_mps": 3.0 });
+            if speed.is_none() {
+                self.guesses.push(format!("speed: {}'s {tag} speed, kn", files[ni].name));
+                self.r["speed"] = json!({ "source": "column", "table": table(ni), "column": "knots", "unit": "kn" });
+            }
+            self.used.push(ni);
         } else if let Some(pi) = self.g.files.iter().position(|f| f.gpx) {
             self.guesses.push(format!(
                 "heading: the course between the positions of the GPX track {} (its clock is UTC: so must the gyro's be)",
@@ -127,6 +149,18 @@ impl Drafting<'_> {
                 self.r["speed"] = json!({ "source": "positions" });
             }
             self.used.push(pi);
+        } else if let Some((ni, tag)) = self.nmea("GGA") {
+            self.guesses.push(format!(
+                "heading: the course between the positions of {}'s {tag} sentences (its clock is the UTC time of day: so must the gyro's be)",
+                files[ni].name
+            ));
+            self.r["positions"] = json!({ "table": table(ni), "kind": "nmea", "columns": ["lat", "ns", "lon", "ew"] });
+            self.r["heading"] = json!({ "source": "positions" });
+            if speed.is_none() {
+                self.guesses.push("speed: from the positions".into());
+                self.r["speed"] = json!({ "source": "positions" });
+            }
+            self.used.push(ni);
         } else if let Some(p) = self.g.lat_lon.clone() {
             let lat = ColumnRef { file: p.file, column: p.lat.clone() };
             self.guesses.push(format!("heading: the course between positions, {} and \"{}\" in degrees", self.at(&lat), p.lon));
@@ -150,6 +184,13 @@ impl Drafting<'_> {
                 tables.push(json!({ "id": table(i), "file": s.name, "format": "gpx" }));
                 continue;
             }
+            if let Some(tag) = &f.nmea {
+                self.guesses.push(format!("time of {}: its {tag} sentences' hhmmss.ss, a time of day", s.name));
+                tables.push(json!({ "id": table(i), "file": s.name, "format": "nmea", "record": tag,
+                    "columns": if tag.ends_with("RMC") { &RMC_FIELDS[..] } else { &GGA_FIELDS[..] },
+                    "time": { "column": "time", "format": "time_of_day" } }));
+                continue;
+            }
             let column = &f.time_column;
             let what = f.columns.iter().find(|c| &c.name == column).map_or("s", |c| c.time);
             let time = match what {
@@ -165,8 +206,8 @@ impl Drafting<'_> {
     }
 }
 
-fn draft_from(files: &[Sniffed], rows: &[Vec<String>]) -> Result<Draft> {
-    let g = guess_columns(files, rows);
+fn draft_from(files: &[Sniffed], heads: &[(String, Vec<u8>)]) -> Result<Draft> {
+    let g = guess_columns(files, heads);
     let mut d = Drafting { files, g, r: Value::Null, guesses: Vec::new(), used: Vec::new() };
     d.yaw_rate()?;
     d.speed_and_reference();

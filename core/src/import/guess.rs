@@ -31,12 +31,14 @@ pub struct ColumnReading {
     pub angle_unit: &'static str,
 }
 
-/// One file: its name, whether it is a GPX track (read whole, not by columns), its time
-/// column and the reading of each column.
+/// One file: its name, whether it is a GPX track or an NMEA log (read as tracks, not by
+/// their columns), its time column and the reading of each column.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FileGuess {
     pub name: String,
     pub gpx: bool,
+    /// An NMEA log's sentence to read: its RMC (course and speed), else its GGA (positions).
+    pub nmea: Option<String>,
     pub time_column: String,
     pub columns: Vec<ColumnReading>,
 }
@@ -154,11 +156,28 @@ fn is_gpx(s: &Sniffed) -> bool {
     s.name.to_lowercase().ends_with(".gpx")
 }
 
+/// A GPX track or an NMEA log (lines of `$` sentences): no column of it is a gyro's.
+fn is_track(s: &Sniffed) -> bool {
+    is_gpx(s) || s.header.first().is_some_and(|h| h.starts_with('$'))
+}
+
+/// The sentence of an NMEA log to read, from its head's lines: the first RMC talker
+/// (`$GPRMC`, `$GNRMC`: course and speed), else the first GGA (positions).
+fn nmea_record(s: &Sniffed, head: &[u8]) -> Option<String> {
+    if !s.header.first().is_some_and(|h| h.starts_with('$')) {
+        return None;
+    }
+    let text = String::from_utf8_lossy(head);
+    let tags: Vec<&str> = text.lines().filter_map(|l| l.split(',').next()).filter(|t| t.starts_with('$') && t.len() == 6).collect();
+    let first = |kind: &str| tags.iter().find(|t| t.ends_with(kind)).map(|t| t.to_string());
+    first("RMC").or_else(|| first("GGA"))
+}
+
 /// Three columns of one file named alike but for the axis letter, x, y and z at one place
 /// (`gyro_x`, `gyroRotationY(rad/s)`), the x one's name (in lower case) `fits`; the first
 /// such over the files.
 fn triad(files: &[Sniffed], fits: impl Fn(&str) -> bool) -> Option<Vec<ColumnRef>> {
-    files.iter().enumerate().filter(|(_, s)| !is_gpx(s)).find_map(|(i, s)| {
+    files.iter().enumerate().filter(|(_, s)| !is_track(s)).find_map(|(i, s)| {
         let lower: Vec<String> = s.header.iter().map(|h| h.to_lowercase()).collect();
         let at = |name: &str| lower.iter().position(|m| m == name);
         lower.iter().enumerate().filter(|(_, n)| fits(n)).find_map(|(x, n)| {
@@ -175,18 +194,19 @@ fn triad(files: &[Sniffed], fits: impl Fn(&str) -> bool) -> Option<Vec<ColumnRef
 /// not a text table.
 pub fn column_guesses(heads: &[(String, Vec<u8>)]) -> Result<Guesses> {
     let files: Vec<Sniffed> = heads.iter().map(|(name, head)| sniff(name, head)).collect::<Result<_>>()?;
-    let rows: Vec<Vec<String>> = files.iter().zip(heads).map(|(s, (_, head))| first_row(s, head)).collect();
-    Ok(guess_columns(&files, &rows))
+    Ok(guess_columns(&files, heads))
 }
 
-/// Reads sniffed files (`rows`: each one's first data row, in the same order).
-pub fn guess_columns(files: &[Sniffed], rows: &[Vec<String>]) -> Guesses {
+/// Reads sniffed files (`heads`: the files' names and heads, in the same order).
+pub fn guess_columns(files: &[Sniffed], heads: &[(String, Vec<u8>)]) -> Guesses {
     let per_file = files
         .iter()
-        .zip(rows)
-        .map(|(s, row)| FileGuess {
+        .zip(heads)
+        .map(|(s, (_, head))| (s, head, first_row(s, head)))
+        .map(|(s, head, row)| FileGuess {
             name: s.name.clone(),
             gpx: is_gpx(s),
+            nmea: nmea_record(s, head),
             time_column: time_column(s).to_string(),
             columns: s
                 .header
@@ -205,7 +225,7 @@ pub fn guess_columns(files: &[Sniffed], rows: &[Vec<String>]) -> Guesses {
     // The first column, over every file, that `fits` (its name in lower case) and is not
     // the file's time.
     let find = |fits: &dyn Fn(&str) -> bool| {
-        files.iter().enumerate().filter(|(_, s)| !is_gpx(s)).find_map(|(i, s)| {
+        files.iter().enumerate().filter(|(_, s)| !is_track(s)).find_map(|(i, s)| {
             let time = time_column(s);
             s.header.iter().find(|h| h.as_str() != time && fits(&h.to_lowercase())).map(|h| ColumnRef { file: i, column: h.clone() })
         })
@@ -224,7 +244,7 @@ pub fn guess_columns(files: &[Sniffed], rows: &[Vec<String>]) -> Guesses {
         accel_axes,
         yaw_from_axes,
         course: find(&|n| n != gyro && course_words.iter().any(|w| n.contains(w)) && !n.contains("accuracy")),
-        lat_lon: files.iter().enumerate().filter(|(_, s)| !is_gpx(s)).find_map(|(i, s)| {
+        lat_lon: files.iter().enumerate().filter(|(_, s)| !is_track(s)).find_map(|(i, s)| {
             let col = |w: &str| s.header.iter().find(|h| h.to_lowercase().contains(w)).cloned();
             Some(LatLon { file: i, lat: col("lat")?, lon: col("lon")? })
         }),

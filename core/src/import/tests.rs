@@ -334,6 +334,26 @@ fn an_nmea_rmc_log_and_a_time_of_day_pass_midnight() {
     let secs = recipe_text_seconds(text);
     let e = import(&secs, &mut files).unwrap_err().to_string();
     assert!(e.contains("imu.csv: line 2, column time") && e.contains("time.format = \"time_of_day\""), "{e}");
+    // The two files drafted: the NMEA log's RMC sentences give the course and the speed, the
+    // same reference samples and speeds as the recipe above (its gate 3 m/s, below 10 kn).
+    // (The gyro's column named as a rate, which "w" alone does not say.)
+    let mut dfiles = files.clone();
+    dfiles.insert("imu.csv".to_string(), gyro.replace("time,w", "time,yaw_rate_dps").into_bytes());
+    let heads: Vec<(String, Vec<u8>)> = dfiles.iter().map(|(n, b)| (n.clone(), b.clone())).collect();
+    let draft = draft_recipe(&heads).unwrap();
+    let r = &draft.recipe_json;
+    assert_eq!((r["table"][0]["format"].as_str(), r["table"][0]["record"].as_str()), (Some("nmea"), Some("$GPRMC")), "{r}");
+    assert_eq!(r["table"][1]["time"], serde_json::json!({ "column": "time", "format": "time_of_day" }));
+    assert!(draft.guesses.iter().any(|g| g.contains("gps.nmea's $GPRMC sentences")), "{:?}", draft.guesses);
+    let drafted: Recipe = serde_json::from_value(r.clone()).unwrap();
+    let (dlog, ds) = import(&drafted, &mut dfiles).unwrap();
+    assert_eq!((ds.n_reference, reference_samples(&dlog)), (3, stamped));
+    assert_eq!(dlog.column(Column::SpeedMps), log.column(Column::SpeedMps));
+    // A log of GGA sentences alone: the course between its positions.
+    let gga = "$GPGGA,000000.00,4220.2340,N,07105.3704,W,1,09,1.2,16.6,M,-33.8,M,,0000*55\n";
+    let r = draft_recipe(&[heads[1].clone(), ("fix.nmea".to_string(), gga.as_bytes().to_vec())]).unwrap().recipe_json;
+    assert_eq!(r["positions"], serde_json::json!({ "table": "t1", "kind": "nmea", "columns": ["lat", "ns", "lon", "ew"] }));
+    assert_eq!((r["table"][1]["record"].as_str(), r["heading"]["source"].as_str()), (Some("$GPGGA"), Some("positions")));
 }
 
 /// The recipe with its time_of_day formats removed (times read as seconds).
