@@ -189,7 +189,7 @@ async function importRaw(files, recipe) {
   if (res.stage === "detect") {
     // No preset fits: the user maps the columns (cancel keeps the error entry).
     const named = files.map((f) => ({ name: f.name, bytes: bytes[f.name] }));
-    const mapped = await openMapping(named, res.error, (r) => importer(r, "your column mapping"), res.guesses);
+    const mapped = await openMapping(named, res.error, (r) => importer(r, "your column mapping"), { guesses: res.guesses, draft: res.draft });
     if (mapped) res = { ...mapped.res, detection: { ...mapped.res.detection, recipe: mapped.recipe } };
   }
   const before = state.entries.length;

@@ -36,6 +36,25 @@ function follow(reading, col, unit, kind, fallback, prefix = "") {
   col.addEventListener("change", set);
 }
 
+/**
+ * The GPS log core's draft takes the reference from, when it is one the panel's columns
+ * cannot say (a GPX track, an NMEA log): its file, its table (as "track") and the draft's
+ * heading, positions and speed on it; else null.
+ */
+function draftTrack(draft) {
+  const id = draft?.heading?.table ?? draft?.positions?.table;
+  const table = draft?.table?.find((t) => t.id === id && (t.format === "gpx" || t.format === "nmea"));
+  if (!table) return null;
+  const onTrack = (sec) => (sec?.source === "positions" ? sec : sec?.table === id ? { ...sec, table: "track" } : null);
+  return {
+    file: table.file,
+    table: { ...table, id: "track" },
+    heading: onTrack(draft.heading),
+    positions: draft.positions ? { ...draft.positions, table: "track" } : null,
+    speed: onTrack(draft.speed),
+  };
+}
+
 function select(id, options, value, label) {
   const s = document.createElement("select");
   s.id = id;
@@ -59,7 +78,7 @@ function row(label, ...controls) {
  * time of each file, the yaw rate (one axis, or three on gravity), the reference heading, the
  * speed and the lead-in. A unit follows its column when another is chosen.
  */
-function buildForm(sniffed, g, body) {
+function buildForm(sniffed, g, track, body) {
   const cols = [["", "—"]];
   sniffed.forEach((s, i) => s.header.forEach((c) => cols.push([`${i}:${c}`, sniffed.length > 1 ? `${s.name} › ${c}` : c])));
   const { value: guessed, reading, file } = inPanel(g, sniffed);
@@ -68,7 +87,10 @@ function buildForm(sniffed, g, body) {
     const col = select(`map-time-${i}`, s.header.map((h) => [h, h]), file(i)?.time_column ?? s.header[0], `time column of ${s.name}`);
     const unit = select(`map-time-unit-${i}`, TIME_UNITS.map((u) => [u, TIME_LABELS[u] ?? u]), "s", `time unit of ${s.name}`);
     follow(reading, col, unit, "time", "s", `${i}:`);
-    body.append(row(`time of ${s.name}`, col, unit));
+    // A GPS log's time is its own (a GPX track's points, NMEA's hhmmss): read as the draft does.
+    const line = row(`time of ${s.name}`, col, unit);
+    line.hidden = !!(file(i)?.gpx || file(i)?.nmea);
+    body.append(line);
     return { col, unit };
   });
 
@@ -86,7 +108,9 @@ function buildForm(sniffed, g, body) {
 
   // Reference heading.
   const p = g?.lat_lon;
-  const refMode = select("map-ref-mode", [["none", "none"], ["column", "a heading column"], ["positions", "positions (lat, lon)"]], g?.course ? "column" : p ? "positions" : "none", "reference from");
+  const modes = [["none", "none"], ["column", "a heading column"], ["positions", "positions (lat, lon)"]];
+  if (track) modes.push(["track", `the GPS log ${track.file}`]);
+  const refMode = select("map-ref-mode", modes, g?.course ? "column" : track ? "track" : p ? "positions" : "none", "reference from");
   const ref = select("map-ref", cols, guessed(g?.course), "reference heading column");
   const refUnit = select("map-ref-unit", [["deg", "deg"], ["rad", "rad"]], "deg", "reference unit");
   follow(reading, ref, refUnit, "angle_unit", "deg");
@@ -112,7 +136,7 @@ function buildForm(sniffed, g, body) {
   lead.setAttribute("aria-label", "stationary lead-in, s");
   body.append(row("speed (optional)", sp, spUnit), row("stationary lead-in, s", lead));
 
-  return { times, mode, rate, axes, acc, rateUnit, sense, oneRow, threeRow, refMode, ref, refUnit, refSense, minSpeed, latSel, lonSel, refRow, posRow, sp, spUnit, lead };
+  return { times, mode, rate, axes, acc, rateUnit, sense, oneRow, threeRow, refMode, ref, refUnit, refSense, minSpeed, latSel, lonSel, refRow, posRow, sp, spUnit, lead, track };
 }
 
 /** Shows the rows the chosen modes use. */
@@ -125,7 +149,7 @@ function showRows(f) {
 
 /** The recipe the form `f` says for `files`, or an error text. */
 function recipeOf(f, files, sniffed) {
-  const { times, mode, rate, axes, acc, rateUnit, sense, refMode, ref, refUnit, refSense, minSpeed, latSel, lonSel, sp, spUnit, lead } = f;
+  const { times, mode, rate, axes, acc, rateUnit, sense, refMode, ref, refUnit, refSense, minSpeed, latSel, lonSel, sp, spUnit, lead, track } = f;
   const used = new Set();
   const at = (v) => {
     const k = v.indexOf(":");
@@ -154,7 +178,11 @@ function recipeOf(f, files, sniffed) {
     r.positions = { table: p.table, kind: "latlon", columns: [p.column, at(lonSel.value).column] };
     r.heading = { source: "positions" };
   }
+  // The GPS log as core's draft reads it (its table, course or positions, and speed).
+  const onTrack = refMode.value === "track" && track?.heading;
+  if (onTrack) Object.assign(r, { heading: track.heading }, track.positions ? { positions: track.positions } : {});
   if (sp.value) r.speed = { source: "column", ...at(sp.value), unit: spUnit.value };
+  else if (onTrack && track.speed) r.speed = track.speed;
   r.table = [...used].sort().map((i) => {
     const s = sniffed[i];
     const t = times[i];
@@ -165,25 +193,28 @@ function recipeOf(f, files, sniffed) {
     if (s.skip_lines) spec.skip_lines = s.skip_lines;
     return spec;
   });
+  if (onTrack) r.table.push(track.table);
   return r;
 }
 
 /**
  * Opens the panel for `files` ([{name, bytes}]) with `why` (the detection's error).
  * `importer(recipe)` imports in the worker: {data, detection} or {error}. `guesses` is core's
- * reading of the columns (`columnGuesses`, from the worker; null: none), the first choices.
+ * reading of the columns (`columnGuesses`, from the worker; null: none), the first choices;
+ * `draft` core's draft recipe (`draftRecipe`; null: none), whose GPS log (a GPX track, an
+ * NMEA log) the panel offers as the reference.
  * `preset` sets fields by id over them ({"map-rate-sense": "cw"}: a check error's fix),
  * `intro` says what the panel is for. Resolves with the last good import {res, recipe}, or
  * null when cancelled.
  */
-export function openMapping(files, why, importer, guesses, preset = {}, intro = "No preset fits these files. Say which column is what; the preview imports as you choose.") {
+export function openMapping(files, why, importer, { guesses, draft }, preset = {}, intro = "No preset fits these files. Say which column is what; the preview imports as you choose.") {
   const sniffed = files.map((f) => gd.sniffFile(f.name, f.bytes.subarray(0, 65536)));
   const dlg = $("mapping");
   $("mapping-why").textContent = why;
   $("mapping-intro").textContent = intro;
   const body = $("mapping-fields");
   body.replaceChildren();
-  const form = buildForm(sniffed, guesses, body);
+  const form = buildForm(sniffed, guesses, draftTrack(draft), body);
   for (const [id, value] of Object.entries(preset)) {
     const el = body.querySelector(`#${id}`);
     if (el) el.value = value;
@@ -221,9 +252,11 @@ export function openMapping(files, why, importer, guesses, preset = {}, intro = 
     $("mapping-add").disabled = false;
     drawPreview(res.data);
   }
-  // A change makes the shown preview stale at once: Add waits for the new one.
+  // A change makes the shown preview stale at once, and one still importing too (it would
+  // land after the change with the choices before it): Add waits for the new one.
   const schedule = () => {
     clearTimeout(timer);
+    seq++;
     last = null;
     $("mapping-add").disabled = true;
     $("mapping-preview").textContent = "updating…";

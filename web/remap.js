@@ -35,7 +35,7 @@ export async function remap(entry) {
   const why = `${entry.name}: ${fixes.map((x) => x.message).join("; ")}.`;
   const intro = "The fix is filled in below: check that the gyro, integrated, now follows the reference in the preview, then add the log (the one opened stays until you remove it).";
   const guesses = (await inWorker({ type: "guess", files: bytes }, [], () => {})).data ?? null;
-  const mapped = await openMapping([{ name: f.name, bytes: bytes[f.name] }], why, importer, guesses, preset, intro);
+  const mapped = await openMapping([{ name: f.name, bytes: bytes[f.name] }], why, importer, { guesses, draft: null }, preset, intro);
   if (!mapped) return;
   const added = addParsed(`${entry.name} (fixed)`, () => {
     const log = gd.Log.fromColumns(mapped.res.data);

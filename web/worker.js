@@ -3,14 +3,15 @@
 // - parse: a large log, with progress, and its check; the columns go back transferred, not
 //   copied, and the page rebuilds the Log from them; or a log put in time order;
 // - import: raw logger files by their detected preset (or a given recipe; with none fitting,
-//   core's reading of their columns for the mapping panel); guess: that reading alone;
+//   core's reading of their columns and its draft recipe for the mapping panel); guess:
+//   that reading alone;
 //   recipes to and from TOML;
 // - tune: the HDR parameters over the drives' columns, with progress;
 // - battery: the robustness battery's error profiles on the drives' columns; case: one
 //   drive with one profile's errors added (to open a case as a log); profiles: their names;
 // - track, pipelineTrack, pipeline: the slow work on a large log this worker parsed and
 //   kept (`key`), so the page's Track view and pipeline never pause it.
-import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, columnGuesses, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog, logInTimeOrder } from "./pkg/full/gyrodrift.js";
+import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, columnGuesses, draftRecipe, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog, logInTimeOrder } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 /** Large logs parsed here, kept for later work on them (freed on "forget"). */
@@ -112,7 +113,11 @@ self.onmessage = async (ev) => {
       } catch (e) {
         // No preset fits: core's reading of the column names and first rows sets the
         // mapping panel's first choices.
-        self.postMessage({ id, error: e.message, stage: "detect", guesses: guessesOf(ev.data.files) });
+        let draft = null;
+        try {
+          draft = draftRecipe(ev.data.files).recipe;
+        } catch {}
+        self.postMessage({ id, error: e.message, stage: "detect", guesses: guessesOf(ev.data.files), draft });
         return;
       }
       const { log, summary } = importLog(d.recipe, ev.data.files);

@@ -190,6 +190,52 @@ test("files no preset fits open the mapping panel: guessed columns, live preview
   await page.locator("#mapping-cancel").click();
 });
 
+test("a gyro CSV beside an NMEA log maps with the GPS log as the reference, as core's draft reads it, with the CLI's numbers", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-nmea-"));
+  const v1 = join(dir, "drive.csv");
+  cli("simulate", "drive", "--scenario", "city", "--minutes", "4", "--seed", "5", "--out", v1);
+  const lines = readFileSync(v1, "utf8").split("\n").filter((l) => l && !l.startsWith("#"));
+  const head = lines[0].split(",");
+  const col = (name) => head.indexOf(name);
+  // The gyro stamped with the time of day from 12:00:00, one $GPRMC per reference sample.
+  const clock = (t) => {
+    const s = 12 * 3600 + t;
+    const hh = String(Math.floor(s / 3600)).padStart(2, "0");
+    const mm = String(Math.floor((s % 3600) / 60)).padStart(2, "0");
+    return [hh, mm, (s % 60).toFixed(2).padStart(5, "0")];
+  };
+  const gyro = ["clock,yaw_rate_dps"];
+  const nmea = [];
+  for (const l of lines.slice(1)) {
+    const f = l.split(",");
+    const [hh, mm, ss] = clock(Number(f[col("time_s")]));
+    gyro.push(`${hh}:${mm}:${ss},${f[col("gyro_dps")]}`);
+    const ref = f[col("ref_heading_deg")];
+    if (ref !== "") nmea.push(`$GPRMC,${hh}${mm}${ss},A,4220.2340,N,07105.3704,W,${(Number(f[col("speed_mps")]) * 3600 / 1852).toFixed(3)},${((-Number(ref) % 360) + 360) % 360},241126,,,A*00`);
+  }
+  const [g, n] = [join(dir, "gyro.csv"), join(dir, "gps.nmea")];
+  writeFileSync(g, gyro.join("\n") + "\n");
+  writeFileSync(n, nmea.join("\n") + "\n");
+  await page.locator("#file-input").setInputFiles([g, n]);
+  await page.waitForSelector("#mapping[open]");
+  assert.equal(await page.locator("#map-ref-mode").inputValue(), "track");
+  assert.match(await page.locator("#map-ref-mode option:checked").innerText(), /the GPS log gps\.nmea/);
+  await page.locator("#map-lead").fill("20");
+  await page.waitForFunction(() => /[1-9]\d* reference headings, 4\.0 min/.test(document.getElementById("mapping-preview").textContent) && !document.getElementById("mapping-add").disabled);
+  const [dl] = await Promise.all([page.waitForEvent("download"), page.locator("#mapping-save").click()]);
+  const recipe = join(dir, "mine.toml");
+  await dl.saveAs(recipe);
+  await page.locator("#mapping-add").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("gyro.csv (mapped)"));
+  const imported = join(dir, "imported.csv");
+  cli("import", "--recipe", recipe, "--data", dir, "--out", imported);
+  const native = JSON.parse(cli("hdr", imported, "--json"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  // Close to the simulated log itself: a wrong course sign or clock would be far off.
+  const orig = JSON.parse(cli("hdr", v1, "--json"));
+  assert.ok(Math.abs(native.E_psi_hdr_deg - orig.E_psi_hdr_deg) < 1, `${native.E_psi_hdr_deg} vs ${orig.E_psi_hdr_deg}`);
+});
+
 test("a large raw export is imported in the Web Worker with the CLI's numbers", async () => {
   const dir = mkdtempSync(join(tmpdir(), "gd-bigraw-"));
   // Sensor Logger's layout: 20 min of a 100 Hz gyro with a 0.2 deg/s bias and a slow turn.
