@@ -264,6 +264,9 @@ fn with_recipe_a_fleet_of_ones_own_logger_is_scored_a_drive_per_recording() {
     std::fs::write(dir.join("monday.txt"), mine("train/city-1.csv")).unwrap();
     std::fs::write(dir.join("week2/tuesday.txt"), mine("test/highway-3.csv")).unwrap();
     std::fs::copy(samples.join("train/city-2.csv"), dir.join("city-2.csv")).unwrap();
+    // A broken v1 log keeps its own error; a file ending otherwise is not read.
+    std::fs::write(dir.join("week2/broken.csv"), "time_s,gyro_dps,ref_heading_deg\n0,0.1,0\n1,abc,0\n").unwrap();
+    std::fs::write(dir.join("week2/notes.csv"), "a,b\n1,2\n").unwrap();
     let recipe = dir.join("mine.toml");
     std::fs::write(
         &recipe,
@@ -278,9 +281,10 @@ fn with_recipe_a_fleet_of_ones_own_logger_is_scored_a_drive_per_recording() {
     let (stdout, stderr) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert!(o.status.success(), "{stderr}");
     assert!(stderr.contains("importing 2 recording(s) by the recipe (2 files)"), "{stderr}");
-    assert!(stdout.starts_with("3 files, 3 drives scored") && stdout.contains("0 errors"), "{stdout}");
+    assert!(stdout.starts_with("5 files, 3 drives scored") && stdout.contains("2 errors"), "{stdout}");
+    assert!(stderr.contains("broken.csv: line 3, column gyro_dps"), "{stderr}");
     let rows: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let mut names: Vec<&str> = rows.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    let mut names: Vec<&str> = rows.iter().filter(|r| r["error"].is_null()).map(|r| r["name"].as_str().unwrap()).collect();
     names.sort();
     assert_eq!(names, ["City 2", "monday", "tuesday"]);
     // Each as its own import scores.

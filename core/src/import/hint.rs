@@ -139,11 +139,11 @@ pub fn recordings(failed: &[PathBuf]) -> Vec<Recording> {
 
 /// The recordings one recipe reads among files that failed to read as v1 logs (`report
 /// --dir --recipe`, a fleet of one logger no preset knows), folder by folder in the order
-/// they first appear: a folder holding every file the recipe names (by its name, in the
-/// folder) is one recording of them, named by the folder, whose other failed files it takes
-/// as `ignored` (by the file, for a recipe of one table); else, for a recipe of one table,
-/// each of the folder's failed files is a recording read as that table. Other files are
-/// left out.
+/// they first appear, of the files that end as the recipe's tables do and are not broken v1
+/// logs (a `time_s` column: their own error stands): for a recipe of one table, each such
+/// file, whatever its name, named by it; for a recipe of several, a folder holding every file
+/// the recipe names (by its name, in the folder), named by the folder, its other such files
+/// part of it (`ignored`). Other files are left out.
 pub fn recipe_recordings(failed: &[PathBuf], recipe: &Recipe) -> Vec<Recording> {
     let mut folders: Vec<&Path> = Vec::new();
     for p in failed {
@@ -152,21 +152,28 @@ pub fn recipe_recordings(failed: &[PathBuf], recipe: &Recipe) -> Vec<Recording> 
             folders.push(dir);
         }
     }
+    let endings = recipe.file_endings();
+    let ends_so = |p: &Path| {
+        let name = p.file_name().map(|n| n.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+        endings.is_empty() || endings.iter().any(|e| name.ends_with(e.as_str()))
+    };
+    let broken_v1 = |p: &Path| head(p).is_some_and(|h| h.header.iter().any(|c| c == "time_s"));
     let mut out = Vec::new();
     for dir in folders {
+        let own: Vec<&PathBuf> = failed.iter().filter(|p| folder_of(p) == dir && ends_so(p) && !broken_v1(p)).collect();
+        if recipe.tables.len() == 1 {
+            out.extend(own.into_iter().map(|p| Recording {
+                preset: "recipe",
+                label: p.clone(),
+                files: vec![p.clone()],
+                ignored: Vec::new(),
+            }));
+            continue;
+        }
         let named: Vec<PathBuf> = recipe.tables.iter().map(|t| dir.join(&t.file)).collect();
         if !named.is_empty() && named.iter().all(|f| f.is_file()) {
-            let (label, ignored) = match named.as_slice() {
-                [one] => (one.clone(), Vec::new()),
-                _ => {
-                    (dir.to_path_buf(), failed.iter().filter(|p| folder_of(p) == dir && !named.iter().any(|n| n == *p)).cloned().collect())
-                }
-            };
-            out.push(Recording { preset: "recipe", label, files: named, ignored });
-        } else if recipe.tables.len() == 1 {
-            for p in failed.iter().filter(|p| folder_of(p) == dir) {
-                out.push(Recording { preset: "recipe", label: p.clone(), files: vec![p.clone()], ignored: Vec::new() });
-            }
+            let ignored = own.into_iter().filter(|p| !named.contains(p)).cloned().collect();
+            out.push(Recording { preset: "recipe", label: dir.to_path_buf(), files: named, ignored });
         }
     }
     out
