@@ -78,10 +78,12 @@ function row(label, ...controls) {
  * time of each file, the yaw rate (one axis, or three on gravity), the reference heading, the
  * speed and the lead-in. A unit follows its column when another is chosen.
  */
-function buildForm(sniffed, g, track, body) {
-  const cols = [["", "—"]];
-  sniffed.forEach((s, i) => s.header.forEach((c) => cols.push([`${i}:${c}`, sniffed.length > 1 ? `${s.name} › ${c}` : c])));
+function buildForm(sniffed, g, gpsLog, body) {
   const { value: guessed, reading, file } = inPanel(g, sniffed);
+  // A GPS log's "columns" (a GPX track's first line, NMEA's first sentence) are no columns.
+  const isGpsLog = (i) => !!(file(i)?.gpx || file(i)?.nmea);
+  const cols = [["", "—"]];
+  sniffed.forEach((s, i) => isGpsLog(i) || s.header.forEach((c) => cols.push([`${i}:${c}`, sniffed.length > 1 ? `${s.name} › ${c}` : c])));
   // Time of each file.
   const times = sniffed.map((s, i) => {
     const col = select(`map-time-${i}`, s.header.map((h) => [h, h]), file(i)?.time_column ?? s.header[0], `time column of ${s.name}`);
@@ -89,7 +91,7 @@ function buildForm(sniffed, g, track, body) {
     follow(reading, col, unit, "time", "s", `${i}:`);
     // A GPS log's time is its own (a GPX track's points, NMEA's hhmmss): read as the draft does.
     const line = row(`time of ${s.name}`, col, unit);
-    line.hidden = !!(file(i)?.gpx || file(i)?.nmea);
+    line.hidden = isGpsLog(i);
     body.append(line);
     return { col, unit };
   });
@@ -109,8 +111,8 @@ function buildForm(sniffed, g, track, body) {
   // Reference heading.
   const p = g?.lat_lon;
   const modes = [["none", "none"], ["column", "a heading column"], ["positions", "positions (lat, lon)"]];
-  if (track) modes.push(["track", `the GPS log ${track.file}`]);
-  const refMode = select("map-ref-mode", modes, g?.course ? "column" : track ? "track" : p ? "positions" : "none", "reference from");
+  if (gpsLog) modes.push(["track", `the GPS log ${gpsLog.file}`]);
+  const refMode = select("map-ref-mode", modes, g?.course ? "column" : gpsLog ? "track" : p ? "positions" : "none", "reference from");
   const ref = select("map-ref", cols, guessed(g?.course), "reference heading column");
   const refUnit = select("map-ref-unit", [["deg", "deg"], ["rad", "rad"]], "deg", "reference unit");
   follow(reading, ref, refUnit, "angle_unit", "deg");
@@ -136,7 +138,7 @@ function buildForm(sniffed, g, track, body) {
   lead.setAttribute("aria-label", "stationary lead-in, s");
   body.append(row("speed (optional)", sp, spUnit), row("stationary lead-in, s", lead));
 
-  return { times, mode, rate, axes, acc, rateUnit, sense, oneRow, threeRow, refMode, ref, refUnit, refSense, minSpeed, latSel, lonSel, refRow, posRow, sp, spUnit, lead, track };
+  return { times, mode, rate, axes, acc, rateUnit, sense, oneRow, threeRow, refMode, ref, refUnit, refSense, minSpeed, latSel, lonSel, refRow, posRow, sp, spUnit, lead, track: gpsLog };
 }
 
 /** Shows the rows the chosen modes use. */
