@@ -265,6 +265,10 @@ test("columnGuesses reads every column as each kind it could be, the draft's rea
   assert.equal(g.yaw_from_axes, true);
   const d = gd.draftRecipe(files).recipe;
   assert.deepEqual([d.yaw_rate.axes, d.yaw_rate.gravity.axes, d.heading.column, d.speed.unit], [["gyro_x_rad", "gyro_y_rad", "gyro_z_rad"], ["acc_x", "acc_y", "acc_z"], "heading_rad", "km/h"]);
+  // An NMEA log is no table of columns: its sentence to read, and none of its fields guessed.
+  const nmea = gd.columnGuesses({ ...files, "gps.nmea": enc("$GPGGA,120000.00,4220.2340,N,07105.3704,W,1,09,1.2,16.6,M,-33.8,M,,0000*55\n$GPRMC,120000.00,A,4220.2340,N,07105.3704,W,10.0,80.0,241126,,,A*00\n") });
+  assert.deepEqual(nmea.files.map((f) => f.nmea), [undefined, "$GPRMC", undefined]);
+  assert.equal(nmea.yaw_rate.column, "gyro_z_rad");
   assert.throws(() => gd.columnGuesses({ "b.bin": new Uint8Array([0, 159, 146, 150, 0, 1]) }), /b\.bin/);
   assert.throws(() => gd.columnGuesses(5), TypeError);
 });

@@ -157,7 +157,15 @@ export interface ColumnReading {
 /** What raw files' columns are (`columnGuesses`), by name; a role no column reads as is left out. */
 export interface ColumnGuesses {
   /** The files in name order. */
-  files: { name: string; gpx: boolean; time_column: string; columns: ColumnReading[] }[];
+  files: {
+    name: string;
+    /** A GPX track, read whole. */
+    gpx: boolean;
+    /** An NMEA log: the sentence to read ("$GPRMC", else a GGA); absent for other files. */
+    nmea?: string;
+    time_column: string;
+    columns: ColumnReading[];
+  }[];
   yaw_rate?: ColumnRef;
   /** Gyro x, y, z in one file. */
   gyro_axes?: ColumnRef[];
