@@ -17,12 +17,17 @@ const ready = init();
 /** Large logs parsed here, kept for later work on them (freed on "forget"). */
 const kept = new Map();
 
-/** Core's reading of raw files' columns (`columnGuesses`), or null for a file that is not a
- * text table (the panel then starts from its first columns). */
-function guessesOf(files) {
+/** The files' heads: all that core's guesses and drafts read (copy no more into the module). */
+function headsOf(files) {
+  return Object.fromEntries(Object.entries(files).map(([name, b]) => [name, b.subarray(0, 65536)]));
+}
+
+/** Core's `f(heads)` (`columnGuesses`, `draftRecipe`), or null where it has none (a file
+ * that is not a text table; no yaw-rate column for a draft): the panel then starts from the
+ * first columns. */
+function orNull(f, heads) {
   try {
-    // Core reads each file's head only: copy no more into the module.
-    return columnGuesses(Object.fromEntries(Object.entries(files).map(([name, b]) => [name, b.subarray(0, 65536)])));
+    return f(heads);
   } catch {
     return null;
   }
@@ -103,7 +108,7 @@ self.onmessage = async (ev) => {
     }
     if (type === "toml-out") return self.postMessage({ id, data: recipeToToml(ev.data.recipe) });
     if (type === "toml-in") return self.postMessage({ id, data: recipeFromToml(ev.data.text) });
-    if (type === "guess") return self.postMessage({ id, data: guessesOf(ev.data.files) });
+    if (type === "guess") return self.postMessage({ id, data: orNull(columnGuesses, headsOf(ev.data.files)) });
     if (type === "import") {
       let d;
       try {
@@ -113,11 +118,8 @@ self.onmessage = async (ev) => {
       } catch (e) {
         // No preset fits: core's reading of the column names and first rows sets the
         // mapping panel's first choices.
-        let draft = null;
-        try {
-          draft = draftRecipe(ev.data.files).recipe;
-        } catch {}
-        self.postMessage({ id, error: e.message, stage: "detect", guesses: guessesOf(ev.data.files), draft });
+        const heads = headsOf(ev.data.files);
+        self.postMessage({ id, error: e.message, stage: "detect", guesses: orNull(columnGuesses, heads), draft: orNull(draftRecipe, heads)?.recipe ?? null });
         return;
       }
       const { log, summary } = importLog(d.recipe, ev.data.files);

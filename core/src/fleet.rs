@@ -295,15 +295,12 @@ pub fn score_recording(rec: &crate::import::Recording, recipe: Option<&crate::im
     let label = rec.label.display().to_string();
     let stem = rec.label.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     let imported = match recipe {
-        Some(r) => crate::import::import_recording(r, rec).map(|(mut log, _)| {
-            log.meta.name = Some(stem.clone());
-            log
-        }),
+        Some(r) => crate::import::import_recording(r, rec).map(|(log, _)| log),
         None => crate::import::import_paths(&rec.files).map(|(_, log, _)| log),
     };
     match imported {
         Ok(mut log) => {
-            if rec.files.len() > 1 {
+            if recipe.is_some() || rec.files.len() > 1 {
                 log.meta.name = Some(stem.clone());
             }
             score_log(&label, &stem, log, opts)

@@ -31,6 +31,23 @@ fn head(p: &Path) -> Option<Sniffed> {
     sniff(&p.file_name()?.to_string_lossy(), &read_head(p).ok()?).ok()
 }
 
+/// The folders of `files`, each once, in the order they first appear.
+fn folders_of(files: &[PathBuf]) -> Vec<&Path> {
+    let mut folders: Vec<&Path> = Vec::new();
+    for p in files {
+        let dir = folder_of(p);
+        if !folders.contains(&dir) {
+            folders.push(dir);
+        }
+    }
+    folders
+}
+
+/// A head with a `time_s` column: a v1 log (broken, when it failed to read), not a raw export.
+fn names_time_s(h: &Sniffed) -> bool {
+    h.header.iter().any(|c| c == "time_s")
+}
+
 /// The folder a file is in ("." for a bare name).
 fn folder_of(path: &Path) -> &Path {
     path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."))
@@ -49,13 +66,7 @@ pub(super) fn files_in(dir: &Path) -> Option<Vec<PathBuf>> {
 /// hint per folder whose files a preset reads, in the order the folders first appear, at
 /// most `max_folders` folders looked at (each reads the heads of at most 64 files).
 pub fn folder_hints(failed: &[PathBuf], max_folders: usize) -> Vec<ImportHint> {
-    let mut folders: Vec<&Path> = Vec::new();
-    for p in failed {
-        let dir = folder_of(p);
-        if !folders.contains(&dir) {
-            folders.push(dir);
-        }
-    }
+    let mut folders = folders_of(failed);
     folders.truncate(max_folders);
     folders.into_iter().filter_map(folder_hint).collect()
 }
@@ -64,7 +75,7 @@ pub fn folder_hints(failed: &[PathBuf], max_folders: usize) -> Vec<ImportHint> {
 /// most 64 looked at), when one does and none of them is a v1 log; else None.
 pub fn folder_hint(dir: &Path) -> Option<ImportHint> {
     let sniffed: Vec<Sniffed> = files_in(dir)?.iter().take(64).filter_map(|p| head(p)).collect();
-    if sniffed.iter().any(|s| s.header.iter().any(|c| c == "time_s")) {
+    if sniffed.iter().any(names_time_s) {
         return None;
     }
     hint(dir, &sniffed)
@@ -91,13 +102,7 @@ pub struct Recording {
 /// the folder, which also takes the folder's files no preset read (`ignored`). Other files
 /// are left out.
 pub fn recordings(failed: &[PathBuf]) -> Vec<Recording> {
-    let mut folders: Vec<&Path> = Vec::new();
-    for p in failed {
-        let dir = folder_of(p);
-        if !folders.contains(&dir) {
-            folders.push(dir);
-        }
-    }
+    let folders = folders_of(failed);
     let mut out = Vec::new();
     for dir in folders {
         // A zipped recording is one of its own (`import_paths` unzips it).
@@ -110,7 +115,7 @@ pub fn recordings(failed: &[PathBuf]) -> Vec<Recording> {
             .iter()
             .filter(|p| folder_of(p) == dir)
             .filter_map(|p| head(p).map(|h| (p, h)))
-            .filter(|(_, h)| !h.header.iter().any(|c| c == "time_s"))
+            .filter(|(_, h)| !names_time_s(h))
             .collect();
         while !left.is_empty() {
             let heads: Vec<Sniffed> = left.iter().map(|(_, h)| h.clone()).collect();
@@ -145,19 +150,13 @@ pub fn recordings(failed: &[PathBuf]) -> Vec<Recording> {
 /// the recipe names (by its name, in the folder), named by the folder, its other such files
 /// part of it (`ignored`). Other files are left out.
 pub fn recipe_recordings(failed: &[PathBuf], recipe: &Recipe) -> Vec<Recording> {
-    let mut folders: Vec<&Path> = Vec::new();
-    for p in failed {
-        let dir = folder_of(p);
-        if !folders.contains(&dir) {
-            folders.push(dir);
-        }
-    }
+    let folders = folders_of(failed);
     let endings = recipe.file_endings();
     let ends_so = |p: &Path| {
         let name = p.file_name().map(|n| n.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
         endings.is_empty() || endings.iter().any(|e| name.ends_with(e.as_str()))
     };
-    let broken_v1 = |p: &Path| head(p).is_some_and(|h| h.header.iter().any(|c| c == "time_s"));
+    let broken_v1 = |p: &Path| head(p).is_some_and(|h| names_time_s(&h));
     let mut out = Vec::new();
     for dir in folders {
         let own: Vec<&PathBuf> = failed.iter().filter(|p| folder_of(p) == dir && ends_so(p) && !broken_v1(p)).collect();
@@ -199,7 +198,7 @@ pub fn import_hint(path: &Path) -> Option<ImportHint> {
         return zip_hint(path);
     }
     let me = head(path)?;
-    if me.header.iter().any(|c| c == "time_s") {
+    if names_time_s(&me) {
         return None;
     }
     let dir = folder_of(path);
