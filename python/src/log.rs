@@ -3,7 +3,7 @@
 use crate::{array, from_py, result_dict, value_err, values};
 use gyrodrift::log::accept::TimeOrder;
 use gyrodrift::{Column, DriveLog};
-use numpy::PyReadonlyArray1;
+use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::{PyKeyError, PyOSError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -48,6 +48,21 @@ fn meta_of(v: serde_json::Value) -> PyResult<gyrodrift::LogMeta> {
         gyrodrift::log::check_meta_text(k, v).map_err(value_err)?;
     }
     Ok(meta)
+}
+
+/// A pickled log's state: its metadata as JSON, each row's line, its columns by name.
+type LogState<'py> = (String, Py<PyAny>, Bound<'py, PyDict>);
+
+/// Named float64 columns (CSV v1 names) from a dict of numpy arrays.
+fn columns_of(columns: &Bound<'_, PyDict>) -> PyResult<Vec<(Column, Vec<f64>)>> {
+    let mut cols = Vec::new();
+    for (k, v) in columns.iter() {
+        let name: String = k.extract()?;
+        let c = Column::from_name(&name).ok_or_else(|| PyKeyError::new_err(format!("unknown column {name}")))?;
+        let a: PyReadonlyArray1<'_, f64> = v.extract().map_err(|_| value_err(format!("{name}: expected a 1-d float64 array")))?;
+        cols.push((c, values(&a, &name)?));
+    }
+    Ok(cols)
 }
 
 /// Reads a log file; an unreadable file is an OSError, a bad cell a ValueError naming the
@@ -168,16 +183,28 @@ impl PyLog {
             Some(m) => meta_of(from_py("meta", m)?)?,
             None => Default::default(),
         };
-        let mut cols = Vec::new();
-        for (k, v) in columns.iter() {
-            let name: String = k.extract()?;
-            let c = Column::from_name(&name).ok_or_else(|| PyKeyError::new_err(format!("unknown column {name}")))?;
-            let a: PyReadonlyArray1<'_, f64> = v.extract().map_err(|_| value_err(format!("{name}: expected a 1-d float64 array")))?;
-            cols.push((c, values(&a, &name)?));
-        }
+        let cols = columns_of(columns)?;
         let n = cols.first().map_or(0, |(_, v)| v.len());
         let lines = (2..n as u64 + 2).collect();
         DriveLog::from_columns(meta, lines, cols).map(PyLog::new).map_err(value_err)
+    }
+
+    /// Pickling (multiprocessing, Dask, joblib, `copy.deepcopy`): the metadata, each row's
+    /// line in its file and the columns, made a log again by `_from_state` with the
+    /// parser's checks. Every value, the line numbers its errors name and the metadata
+    /// come back as they were.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, LogState<'py>)> {
+        let meta = serde_json::to_string(&self.log.meta).map_err(value_err)?;
+        let line = PyArray1::from_vec(py, self.log.line.clone()).into_any().unbind();
+        Ok((py.get_type::<PyLog>().getattr("_from_state")?, (meta, line, self.columns(py)?)))
+    }
+
+    /// The log `__reduce__` took apart.
+    #[staticmethod]
+    fn _from_state(meta: &str, line: PyReadonlyArray1<'_, u64>, columns: &Bound<'_, PyDict>) -> PyResult<PyLog> {
+        let meta: gyrodrift::LogMeta = serde_json::from_str(meta).map_err(|e| value_err(format!("meta: {e}")))?;
+        let line = line.as_slice().map_err(value_err)?.to_vec();
+        DriveLog::from_columns(meta, line, columns_of(columns)?).map(PyLog::new).map_err(value_err)
     }
 
     /// `# name:` (None when the file has none).

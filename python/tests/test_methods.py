@@ -232,6 +232,52 @@ def test_pandas_round_trip_scores_the_same(samples):
     np.testing.assert_array_equal(back.column("gyro_dps"), log.column("gyro_dps"))
 
 
+def _same_log(a, b):
+    """Equal in every value (NaN cells where the other has them), line number and metadata."""
+    assert (a.meta(), a.column_names(), len(a)) == (b.meta(), b.column_names(), len(b))
+    for name in a.column_names():
+        np.testing.assert_array_equal(a.column(name), b.column(name))
+    assert a.to_csv() == b.to_csv()
+
+
+def test_a_log_pickles_and_copies_with_its_values_lines_and_metadata(samples, tmp_path):
+    import copy
+    import pickle
+
+    # Metadata of every kind (name, bias_s, a key of the user's own) and empty cells.
+    text = "# name: mine\n# bias_s: 2.5\n# vehicle: van 7\ntime_s,gyro_dps,ref_heading_deg,speed_mps\n"
+    text += "".join(f"{i * 0.1:.1f},{0.1 * (i % 7) - 0.3},{'' if i % 3 else i * 0.01},{'' if i % 5 == 1 else 3}\n" for i in range(200))
+    logs = [g.Log.parse(text)] + [g.read_log(str(p)) for p in sorted(samples.glob("*/*.csv"))]
+    for log in logs:
+        for back in (pickle.loads(pickle.dumps(log, protocol=p)) for p in (2, pickle.HIGHEST_PROTOCOL)):
+            _same_log(back, log)
+        _same_log(copy.deepcopy(log), log)
+    # A log put in time order as it was read comes back as it is.
+    late = tmp_path / "late.csv"
+    late.write_text("# bias_s: 0\n\ntime_s,gyro_dps\n" + "".join(f"{t},{t / 10}\n" for t in (0, 1, 3, 2, 4)))
+    with pytest.warns(UserWarning, match="1 late rows put in time order"):
+        fixed = g.read_log(str(late), time_order="fix")
+    _same_log(pickle.loads(pickle.dumps(fixed)), fixed)
+    assert g.hdr(pickle.loads(pickle.dumps(logs[1]))) == g.hdr(logs[1])
+
+
+def test_logs_cross_processes_as_a_fleet_job_passes_them(samples):
+    """A process pool and Dask's process scheduler return Logs to the caller (pickled)."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    import dask.bag as db
+
+    paths = [str(p) for p in sorted((samples / "train").glob("*.csv"))[:3]]
+    with ProcessPoolExecutor(2) as pool:
+        logs = list(pool.map(g.read_log, paths))
+    bag = db.from_sequence(paths, npartitions=3).map(g.read_log)
+    from_dask = bag.compute(scheduler="processes", num_workers=2)
+    for a, b, p in zip(logs, from_dask, paths):
+        _same_log(a, g.read_log(p))
+        _same_log(b, g.read_log(p))
+    assert [g.pipeline(x) for x in logs] == [g.pipeline(g.read_log(p)) for p in paths]
+
+
 def test_streaming_hdr_equals_the_batch_on_rows(samples):
     log = g.read_log(str(samples / "train" / "city-1.csv"))
     eps0 = g.static_bias(log)
