@@ -120,8 +120,9 @@ build_wasm() {
   wasm_part "--no-default-features --features core --config profile.wasm-release.package.gyrodrift-wasm.opt-level='z' --config profile.wasm-release.package.csv.opt-level='z' --config profile.wasm-release.package.csv-core.opt-level='s'" web web/pkg gyrodrift \
     "-Oz --flatten --rereloop -Oz -Oz --converge"
   wasm_part "--no-default-features --features plot" web web/pkg/plot gyrodrift_plot
-  # Everything: the Web Worker's module (import, tuning, parsing with progress) and Node's.
-  wasm_part "" web web/pkg/full gyrodrift
+  # Everything: the Web Worker's module (import, tuning, parsing with progress) and Node's;
+  # saving a live estimator's state (`snapshot`, 23 KB gzipped of serde code) in Node only.
+  wasm_part "--no-default-features --features core,import,plot,tune,sim,live" web web/pkg/full gyrodrift
   wasm_part "" nodejs web/pkg/node gyrodrift
   cp wasm/npm/package.json wasm/npm/README.md web/pkg/
   printf '{ "type": "commonjs" }\n' > web/pkg/node/package.json

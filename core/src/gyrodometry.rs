@@ -59,6 +59,7 @@ pub struct GyrodometryOutput {
 }
 
 /// The streaming Gyrodometry estimator.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone)]
 pub struct Gyrodometry {
     wheelbase_m: f64,
@@ -213,6 +214,16 @@ pub fn run(log: &DriveLog, opts: &GyrodometryOptions) -> Result<GyrodometryRun> 
     Ok(GyrodometryRun { eps0_dps: eps0, trace: tr, result })
 }
 
+/// A live Gyrodometry estimator and its last output, saved and resumed (`snapshot`): the
+/// settings checked as a new estimator's.
+#[cfg(feature = "snapshot")]
+impl crate::snapshot::Resumable for (Gyrodometry, Option<GyrodometryOutput>) {
+    const KIND: &'static str = "GyrodometryEstimator";
+    fn restored(self) -> Result<Self> {
+        Gyrodometry::new(self.0.wheelbase_m, self.0.thres_rate_dps, self.0.eps0_dps)?;
+        Ok(self)
+    }
+}
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -43,6 +43,8 @@ pub mod pipeline;
 pub mod preprocess;
 pub mod report;
 pub mod sim;
+#[cfg(feature = "snapshot")]
+pub mod snapshot;
 pub mod still;
 pub mod table;
 pub mod track;

@@ -16,6 +16,7 @@ use crate::still::Blocks;
 pub const ZARU_MIN_STILL_S: f64 = 2.0;
 
 /// x-io Fusion's `FusionOffset`, one axis.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone)]
 pub struct FusionOffset {
     filter_coefficient: f64,

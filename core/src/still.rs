@@ -57,6 +57,7 @@ pub const WHITE_BLOCKS: usize = 10;
 /// means of the last [`WHITE_BLOCKS`] blocks scatter no more than their rows' own noise
 /// predicts (sample variance of the means <= the pooled row variance / rows per block), as
 /// a standing gyro's white noise does and a moving vehicle's steering does not.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct GyroStill {
     /// The lead-in's rows: count, sum, sum of squares.

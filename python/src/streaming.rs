@@ -4,9 +4,10 @@ use crate::{array, result_dict, value_err, values};
 use gyrodrift::gyrodometry;
 use gyrodrift::hdr::{self, Hdr, HdrParams};
 use gyrodrift::pipeline::{PipelineParams, PipelineStream};
+use gyrodrift::snapshot;
 use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBytes, PyDict};
 
 /// Streaming HDR: `update(time_s, rate_raw_dps)` per sample returns the heading (deg);
 /// `state()` gives the last step's full output.
@@ -56,6 +57,24 @@ impl HdrEstimator {
     fn heading_deg(&self) -> f64 {
         self.last.map_or(0.0, |o| o.heading_deg)
     }
+
+    /// The estimator's whole state as bytes (to resume it later, elsewhere, or in the wasm
+    /// package: `from_state`); pickling uses it too.
+    fn save_state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        Ok(PyBytes::new(py, &snapshot::save(&(self.inner.clone(), self.last)).map_err(value_err)?))
+    }
+
+    /// The estimator `save_state` saved, to go on where it stopped (the same headings, bit
+    /// for bit); ValueError for bytes that are not one, another version's or damaged.
+    #[staticmethod]
+    fn from_state(state: &[u8]) -> PyResult<Self> {
+        let (inner, last) = snapshot::load(state).map_err(value_err)?;
+        Ok(HdrEstimator { inner, last })
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
+        Ok((py.get_type::<Self>().getattr("from_state")?, (self.save_state(py)?,)))
+    }
 }
 
 /// Streaming Gyrodometry: `update(time_s, rate_raw_dps, odo_left_m, odo_right_m)` per row.
@@ -93,6 +112,22 @@ impl GyrodometryEstimator {
     #[getter]
     fn used_gyro(&self) -> bool {
         self.last.is_some_and(|o| o.used_gyro)
+    }
+
+    /// The estimator's whole state as bytes (`from_state` resumes it); pickling uses it too.
+    fn save_state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        Ok(PyBytes::new(py, &snapshot::save(&(self.inner.clone(), self.last)).map_err(value_err)?))
+    }
+
+    /// The estimator `save_state` saved, to go on where it stopped.
+    #[staticmethod]
+    fn from_state(state: &[u8]) -> PyResult<Self> {
+        let (inner, last) = snapshot::load(state).map_err(value_err)?;
+        Ok(GyrodometryEstimator { inner, last })
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
+        Ok((py.get_type::<Self>().getattr("from_state")?, (self.save_state(py)?,)))
     }
 }
 
@@ -147,6 +182,23 @@ impl PipelineEstimator {
     #[getter]
     fn heading_deg(&self) -> f64 {
         self.inner.heading_deg()
+    }
+
+    /// The estimator's whole state as bytes (the bank, its evidence, the blend: `from_state`
+    /// resumes it, here or in the wasm package); pickling uses it too.
+    fn save_state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        Ok(PyBytes::new(py, &snapshot::save(&self.inner).map_err(value_err)?))
+    }
+
+    /// The estimator `save_state` saved, to go on where it stopped (the same headings, bit
+    /// for bit); ValueError for bytes that are not one, another version's or damaged.
+    #[staticmethod]
+    fn from_state(state: &[u8]) -> PyResult<Self> {
+        Ok(PipelineEstimator { inner: snapshot::load(state).map_err(value_err)? })
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
+        Ok((py.get_type::<Self>().getattr("from_state")?, (self.save_state(py)?,)))
     }
 }
 

@@ -157,6 +157,38 @@ def test_pipeline_estimator_without_speed_judges_stops_by_the_gyro(samples):
     assert sum(s["stop"] for s in blocks) > 30
 
 
+def test_a_saved_estimator_resumes_where_it_stopped_bit_for_bit(samples):
+    """Each live estimator saved halfway (save_state, or pickled) and resumed gives the
+    headings and state the uninterrupted one gives; foreign bytes are refused."""
+    import pickle
+
+    log = g.read_log(str(samples / "train" / "city-1.csv"))
+    t, w, v = (log.column(c) for c in ("time_s", "gyro_dps", "speed_mps"))
+    robot = g.read_log(str(samples / "robot" / "square.csv"))
+    rt, rw, left, right = (robot.column(c) for c in ("time_s", "gyro_dps", "odo_left_m", "odo_right_m"))
+    half, rhalf = len(t) // 2, len(rt) // 2
+    cases = [
+        (lambda: g.PipelineEstimator({"bias_s": 20}), lambda e, i: e.update(t[i], w[i], v[i]), len(t), half),
+        (lambda: g.HdrEstimator(None, g.static_bias(log)), lambda e, i: e.update(t[i], w[i]), len(t), half),
+        (lambda: g.GyrodometryEstimator(0.5, 1.0), lambda e, i: e.update(rt[i], rw[i], left[i], right[i]), len(rt), rhalf),
+    ]
+    for make, step, n, cut in cases:
+        whole = make()
+        full = [step(whole, i) for i in range(n)]
+        for resume in (lambda e: type(e).from_state(e.save_state()), lambda e: pickle.loads(pickle.dumps(e))):
+            first = make()
+            head = [step(first, i) for i in range(cut)]
+            second = resume(first)
+            assert second.state() == first.state() and second.heading_deg == first.heading_deg
+            tail = [step(second, i) for i in range(cut, n)]
+            assert head + tail == full, type(whole).__name__
+            assert second.state() == whole.state()
+    with pytest.raises(ValueError, match="not a saved gyrodrift state"):
+        g.PipelineEstimator.from_state(b"time_s,gyro_dps")
+    with pytest.raises(ValueError, match="the state is a PipelineEstimator's"):
+        g.HdrEstimator.from_state(g.PipelineEstimator().save_state())
+
+
 def test_a_log_with_a_check_error_is_refused_by_the_tables_as_the_cli_refuses_it(cli, samples, tmp_path):
     """A clockwise gyro (every rate negated): the tables raise naming the log, the finding and
     the fix, as the CLI exits; ignore_check=True runs it, equal to the CLI's --ignore-check."""
@@ -233,14 +265,14 @@ def test_pandas_round_trip_scores_the_same(samples):
 
 
 def _same_log(a, b):
-    """Equal in every value (NaN cells where the other has them), line number and metadata."""
+    """Equal in every value (NaN cells where the other has them) and in metadata."""
     assert (a.meta(), a.column_names(), len(a)) == (b.meta(), b.column_names(), len(b))
     for name in a.column_names():
         np.testing.assert_array_equal(a.column(name), b.column(name))
     assert a.to_csv() == b.to_csv()
 
 
-def test_a_log_pickles_and_copies_with_its_values_lines_and_metadata(samples, tmp_path):
+def test_a_log_pickles_and_copies_with_its_values_and_metadata(samples, tmp_path):
     import copy
     import pickle
 

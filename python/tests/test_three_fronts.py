@@ -93,3 +93,39 @@ def test_the_wheel_in_a_clean_virtual_environment(cli, tmp_path):
     exact(out["hdr"], cli("hdr", city, "--json"), "clean venv hdr")
     exact(out["pipeline"], cli("pipeline", city, "--json"), "clean venv pipeline")
     assert sys.prefix != str(env)
+
+
+RESUME = """
+const g = require(process.argv[1]);
+const fs = require("fs");
+const [file, cut, statePath, outPath] = process.argv.slice(2);
+const log = g.Log.parse(fs.readFileSync(file, "utf8"));
+const [t, w, v] = ["time_s", "gyro_dps", "speed_mps"].map((c) => log.column(c));
+const n = Number(cut);
+// Resume Python's state for the rows after the cut; save, at the cut, a state of its own.
+const resumed = g.PipelineEstimator.fromState(fs.readFileSync(statePath));
+const tail = Array.from(resumed.updateMany(t.subarray(n), w.subarray(n), v.subarray(n)));
+const own = new g.PipelineEstimator({ bias_s: 20 });
+own.updateMany(t.subarray(0, n), w.subarray(0, n), v.subarray(0, n));
+fs.writeFileSync(outPath, own.saveState());
+process.stdout.write(JSON.stringify(tail));
+"""
+
+
+@pytest.mark.skipif(shutil.which("node") is None or not WASM.exists(), reason="the wasm package (web/pkg) is built by scripts/test.sh")
+def test_a_live_pipeline_saved_in_python_resumes_in_wasm_and_back(tmp_path):
+    """The PipelineEstimator's saved state crosses fronts: Python's, resumed in the wasm
+    package under Node, and the wasm package's, resumed in Python, each give the
+    uninterrupted stream's headings bit for bit."""
+    path = str(SAMPLES / "train" / "city-1.csv")
+    log = g.read_log(path)
+    t, w, v = (log.column(c) for c in ("time_s", "gyro_dps", "speed_mps"))
+    whole = g.PipelineEstimator({"bias_s": 20}).update_many(t, w, v).tolist()
+    cut = len(t) // 2
+    first = g.PipelineEstimator({"bias_s": 20})
+    first.update_many(t[:cut], w[:cut], v[:cut])
+    (tmp_path / "py.state").write_bytes(first.save_state())
+    out = subprocess.run(["node", "-e", RESUME, str(WASM), path, str(cut), str(tmp_path / "py.state"), str(tmp_path / "wasm.state")], capture_output=True, text=True, check=True)
+    assert json.loads(out.stdout) == whole[cut:]
+    resumed = g.PipelineEstimator.from_state((tmp_path / "wasm.state").read_bytes())
+    assert resumed.update_many(t[cut:], w[cut:], v[cut:]).tolist() == whole[cut:]

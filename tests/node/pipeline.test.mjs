@@ -80,6 +80,36 @@ test("PipelineEstimator, fed the rows one by one, gives runPipeline's block head
   bare.free();
 });
 
+test("a live estimator saved halfway (saveState) and resumed (fromState) gives the uninterrupted headings and state; foreign bytes throw", () => {
+  const log = gd.Log.parse(readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8"));
+  const [t, w, v] = ["time_s", "gyro_dps", "speed_mps"].map((c) => log.column(c));
+  const robot = gd.Log.parse(readFileSync(join(SAMPLES, "robot", "square.csv"), "utf8"));
+  const [rt, rw, l, r] = ["time_s", "gyro_dps", "odo_left_m", "odo_right_m"].map((c) => robot.column(c));
+  const cases = [
+    [() => new gd.PipelineEstimator({ bias_s: 20 }), (e, i) => e.update(t[i], w[i], v[i]), t.length],
+    [() => new gd.HdrEstimator({}, 0.3), (e, i) => e.update(t[i], w[i]), t.length],
+    [() => new gd.GyrodometryEstimator(0.34, 1.0, 0.0), (e, i) => e.update(rt[i], rw[i], l[i], r[i]), rt.length],
+  ];
+  for (const [make, step, n] of cases) {
+    const whole = make();
+    const full = Array.from({ length: n }, (_, i) => step(whole, i));
+    const first = make();
+    const cut = Math.floor(n / 2);
+    for (let i = 0; i < cut; i++) step(first, i);
+    const state = first.saveState();
+    assert.ok(state instanceof Uint8Array && state.length > 16);
+    const second = first.constructor.fromState(state);
+    assert.deepEqual(second.state(), first.state());
+    for (let i = cut; i < n; i++) assert.equal(step(second, i), full[i], `${first.constructor.name} row ${i}`);
+    assert.deepEqual(second.state(), whole.state());
+    for (const e of [whole, first, second]) e.free();
+  }
+  assert.throws(() => gd.PipelineEstimator.fromState(new TextEncoder().encode("time_s,gyro_dps")), /not a saved gyrodrift state/);
+  assert.throws(() => gd.HdrEstimator.fromState(new gd.PipelineEstimator({}).saveState()), /the state is a PipelineEstimator's/);
+  log.free();
+  robot.free();
+});
+
 test("pipeline equals the native CLI; importLog reads a real-log recipe from Node Buffers", () => {
   for (const file of drives.slice(0, 4)) {
     const log = gd.Log.parse(readFileSync(file, "utf8"));

@@ -96,3 +96,10 @@ const liveSigma: number = (liveState?.heading_sigma_deg ?? 0) + live.headingSigm
 // @ts-expect-error: the speed is an argument of every row
 live.update(0, 0.1);
 export { livePsi, liveSigma };
+// A live estimator saved and resumed (bytes to store anywhere; Python's save_state alike).
+const saved: Uint8Array = live.saveState();
+const resumed: PipelineEstimator = PipelineEstimator.fromState(saved);
+const hdrResumed: HdrEstimator = HdrEstimator.fromState(est.saveState());
+// @ts-expect-error: a state is bytes, not the estimator's settings
+PipelineEstimator.fromState({ bias_s: 20 });
+export { resumed, hdrResumed };

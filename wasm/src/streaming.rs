@@ -109,3 +109,40 @@ impl GyrodometryEstimator {
         self.last.is_some_and(|o| o.used_gyro)
     }
 }
+
+/// Saving and resuming (core's `snapshot`): in the Node build, not in the browser's modules.
+#[cfg(feature = "snapshot")]
+#[wasm_bindgen]
+impl HdrEstimator {
+    /// The estimator's whole state as bytes (to store and resume later, elsewhere, or in
+    /// Python: `fromState`).
+    #[wasm_bindgen(js_name = saveState)]
+    pub fn save_state(&self) -> JsResult<Vec<u8>> {
+        gyrodrift::snapshot::save(&(self.inner.clone(), self.last)).map_err(err)
+    }
+
+    /// The estimator `saveState` saved, to go on where it stopped (the same headings, bit
+    /// for bit); throws for bytes that are not one, another version's or damaged.
+    #[wasm_bindgen(js_name = fromState)]
+    pub fn from_state(state: &[u8]) -> JsResult<HdrEstimator> {
+        let (inner, last) = gyrodrift::snapshot::load(state).map_err(err)?;
+        Ok(HdrEstimator { inner, last })
+    }
+}
+
+#[cfg(feature = "snapshot")]
+#[wasm_bindgen]
+impl GyrodometryEstimator {
+    /// The estimator's whole state as bytes (`fromState` resumes it).
+    #[wasm_bindgen(js_name = saveState)]
+    pub fn save_state(&self) -> JsResult<Vec<u8>> {
+        gyrodrift::snapshot::save(&(self.inner.clone(), self.last)).map_err(err)
+    }
+
+    /// The estimator `saveState` saved, to go on where it stopped.
+    #[wasm_bindgen(js_name = fromState)]
+    pub fn from_state(state: &[u8]) -> JsResult<GyrodometryEstimator> {
+        let (inner, last) = gyrodrift::snapshot::load(state).map_err(err)?;
+        Ok(GyrodometryEstimator { inner, last })
+    }
+}

@@ -60,3 +60,22 @@ impl PipelineEstimator {
         self.inner.last_block().map_or(f64::NAN, |o: PipelineOutput| o.heading_sigma_deg)
     }
 }
+
+/// Saving and resuming (core's `snapshot`): in the Node build, not in the browser's modules.
+#[cfg(feature = "snapshot")]
+#[wasm_bindgen]
+impl PipelineEstimator {
+    /// The estimator's whole state as bytes (the bank, its evidence, the blend): `fromState`
+    /// resumes it, here or in Python.
+    #[wasm_bindgen(js_name = saveState)]
+    pub fn save_state(&self) -> JsResult<Vec<u8>> {
+        gyrodrift::snapshot::save(&self.inner).map_err(err)
+    }
+
+    /// The estimator `saveState` saved, to go on where it stopped (the same headings, bit
+    /// for bit); throws for bytes that are not one, another version's or damaged.
+    #[wasm_bindgen(js_name = fromState)]
+    pub fn from_state(state: &[u8]) -> JsResult<PipelineEstimator> {
+        Ok(PipelineEstimator { inner: gyrodrift::snapshot::load(state).map_err(err)? })
+    }
+}

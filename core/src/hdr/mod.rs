@@ -96,6 +96,7 @@ pub struct HdrOutput {
     pub attenuation: f64,
 }
 
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Copy)]
 struct HdrState {
     time_s: f64,
@@ -108,6 +109,7 @@ struct HdrState {
 }
 
 /// The streaming HDR estimator: feed raw yaw-rate samples with `update`.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone)]
 pub struct Hdr {
     params: HdrParams,
@@ -115,7 +117,9 @@ pub struct Hdr {
     started: bool,
     s: HdrState,
     /// R(r) for r = 0, 1, 2, ... computed with `powf` once each (bit-identical to Eq. 10;
-    /// `powf` per sample would cost ~30 ns, more than the rest of the step).
+    /// `powf` per sample would cost ~30 ns, more than the rest of the step). Not saved:
+    /// the settings give it, and a resumed estimator tables it afresh.
+    #[cfg_attr(feature = "snapshot", serde(skip))]
     r_table: Vec<f64>,
 }
 
@@ -334,5 +338,16 @@ fn reject(time_s: f64, rate_raw_dps: f64, prev_time_s: f64) -> Error {
 mod batch;
 pub use batch::*;
 
+/// A live HDR estimator and its last output, saved and resumed (`snapshot`): the settings
+/// checked as a new estimator's, the R(r) table made afresh.
+#[cfg(feature = "snapshot")]
+impl crate::snapshot::Resumable for (Hdr, Option<HdrOutput>) {
+    const KIND: &'static str = "HdrEstimator";
+    fn restored(self) -> Result<Self> {
+        let (saved, last) = self;
+        let fresh = Hdr::new(saved.params, saved.eps0_dps)?;
+        Ok((Hdr { started: saved.started, s: saved.s, ..fresh }, last))
+    }
+}
 #[cfg(test)]
 mod tests;

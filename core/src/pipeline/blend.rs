@@ -21,6 +21,7 @@ use crate::hdr::{Hdr, HdrParams};
 use crate::peers::FusionOffset;
 
 /// The experts on the blocks once started, and their headings at the last block.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone)]
 struct Experts {
     hdr: Hdr,
@@ -30,6 +31,7 @@ struct Experts {
 }
 
 /// The blend beside a bank.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Default)]
 pub struct Blend {
     sigmas: f64,

@@ -8,6 +8,7 @@ use std::collections::VecDeque;
 
 /// The evidence rules' state: the current stop and its delayed blocks, and the window of
 /// recent moving blocks.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Default)]
 pub(super) struct Evidence {
     stop_start_s: Option<f64>,
@@ -142,6 +143,7 @@ impl Evidence {
 }
 
 /// Running mean and spread of the current stop's evidence (Welford).
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(super) struct StopStats {
     pub(super) n: usize,

@@ -33,6 +33,7 @@ use nalgebra::{Matrix3, Vector3};
 
 /// What one block did.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[cfg_attr(feature = "snapshot", derive(serde::Deserialize))]
 pub struct PipelineOutput {
     /// Heading from (rate - bias) integrated with the bias known before each block, and
     /// corrected at stops by what the stop says about the bias since (causal), deg.
@@ -55,6 +56,7 @@ pub struct PipelineOutput {
 }
 
 /// The streaming drift reducer on 1 Hz blocks.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone)]
 pub struct Pipeline {
     p: PipelineParams,
@@ -167,6 +169,13 @@ impl Pipeline {
         self.models = hypotheses.iter().filter(|&&i| i < self.models.len()).map(|&i| self.models[i]).collect();
         self.weight_sum = vec![0.0; self.models.len()];
         self.recorded.clear();
+    }
+
+    /// The whole bank, unrestricted and recording nothing (a live stream's): what a
+    /// resumed stream must be (`snapshot`).
+    #[cfg(feature = "snapshot")]
+    pub(super) fn is_whole_bank(&self) -> bool {
+        self.models.len() == N_MODELS && self.weight_sum.len() == N_MODELS && self.recorded.is_empty()
     }
 
     /// Records these hypotheses' blocks from now on (for `smoothed_bias`), with room for

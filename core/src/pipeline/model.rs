@@ -10,6 +10,7 @@ pub type State = (Vector3<f64>, Matrix3<f64>);
 
 /// One hypothesis: its bias random walk, road-rate variance, warm-up decay time (infinite
 /// = no warm-up term), state, and log weight.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Model {
     pub(super) walk2: f64,

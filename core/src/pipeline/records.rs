@@ -10,6 +10,7 @@ use super::model::{Model, State};
 use nalgebra::{Matrix3, Vector3};
 
 /// The records of `k` hypotheses, block-major.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Default)]
 pub(super) struct Records {
     /// The recorded hypotheses' dynamics (their states unused).

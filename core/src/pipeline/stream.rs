@@ -22,6 +22,7 @@ use crate::error::{Error, Result};
 
 /// The open block: its index, rows, sum of rates and of their squares, the largest |speed|
 /// and how many speeds.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Copy, Default)]
 struct Open {
     k: f64,
@@ -34,6 +35,7 @@ struct Open {
 }
 
 /// The streaming pipeline on raw rows (see the module's doc).
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone)]
 pub struct PipelineStream {
     params: PipelineParams,
@@ -157,6 +159,19 @@ impl PipelineStream {
     }
 }
 
+/// The live pipeline saved and resumed (`snapshot`): the settings checked as a new
+/// estimator's, and the bank as many hypotheses as the settings make.
+#[cfg(feature = "snapshot")]
+impl crate::snapshot::Resumable for PipelineStream {
+    const KIND: &'static str = "PipelineEstimator";
+    fn restored(self) -> Result<Self> {
+        PipelineStream::new(self.params)?;
+        if self.filter.as_ref().is_some_and(|f| !f.is_whole_bank()) {
+            return Err(Error::data("restoring a PipelineEstimator: the saved bank is not the settings' (start afresh)"));
+        }
+        Ok(self)
+    }
+}
 #[cfg(test)]
 mod tests {
     use super::*;
