@@ -133,14 +133,8 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
             cols = vec![Vec::new(); idx.len()];
             resolved = true;
         }
-        if let Some(rec) = &spec.record {
-            if fields.first() != Some(&rec.as_str()) {
-                let first = fields.first().copied().unwrap_or("");
-                if other_records.len() < 5 && !other_records.iter().any(|r| r == first) {
-                    other_records.push(first.to_string());
-                }
-                return Ok(());
-            }
+        if is_other_record(spec, fields, &mut other_records) {
+            return Ok(());
         }
         let mut time = row_time(spec, scale, time_idx, &time_name, row_n, line, fields)?;
         if spec.time.format == TimeFormat::TimeOfDay && spec.time.period_s.is_none() {
@@ -149,13 +143,7 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
         check_step(&spec.time, time, t.time_s.last().copied(), latest, line, &time_name)?;
         latest = latest.max(time);
         for (k, (name, j)) in idx.iter().enumerate() {
-            // NMEA's hemisphere letters as a sign, for positions.kind = "nmea".
-            let v = match (nmea, fields.get(*j).copied()) {
-                (true, Some("N" | "E")) => 1.0,
-                (true, Some("S" | "W")) => -1.0,
-                _ => cell(fields, *j, name, line, spec.decimal_comma)?,
-            };
-            cols[k].push(v);
+            cols[k].push(value(spec, nmea, fields, *j, name, line)?);
         }
         t.time_s.push(time);
         t.line.push(line);
@@ -168,34 +156,68 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
         _ => Split::Delimited(spec.delimiter as u8),
     };
     let mut each = |r: Row| -> Result<()> {
-        if !nmea {
-            return on_row(r.line, r.fields);
+        if nmea {
+            on_row(r.line, &without_checksum(r.fields))
+        } else {
+            on_row(r.line, r.fields)
         }
-        // NMEA-like sentences: a trailing `*hh` checksum is not part of the last field.
-        let mut fields = r.fields.to_vec();
-        if let Some(last) = fields.last_mut() {
-            if let Some(star) = last.find('*') {
-                *last = &last[..star];
-            }
-        }
-        on_row(r.line, &fields)
     };
     read_rows(reader, split, spec.skip_lines, Default::default(), &mut |_, _| Ok(false), &mut each).map_err(at)?;
     if header.is_none() {
         return Err(at(Error::File("empty file: no header row".into())));
     }
     if t.time_s.is_empty() {
-        let why = match (&spec.record, other_records.is_empty()) {
-            (Some(rec), false) => {
-                let seen: Vec<String> = other_records.iter().map(|r| format!("\"{r}\"")).collect();
-                format!(": no row starts with record \"{rec}\" (rows start with {})", seen.join(", "))
-            }
-            _ => String::new(),
-        };
-        return Err(at(Error::File(format!("table {} has no data rows{why}", spec.id))));
+        return Err(at(no_data_rows(spec, &other_records)));
     }
     finish_table(spec, &mut t, idx.into_iter().map(|(name, _)| name), cols);
     Ok(t)
+}
+
+/// A row of another record than the table's (`record`): left out, its first field kept to
+/// name (up to 5) when no row of the table's record is found.
+fn is_other_record(spec: &TableSpec, fields: &[&str], other_records: &mut Vec<String>) -> bool {
+    let Some(rec) = &spec.record else { return false };
+    if fields.first() == Some(&rec.as_str()) {
+        return false;
+    }
+    let first = fields.first().copied().unwrap_or("");
+    if other_records.len() < 5 && !other_records.iter().any(|r| r == first) {
+        other_records.push(first.to_string());
+    }
+    true
+}
+
+/// A wanted column's value in a row; in an NMEA log, a hemisphere letter as a sign (for
+/// positions.kind = "nmea").
+fn value(spec: &TableSpec, nmea: bool, fields: &[&str], j: usize, name: &str, line: u64) -> Result<f64> {
+    match (nmea, fields.get(j).copied()) {
+        (true, Some("N" | "E")) => Ok(1.0),
+        (true, Some("S" | "W")) => Ok(-1.0),
+        _ => cell(fields, j, name, line, spec.decimal_comma),
+    }
+}
+
+/// An NMEA-like sentence's fields without the trailing `*hh` checksum of its last one.
+fn without_checksum<'a>(fields: &[&'a str]) -> Vec<&'a str> {
+    let mut fields = fields.to_vec();
+    if let Some(last) = fields.last_mut() {
+        if let Some(star) = last.find('*') {
+            *last = &last[..star];
+        }
+    }
+    fields
+}
+
+/// A table that kept no row: why, naming the records its rows start with when it has one.
+fn no_data_rows(spec: &TableSpec, other_records: &[String]) -> Error {
+    let why = match (&spec.record, other_records.is_empty()) {
+        (Some(rec), false) => {
+            let seen: Vec<String> = other_records.iter().map(|r| format!("\"{r}\"")).collect();
+            format!(": no row starts with record \"{rec}\" (rows start with {})", seen.join(", "))
+        }
+        _ => String::new(),
+    };
+    Error::File(format!("table {} has no data rows{why}", spec.id))
 }
 
 /// A table's rows as read (in file order, steps checked): put in time order by the time
