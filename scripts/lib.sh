@@ -121,7 +121,7 @@ build_wasm() {
     "-Oz --flatten --rereloop -Oz -Oz --converge"
   wasm_part "--no-default-features --features plot" web web/pkg/plot gyrodrift_plot
   # Everything: the Web Worker's module (import, tuning, parsing with progress) and Node's;
-  # saving a live estimator's state (`snapshot`, 23 KB gzipped of serde code) in Node only.
+  # saving a live estimator's state (`snapshot`, 20.5 KB gzipped of serde code) in Node only.
   wasm_part "--no-default-features --features core,import,plot,tune,sim,live" web web/pkg/full gyrodrift
   wasm_part "" nodejs web/pkg/node gyrodrift
   cp wasm/npm/package.json wasm/npm/README.md web/pkg/

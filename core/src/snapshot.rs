@@ -1,9 +1,10 @@
 //! A live estimator's state saved to bytes and made again: a stream resumed where it stopped
 //! (an app restarted, a job moved to another worker, a checkpoint) gives, row for row, the
 //! headings it would have given uninterrupted. Postcard's compact binary (every f64 exact)
-//! behind a header (format, gyrodrift version, estimator) and a checksum: bytes that are not
-//! such a state, another estimator's, another version's or damaged ones are refused, saying
-//! which. The checksum finds damage, not a state written by hand to deceive it.
+//! behind a header (format, gyrodrift version, state layout, estimator) and a checksum:
+//! bytes that are not such a state, another estimator's, a build's whose estimators differ
+//! or damaged ones are refused, saying which. The checksum finds damage, not a state
+//! written by hand to deceive it.
 
 use crate::error::{Error, Result};
 use serde::de::DeserializeOwned;
@@ -11,6 +12,12 @@ use serde::Serialize;
 
 /// The first bytes of every saved state.
 const MAGIC: &[u8; 16] = b"gyrodrift state\n";
+
+/// The saved estimators' layout (and the meaning of their fields): bumped whenever either
+/// changes, so a state saved by a build whose estimators differ is refused rather than
+/// misread (every commit of a release line shares its version number). The test
+/// `the_saved_layout_is_the_recorded_one` trips on a change until this and its digest move.
+const LAYOUT: u32 = 1;
 
 /// An estimator whose state can be saved and resumed.
 pub trait Resumable: Serialize + DeserializeOwned {
@@ -23,9 +30,9 @@ pub trait Resumable: Serialize + DeserializeOwned {
 }
 
 /// The saved state: [`MAGIC`], the checksum of the rest (FNV-1a, 64 bits, little-endian),
-/// then postcard's encoding of (gyrodrift version, estimator name, state).
+/// then postcard's encoding of (gyrodrift version, [`LAYOUT`], estimator name, state).
 pub fn save<T: Resumable>(state: &T) -> Result<Vec<u8>> {
-    let body = postcard::to_stdvec(&(env!("CARGO_PKG_VERSION"), T::KIND, state))
+    let body = postcard::to_stdvec(&(env!("CARGO_PKG_VERSION"), LAYOUT, T::KIND, state))
         .map_err(|e| Error::data(format!("saving the {}'s state: {e}", T::KIND)))?;
     let mut out = MAGIC.to_vec();
     out.extend_from_slice(&fnv1a(&body).to_le_bytes());
@@ -44,13 +51,13 @@ pub fn load<T: Resumable>(bytes: &[u8]) -> Result<T> {
     if u64::from_le_bytes(*sum) != fnv1a(body) {
         return Err(damaged());
     }
-    let ((version, kind), state) = postcard::take_from_bytes::<(&str, &str)>(body).map_err(|_| damaged())?;
+    let ((version, layout, kind), state) = postcard::take_from_bytes::<(&str, u32, &str)>(body).map_err(|_| damaged())?;
     if kind != T::KIND {
         return Err(refused(format!("the state is a {kind}'s")));
     }
-    if version != env!("CARGO_PKG_VERSION") {
+    if layout != LAYOUT {
         return Err(refused(format!(
-            "the state was saved by gyrodrift {version}, this is {}: a state does not carry across versions (start afresh)",
+            "the state was saved by gyrodrift {version} (state layout {layout}), this is {} (layout {LAYOUT}): the estimators differ, start afresh",
             env!("CARGO_PKG_VERSION")
         )));
     }
@@ -122,7 +129,35 @@ mod tests {
         assert!((resumed.last_block().unwrap().bias_dps - 0.723).abs() < 0.05, "{:?}", resumed.last_block());
     }
 
-    /// Bytes that are not a state, another estimator's, another version's, damaged or cut
+    /// The bytes of each estimator's state after the same rows: a change of what is saved
+    /// changes them. When this trips, bump [`LAYOUT`] if a field was added, removed,
+    /// reordered, retyped or given another meaning (an older state would be misread), and
+    /// record the new digests either way (a change of the estimators' numbers alone moves
+    /// them too).
+    #[test]
+    fn the_saved_layout_is_the_recorded_one() {
+        let mut pipe = PipelineStream::new(PipelineParams::default()).unwrap();
+        let mut hdr = (Hdr::new(HdrParams::default(), 0.7).unwrap(), None::<HdrOutput>);
+        let mut odo = (Gyrodometry::new(0.5, 1.0, 0.7).unwrap(), None::<GyrodometryOutput>);
+        for &(t, w, v) in rows().iter().take(600) {
+            pipe.update(t, w, v).unwrap();
+            hdr.1 = Some(hdr.0.update(t, w).unwrap());
+            odo.1 = Some(odo.0.update(t, w, t * 0.3, t * 0.31).unwrap());
+        }
+        let digest = |b: Vec<u8>| (b.len(), fnv1a(&b));
+        let got = [
+            digest(postcard::to_stdvec(&pipe).unwrap()),
+            digest(postcard::to_stdvec(&hdr).unwrap()),
+            digest(postcard::to_stdvec(&odo).unwrap()),
+        ];
+        assert_eq!(
+            got,
+            [(9512, 10894342111187593966), (159, 11021861302963414194), (107, 2674223023191593310)],
+            "the saved state changed: see this test's doc"
+        );
+    }
+
+    /// Bytes that are not a state, another estimator's, another layout's, damaged or cut
     /// are refused, each saying why; none panics.
     #[test]
     fn foreign_damaged_or_cut_bytes_are_refused_saying_why() {
@@ -142,13 +177,17 @@ mod tests {
         for cut in [MAGIC.len(), MAGIC.len() + 3, MAGIC.len() + 8, bytes.len() - 1] {
             assert!(err(&bytes[..cut]).contains("damaged"), "{cut}");
         }
-        // Another version's state: the same body with another version string, checksummed.
-        let body = postcard::to_stdvec(&("0.0.1", "PipelineEstimator", &s)).unwrap();
-        let old = [MAGIC.as_slice(), &fnv1a(&body).to_le_bytes(), &body].concat();
-        assert!(err(&old).contains("saved by gyrodrift 0.0.1, this is"));
+        // Another layout's state (a build whose estimators differ): refused; another version
+        // with this layout resumes.
+        let with = |version: &str, layout: u32| {
+            let body = postcard::to_stdvec(&(version, layout, "PipelineEstimator", &s)).unwrap();
+            [MAGIC.as_slice(), &fnv1a(&body).to_le_bytes(), &body].concat()
+        };
+        assert!(err(&with("0.0.1", LAYOUT + 1)).contains("saved by gyrodrift 0.0.1 (state layout 2), this is"));
+        assert!(load::<PipelineStream>(&with("0.0.1", LAYOUT)).is_ok());
         // Settings out of range in a checksummed state are refused as a new estimator's are.
         let bad = (Gyrodometry::new(0.5, 1.0, 0.0).unwrap(), None::<GyrodometryOutput>);
-        let mut body = postcard::to_stdvec(&(env!("CARGO_PKG_VERSION"), "GyrodometryEstimator", &bad)).unwrap();
+        let mut body = postcard::to_stdvec(&(env!("CARGO_PKG_VERSION"), LAYOUT, "GyrodometryEstimator", &bad)).unwrap();
         let at = body.windows(8).position(|w| w == 0.5f64.to_le_bytes()).unwrap();
         body[at..at + 8].copy_from_slice(&(-1.0f64).to_le_bytes());
         let forged = [MAGIC.as_slice(), &fnv1a(&body).to_le_bytes(), &body].concat();
