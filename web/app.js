@@ -6,7 +6,7 @@
 // touch screen), remap.js (a check error's fix in the column mapper).
 import init, * as gd from "./pkg/gyrodrift.js";
 import initPlot from "./pkg/plot/gyrodrift_plot.js";
-import { $, state, defaults, readUrl, urlHash, hdrOptions, PARAMS, GYRO_PARAMS, VIEW_KIND } from "./state.js";
+import { $, state, defaults, readUrl, urlHash, hdrOptions, pipelineOptions, pipeSetting, PARAMS, PIPE_PARAMS, GYRO_PARAMS, VIEW_KIND } from "./state.js";
 import { filesOf, loadFiles, loadSamples } from "./loading.js";
 import { buildParams, syncParams, logFor } from "./controls.js";
 import { csvOf, download, pngOf, timeChartsCsv } from "./charts.js";
@@ -54,6 +54,12 @@ function setupParams() {
     reset.addEventListener("click", () => { state.params = defaults(); state.resample = true; syncParams(); render(); });
     form.append(row, reset);
   }, (k, v) => gd.checkOptions("hdr", { ...hdrOptions(), [k]: v }) ?? null);
+  buildParams($("pipe-params"), PIPE_PARAMS, pipeSetting, (k, v) => { state.pipe[k] = v; }, (form) => {
+    const reset = document.createElement("button");
+    Object.assign(reset, { type: "button", id: "reset-pipe", textContent: "Reset the pipeline to its defaults" });
+    reset.addEventListener("click", () => { state.pipe = {}; syncParams(); render(); });
+    form.append(reset);
+  }, (k, v) => gd.checkOptions("pipeline", pipelineOptions({ [k]: v })) ?? null);
   buildParams($("gyro-params"), GYRO_PARAMS, (k) => state.gyro[k], (k, v) => { state.gyro[k] = v; }, null, (k, v) => gd.checkOptions("gyrodometry", { ...state.gyro, [k]: v }) ?? null);
 }
 

@@ -17,6 +17,16 @@ export const METRIC_HELP = {
   improvement: "Improvement: E_psi without correction divided by E_psi with it.",
   eps0: "eps0: static bias, the mean gyro rate over the first bias_s seconds, deg/s.",
 };
+/** The recommended pipeline's settings the page offers (core's defaults until set; the CLI's
+ * `--set`, Python's and the npm package's options take every one): what a user's GPS and gyro
+ * may ask of it. `group`: the nested settings object the key belongs to. */
+export const PIPE_PARAMS = [
+  { key: "still_speed_mps", group: "still", label: "still below", unit: "m/s", min: 0.05, max: 3, step: 0.05, help: "A 1 s block stands when every speed in it is below this. Raise it when the GPS speed at a standstill reads noise (0.3-1 m/s) and the pipeline finds few stops." },
+  { key: "min_still_s", label: "stop trim", unit: "s", min: 0, max: 5, step: 0.5, help: "A stop's blocks count only this far from both of its ends (braking, GPS speed lag, pulling away into a turn); delays the stop evidence as much." },
+  { key: "max_bias_dps", label: "max bias", unit: "deg/s", min: 0.5, max: 20, step: 0.5, help: "The widest bias accepted: a standing whose rate is further from the lead-in's bias is taken as a slow turn (a standing of 10 s is taken whatever its rate)." },
+  { key: "road_gate_dps", label: "straight gate", unit: "deg/s", min: 0.05, max: 2, step: 0.01, help: "A moving block within this of the last 60 s's dominant rate counts as straight road, HDR's heuristic: wider finds more straights on a noisy gyro, and takes gentle curves for straight." },
+  { key: "blend_sigmas", label: "blend guard", unit: "sigma", min: 0, max: 5, step: 0.1, help: "The heading moves with Table-III HDR's and Fusion's offset where the bias they imply is within this many sigmas of the bank's; 0 = the bank's heading alone." },
+];
 export const GYRO_PARAMS = [{ key: "thres_rate_dps", label: "threshold", unit: "deg/s", min: 0, max: 10, step: 0.05, help: "Gyrodometry's threshold: where gyro and odometry disagree by more than this rate, the gyro's increment is used (Borenstein & Feng)." }];
 export const SAMPLES = [
   "sample-logs/train/city-1.csv",
@@ -34,6 +44,7 @@ export const state = {
   selected: -1,
   view: "hdr",
   params: {},
+  pipe: {}, // the pipeline settings set on the page (PIPE_PARAMS), by key; the rest are core's
   resample: true,
   gyro: {}, // filled from the package at start
   zoom: null,
@@ -61,6 +72,25 @@ export function hdrOptions() {
   const o = { resample: state.resample };
   for (const p of PARAMS) if (state.params[p.key] != null) o[p.key] = state.params[p.key];
   return o;
+}
+
+/** The recommended pipeline's options everywhere it runs (HDR view, Track, Report, the
+ * battery): HDR's static-bias window and the pipeline settings set on the page, plus `extra`. */
+export function pipelineOptions(extra = {}) {
+  const o = { bias_s: hdrOptions().bias_s ?? null };
+  for (const [k, v] of Object.entries({ ...state.pipe, ...extra })) {
+    const p = PIPE_PARAMS.find((q) => q.key === k);
+    if (p?.group) o[p.group] = { ...o[p.group], [k]: v };
+    else o[k] = v;
+  }
+  return o;
+}
+
+/** A pipeline setting's value as shown: the page's, else core's default. */
+export function pipeSetting(key) {
+  const p = PIPE_PARAMS.find((q) => q.key === key);
+  const d = gd.defaults("pipeline");
+  return state.pipe[key] ?? (p?.group ? d[p.group][key] : d[key]);
 }
 
 /** The selected log if it suits the view, else the first loaded one that does. */
@@ -91,6 +121,10 @@ export function readUrl() {
     const v = num(p.key);
     if (v !== null && !gd.checkOptions("hdr", { [p.key]: v })) state.params[p.key] = v;
   }
+  for (const p of PIPE_PARAMS) {
+    const v = num(`pipe.${p.key}`);
+    if (v !== null && !gd.checkOptions("pipeline", pipelineOptions({ [p.key]: v }))) state.pipe[p.key] = v;
+  }
   if (h.has("resample")) state.resample = h.get("resample") !== "0";
   const thres = num("thres_rate_dps");
   if (thres !== null && !gd.checkOptions("gyrodometry", { thres_rate_dps: thres })) state.gyro.thres_rate_dps = thres;
@@ -119,6 +153,7 @@ export function urlHash() {
   const e = state.entries[state.selected];
   if (e && !e.error) h.set("log", e.name);
   for (const p of PARAMS) if (state.params[p.key] != null) h.set(p.key, String(state.params[p.key]));
+  for (const p of PIPE_PARAMS) if (state.pipe[p.key] != null) h.set(`pipe.${p.key}`, String(state.pipe[p.key]));
   h.set("resample", state.resample ? "1" : "0");
   h.set("thres_rate_dps", String(state.gyro.thres_rate_dps));
   if (state.zoom) h.set("zoom", state.zoom.map((v) => +v.toFixed(3)).join(","));

@@ -312,3 +312,45 @@ test("the Allan view marks the minimum with its 68 % band and the flat bottom, w
   await page.locator("#tabs button[data-view=hdr]").click();
   await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
 });
+
+test("the pipeline settings apply wherever the pipeline runs, with the CLI's --set numbers; a bad value is refused in place; the link keeps them; Reset clears them", async () => {
+  await page.locator("#tabs button[data-view=hdr]").click();
+  await page.locator("#logs li", { hasText: "City 1" }).locator("button.pick").click();
+  const city = join(SAMPLES, "train", "city-1.csv");
+  const def = JSON.parse(cli("pipeline", city, "--json"));
+  const set = JSON.parse(cli("pipeline", city, "--set", "still_speed_mps=3", "--json"));
+  assert.notEqual(set.E_psi_pipeline_deg.toFixed(2), def.E_psi_pipeline_deg.toFixed(2));
+  const shown = (v) => page.waitForFunction((t) => document.getElementById("m-e-pipeline")?.textContent === t, v.toFixed(2));
+  await shown(def.E_psi_pipeline_deg);
+  await page.evaluate(() => { document.getElementById("pipe-settings").open = true; });
+  assert.equal(await page.locator("#p-still_speed_mps-value").inputValue(), "0.2"); // core's default
+  await page.locator("#p-still_speed_mps-value").fill("3");
+  await page.locator("#p-still_speed_mps-value").dispatchEvent("change");
+  await shown(set.E_psi_pipeline_deg);
+  await page.waitForFunction(() => location.hash.includes("pipe.still_speed_mps=3"));
+  // A value core refuses is refused in place: the reason beside the box, the results kept.
+  await page.locator("#p-still_speed_mps-value").fill("0");
+  await page.locator("#p-still_speed_mps-value").dispatchEvent("change");
+  assert.match(await page.locator("#p-still_speed_mps-error").innerText(), /still_speed_mps: 0 is not a number in \(0, 1e6\) \(kept 3\)/);
+  assert.equal(await page.locator("#m-e-pipeline").innerText(), set.E_psi_pipeline_deg.toFixed(2));
+  // The Report's comparison runs the pipeline with the same settings.
+  await page.locator("#tabs button[data-view=report]").click();
+  const cell = page.locator('#compare-table tr[data-drive="City 1"] td.pipeline');
+  await cell.waitFor();
+  assert.equal(await cell.innerText(), set.NE_psi_pipeline_deg_per_min.toFixed(3));
+  await page.locator("#tabs button[data-view=hdr]").click();
+  // The link opens with them.
+  const link = page.url();
+  await page.goto("about:blank");
+  await page.goto(link);
+  await page.waitForFunction(() => document.body.dataset.ready === "1", null, { timeout: 30000 });
+  assert.equal(await page.locator("#p-still_speed_mps-value").inputValue(), "3");
+  await shown(set.E_psi_pipeline_deg);
+  await page.screenshot({ path: join(ARTIFACTS, "pipeline-settings.png") });
+  // Reset: core's defaults, and the link without them.
+  await page.evaluate(() => { document.getElementById("pipe-settings").open = true; });
+  await page.locator("#reset-pipe").click();
+  await shown(def.E_psi_pipeline_deg);
+  assert.equal(await page.locator("#p-still_speed_mps-value").inputValue(), "0.2");
+  await page.waitForFunction(() => !location.hash.includes("pipe."));
+});

@@ -1,6 +1,6 @@
 // The HDR view: heading, error and rate charts for the paper's method beside the pipeline.
 import * as gd from "../pkg/gyrodrift.js";
-import { $, esc, fmt, state, hdrOptions, COLORS, PALETTE, METRIC_HELP } from "../state.js";
+import { $, esc, fmt, state, hdrOptions, pipelineOptions, COLORS, PALETTE, METRIC_HELP } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
 import { chart, originOf } from "../charts.js";
 import { showError, render } from "../render.js";
@@ -9,10 +9,10 @@ import { perLog } from "../background.js";
 let lastHdr = null;
 const NO_PIPE = { result: null, summary: null, trace: null, errors: null, pending: true };
 /** The recommended pipeline beside the paper's method, with the same static-bias window.
- * It depends on the log and bias_s only, so HDR's sliders reuse it; a large log's runs in
- * the worker (seconds on millions of rows) and shows when it arrives. */
+ * It depends on the log, bias_s and the pipeline settings only, so HDR's sliders reuse it;
+ * a large log's runs in the worker (seconds on millions of rows) and shows when it arrives. */
 function pipelineOf(e) {
-  const options = { bias_s: hdrOptions().bias_s ?? null };
+  const options = pipelineOptions();
   const r = perLog(e, "pipeline", options, () => gd.runPipeline(e.log, options));
   // On the page its error is the view's, as the HDR run's (the worker's shows as pending).
   if (r.error && e.workerKey == null) throw new Error(r.error);
@@ -25,7 +25,7 @@ export function renderHdr() {
   const v = drawView();
   const run = gd.runHdr(e.log, hdrOptions(), v);
   // The recommended pipeline beside the paper's method, with the same static-bias window.
-  // It depends on the log and bias_s only, so HDR's sliders reuse it.
+  // It depends on the log, bias_s and the pipeline settings only, so HDR's sliders reuse it.
   const pipe = pipelineOf(e);
   lastHdr = { entry: e, run, pipe };
   const r = run.result;

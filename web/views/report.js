@@ -1,6 +1,6 @@
 // The Report view: Table II, every method side by side, and tuning in a worker.
 import * as gd from "../pkg/gyrodrift.js";
-import { $, fmt, state, hdrOptions, COLORS, PALETTE } from "../state.js";
+import { $, fmt, state, hdrOptions, pipelineOptions, COLORS, PALETTE } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
 import { chart, timeRange } from "../charts.js";
 import { showError, render } from "../render.js";
@@ -25,7 +25,7 @@ export function reportDrives() {
 
 /** The Report tables as files: Table II and the comparison, CSV or Markdown, from core. */
 export function reportExports(download) {
-  const pipe = () => ({ bias_s: hdrOptions().bias_s ?? null });
+  const pipe = () => pipelineOptions();
   const files = {
     "export-report-csv": ["gyrodrift-table-ii.csv", "text/csv", () => gd.reportCsv(reportDrives(), hdrOptions(), true)],
     "export-report-md": ["gyrodrift-table-ii.md", "text/markdown", () => gd.reportMarkdown(reportDrives(), hdrOptions(), true)],
@@ -56,7 +56,7 @@ export function renderReport() {
   if (!drives.length) return showError("Load drive logs for the report.");
   const rep = gd.report(drives, hdrOptions(), true);
   $("report-table").replaceChildren(reportTable(rep));
-  const cmp = gd.compare(drives, { bias_s: hdrOptions().bias_s ?? null }, true);
+  const cmp = gd.compare(drives, pipelineOptions(), true);
   $("compare-table").replaceChildren(compareTable(cmp));
   fillWorse();
 }

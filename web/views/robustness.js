@@ -2,7 +2,7 @@
 // run in the worker (core's battery::on_drives); the summary per method and every case,
 // each of which opens as a log of its own (the drive with the profile's errors added).
 import * as gd from "../pkg/gyrodrift.js";
-import { $, fmt, state, hdrOptions } from "../state.js";
+import { $, fmt, state, pipelineOptions } from "../state.js";
 import { inWorker, driveColumns, addParsed } from "../loading.js";
 import { renderList, selectEntry } from "../controls.js";
 import { scoredDrives } from "./report.js";
@@ -16,7 +16,7 @@ export async function runBattery() {
   $("battery-status").textContent = "running in a worker…";
   const { cols, transfer } = driveColumns(drives);
   const t0 = performance.now();
-  const res = await inWorker({ type: "battery", drives: cols, options: { bias_s: hdrOptions().bias_s ?? null } }, transfer);
+  const res = await inWorker({ type: "battery", drives: cols, options: pipelineOptions() }, transfer);
   button.disabled = false;
   if (res.error) {
     $("battery-status").textContent = res.error;

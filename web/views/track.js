@@ -1,15 +1,15 @@
 // The Track view: dead-reckoned paths on equal axes.
 import * as gd from "../pkg/gyrodrift.js";
-import { $, state, hdrOptions, COLORS } from "../state.js";
+import { $, state, hdrOptions, pipelineOptions, COLORS } from "../state.js";
 import { logFor, syncParams } from "../controls.js";
 import { chart } from "../charts.js";
 import { showError, render } from "../render.js";
 import { background, perLog } from "../background.js";
 
-/** The recommended pipeline's paths: they depend on the log and bias_s only, so HDR's
- * sliders reuse them; a large log's come from the worker. */
+/** The recommended pipeline's paths: they depend on the log, bias_s and the pipeline
+ * settings only, so HDR's sliders reuse them; a large log's come from the worker. */
 function pipelineTrackOf(e) {
-  const options = { bias_s: hdrOptions().bias_s ?? null };
+  const options = pipelineOptions();
   return perLog(e, "pipelineTrack", options, () => gd.pipelineTrack(e.log, options));
 }
 
