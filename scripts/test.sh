@@ -33,6 +33,8 @@ suite() {
 
 suite "format (cargo fmt --check)" cargo fmt --all -- --check
 suite "lint (cargo clippy -D warnings)" cargo clippy --workspace --all-targets -- -D warnings
+# The core crate's API docs (Rust users read them): no broken or private links, every feature.
+suite "API docs (cargo doc -D warnings)" env RUSTDOCFLAGS="-D warnings" cargo doc -q --no-deps -p gyrodrift --all-features
 suite "native tests (cargo test --workspace)" cargo test --workspace --no-fail-fast
 suite "wasm tests under Node (wasm-bindgen-test)" \
   cargo test -p gyrodrift-wasm --target wasm32-unknown-unknown --tests --no-fail-fast

@@ -39,7 +39,7 @@ impl crate::options::Settings for CalibrationOptions {
     }
 }
 
-/// The error model e(w_g, T) = sum_j sum_k C[j][k] T^j w_g^k (Eq. 12, ascending powers).
+/// The error model e(w_g, T) = sum_j sum_k `C[j][k]` T^j w_g^k (Eq. 12, ascending powers).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ErrorModel {
     pub p: usize,

@@ -18,7 +18,7 @@ fn cell(v: f64) -> String {
     }
 }
 
-/// The unit of an axis label written "<quantity> (<unit>)" (the last parenthesis at the
+/// The unit of an axis label written `<quantity> (<unit>)` (the last parenthesis at the
 /// end), or "" when it has none: the one reading of a label's unit for CSV columns and the
 /// dashboard's tooltips.
 pub fn label_unit(label: &str) -> &str {
@@ -59,7 +59,7 @@ pub fn series_csv(x_name: &str, series: &[Series]) -> String {
 }
 
 /// Paths (a track: x and y both data, not ordered in x): two columns per series,
-/// "<name> x" and "<name> y", row k holding each path's k-th point (empty past its end).
+/// `<name> x` and `<name> y`, row k holding each path's k-th point (empty past its end).
 pub fn paths_csv(x_name: &str, y_name: &str, series: &[Series]) -> String {
     let rows = series.iter().map(|s| s.x.len().min(s.y.len())).max().unwrap_or(0);
     let names: Vec<String> = series.iter().flat_map(|s| [format!("{} {x_name}", s.name), format!("{} {y_name}", s.name)]).collect();

@@ -29,8 +29,9 @@ pub trait Resumable: Serialize + DeserializeOwned {
     fn restored(self) -> Result<Self>;
 }
 
-/// The saved state: [`MAGIC`], the checksum of the rest (FNV-1a, 64 bits, little-endian),
-/// then postcard's encoding of (gyrodrift version, [`LAYOUT`], estimator name, state).
+/// The saved state: the bytes `gyrodrift state\n`, the checksum of the rest (FNV-1a, 64
+/// bits, little-endian), then postcard's encoding of (gyrodrift version, the state layout,
+/// estimator name, state).
 pub fn save<T: Resumable>(state: &T) -> Result<Vec<u8>> {
     let body = postcard::to_stdvec(&(env!("CARGO_PKG_VERSION"), LAYOUT, T::KIND, state))
         .map_err(|e| Error::data(format!("saving the {}'s state: {e}", T::KIND)))?;

@@ -51,7 +51,7 @@ pub(super) fn time_unit(unit: &str) -> Result<f64> {
 /// Parses a time of day into seconds since midnight: `hh:mm:ss[.fff]` (the hour may have
 /// one digit), `hh:mm:ss:fff` (the fraction after a colon, as some phone apps write it) or
 /// NMEA's `hhmmss[.sss]`, each with an optional `Z`. Loggers write these without a date;
-/// [`super::time`] counts the days as the time passes midnight.
+/// The import's time policies (`time.rs`) count the days as the time passes midnight.
 pub fn parse_time_of_day(s: &str) -> Option<f64> {
     let s = s.trim();
     let s = s.strip_suffix(['Z', 'z']).unwrap_or(s);

@@ -57,7 +57,7 @@ pub fn refused_for_time_order(e: &Error) -> bool {
 #[derive(Debug, Clone)]
 pub struct Accepted {
     pub parts: Vec<DriveLog>,
-    /// One line per finding that is not informational ("warning [code]: message; fix: ...").
+    /// One line per finding that is not informational (`warning [code]: message; fix: ...`).
     /// Gap findings are not repeated here: `split` says what the policy did with them.
     pub warnings: Vec<String>,
     /// What splitting at gaps did, or None without gaps.
