@@ -4,7 +4,8 @@
 //! behind a header (format, gyrodrift version, state layout, estimator) and a checksum:
 //! bytes that are not such a state, another estimator's, a build's whose estimators differ
 //! or damaged ones are refused, saying which. The checksum finds damage, not a state
-//! written by hand to deceive it.
+//! forged to pass it: such a state is refused by the settings' checks or runs on with the
+//! numbers it holds, and does not panic (a test forges 2000).
 
 use crate::error::{Error, Result};
 use serde::de::DeserializeOwned;
@@ -194,5 +195,41 @@ mod tests {
         let forged = [MAGIC.as_slice(), &fnv1a(&body).to_le_bytes(), &body].concat();
         let e = load::<(Gyrodometry, Option<GyrodometryOutput>)>(&forged).unwrap_err().to_string();
         assert!(e.contains("wheelbase_m"), "{e}");
+    }
+
+    /// A state forged to pass the checksum (bytes of a saved state overwritten at random,
+    /// the checksum recomputed) never panics: it is refused, or it loads and runs on (its
+    /// numbers are whatever the bytes say). 2000 forgeries of 1-6 bytes each.
+    #[test]
+    fn a_forged_state_is_refused_or_runs_never_panics() {
+        let mut s = PipelineStream::new(PipelineParams::default()).unwrap();
+        let rows = rows();
+        for &(t, w, v) in &rows[..600] {
+            s.update(t, w, v).unwrap();
+        }
+        let body = postcard::to_stdvec(&(env!("CARGO_PKG_VERSION"), LAYOUT, "PipelineEstimator", &s)).unwrap();
+        let mut seed = 12345u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            seed >> 16
+        };
+        let mut loaded = 0;
+        for _ in 0..2000 {
+            let mut b = body.clone();
+            for _ in 0..1 + next() % 6 {
+                let at = next() as usize % b.len();
+                b[at] = next() as u8;
+            }
+            let bytes = [MAGIC.as_slice(), &fnv1a(&b).to_le_bytes(), &b].concat();
+            let run = std::panic::catch_unwind(|| {
+                let Ok(mut st) = load::<PipelineStream>(&bytes) else { return false };
+                for &(t, w, v) in &rows[600..1200] {
+                    let _ = st.update(t, w, v);
+                }
+                true
+            });
+            loaded += usize::from(run.expect("a forged state panicked"));
+        }
+        assert!(loaded > 1000, "{loaded} of 2000 loaded: the forgeries reached the estimator");
     }
 }
