@@ -65,7 +65,8 @@ impl HdrEstimator {
     }
 
     /// The estimator `save_state` saved, to go on where it stopped (the same headings, bit
-    /// for bit); ValueError for bytes that are not one, a build's whose estimators differ, or damaged.
+    /// for bit); ValueError for bytes that are not one, a build's whose estimators differ,
+    /// or damaged.
     #[staticmethod]
     fn from_state(state: &[u8]) -> PyResult<Self> {
         let (inner, last) = snapshot::load(state).map_err(value_err)?;
@@ -191,7 +192,8 @@ impl PipelineEstimator {
     }
 
     /// The estimator `save_state` saved, to go on where it stopped (the same headings, bit
-    /// for bit); ValueError for bytes that are not one, a build's whose estimators differ, or damaged.
+    /// for bit); ValueError for bytes that are not one, a build's whose estimators differ,
+    /// or damaged.
     #[staticmethod]
     fn from_state(state: &[u8]) -> PyResult<Self> {
         Ok(PipelineEstimator { inner: snapshot::load(state).map_err(value_err)? })

@@ -122,7 +122,8 @@ impl HdrEstimator {
     }
 
     /// The estimator `saveState` saved, to go on where it stopped (the same headings, bit
-    /// for bit); throws for bytes that are not one, a build's whose estimators differ, or damaged.
+    /// for bit); throws for bytes that are not one, a build's whose estimators differ, or
+    /// damaged.
     #[wasm_bindgen(js_name = fromState)]
     pub fn from_state(state: &[u8]) -> JsResult<HdrEstimator> {
         let (inner, last) = gyrodrift::snapshot::load(state).map_err(err)?;
