@@ -4,7 +4,7 @@
 //! number comes from core. The Python package `gyrodrift` re-exports this module and adds
 //! the pandas helpers and the Dask fleet job.
 
-use numpy::{PyArray1, PyReadonlyArray1};
+use numpy::{AllowTypeChange, PyArray1, PyArrayLike1};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString};
@@ -101,9 +101,13 @@ pub(crate) fn array(py: Python<'_>, v: Vec<f64>) -> Py<PyAny> {
     PyArray1::from_vec(py, v).into_any().unbind()
 }
 
-/// A contiguous float64 array's values.
-pub(crate) fn values(a: &PyReadonlyArray1<'_, f64>, what: &str) -> PyResult<Vec<f64>> {
-    Ok(a.as_slice().map_err(|_| PyValueError::new_err(format!("{what}: expected a contiguous float64 array")))?.to_vec())
+/// The values of a 1-d array of numbers as numpy reads it (`numpy.asarray(x, float64)`): a
+/// float64 array of any strides, another dtype, a list, a pandas Series.
+pub(crate) fn values(a: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
+    let a: PyArrayLike1<'_, f64, AllowTypeChange> = a
+        .extract()
+        .map_err(|_| PyValueError::new_err(format!("{what}: expected a 1-d array of numbers (numpy array, list, pandas Series)")))?;
+    Ok(a.as_array().iter().copied().collect())
 }
 
 /// A dict of named numpy arrays.

@@ -59,8 +59,7 @@ fn columns_of(columns: &Bound<'_, PyDict>) -> PyResult<Vec<(Column, Vec<f64>)>> 
     for (k, v) in columns.iter() {
         let name: String = k.extract()?;
         let c = Column::from_name(&name).ok_or_else(|| PyKeyError::new_err(format!("unknown column {name}")))?;
-        let a: PyReadonlyArray1<'_, f64> = v.extract().map_err(|_| value_err(format!("{name}: expected a 1-d float64 array")))?;
-        cols.push((c, values(&a, &name)?));
+        cols.push((c, values(&v, &name)?));
     }
     Ok(cols)
 }

@@ -5,7 +5,6 @@ use gyrodrift::gyrodometry;
 use gyrodrift::hdr::{self, Hdr, HdrParams};
 use gyrodrift::pipeline::{PipelineParams, PipelineStream};
 use gyrodrift::snapshot;
-use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 
@@ -36,13 +35,8 @@ impl HdrEstimator {
     }
 
     /// Many samples at once (float64 arrays); returns their headings.
-    fn update_many(
-        &mut self,
-        py: Python<'_>,
-        time_s: PyReadonlyArray1<'_, f64>,
-        rate_raw_dps: PyReadonlyArray1<'_, f64>,
-    ) -> PyResult<Py<PyAny>> {
-        let (t, w) = (values(&time_s, "time_s")?, values(&rate_raw_dps, "rate_raw_dps")?);
+    fn update_many(&mut self, py: Python<'_>, time_s: &Bound<'_, PyAny>, rate_raw_dps: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
+        let (t, w) = (values(time_s, "time_s")?, values(rate_raw_dps, "rate_raw_dps")?);
         let mut out = Vec::new();
         self.inner.update_slice_headings(&t, &w, &mut out, &mut self.last).map_err(value_err)?;
         Ok(array(py, out))
@@ -163,11 +157,11 @@ impl PipelineEstimator {
     fn update_many(
         &mut self,
         py: Python<'_>,
-        time_s: PyReadonlyArray1<'_, f64>,
-        rate_raw_dps: PyReadonlyArray1<'_, f64>,
-        speed_mps: PyReadonlyArray1<'_, f64>,
+        time_s: &Bound<'_, PyAny>,
+        rate_raw_dps: &Bound<'_, PyAny>,
+        speed_mps: &Bound<'_, PyAny>,
     ) -> PyResult<Py<PyAny>> {
-        let (t, w, v) = (values(&time_s, "time_s")?, values(&rate_raw_dps, "rate_raw_dps")?, values(&speed_mps, "speed_mps")?);
+        let (t, w, v) = (values(time_s, "time_s")?, values(rate_raw_dps, "rate_raw_dps")?, values(speed_mps, "speed_mps")?);
         if w.len() != t.len() || v.len() != t.len() {
             return Err(value_err("update_many: time_s, rate_raw_dps and speed_mps differ in length"));
         }

@@ -33,7 +33,10 @@ def live_heading(path: str) -> float:
     psi: npt.NDArray[np.float64] = est.update_many(log.column("time_s"), log.column("gyro_dps"), log.column("speed_mps"))
     state = est.state()
     sigma = float(state["heading_sigma_deg"]) if state is not None else 0.0
-    return float(psi[-1]) + est.heading_deg * 0 + sigma * 0
+    # Rows as plain lists (any array-like numpy reads), and the estimator saved and resumed.
+    more: npt.NDArray[np.float64] = est.update_many([1e6], [0.1], [0.0])
+    resumed: g.PipelineEstimator = g.PipelineEstimator.from_state(est.save_state())
+    return float(psi[-1] + more[0]) * 0 + resumed.heading_deg + sigma * 0
 
 
 def track_end(path: str) -> float:
