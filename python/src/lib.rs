@@ -57,8 +57,9 @@ pub(crate) fn from_py(what: &str, obj: &Bound<'_, PyAny>) -> PyResult<Value> {
     if obj.is_none() {
         return Ok(Value::Null);
     }
-    if let Ok(b) = obj.cast::<PyBool>() {
-        return Ok(Value::Bool(b.is_true()));
+    // A bool, numpy's too (before the integers, which a numpy bool would also read as).
+    if let Ok(b) = obj.extract::<bool>() {
+        return Ok(Value::Bool(b));
     }
     if let Ok(i) = obj.extract::<i64>() {
         return Ok(Value::from(i));
