@@ -16,15 +16,37 @@ from ._core import COLUMNS, Log, row_columns
 def from_pandas(df: Any, meta: Optional[Mapping[str, Any]] = None) -> Log:
     """A Log from a DataFrame whose columns are named as in CSV v1 (others are ignored).
 
-    Missing values (NaN, None) are empty cells. ``meta`` holds ``name``, ``bias_s``,
-    ``wheelbase_m``, ... as a log's ``# key: value`` lines do.
+    The time is the ``time_s`` column, or, without one, a ``DatetimeIndex`` or
+    ``TimedeltaIndex`` (a sensor frame's usual index); date-times are seconds since the
+    first row, time spans their seconds. Missing values (NaN, None) are empty cells.
+    ``meta`` holds ``name``, ``bias_s``, ``wheelbase_m``, ... as a log's ``# key: value``
+    lines do.
     """
+    import pandas as pd
+
     columns = {
         c: np.ascontiguousarray(df[c].to_numpy(dtype=np.float64, na_value=np.nan))
         for c in COLUMNS
-        if c in df.columns
+        if c in df.columns and c != "time_s"
     }
+    time = df["time_s"] if "time_s" in df.columns else None
+    if time is None and isinstance(df.index, (pd.DatetimeIndex, pd.TimedeltaIndex)):
+        time = pd.Series(df.index)
+    if time is not None:
+        columns["time_s"] = _seconds(pd.Series(time))
     return Log.from_columns(columns, dict(meta) if meta else None)
+
+
+def _seconds(time: Any) -> Any:
+    """A time column as float64 seconds: date-times since the first row, time spans as they
+    are, numbers as they are."""
+    import pandas as pd
+
+    if pd.api.types.is_datetime64_any_dtype(time):
+        time = time - time.iloc[0]
+    if pd.api.types.is_timedelta64_dtype(time):
+        return np.ascontiguousarray(time.dt.total_seconds().to_numpy(dtype=np.float64, na_value=np.nan))
+    return np.ascontiguousarray(time.to_numpy(dtype=np.float64, na_value=np.nan))
 
 
 def to_pandas(log: Log) -> Any:

@@ -333,6 +333,28 @@ def test_logs_cross_processes_as_a_fleet_job_passes_them(samples):
     assert [g.pipeline(x) for x in logs] == [g.pipeline(g.read_log(p)) for p in paths]
 
 
+def test_a_frame_indexed_by_time_makes_the_log_its_seconds_would(samples):
+    """A DataFrame without time_s whose index is date-times (time zone and all) or time spans,
+    or whose time_s column is date-times: the log of its seconds (date-times since the
+    first row), scoring as the file does."""
+    import pandas as pd
+
+    log = g.read_log(str(samples / "train" / "city-1.csv"))
+    df = g.to_pandas(log)
+    t = df.pop("time_s")
+    start = pd.Timestamp("2024-05-01 07:30", tz="Europe/Berlin")
+    stamps = start + pd.to_timedelta(t - t.iloc[0], unit="s")
+    meta = {"bias_s": 20}
+    want = g.hdr(g.from_pandas(df.assign(time_s=t - t.iloc[0]), meta))
+    for frame in (df.set_index(pd.DatetimeIndex(stamps)), df.set_index(pd.TimedeltaIndex(pd.to_timedelta(t - t.iloc[0], unit="s"))), df.assign(time_s=stamps)):
+        back = g.from_pandas(frame, meta)
+        np.testing.assert_allclose(back.column("time_s"), t - t.iloc[0], rtol=0, atol=1e-9)
+        got = g.hdr(back)
+        assert abs(got["E_psi_hdr_deg"] - want["E_psi_hdr_deg"]) < 1e-6, (got, want)
+    with pytest.raises(ValueError, match="missing column time_s"):
+        g.from_pandas(df)  # a plain index is not a time
+
+
 def test_streaming_hdr_equals_the_batch_on_rows(samples):
     log = g.read_log(str(samples / "train" / "city-1.csv"))
     eps0 = g.static_bias(log)
