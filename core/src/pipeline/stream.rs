@@ -165,7 +165,7 @@ impl PipelineStream {
 impl crate::snapshot::Resumable for PipelineStream {
     const KIND: &'static str = "PipelineEstimator";
     fn restored(self) -> Result<Self> {
-        PipelineStream::new(self.params)?;
+        self.params.validate()?;
         if self.filter.as_ref().is_some_and(|f| !f.is_whole_bank()) {
             return Err(Error::data("restoring a PipelineEstimator: the saved bank is not the settings' (start afresh)"));
         }
