@@ -339,7 +339,8 @@ test("the pipeline settings apply wherever the pipeline runs, with the CLI's --s
   await cell.waitFor();
   assert.equal(await cell.innerText(), set.NE_psi_pipeline_deg_per_min.toFixed(3));
   await page.locator("#tabs button[data-view=hdr]").click();
-  // The link opens with them.
+  // The link opens with them (once the debounced link says the HDR view again).
+  await page.waitForFunction(() => location.hash.includes("view=hdr") && location.hash.includes("pipe.still_speed_mps=3"));
   const link = page.url();
   await page.goto("about:blank");
   await page.goto(link);
