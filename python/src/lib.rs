@@ -52,7 +52,8 @@ pub(crate) fn result_dict<'py, T: serde::Serialize>(py: Python<'py>, r: &T) -> P
     to_py(py, &v)?.into_bound(py).cast_into::<PyDict>().map_err(|_| value_err("a result that is not an object"))
 }
 
-/// A Python object (dict of settings, a recipe) as a serde value; numbers must be finite.
+/// A Python object (dict of settings, a recipe) as a serde value; numbers must be finite, and
+/// a dict key set to None is left out (its default).
 pub(crate) fn from_py(what: &str, obj: &Bound<'_, PyAny>) -> PyResult<Value> {
     if obj.is_none() {
         return Ok(Value::Null);
@@ -76,6 +77,10 @@ pub(crate) fn from_py(what: &str, obj: &Bound<'_, PyAny>) -> PyResult<Value> {
         let mut m = serde_json::Map::new();
         for (k, v) in d.iter() {
             let key: String = k.extract().map_err(|_| PyTypeError::new_err(format!("{what}: keys must be str")))?;
+            // A key set to None is a key not given: its default, as a keyword argument's.
+            if v.is_none() {
+                continue;
+            }
             let inner = format!("{what}.{key}");
             m.insert(key, from_py(&inner, &v)?);
         }

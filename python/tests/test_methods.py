@@ -192,7 +192,7 @@ def test_a_saved_estimator_resumes_where_it_stopped_bit_for_bit(samples):
 def test_array_arguments_take_what_numpy_reads_as_a_1d_array_of_numbers(samples):
     """update_many and Log.from_columns take lists, pandas Series, strided views and other
     dtypes (numpy.asarray(x, float64)), with the float64 arrays' results; anything else is a
-    ValueError naming the argument. Settings take numpy's scalars."""
+    ValueError naming the argument. Settings take numpy's scalars, and None as the default."""
     log = g.read_log(str(samples / "train" / "city-1.csv"))
     df = g.to_pandas(log)
     t, w, v = (log.column(c) for c in ("time_s", "gyro_dps", "speed_mps"))
@@ -208,6 +208,9 @@ def test_array_arguments_take_what_numpy_reads_as_a_1d_array_of_numbers(samples)
     for bad in ("abc", [[1.0, 2.0], [3.0, 4.0]], ["x", "y"], None):
         with pytest.raises(ValueError, match="time_s: expected a 1-d array of numbers"):
             g.HdrEstimator().update_many(bad, [0.0, 1.0])
+    # A setting given as None takes its default (nested ones too), as a keyword argument's.
+    assert g.hdr(log, {"tau_s": None, "bias_s": None}) == g.hdr(log)
+    assert g.pipeline(log, {"still": {"still_speed_mps": None}, "road_gate_dps": None}) == g.pipeline(log)
     # Settings take numpy's scalars as Python's: a numpy bool is a bool, not the number 1.
     assert g.hdr(log, {"resample": np.bool_(False), "tau_s": np.float32(1.0), "bias_s": np.int64(20)}) == g.hdr(log, {"resample": False, "tau_s": 1.0, "bias_s": 20})
 
