@@ -23,7 +23,7 @@ export const METRIC_HELP = {
 export const PIPE_PARAMS = [
   { key: "still_speed_mps", group: "still", label: "still below", unit: "m/s", min: 0.05, max: 3, step: 0.05, help: "A 1 s block stands when every speed in it is below this. Raise it when the GPS speed at a standstill reads noise (0.3-1 m/s) and the pipeline finds few stops." },
   { key: "min_still_s", label: "stop trim", unit: "s", min: 0, max: 5, step: 0.5, help: "A stop's blocks count only this far from both of its ends (braking, GPS speed lag, pulling away into a turn); delays the stop evidence as much." },
-  { key: "max_bias_dps", label: "max bias", unit: "deg/s", min: 0.5, max: 20, step: 0.5, help: "The widest bias accepted: a standing whose rate is further from the lead-in's bias is taken as a slow turn (a standing of 10 s is taken whatever its rate)." },
+  { key: "max_bias_dps", label: "max bias", unit: "deg/s", min: 0.5, max: 20, step: 0.5, help: "The widest bias accepted: a standing whose rate is further than this from the lead-in's bias (0 without a lead-in) is taken as a slow turn; without a lead-in, a steady standing of 10 s is taken whatever its rate." },
   { key: "road_gate_dps", label: "straight gate", unit: "deg/s", min: 0.05, max: 2, step: 0.01, help: "A moving block within this of the last 60 s's dominant rate counts as straight road, HDR's heuristic: wider finds more straights on a noisy gyro, and takes gentle curves for straight." },
   { key: "blend_sigmas", label: "blend guard", unit: "sigma", min: 0, max: 5, step: 0.1, help: "The heading moves with Table-III HDR's and Fusion's offset where the bias they imply is within this many sigmas of the bank's; 0 = the bank's heading alone." },
 ];
