@@ -50,8 +50,8 @@ fn meta_of(v: serde_json::Value) -> PyResult<gyrodrift::LogMeta> {
     Ok(meta)
 }
 
-/// A pickled log's state: its metadata as JSON, each row's line, its columns by name.
-type LogState<'py> = (String, Py<PyAny>, Bound<'py, PyDict>);
+/// A pickled log's state: its metadata, each row's line, its columns by name.
+type LogState<'py> = (Bound<'py, PyDict>, Py<PyAny>, Bound<'py, PyDict>);
 
 /// Named float64 columns (CSV v1 names) from a dict of numpy arrays.
 fn columns_of(columns: &Bound<'_, PyDict>) -> PyResult<Vec<(Column, Vec<f64>)>> {
@@ -193,15 +193,15 @@ impl PyLog {
     /// parser's checks. Every value, the line numbers its errors name and the metadata
     /// come back as they were.
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, LogState<'py>)> {
-        let meta = serde_json::to_string(&self.log.meta).map_err(value_err)?;
         let line = PyArray1::from_vec(py, self.log.line.clone()).into_any().unbind();
-        Ok((py.get_type::<PyLog>().getattr("_from_state")?, (meta, line, self.columns(py)?)))
+        Ok((py.get_type::<PyLog>().getattr("_from_state")?, (self.meta(py)?, line, self.columns(py)?)))
     }
 
-    /// The log `__reduce__` took apart.
+    /// The log `__reduce__` took apart (its metadata as `meta()` gives it: Python floats,
+    /// exact, where JSON text would not bring every one back).
     #[staticmethod]
-    fn _from_state(meta: &str, line: PyReadonlyArray1<'_, u64>, columns: &Bound<'_, PyDict>) -> PyResult<PyLog> {
-        let meta: gyrodrift::LogMeta = serde_json::from_str(meta).map_err(|e| value_err(format!("meta: {e}")))?;
+    fn _from_state(meta: &Bound<'_, PyDict>, line: PyReadonlyArray1<'_, u64>, columns: &Bound<'_, PyDict>) -> PyResult<PyLog> {
+        let meta: gyrodrift::LogMeta = serde_json::from_value(from_py("meta", meta)?).map_err(|e| value_err(format!("meta: {e}")))?;
         let line = line.as_slice().map_err(value_err)?.to_vec();
         DriveLog::from_columns(meta, line, columns_of(columns)?).map(PyLog::new).map_err(value_err)
     }

@@ -316,6 +316,11 @@ def test_a_log_pickles_and_copies_with_its_values_and_metadata(samples, tmp_path
     with pytest.warns(UserWarning, match="1 late rows put in time order"):
         fixed = g.read_log(str(late), time_order="fix")
     _same_log(pickle.loads(pickle.dumps(fixed)), fixed)
+    # Metadata floats come back exactly (through JSON text a sixth of them moved by a bit).
+    biases = [0.1 * k + 1e-13 * k * k for k in range(1, 300)]
+    for b in biases:
+        one = g.Log.from_columns({"time_s": [0.0, 1.0], "gyro_dps": [0.0, 0.0]}, {"bias_s": b, "wheelbase_m": b / 7})
+        assert pickle.loads(pickle.dumps(one)).meta() == one.meta()
     assert g.hdr(pickle.loads(pickle.dumps(logs[1]))) == g.hdr(logs[1])
 
 

@@ -156,15 +156,20 @@ fn is_gpx(s: &Sniffed) -> bool {
     s.name.to_lowercase().ends_with(".gpx")
 }
 
-/// A GPX track or an NMEA log (lines of `$` sentences): no column of it is a gyro's.
+/// An NMEA log: lines of `$` sentences.
+fn is_nmea(s: &Sniffed) -> bool {
+    s.header.first().is_some_and(|h| h.starts_with('$'))
+}
+
+/// A GPX track or an NMEA log: no column of it is a gyro's.
 fn is_track(s: &Sniffed) -> bool {
-    is_gpx(s) || s.header.first().is_some_and(|h| h.starts_with('$'))
+    is_gpx(s) || is_nmea(s)
 }
 
 /// The sentence of an NMEA log to read, from its head's lines: the first RMC talker
 /// (`$GPRMC`, `$GNRMC`: course and speed), else the first GGA (positions).
 fn nmea_record(s: &Sniffed, head: &[u8]) -> Option<String> {
-    if !s.header.first().is_some_and(|h| h.starts_with('$')) {
+    if !is_nmea(s) {
         return None;
     }
     let text = String::from_utf8_lossy(head);
