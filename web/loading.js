@@ -257,6 +257,7 @@ export async function loadFiles(given) {
   // preset they fit (a recipe .toml or .json dropped with them is used instead of detection).
   const logs = [];
   const raw = [];
+  const otherDialect = new Set();
   let recipe = null;
   const files = [];
   for (const f of given) {
@@ -281,7 +282,13 @@ export async function loadFiles(given) {
       continue;
     }
     const head = new Uint8Array(await f.slice(0, 65536).arrayBuffer());
-    (gd.isDriveLog(f.name, head) ? logs : raw).push(f);
+    if (!gd.isDriveLog(f.name, head)) {
+      raw.push(f);
+      continue;
+    }
+    logs.push(f);
+    // A log saved with `;` and decimal commas: the worker's module reads it.
+    if (gd.sniffFile(f.name, head).delimiter !== ",") otherDialect.add(f);
   }
   let last = null;
   if (raw.length) {
@@ -292,7 +299,7 @@ export async function loadFiles(given) {
     $("status").textContent = `reading ${f.name}…`;
     const buffer = await f.arrayBuffer();
     let e;
-    if (buffer.byteLength > WORKER_BYTES && window.Worker) {
+    if ((buffer.byteLength > WORKER_BYTES || otherDialect.has(f)) && window.Worker) {
       e = await addWorkerParsed(f, await parseInWorker(f, buffer));
       // Its first drawing in a task of its own, so none holds the page for long.
       await nextTask();

@@ -266,3 +266,34 @@ fn a_dash_reads_the_log_from_standard_input() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("standard input is given twice"));
 }
+
+/// A log a spreadsheet saved where the decimal mark is a comma (`;` between cells, `0,25`,
+/// CRLF, a byte-order mark; or tabs) runs as the comma-separated log, gzipped too; a bad
+/// cell in it is named by the file's line and column.
+#[test]
+fn a_log_saved_with_semicolons_and_decimal_commas_runs_as_the_comma_log() {
+    let text = drive_csv();
+    let comma = write("dialect-comma.csv", &text);
+    let saved_as = |sep: &str| -> String {
+        let rows = text.lines().map(|l| {
+            if l.starts_with('#') {
+                l.to_string()
+            } else {
+                l.replace(',', "\u{0}").replace('.', ",").replace('\u{0}', sep)
+            }
+        });
+        format!("\u{feff}{}\r\n", rows.collect::<Vec<_>>().join("\r\n"))
+    };
+    let semi = write("dialect-semicolon.csv", &saved_as(";"));
+    let tab = write("dialect-tab.tsv", &saved_as("\t"));
+    let want = run(&["pipeline", "--json", comma.to_str().unwrap()]);
+    assert!(want.status.success());
+    for p in [&semi, &tab] {
+        let got = run(&["pipeline", "--json", p.to_str().unwrap()]);
+        assert!(got.status.success(), "{}", String::from_utf8_lossy(&got.stderr));
+        assert_eq!(got.stdout, want.stdout, "{}", p.display());
+    }
+    let bad = write("dialect-bad.csv", &saved_as(";").replacen("\r\n0,1;", "\r\n0,1;x", 1));
+    let err = String::from_utf8(run(&["hdr", bad.to_str().unwrap()]).stderr).unwrap();
+    assert!(err.contains("line 4, column gyro_dps: \"x1\" is not a number"), "{err}");
+}

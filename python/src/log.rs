@@ -153,10 +153,10 @@ impl PyLog {
         warned(py, &p, read)
     }
 
-    /// Parses CSV v1 text.
+    /// Parses CSV v1 text (or as a spreadsheet saves it with `;` and decimal commas).
     #[staticmethod]
     fn parse(py: Python<'_>, text: &str) -> PyResult<PyLog> {
-        py.detach(|| gyrodrift::parse_log_str(text)).map(PyLog::new).map_err(value_err)
+        py.detach(|| gyrodrift::parse_log(gyrodrift::log::dialect::comma_separated(text.as_bytes()))).map(PyLog::new).map_err(value_err)
     }
 
     /// Parses a CSV v1 log's bytes, gzip-compressed or not (an object store's file, as the

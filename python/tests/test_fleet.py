@@ -242,6 +242,23 @@ def test_gzipped_logs_read_and_score_as_the_plain_files(samples, tmp_path):
     assert a["e_psi_pipeline_deg"] == b["e_psi_pipeline_deg"]
 
 
+def test_a_log_saved_with_semicolons_and_decimal_commas_reads_as_the_comma_log(samples, tmp_path):
+    """A v1 log as a spreadsheet saves it where the decimal mark is a comma (`;` between
+    cells, CRLF, a byte-order mark): read_log, Log.parse and Log.from_bytes read the comma
+    log's columns and metadata; a bad cell is named by the file's line and column."""
+    plain = samples / "train" / "city-1.csv"
+    text = plain.read_text()
+    saved = "\ufeff" + "\r\n".join(l if l.startswith("#") else l.replace(",", ";").replace(".", ",") for l in text.splitlines())
+    (tmp_path / "eu.csv").write_bytes(saved.encode())
+    want = g.read_log(str(plain))
+    for got in [g.read_log(str(tmp_path / "eu.csv")), g.Log.parse(saved), g.Log.from_bytes(saved.encode())]:
+        for c in ["time_s", "gyro_dps", "temp_c", "ref_heading_deg", "speed_mps"]:
+            assert np.array_equal(got.column(c), want.column(c), equal_nan=True), c
+        assert got.meta() == want.meta()
+    with pytest.raises(ValueError, match=r'line 3, column gyro_dps: "1.5x" is not a number'):
+        g.Log.parse("time_s;gyro_dps\r\n0;1,5\r\n0,1;1,5x\r\n")
+
+
 def test_dask_on_an_object_store_url_scores_as_the_local_folder(folder, samples, tmp_path):
     """INPUT as an fsspec URL (s3://... in use; memory:// here, in this process, which the
     LocalCluster's worker threads share): CSV logs, gzipped ones, a broken one and a missing

@@ -101,6 +101,20 @@ test("a gzip-compressed log (drive.csv.gz) opens as the plain file, with the CLI
   assert.match(await page.locator("#logs li.selected").innerText(), /City 3/);
 });
 
+test("a log saved with ';' and decimal commas opens as the comma log, with the CLI's numbers", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-dialect-"));
+  const plain = join(SAMPLES, "test", "mixed-2.csv");
+  const lines = readFileSync(plain, "utf8").split("\n");
+  const file = join(dir, "mixed-2-eu.csv");
+  writeFileSync(file, "\ufeff" + lines.map((l) => (l.startsWith("#") ? l : l.replaceAll(",", ";").replaceAll(".", ","))).join("\r\n"));
+  await page.locator("#file-input").setInputFiles([file]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Mixed 2"));
+  const native = JSON.parse(cli("hdr", file, "--json"));
+  assert.deepEqual(native, JSON.parse(cli("hdr", plain, "--json")));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  assert.equal(await page.locator("#m-improvement").innerText(), native.improvement.toFixed(2));
+});
+
 test("a log with a clockwise gyro gets a check badge naming the fix; the shipped ones none", async () => {
   assert.equal(await page.locator("#logs li .check").count(), 0);
   const dir = mkdtempSync(join(tmpdir(), "gd-cw-"));

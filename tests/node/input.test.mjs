@@ -26,6 +26,19 @@ test("bad input throws an Error with line and column, and the module keeps worki
   assert.ok(ok.E_psi_hdr_deg > 0);
 });
 
+test("a log saved with ';' and decimal commas (a spreadsheet's CSV in many locales) reads as the comma log", () => {
+  const text = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const saved = "\ufeff" + text.split("\n").map((l) => (l.startsWith("#") ? l : l.replaceAll(",", ";").replaceAll(".", ","))).join("\r\n");
+  const want = gd.Log.parse(text);
+  const bytes = new TextEncoder().encode(saved);
+  assert.equal(gd.isDriveLog("city-1.csv", bytes), true);
+  for (const got of [gd.Log.parse(saved), gd.Log.fromBytes(bytes), gd.Log.fromBytesWithProgress(bytes, () => {}), gd.logInTimeOrder(bytes).log]) {
+    for (const c of ["time_s", "gyro_dps", "temp_c", "ref_heading_deg", "speed_mps"]) assert.deepEqual(Array.from(got.column(c)), Array.from(want.column(c)), c);
+    assert.deepEqual(got.meta(), want.meta());
+  }
+  assert.throws(() => gd.Log.parse("time_s;gyro_dps\r\n0;1,5\r\n0,1;1,5x\r\n"), { message: 'line 3, column gyro_dps: "1.5x" is not a number' });
+});
+
 test("wrong argument types throw TypeError (never a trap), misspelled recipe fields are refused, and the module keeps working", () => {
   const log = gd.Log.parse("time_s,gyro_dps\n0,1\n1,2\n");
   const typeErrors = [

@@ -32,7 +32,7 @@ pub fn import_log(
 #[wasm_bindgen(js_name = logInTimeOrder, unchecked_return_type = "{ log: Log; fixed: string }")]
 pub fn log_in_time_order(#[wasm_bindgen(unchecked_param_type = "Uint8Array | ArrayBuffer")] bytes: JsValue) -> JsResult<JsValue> {
     let bytes = js_bytes(&bytes, "logInTimeOrder(bytes)")?;
-    let (log, fixes) = gyrodrift::log::parse_log_in_time_order(&bytes[..], Default::default()).map_err(err)?;
+    let (log, fixes) = gyrodrift::log::parse_log_in_time_order(crate::log::v1_bytes(&bytes), Default::default()).map_err(err)?;
     let out = Object::new();
     set(&out, "log", &JsValue::from(Log::new(log)))?;
     set(&out, "fixed", &JsValue::from_str(&fixes.to_text()))?;

@@ -86,19 +86,31 @@ impl Log {
     }
 }
 
+/// A v1 log's bytes as the parser reads them. With the import's code (the worker's module
+/// and Node's), a log a spreadsheet saved with `;` and decimal commas reads as the
+/// comma-separated one (core's `log::dialect`); the size-budgeted page module reads commas.
+pub(crate) fn v1_bytes(bytes: &[u8]) -> impl std::io::Read + '_ {
+    #[cfg(feature = "import")]
+    return gyrodrift::log::dialect::comma_separated(bytes);
+    #[cfg(not(feature = "import"))]
+    bytes
+}
+
 #[wasm_bindgen]
 impl Log {
-    /// Parses CSV v1 text; a bad file throws an Error naming line and column.
+    /// Parses CSV v1 text; a bad file throws an Error naming line and column. The `full`
+    /// module and Node's also read a log saved with `;` (or tabs) and decimal commas.
     pub fn parse(#[wasm_bindgen(unchecked_param_type = "string")] text: JsValue) -> JsResult<Log> {
         let text = js_string(&text, "Log.parse(text)")?;
-        gyrodrift::parse_log_str(&text).map(Log::new).map_err(err)
+        gyrodrift::parse_log(v1_bytes(text.as_bytes())).map(Log::new).map_err(err)
     }
 
-    /// Parses CSV v1 bytes (e.g. from a File's arrayBuffer()).
+    /// Parses CSV v1 bytes (e.g. from a File's arrayBuffer()); with `;` and decimal commas
+    /// as `parse` says.
     #[wasm_bindgen(js_name = fromBytes)]
     pub fn from_bytes(#[wasm_bindgen(unchecked_param_type = "Uint8Array | ArrayBuffer")] bytes: JsValue) -> JsResult<Log> {
         let bytes = js_bytes(&bytes, "Log.fromBytes(bytes)")?;
-        gyrodrift::parse_log(&bytes[..]).map(Log::new).map_err(err)
+        gyrodrift::parse_log(v1_bytes(&bytes)).map(Log::new).map_err(err)
     }
 
     /// Parses CSV v1 bytes, calling `progress(fraction)` now and then (for a Web Worker
@@ -113,7 +125,7 @@ impl Log {
         let mut cb = |b: u64| {
             let _ = progress.call1(&JsValue::NULL, &JsValue::from_f64(b as f64 / total));
         };
-        gyrodrift::log::parse_log_progress(&bytes[..], Default::default(), &mut cb).map(Log::new).map_err(err)
+        gyrodrift::log::parse_log_progress(v1_bytes(&bytes), Default::default(), &mut cb).map(Log::new).map_err(err)
     }
 
     /// The parsed log as plain data `{ meta, line, columns: { name: Float64Array } }`,

@@ -113,7 +113,12 @@ impl Drafting<'_> {
             self.r["speed"] = json!({ "source": "column", "table": table(sp.file), "column": sp.column, "unit": unit });
             self.used.push(sp.file);
         }
-        if let Some(c) = self.g.course.clone() {
+        if let Some(c) = self.g.course.clone().filter(|c| c.column == Column::RefHeadingDeg.name()) {
+            // The v1 log's own reference column: counter-clockwise, gated already.
+            self.guesses.push(format!("heading: {}, deg, counter-clockwise (a drive log's reference heading)", self.at(&c)));
+            self.r["heading"] = json!({ "source": "column", "table": table(c.file), "column": c.column, "unit": "deg", "positive": "ccw" });
+            self.used.push(c.file);
+        } else if let Some(c) = self.g.course.clone() {
             let unit = angle_unit_of(&c.column);
             self.guesses.push(format!("heading: {}, {unit}, clockwise from north (a GPS course)", self.at(&c)));
             let mut h = json!({ "source": "column", "table": table(c.file), "column": c.column, "unit": unit, "positive": "cw" });

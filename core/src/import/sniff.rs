@@ -29,9 +29,10 @@ impl Sniffed {
     }
 
     /// A drive log v1 already (its header after the `#` lines has `time_s` and `gyro_dps`):
-    /// it opens as it is, no import needed.
+    /// it opens as it is, no import needed; one saved with `;` and decimal commas through
+    /// `log::dialect`.
     pub fn is_drive_log(&self) -> bool {
-        self.delimiter == ',' && self.find("time_s").is_some() && self.find("gyro_dps").is_some()
+        self.find("time_s").is_some() && self.find("gyro_dps").is_some()
     }
 
     /// A recipe table's dialect fields (JSON) as sniffed: the separator, a decimal comma,
@@ -158,6 +159,7 @@ mod tests {
         // A single column has no separator: comma.
         assert_eq!(sniff("x.csv", b"gyro\n1\n").unwrap().delimiter, ',');
         assert!(sniff("d.csv", b"# name: x\ntime_s,gyro_dps\n0,1\n").unwrap().is_drive_log());
+        assert!(sniff("d.csv", b"# name: x\ntime_s;gyro_dps\n0;1,5\n").unwrap().is_drive_log());
         assert!(!s.is_drive_log());
     }
 

@@ -402,6 +402,14 @@ fn a_draft_recipe_reads_the_columns_by_name_and_imports() {
     // a rate in rad/s named "..._s" before the time column is not taken for the time
     let d5 = draft_recipe(&[head("d.csv", "gyro_z_rad_s,timestamp\n0.1,5\n")]).unwrap().recipe_json;
     assert_eq!((d5["table"][0]["time"]["column"].as_str(), d5["yaw_rate"]["column"].as_str()), (Some("timestamp"), Some("gyro_z_rad_s")));
+    // a drive log's own reference column (a v1 log saved with `;`): counter-clockwise, not
+    // a course, and not gated again by speed
+    let v1 = "time_s;gyro_dps;ref_heading_deg;speed_mps\n0;1,5;;0\n1;1,5;10;10\n";
+    let d6 = draft_recipe(&[head("v1.csv", v1)]).unwrap().recipe_json;
+    assert_eq!(
+        d6["heading"],
+        serde_json::json!({ "source": "column", "table": "t0", "column": "ref_heading_deg", "unit": "deg", "positive": "ccw" })
+    );
     // no yaw rate by name: an error naming the headers
     let e = draft_recipe(&[head("c.csv", "t,a,b\n")]).unwrap_err().to_string();
     assert!(e.contains("no column reads as a yaw rate") && e.contains("c.csv: t, a, b"), "{e}");

@@ -1,6 +1,7 @@
 //! A log file as the native fronts open it: a gzip-compressed log (`drive.csv.gz`, as
 //! fleets store them) reads through a decoder, so the CLI, Python and the fleet batch read
-//! it as the plain file, errors naming its lines as they are once decompressed.
+//! it as the plain file, errors naming its lines as they are once decompressed; a log a
+//! spreadsheet saved with `;` and decimal commas reads as the comma-separated one.
 
 use std::path::Path;
 
@@ -16,13 +17,16 @@ pub fn log_stem(path: &Path) -> String {
 }
 
 /// `reader` for `parse_log`, gunzipped when it starts as gzip does (every member of a
-/// multi-member stream, as `cat a.gz b.gz` makes), else as it is.
+/// multi-member stream, as `cat a.gz b.gz` makes), else as it is; a log saved with `;` (or
+/// tab) separators and decimal commas read as the comma-separated log
+/// ([`super::dialect`]).
 #[cfg(feature = "zip")]
 pub fn decompressed<'a, R: std::io::BufRead + Send + 'a>(mut reader: R) -> std::io::Result<Box<dyn std::io::Read + Send + 'a>> {
+    use super::dialect::comma_separated;
     if crate::table::is_gzip(reader.fill_buf()?) {
-        Ok(Box::new(Gunzip(flate2::bufread::MultiGzDecoder::new(reader))))
+        Ok(Box::new(comma_separated(Gunzip(flate2::bufread::MultiGzDecoder::new(reader)))))
     } else {
-        Ok(Box::new(reader))
+        Ok(Box::new(comma_separated(reader)))
     }
 }
 

@@ -342,6 +342,7 @@ pub enum LogKind {
 
 pub mod accept;
 mod builder;
+pub mod dialect;
 pub use builder::LogBuilder;
 pub mod file;
 pub mod gaps;
