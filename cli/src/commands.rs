@@ -370,6 +370,11 @@ pub fn import(recipe: &Path, data: Option<&Path>, allow_outside: bool, out: Opti
 /// on stderr, then as `import` (or the recipe as TOML with `print_recipe`).
 pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>, json: bool) -> Result<(), Failure> {
     use gyrodrift::import;
+    if let [one] = paths {
+        if is_drive_log_file(one) {
+            return rewrite_drive_log(one, print_recipe, out, json);
+        }
+    }
     let (d, log, summary) = match import::import_paths(paths) {
         Ok(detected) => detected,
         Err(e) => return draft_instead(paths, print_recipe, e),
@@ -400,6 +405,41 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
         // The line names what was given: the folder or zip, or the gyro's file among the files.
         let shown = whole.cloned().unwrap_or_else(|| PathBuf::from(&d.used[0].1));
         eprintln!("{}", output::import_line(&shown, &summary));
+        Ok(())
+    }
+}
+
+/// A file that is a drive log v1 already (gzipped or not, with commas or as a spreadsheet
+/// saves it with `;` and decimal commas), by its head.
+fn is_drive_log_file(path: &Path) -> bool {
+    use std::io::Read;
+    let Ok(f) = gyrodrift::log::file::open_log(path) else { return false };
+    let mut head = Vec::new();
+    f.take(gyrodrift::import::SNIFF_BYTES as u64).read_to_end(&mut head).is_ok()
+        && gyrodrift::import::sniff(&path.display().to_string(), &head).is_ok_and(|s| s.is_drive_log())
+}
+
+/// `import` given a drive log v1: no preset to detect; the log is read (with `--time-order`)
+/// and written as gyrodrift writes logs (commas, decimal points), so a log saved with `;`
+/// and decimal commas becomes the format as written.
+fn rewrite_drive_log(path: &Path, print_recipe: bool, out: Option<&Path>, json: bool) -> Result<(), Failure> {
+    if print_recipe {
+        return Err(Failure(format!("{}: a drive log v1 already: it needs no recipe", path.display())));
+    }
+    let log = read_log(path)?;
+    if out.is_some() || !json {
+        write_log(&log, out)?;
+    }
+    let what = format!(
+        "{}: a drive log v1 already, {} rows, {:.1} min: written as gyrodrift writes logs",
+        path.display(),
+        log.len(),
+        log.duration_min()
+    );
+    if json {
+        print_json(&serde_json::json!({ "preset": null, "drive_log": true, "rows": log.len(), "duration_min": log.duration_min() }))
+    } else {
+        eprintln!("{what}");
         Ok(())
     }
 }

@@ -293,6 +293,12 @@ fn a_log_saved_with_semicolons_and_decimal_commas_runs_as_the_comma_log() {
         assert!(got.status.success(), "{}", String::from_utf8_lossy(&got.stderr));
         assert_eq!(got.stdout, want.stdout, "{}", p.display());
     }
+    // `import` writes it as the format is written: the comma log, byte for byte.
+    let out = run(&["import", semi.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), text);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("a drive log v1 already"));
+    assert_eq!(run(&["import", semi.to_str().unwrap(), "--print-recipe"]).status.code(), Some(2));
     let bad = write("dialect-bad.csv", &saved_as(";").replacen("\r\n0,1;", "\r\n0,1;x", 1));
     let err = String::from_utf8(run(&["hdr", bad.to_str().unwrap()]).stderr).unwrap();
     assert!(err.contains("line 4, column gyro_dps: \"x1\" is not a number"), "{err}");
