@@ -371,7 +371,8 @@ pub fn import(recipe: &Path, data: Option<&Path>, allow_outside: bool, out: Opti
 pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>, json: bool) -> Result<(), Failure> {
     use gyrodrift::import;
     if let [one] = paths {
-        if is_drive_log_file(one) {
+        // A drive log v1, unless its `time_s` holds date-times, which the draft reads.
+        if is_drive_log_file(one) && !crate::draft_reads_time(one, true) {
             return rewrite_drive_log(one, print_recipe, out, json);
         }
     }

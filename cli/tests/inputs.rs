@@ -303,3 +303,29 @@ fn a_log_saved_with_semicolons_and_decimal_commas_runs_as_the_comma_log() {
     let err = String::from_utf8(run(&["hdr", bad.to_str().unwrap()]).stderr).unwrap();
     assert!(err.contains("line 4, column gyro_dps: \"x1\" is not a number"), "{err}");
 }
+
+/// A file refused for its time column that the import's draft reads (time in ms, or
+/// date-times in `time_s`) names the `import --print-recipe` command; a v1 log with one bad
+/// time cell, or a table without a yaw rate, gets no such hint.
+#[test]
+fn a_loggers_table_refused_for_its_time_names_the_draft_recipe() {
+    for (name, text, hint) in [
+        ("hint-ms.csv", "time_ms,gyro_dps\n0,0.1\n100,0.2\n", true),
+        ("hint-iso.csv", "time_s,gyro_dps\n2026-11-28T10:00:00.000Z,0.1\n2026-11-28T10:00:00.100Z,0.1\n", true),
+        ("hint-bad-cell.csv", "time_s,gyro_dps\n0,1\nx,2\n", false),
+        ("hint-no-gyro.csv", "a,b\n1,2\n", false),
+    ] {
+        let p = write(name, text);
+        let out = run(&["hdr", p.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{name}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        let want = format!("`gyrodrift import {} --print-recipe` drafts a recipe", p.display());
+        assert_eq!(err.contains(&want), hint, "{name}: {err}");
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        if hint {
+            let draft = run(&["import", p.to_str().unwrap(), "--print-recipe"]);
+            assert!(draft.status.success(), "{name}: {}", String::from_utf8_lossy(&draft.stderr));
+            assert!(String::from_utf8_lossy(&draft.stdout).contains("[yaw_rate]"), "{name}");
+        }
+    }
+}
