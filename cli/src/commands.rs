@@ -372,7 +372,7 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
     use gyrodrift::import;
     if let [one] = paths {
         // A drive log v1, unless its `time_s` holds date-times, which the draft reads.
-        if is_drive_log_file(one) && !crate::draft_reads_time(one, true) {
+        if is_drive_log_file(one) && !import::draft_reads(one, true) {
             return rewrite_drive_log(one, print_recipe, out, json);
         }
     }

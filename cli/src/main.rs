@@ -58,36 +58,17 @@ fn parse_ordered(path: &Path, reader: impl std::io::Read) -> Result<DriveLog, Fa
         }
         Err(e) => {
             let out_of_order = gyrodrift::log::accept::refused_for_time_order(&e);
-            let no_time = no_time_s(&e);
+            let drafted = !out_of_order && !is_stdin(path) && gyrodrift::import::draft_reads_refused(path, &e);
             let mut f = fail(path, e);
             if out_of_order {
                 f.0 += "; `--time-order fix` merges repeated times and sorts rows up to 1 s late in";
-            } else if no_time.is_some() && !is_stdin(path) && draft_reads_time(path, no_time == Some(true)) {
+            } else if drafted {
                 // A logger's own table (time in ms, date-times, another name): the import reads it.
                 let p = shell_quoted(path);
                 f.0 += &format!("; if it is a logger's table, `gyrodrift import {p} --print-recipe` drafts a recipe from its column names");
             }
             Err(f)
         }
-    }
-}
-
-/// A v1 parse refused for its time column: `Some(false)` when none is named `time_s`,
-/// `Some(true)` for a `time_s` cell that is not a number (a date-time, say).
-fn no_time_s(e: &Error) -> Option<bool> {
-    match e {
-        Error::Line { message, .. } if message.starts_with("missing required column time_s") => Some(false),
-        Error::Cell { column, message, .. } if column == "time_s" && message.ends_with("is not a number") => Some(true),
-        _ => None,
-    }
-}
-
-/// Whether the import's draft reads the file (no preset does): for a `time_s` that is not a
-/// number (`as_date`), only when the draft reads its time as a date or time of day.
-pub(crate) fn draft_reads_time(path: &Path, as_date: bool) -> bool {
-    match gyrodrift::import::draft_for_paths(&[path.to_path_buf()]) {
-        Ok(Some(d)) => !as_date || d.recipe_json["table"][0]["time"].get("format").is_some(),
-        _ => false,
     }
 }
 

@@ -84,8 +84,13 @@ pub(crate) fn read_path(path: &str, order: TimeOrder) -> PyResult<(DriveLog, Opt
     // A gzip-compressed log (drive.csv.gz) reads as the plain file.
     let f = gyrodrift::log::file::open_log(dir).map_err(|e| PyOSError::new_err(format!("{path}: cannot open: {e}")))?;
     gyrodrift::log::accept::parse_by(f, order).map_err(|e| {
-        let hint =
-            gyrodrift::import::import_hint(std::path::Path::new(path)).map_or(String::new(), |h| format!("; {}", hint_text(&h, "a file")));
+        let hint = match gyrodrift::import::import_hint(dir) {
+            Some(h) => format!("; {}", hint_text(&h, "a file")),
+            None if gyrodrift::import::draft_reads_refused(dir, &e) => {
+                format!("; if it is a logger's table, gyrodrift.draft_recipe([{path:?}]) drafts a recipe from its column names")
+            }
+            None => String::new(),
+        };
         value_err(format!("{path}: {e}{order_hint}{hint}", order_hint = time_order_hint(&e)))
     })
 }

@@ -259,6 +259,24 @@ def test_a_log_saved_with_semicolons_and_decimal_commas_reads_as_the_comma_log(s
         g.Log.parse("time_s;gyro_dps\r\n0;1,5\r\n0,1;1,5x\r\n")
 
 
+def test_a_loggers_table_refused_for_its_time_names_the_draft(tmp_path):
+    """read_log of a table the import's draft reads (time in ms, date-times in time_s)
+    names draft_recipe; a v1 log with one bad time further down does not."""
+    ms = tmp_path / "ms.csv"
+    ms.write_text("time_ms,gyro_dps\n0,0.1\n100,0.2\n")
+    iso = tmp_path / "iso.csv"
+    iso.write_text("time_s,gyro_dps\n2026-11-28T10:00:00.000Z,0.1\n2026-11-28T10:00:00.100Z,0.1\n")
+    bad = tmp_path / "bad.csv"
+    bad.write_text("time_s,gyro_dps\n0,1\nx,2\n")
+    for p in [ms, iso]:
+        with pytest.raises(ValueError, match=r"gyrodrift\.draft_recipe\(\[.*\]\) drafts a recipe"):
+            g.read_log(str(p))
+        assert g.draft_recipe([str(p)])["recipe"]["yaw_rate"]["column"] == "gyro_dps"
+    with pytest.raises(ValueError) as e:
+        g.read_log(str(bad))
+    assert "line 3, column time_s" in str(e.value) and "draft_recipe" not in str(e.value)
+
+
 def test_dask_on_an_object_store_url_scores_as_the_local_folder(folder, samples, tmp_path):
     """INPUT as an fsspec URL (s3://... in use; memory:// here, in this process, which the
     LocalCluster's worker threads share): CSV logs, gzipped ones, a broken one and a missing

@@ -19,6 +19,32 @@ pub struct ImportHint {
     pub files: Vec<PathBuf>,
 }
 
+/// A file the v1 parser refused for its time column (`e`: no column named `time_s`, or a
+/// `time_s` cell that is not a number) whose table the import's draft reads: a logger's own
+/// table (time in ms, date-times), for which a front names the draft (`gyrodrift import
+/// FILE --print-recipe`). For a `time_s` cell only when the draft reads that time as a date
+/// or time of day, so a v1 log with one bad time further down gets no such hint.
+pub fn draft_reads_refused(path: &Path, e: &Error) -> bool {
+    let e = match e {
+        Error::In { source, .. } => source.as_ref(),
+        e => e,
+    };
+    match e {
+        Error::Line { message, .. } if message.starts_with("missing required column time_s") => draft_reads(path, false),
+        Error::Cell { column, message, .. } if column == "time_s" && message.ends_with("is not a number") => draft_reads(path, true),
+        _ => false,
+    }
+}
+
+/// Whether the import's draft reads the file (no preset does); with `dates`, only when it
+/// reads the file's time as a date or time of day (a `time_s` of date-times).
+pub fn draft_reads(path: &Path, dates: bool) -> bool {
+    match super::draft_for_paths(&[path.to_path_buf()]) {
+        Ok(Some(d)) => !dates || d.recipe_json["table"][0]["time"].get("format").is_some(),
+        _ => false,
+    }
+}
+
 /// The head of a file: its first `SNIFF_BYTES`, what detection and drafts read.
 pub(super) fn read_head(p: &Path) -> std::io::Result<Vec<u8>> {
     let mut bytes = Vec::new();

@@ -34,7 +34,10 @@ pub use draft::{draft_recipe, Draft};
 pub use geo::*;
 pub use guess::{column_guesses, guess_columns, ColumnReading, ColumnRef, FileGuess, Guesses, LatLon};
 #[cfg(feature = "fs")]
-pub use hint::{folder_hint, folder_hints, import_hint, import_recording, recipe_recordings, recordings, ImportHint, Recording};
+pub use hint::{
+    draft_reads, draft_reads_refused, folder_hint, folder_hints, import_hint, import_recording, recipe_recordings, recordings, ImportHint,
+    Recording,
+};
 pub use presets::{detect, detect_and_import, presets, Detection};
 pub use recipe::*;
 pub use recipe_text::*;
