@@ -63,7 +63,7 @@ export function renderList() {
         li.append(imp);
       }
       if (e.note) li.append(checkNote("split", "✂ split at a gap in time", [e.note]));
-      if (e.orderNote) li.append(checkNote("split", "⇅ put in time order", [e.orderNote]));
+      if (e.orderNote) li.append(checkNote("split", e.orderLabel, [e.orderNote]));
     }
     ul.append(li);
   });

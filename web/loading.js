@@ -322,6 +322,12 @@ export async function loadFiles(given) {
     } else if (TIME_ORDER.test(e.error) && window.Worker) {
       // A time that repeats or steps back: the list offers to put it in order (fixTimeOrder).
       Object.assign(e, { source: f, timeOrder: true });
+    } else if (CUT_ROW.test(e.error) && window.Worker) {
+      // A logger stopped mid-line: the worker's module reads the log without its cut last
+      // line and says so (a row cut anywhere else stays the error it is).
+      Object.assign(e, { source: f });
+      const read = await fixTimeOrder(e, "✂ last line cut short");
+      if (!read.error) last = read;
     }
   }
   $("status").textContent = "";
@@ -331,20 +337,24 @@ export async function loadFiles(given) {
 
 /** Core's refusal of a log whose time does not strictly increase. */
 const TIME_ORDER = /time must strictly increase/;
+/** Core's refusal of a row with fewer cells than the header (a last line cut short?). */
+const CUT_ROW = /\(truncated row\?\)$/;
 
-/** A log refused for its time order, read again in the worker (whose module has the fixing
- * parser) with its time put in order: rows of one time merged by their mean, rows up to 1 s
- * late sorted in, as the CLI's `--time-order fix`. It takes the error entry's place; what was
- * fixed is its note. A clock reset stays an error entry. */
-export async function fixTimeOrder(entry) {
+/** A log refused for its time order (or its last line cut short), read again in the worker
+ * (whose module has the fixing parser) with its time put in order: rows of one time merged by
+ * their mean, rows up to 1 s late sorted in, as the CLI's `--time-order fix`, and a last line
+ * cut short dropped. It takes the error entry's place; what was fixed is its note, under
+ * `label`. A clock reset stays an error entry. Returns the new entry. */
+export async function fixTimeOrder(entry, label = "⇅ put in time order") {
   const f = entry.source;
   const res = await parseInWorker(f, await f.arrayBuffer(), { timeOrder: "fix" });
   state.entries.splice(state.entries.indexOf(entry), 1);
   const e = await addWorkerParsed(f, res);
-  if (!e.error) e.orderNote = res.fixed;
+  if (!e.error) Object.assign(e, { orderNote: res.fixed, orderLabel: label });
   $("status").textContent = "";
   if (!e.error) selectEntry(state.entries.indexOf(e));
   else renderList();
+  return e;
 }
 
 /** The shipped sample logs, fetched next to the page (absent on a bare static host). */

@@ -26,7 +26,7 @@ fn bad_inputs_exit_2_never_panic() {
         ("dup.csv", "time_s,time_s\n1,1\n", "duplicate column time_s"),
         ("nan.csv", "time_s,gyro_dps\n0,nan\n", "line 2, column gyro_dps"),
         ("back.csv", "time_s,gyro_dps\n0,1\n1,1\n1,1\n", "line 4, column time_s: time 1 repeats 1 on line 3"),
-        ("trunc.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1", "line 3: row has 2 fields"),
+        ("trunc.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1\n2,1,0\n", "line 3: row has 2 fields"),
     ];
     for (name, text, want) in cases {
         let p = write(name, text);
@@ -328,4 +328,22 @@ fn a_loggers_table_refused_for_its_time_names_the_draft_recipe() {
             assert!(String::from_utf8_lossy(&draft.stdout).contains("[yaw_rate]"), "{name}");
         }
     }
+}
+
+/// A logger stopped mid-line: the last line, cut short (no line end, fewer cells than the
+/// header), is dropped and said on stderr; the results are those of the log without it.
+#[test]
+fn a_last_line_cut_short_is_dropped_and_said() {
+    let text = drive_csv();
+    let whole = write("cut-whole.csv", &text);
+    let cut_at = text.trim_end().rfind('\n').unwrap();
+    let without = write("cut-without.csv", &text[..=cut_at]);
+    let cut = write("cut-short.csv", &text[..cut_at + 6]);
+    let want = run(&["pipeline", "--json", without.to_str().unwrap()]);
+    let got = run(&["pipeline", "--json", cut.to_str().unwrap()]);
+    assert!(got.status.success(), "{}", String::from_utf8_lossy(&got.stderr));
+    assert_eq!(got.stdout, want.stdout);
+    assert_ne!(got.stdout, run(&["pipeline", "--json", whole.to_str().unwrap()]).stdout);
+    let err = String::from_utf8(got.stderr).unwrap();
+    assert_eq!(err.lines().next().unwrap(), format!("{}: its last line, cut short (2 of 4 cells, no line end), dropped", cut.display()));
 }

@@ -255,7 +255,7 @@ pub fn score_reader<R: Read>(file: &str, stem: &str, reader: R, opts: &FleetOpti
     match crate::log::accept::parse_by(reader, opts.input.time_order) {
         Ok((log, fixed)) => {
             let mut rows = score_log(file, stem, log, opts);
-            // What the time-order policy fixed is the rows' first warning.
+            // What reading the file fixed (time order, a cut last line) is the rows' first warning.
             if let Some(f) = fixed {
                 for r in &mut rows {
                     r.warnings = if r.warnings.is_empty() { f.clone() } else { format!("{f}; {}", r.warnings) };

@@ -158,10 +158,12 @@ impl PyLog {
         warned(py, &p, read)
     }
 
-    /// Parses CSV v1 text (or as a spreadsheet saves it with `;` and decimal commas).
+    /// Parses CSV v1 text (or as a spreadsheet saves it with `;` and decimal commas; a last
+    /// line cut short is dropped with a UserWarning).
     #[staticmethod]
     fn parse(py: Python<'_>, text: &str) -> PyResult<PyLog> {
-        py.detach(|| gyrodrift::parse_log(gyrodrift::log::dialect::comma_separated(text.as_bytes()))).map(PyLog::new).map_err(value_err)
+        let read = py.detach(|| gyrodrift::log::accept::parse_by(text.as_bytes(), TimeOrder::Error)).map_err(value_err)?;
+        warned(py, "log", read)
     }
 
     /// Parses a CSV v1 log's bytes, gzip-compressed or not (an object store's file, as the

@@ -4,6 +4,7 @@ drive is a row with its error."""
 
 import json
 import os
+import re
 import shutil
 
 import numpy as np
@@ -257,6 +258,22 @@ def test_a_log_saved_with_semicolons_and_decimal_commas_reads_as_the_comma_log(s
         assert got.meta() == want.meta()
     with pytest.raises(ValueError, match=r'line 3, column gyro_dps: "1.5x" is not a number'):
         g.Log.parse("time_s;gyro_dps\r\n0;1,5\r\n0,1;1,5x\r\n")
+
+
+def test_a_last_line_cut_short_is_dropped_with_a_warning(samples, tmp_path):
+    """A logger stopped mid-line: read_log, Log.parse and the fleet's rows drop the last
+    line cut short and say so (a UserWarning; the row's warnings)."""
+    text = (samples / "train" / "city-1.csv").read_text()
+    cut_at = text.rstrip().rfind("\n")
+    (tmp_path / "cut.csv").write_text(text[: cut_at + 6])
+    want = g.Log.parse(text[: cut_at + 1])
+    said = "its last line, cut short (2 of 5 cells, no line end), dropped"
+    for read in [lambda: g.read_log(str(tmp_path / "cut.csv")), lambda: g.Log.parse(text[: cut_at + 6])]:
+        with pytest.warns(UserWarning, match=re.escape(said)):
+            got = read()
+        assert len(got) == len(want) and np.array_equal(got.column("gyro_dps"), want.column("gyro_dps"))
+    (row,) = g.score_files([str(tmp_path / "cut.csv")], 1)
+    assert row["error"] is None and said in row["warnings"]
 
 
 def test_a_loggers_table_refused_for_its_time_names_the_draft(tmp_path):

@@ -115,6 +115,22 @@ test("a log saved with ';' and decimal commas opens as the comma log, with the C
   assert.equal(await page.locator("#m-improvement").innerText(), native.improvement.toFixed(2));
 });
 
+test("a log whose last line a logger cut short opens without it, saying so, with the CLI's numbers", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-cut-"));
+  const text = readFileSync(join(SAMPLES, "test", "rural-3.csv"), "utf8").replace("# name: Rural 3", "# name: Rural 3 cut");
+  const cutAt = text.trimEnd().lastIndexOf("\n");
+  const file = join(dir, "rural-3-cut.csv");
+  writeFileSync(file, text.slice(0, cutAt + 6));
+  await page.locator("#file-input").setInputFiles([file]);
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Rural 3 cut"));
+  const entry = page.locator("#logs li", { hasText: "Rural 3 cut" });
+  assert.match(await entry.innerText(), /last line cut short/);
+  assert.match(await entry.locator("details.check.split").getAttribute("title"), /its last line, cut short \(2 of 5 cells, no line end\), dropped/);
+  const native = JSON.parse(cli("hdr", file, "--json"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2));
+  await entry.locator("button.remove").click();
+});
+
 test("a log with a clockwise gyro gets a check badge naming the fix; the shipped ones none", async () => {
   assert.equal(await page.locator("#logs li .check").count(), 0);
   const dir = mkdtempSync(join(tmpdir(), "gd-cw-"));

@@ -39,6 +39,17 @@ test("a log saved with ';' and decimal commas (a spreadsheet's CSV in many local
   assert.throws(() => gd.Log.parse("time_s;gyro_dps\r\n0;1,5\r\n0,1;1,5x\r\n"), { message: 'line 3, column gyro_dps: "1.5x" is not a number' });
 });
 
+test("a last line cut short: Log.fromBytes refuses it naming the line, logInTimeOrder drops it and says so", () => {
+  const text = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const cutAt = text.trimEnd().lastIndexOf("\n");
+  const bytes = new TextEncoder().encode(text.slice(0, cutAt + 6));
+  assert.throws(() => gd.Log.fromBytes(bytes), /row has 2 fields, the header has 5 \(truncated row\?\)$/);
+  const { log, fixed } = gd.logInTimeOrder(bytes);
+  assert.equal(fixed, "its last line, cut short (2 of 5 cells, no line end), dropped");
+  const want = gd.Log.parse(text.slice(0, cutAt + 1));
+  assert.deepEqual(Array.from(log.column("gyro_dps")), Array.from(want.column("gyro_dps")));
+});
+
 test("wrong argument types throw TypeError (never a trap), misspelled recipe fields are refused, and the module keeps working", () => {
   const log = gd.Log.parse("time_s,gyro_dps\n0,1\n1,2\n");
   const typeErrors = [

@@ -27,15 +27,16 @@ pub fn import_log(
 
 /// A v1 log whose time repeats or steps back by at most 1 s, put in time order (core's
 /// `parse_log_in_time_order`: rows of one time merged by their mean, rows up to 1 s late
-/// sorted in): `{ log, fixed }`, `fixed` saying what was done ("" when nothing). A clock
-/// reset (more than 1 s back) throws, naming the line. `Log.fromBytes` refuses such a log.
+/// sorted in), or whose last line a logger cut short (dropped): `{ log, fixed }`, `fixed`
+/// saying what was done ("" when nothing). A clock reset (more than 1 s back) throws,
+/// naming the line. `Log.fromBytes` refuses such a log.
 #[wasm_bindgen(js_name = logInTimeOrder, unchecked_return_type = "{ log: Log; fixed: string }")]
 pub fn log_in_time_order(#[wasm_bindgen(unchecked_param_type = "Uint8Array | ArrayBuffer")] bytes: JsValue) -> JsResult<JsValue> {
     let bytes = js_bytes(&bytes, "logInTimeOrder(bytes)")?;
-    let (log, fixes) = gyrodrift::log::parse_log_in_time_order(crate::log::v1_bytes(&bytes), Default::default()).map_err(err)?;
+    let (log, fixed) = gyrodrift::log::accept::parse_fixing(&bytes[..]).map_err(err)?;
     let out = Object::new();
     set(&out, "log", &JsValue::from(Log::new(log)))?;
-    set(&out, "fixed", &JsValue::from_str(&fixes.to_text()))?;
+    set(&out, "fixed", &JsValue::from_str(&fixed))?;
     Ok(out.into())
 }
 

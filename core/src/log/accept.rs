@@ -34,17 +34,33 @@ pub enum TimeOrder {
     Fix,
 }
 
-/// Parses a v1 log by the time-order policy: the log, and with `Fix` what fixing did
-/// ("time order: 1 rows of a repeated time merged"; None when nothing needed it).
+/// Parses a v1 log file as the native fronts read one (`log::dialect`: a spreadsheet's `;`
+/// and decimal commas read as commas and points, a last line cut short dropped), by the
+/// time-order policy: the log, and what was done to read it ("time order: 1 rows of a
+/// repeated time merged", "its last line, cut short (...), dropped"; None when nothing).
 pub fn parse_by<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveLog, Option<String>)> {
-    match order {
-        TimeOrder::Error => super::parse_log(reader).map(|log| (log, None)),
+    let mut reader = super::dialect::v1_reader(reader, true);
+    let (log, fixed) = match order {
+        TimeOrder::Error => (super::parse_log(&mut reader)?, String::new()),
         TimeOrder::Fix => {
-            let (log, fixes) = super::parse_log_in_time_order(reader, Default::default())?;
+            let (log, fixes) = super::parse_log_in_time_order(&mut reader, Default::default())?;
             let said = fixes.to_text();
-            Ok((log, (!said.is_empty()).then(|| format!("time order: {said}"))))
+            (log, if said.is_empty() { said } else { format!("time order: {said}") })
         }
-    }
+    };
+    let said: Vec<String> = reader.cut_last_line().map(|c| c.to_text()).into_iter().chain((!fixed.is_empty()).then_some(fixed)).collect();
+    Ok((log, (!said.is_empty()).then(|| said.join("; "))))
+}
+
+/// A v1 log read as the dashboard's worker reads one it was asked to fix: as [`parse_by`]
+/// with `Fix`, and what was done in the words the page shows ("1 rows of a repeated time
+/// merged; its last line, cut short (...), dropped"; "" when nothing).
+pub fn parse_fixing<R: std::io::Read>(reader: R) -> Result<(DriveLog, String)> {
+    let mut reader = super::dialect::v1_reader(reader, true);
+    let (log, fixes) = super::parse_log_in_time_order(&mut reader, Default::default())?;
+    let cut = reader.cut_last_line().map(|c| c.to_text());
+    let said: Vec<String> = Some(fixes.to_text()).filter(|s| !s.is_empty()).into_iter().chain(cut).collect();
+    Ok((log, said.join("; ")))
 }
 
 /// Whether `e` is the parser's refusal of a time that repeats or steps back (what

@@ -1,13 +1,17 @@
-//! A v1 log as a spreadsheet saves it where the decimal mark is a comma: cells separated by
-//! `;` (or a tab, or `|`) and numbers like `0,25`. The native fronts read it as the
-//! comma-separated log it stands for. Outside `#` lines the separator becomes a comma and a
-//! comma a decimal point, byte for byte, so an error names the same line and column as in
-//! the file. A comma-separated log (the format as written) passes through untouched.
+//! A v1 log file as other programs and crashes leave it, read as the log it stands for:
+//! - saved by a spreadsheet where the decimal mark is a comma: cells separated by `;` (or
+//!   a tab, or `|`) and numbers like `0,25`. Outside `#` lines the separator becomes a
+//!   comma and a comma a decimal point, byte for byte, so an error names the same line and
+//!   column as in the file;
+//! - with its last line cut short (a logger stopped mid-write: no line end, fewer cells
+//!   than the header): that line can be dropped, and [`V1Reader::cut_last_line`] says so.
+//!
+//! A comma-separated log that ends cleanly (the format as written) passes through untouched.
 
 use std::io::{self, Read};
 
-/// Bytes read before the first one is given, to find the header row and its separator.
-const HEAD_BYTES: usize = 64 * 1024;
+/// Bytes held at a time; the first fill finds the header row and its separator.
+const BUF_BYTES: usize = 64 * 1024;
 
 /// Where the next byte stands in its line: the separator is mapped only in table rows.
 #[derive(Clone, Copy, PartialEq)]
@@ -18,52 +22,103 @@ enum LineState {
     Row,
 }
 
-/// `inner` read as a comma-separated v1 log (see the module's doc).
-pub struct CommaSeparated<R> {
-    inner: R,
-    head: Option<Vec<u8>>,
-    at: usize,
-    /// The file's separator when it is not a comma (`None`: bytes pass through).
-    separator: Option<u8>,
-    state: LineState,
+/// A last line dropped for being cut short: its cells and the header's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CutLine {
+    pub fields: usize,
+    pub header_fields: usize,
 }
 
-/// Wraps `inner`; nothing is read until the first `read`.
-pub fn comma_separated<R: Read>(inner: R) -> CommaSeparated<R> {
-    CommaSeparated { inner, head: None, at: 0, separator: None, state: LineState::Start }
+impl CutLine {
+    /// What was done, as the fronts say it.
+    pub fn to_text(self) -> String {
+        format!("its last line, cut short ({} of {} cells, no line end), dropped", self.fields, self.header_fields)
+    }
+}
+
+/// `inner` read as a comma-separated v1 log (see the module's doc).
+pub struct V1Reader<R> {
+    inner: R,
+    buf: Vec<u8>,
+    /// Bytes `[start, ready)` may be given; `[ready, buf.len())` are held back (a line not
+    /// yet ended, which may be the last, cut short).
+    start: usize,
+    ready: usize,
+    filled: bool,
+    eof: bool,
+    drop_cut: bool,
+    /// The file's separator when it is not a comma (`None`: no mapping).
+    separator: Option<u8>,
+    /// Cells of the header row, once found.
+    header_fields: Option<usize>,
+    state: LineState,
+    cut: Option<CutLine>,
+}
+
+/// Wraps `inner`, mapping a spreadsheet's dialect; with `drop_cut`, a last line cut short is
+/// dropped (else it reaches the parser, which refuses it naming its line). Nothing is read
+/// until the first `read`.
+pub fn v1_reader<R: Read>(inner: R, drop_cut: bool) -> V1Reader<R> {
+    V1Reader {
+        inner,
+        buf: Vec::new(),
+        start: 0,
+        ready: 0,
+        filled: false,
+        eof: false,
+        drop_cut,
+        separator: None,
+        header_fields: None,
+        state: LineState::Start,
+        cut: None,
+    }
+}
+
+/// `inner` with a spreadsheet's dialect mapped, a cut last line left to the parser.
+pub fn comma_separated<R: Read>(inner: R) -> V1Reader<R> {
+    v1_reader(inner, false)
+}
+
+/// The header row of a head: the first line that is neither blank nor `#`.
+fn header_line(head: &[u8]) -> Option<&[u8]> {
+    let head = head.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(head);
+    head.split(|&b| b == b'\n').find(|l| {
+        let t = l.trim_ascii();
+        !t.is_empty() && t[0] != b'#'
+    })
 }
 
 /// The separator of a v1 header row that is not comma-separated: the most frequent of `;`,
-/// tab and `|` in the first line that is neither blank nor `#`, when that line names
-/// `time_s` and holds no comma.
-fn separator_of(head: &[u8]) -> Option<u8> {
-    let head = head.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(head);
-    let line = head.split(|&b| b == b'\n').find(|l| {
-        let t = l.trim_ascii();
-        !t.is_empty() && t[0] != b'#'
-    })?;
+/// tab and `|`, when the row names `time_s` and holds no comma.
+fn separator_of(line: &[u8]) -> Option<u8> {
     if line.contains(&b',') || !line.windows(6).any(|w| w == b"time_s") {
         return None;
     }
     [b';', b'\t', b'|'].into_iter().map(|d| (line.iter().filter(|&&b| b == d).count(), d)).filter(|&(n, _)| n > 0).max().map(|(_, d)| d)
 }
 
-impl<R: Read> CommaSeparated<R> {
-    /// Reads the head (up to [`HEAD_BYTES`] or the end) and finds the separator.
-    fn fill_head(&mut self) -> io::Result<()> {
-        let mut head = Vec::with_capacity(HEAD_BYTES);
-        (&mut self.inner).take(HEAD_BYTES as u64).read_to_end(&mut head)?;
-        self.separator = separator_of(&head);
-        let bom = if head.starts_with(b"\xEF\xBB\xBF") { 3 } else { 0 };
-        self.map(&mut head[bom..]);
-        self.head = Some(head);
-        Ok(())
+/// Cells of a line separated by `sep` (quotes respected).
+fn fields(line: &[u8], sep: u8) -> usize {
+    let mut quoted = false;
+    1 + line
+        .iter()
+        .filter(|&&b| {
+            quoted ^= b == b'"';
+            b == sep && !quoted
+        })
+        .count()
+}
+
+impl<R: Read> V1Reader<R> {
+    /// The last line dropped for being cut short, once the reader has reached the end.
+    pub fn cut_last_line(&self) -> Option<CutLine> {
+        self.cut
     }
 
     /// Maps bytes in place (see the module's doc), carrying the line state across calls.
-    fn map(&mut self, bytes: &mut [u8]) {
+    fn map(&mut self, from: usize) {
         let Some(sep) = self.separator else { return };
-        for b in bytes {
+        for b in &mut self.buf[from..] {
             self.state = match (self.state, *b) {
                 (_, b'\n') => LineState::Start,
                 (LineState::Start, b'#') => LineState::Comment,
@@ -80,91 +135,71 @@ impl<R: Read> CommaSeparated<R> {
             };
         }
     }
-}
 
-impl<R: Read> Read for CommaSeparated<R> {
-    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
-        if self.head.is_none() {
-            self.fill_head()?;
+    /// Refills the buffer after the held-back bytes; the first fill reads the head whole and
+    /// finds the separator and the header's cells.
+    fn fill(&mut self) -> io::Result<()> {
+        self.buf.drain(..self.ready);
+        let from = self.buf.len();
+        let want = BUF_BYTES.max(from + 4096);
+        let n = (&mut self.inner).take((want - from) as u64).read_to_end(&mut self.buf)?;
+        self.eof = n < want - from;
+        if !self.filled {
+            self.filled = true;
+            if let Some(line) = header_line(&self.buf) {
+                self.separator = separator_of(line);
+                self.header_fields = Some(fields(line, self.separator.unwrap_or(b',')));
+            }
+            let bom = if self.buf.starts_with(b"\xEF\xBB\xBF") { 3 } else { 0 };
+            self.map(bom);
+        } else {
+            self.map(from);
         }
-        if let Some(head) = &self.head {
-            if self.at < head.len() {
-                let n = (head.len() - self.at).min(buf.len());
-                buf[..n].copy_from_slice(&head[self.at..self.at + n]);
-                self.at += n;
-                return Ok(n);
+        self.start = 0;
+        self.ready = match self.buf.iter().rposition(|&b| b == b'\n') {
+            _ if self.eof => self.end_of_file(),
+            Some(i) => i + 1,
+            // A line longer than the buffer: given as it is.
+            None => self.buf.len(),
+        };
+        Ok(())
+    }
+
+    /// At the end: the bytes to give, without a last line cut short when dropping one.
+    fn end_of_file(&mut self) -> usize {
+        let last = self.buf.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        let line = &self.buf[last..];
+        let t = line.trim_ascii();
+        if self.drop_cut && !t.is_empty() && t[0] != b'#' {
+            if let Some(header) = self.header_fields {
+                let n = fields(line, b',');
+                if n < header && last > 0 {
+                    self.cut = Some(CutLine { fields: n, header_fields: header });
+                    return last;
+                }
             }
         }
-        let n = self.inner.read(buf)?;
-        self.map(&mut buf[..n]);
+        self.buf.len()
+    }
+}
+
+impl<R: Read> Read for V1Reader<R> {
+    fn read(&mut self, out: &mut [u8]) -> io::Result<usize> {
+        while self.start == self.ready {
+            if self.eof {
+                return Ok(0);
+            }
+            self.fill()?;
+            if self.eof && self.start == self.ready {
+                return Ok(0);
+            }
+        }
+        let n = (self.ready - self.start).min(out.len());
+        out[..n].copy_from_slice(&self.buf[self.start..self.start + n]);
+        self.start += n;
         Ok(n)
     }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::log::Column;
-
-    fn read_all(bytes: &[u8]) -> Vec<u8> {
-        let mut out = Vec::new();
-        comma_separated(bytes).read_to_end(&mut out).unwrap();
-        out
-    }
-
-    /// A reader that gives one byte per read, so the line state crosses every boundary.
-    struct Trickle<'a>(&'a [u8]);
-    impl Read for Trickle<'_> {
-        fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
-            let Some((&b, rest)) = self.0.split_first() else { return Ok(0) };
-            if buf.is_empty() {
-                return Ok(0);
-            }
-            buf[0] = b;
-            self.0 = rest;
-            Ok(1)
-        }
-    }
-
-    #[test]
-    fn a_semicolon_log_with_decimal_commas_reads_as_the_comma_log() {
-        let eu = "\u{feff}# name: Fahrt, Teil 1\r\n# bias_s: 2,5x\r\ntime_s;gyro_dps;ref_heading_deg\r\n0;0,5;\r\n0,1;-1,25;10,5\r\n";
-        let us = "\u{feff}# name: Fahrt, Teil 1\r\n# bias_s: 2,5x\r\ntime_s,gyro_dps,ref_heading_deg\r\n0,0.5,\r\n0.1,-1.25,10.5\r\n";
-        assert_eq!(String::from_utf8(read_all(eu.as_bytes())).unwrap(), us);
-        // The metadata line keeps its commas (a name may hold one); a tab and `|` too.
-        for sep in ["\t", "|"] {
-            let text = "time_s;gyro_dps\n0;1,5\n".replace(';', sep);
-            assert_eq!(read_all(text.as_bytes()), b"time_s,gyro_dps\n0,1.5\n");
-        }
-        // Past the head, byte by byte, as the head.
-        let rows: String = (0..20_000).map(|i| format!("{i},5;-0,{i}\n")).collect();
-        let long = format!("# name: a, b\ntime_s;gyro_dps\n{rows}");
-        let mut out = Vec::new();
-        comma_separated(Trickle(long.as_bytes())).read_to_end(&mut out).unwrap();
-        assert_eq!(out, format!("# name: a, b\ntime_s,gyro_dps\n{}", rows.replace(',', ".").replace(';', ",")).into_bytes());
-    }
-
-    #[test]
-    fn a_comma_log_and_other_files_pass_through_untouched() {
-        for text in [
-            "# a; b\ntime_s,gyro_dps\n0,1\n",
-            "time_s;gyro_dps,x\n0;1\n", // a comma in the header: the format as written
-            "t;gyro_dps\n0;1,5\n",      // no time_s: not a v1 log; its error stays its own
-            "time_s\n0,5\n",            // one column: no separator to tell
-            "",
-            "# only a comment; here\n",
-        ] {
-            assert_eq!(read_all(text.as_bytes()), text.as_bytes(), "{text}");
-        }
-    }
-
-    #[test]
-    fn the_log_parses_and_errors_name_the_files_line_and_column() {
-        let log = crate::parse_log(comma_separated("# bias_s: 1\ntime_s;gyro_dps\n0;0,5\n0,5;-1,25\n".as_bytes())).unwrap();
-        assert_eq!(log.column(Column::GyroDps).unwrap(), &[0.5, -1.25]);
-        assert_eq!(log.column(Column::TimeS).unwrap(), &[0.0, 0.5]);
-        assert_eq!(log.meta.bias_s, Some(1.0));
-        let e = crate::parse_log(comma_separated("# x\ntime_s;gyro_dps\n0;0,5\n1;1,2,3\n".as_bytes())).unwrap_err().to_string();
-        assert!(e.contains("line 4") && e.contains("gyro_dps"), "{e}");
-    }
-}
+mod tests;

@@ -1,7 +1,7 @@
 //! A log file as the native fronts open it: a gzip-compressed log (`drive.csv.gz`, as
 //! fleets store them) reads through a decoder, so the CLI, Python and the fleet batch read
-//! it as the plain file, errors naming its lines as they are once decompressed; a log a
-//! spreadsheet saved with `;` and decimal commas reads as the comma-separated one.
+//! it as the plain file, errors naming its lines as they are once decompressed (and
+//! `accept::parse_by` reads it through `log::dialect`).
 
 use std::path::Path;
 
@@ -17,16 +17,14 @@ pub fn log_stem(path: &Path) -> String {
 }
 
 /// `reader` for `parse_log`, gunzipped when it starts as gzip does (every member of a
-/// multi-member stream, as `cat a.gz b.gz` makes), else as it is; a log saved with `;` (or
-/// tab) separators and decimal commas read as the comma-separated log
-/// ([`super::dialect`]).
+/// multi-member stream, as `cat a.gz b.gz` makes), else as it is. (`accept::parse_by` then
+/// reads a spreadsheet's `;` and decimal commas, and drops a last line cut short.)
 #[cfg(feature = "zip")]
 pub fn decompressed<'a, R: std::io::BufRead + Send + 'a>(mut reader: R) -> std::io::Result<Box<dyn std::io::Read + Send + 'a>> {
-    use super::dialect::comma_separated;
     if crate::table::is_gzip(reader.fill_buf()?) {
-        Ok(Box::new(comma_separated(Gunzip(flate2::bufread::MultiGzDecoder::new(reader)))))
+        Ok(Box::new(Gunzip(flate2::bufread::MultiGzDecoder::new(reader))))
     } else {
-        Ok(Box::new(comma_separated(reader)))
+        Ok(Box::new(reader))
     }
 }
 

@@ -1,0 +1,92 @@
+use super::*;
+use crate::log::Column;
+
+fn read_all(bytes: &[u8], drop_cut: bool) -> (Vec<u8>, Option<CutLine>) {
+    let mut out = Vec::new();
+    let mut r = v1_reader(bytes, drop_cut);
+    r.read_to_end(&mut out).unwrap();
+    (out, r.cut_last_line())
+}
+
+/// A reader that gives at most `n` bytes per read, so the line state and the held-back
+/// line cross every boundary.
+struct Trickle<'a>(&'a [u8], usize);
+impl Read for Trickle<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        let n = self.1.min(buf.len()).min(self.0.len());
+        buf[..n].copy_from_slice(&self.0[..n]);
+        self.0 = &self.0[n..];
+        Ok(n)
+    }
+}
+
+#[test]
+fn a_semicolon_log_with_decimal_commas_reads_as_the_comma_log() {
+    let eu = "\u{feff}# name: Fahrt, Teil 1\r\n# bias_s: 2,5x\r\ntime_s;gyro_dps;ref_heading_deg\r\n0;0,5;\r\n0,1;-1,25;10,5\r\n";
+    let us = "\u{feff}# name: Fahrt, Teil 1\r\n# bias_s: 2,5x\r\ntime_s,gyro_dps,ref_heading_deg\r\n0,0.5,\r\n0.1,-1.25,10.5\r\n";
+    assert_eq!(String::from_utf8(read_all(eu.as_bytes(), true).0).unwrap(), us);
+    // The metadata line keeps its commas (a name may hold one); a tab and `|` too.
+    for sep in ["\t", "|"] {
+        let text = "time_s;gyro_dps\n0;1,5\n".replace(';', sep);
+        assert_eq!(read_all(text.as_bytes(), true).0, b"time_s,gyro_dps\n0,1.5\n");
+    }
+    // Past the first buffer, in reads of 1 and 7 bytes, as in one.
+    let rows: String = (0..20_000).map(|i| format!("{i},5;-0,{i}\n")).collect();
+    let long = format!("# name: a, b\ntime_s;gyro_dps\n{rows}");
+    let want = format!("# name: a, b\ntime_s,gyro_dps\n{}", rows.replace(',', ".").replace(';', ","));
+    for step in [1, 7, 1 << 20] {
+        let mut out = Vec::new();
+        v1_reader(Trickle(long.as_bytes(), step), true).read_to_end(&mut out).unwrap();
+        assert!(out == want.as_bytes(), "reads of {step} bytes");
+    }
+}
+
+#[test]
+fn a_comma_log_and_other_files_pass_through_untouched() {
+    for text in [
+        "# a; b\ntime_s,gyro_dps\n0,1\n",
+        "time_s,gyro_dps\n0,1\n1,2", // a last line without its end, whole
+        "time_s;gyro_dps,x\n0;1\n",  // a comma in the header: the format as written
+        "t;gyro_dps\n0;1,5\n",       // no time_s: not a v1 log; its error stays its own
+        "time_s\n0,5\n",             // one column: no separator to tell
+        "time_s,gyro_dps",           // a header alone
+        "",
+        "# only a comment; here\n",
+    ] {
+        assert_eq!(read_all(text.as_bytes(), true), (text.as_bytes().to_vec(), None), "{text}");
+    }
+}
+
+#[test]
+fn a_last_line_cut_short_is_dropped_and_said_only_when_asked() {
+    let cut = "# name: x\ntime_s,gyro_dps,speed_mps\n0,1,2\n1,2,3\n2,3";
+    let (out, said) = read_all(cut.as_bytes(), true);
+    assert_eq!(out, b"# name: x\ntime_s,gyro_dps,speed_mps\n0,1,2\n1,2,3\n");
+    assert_eq!(said, Some(CutLine { fields: 2, header_fields: 3 }));
+    assert_eq!(said.unwrap().to_text(), "its last line, cut short (2 of 3 cells, no line end), dropped");
+    assert_eq!(read_all(cut.as_bytes(), false), (cut.as_bytes().to_vec(), None));
+    // Cut in a `;` log, over many reads: the same.
+    let eu = "time_s;gyro_dps;speed_mps\r\n0;1,5;2\r\n1;2,5;3\r\n2;3,";
+    let mut out = Vec::new();
+    let mut r = v1_reader(Trickle(eu.as_bytes(), 3), true);
+    r.read_to_end(&mut out).unwrap();
+    assert_eq!(
+        (out, r.cut_last_line()),
+        (b"time_s,gyro_dps,speed_mps\r\n0,1.5,2\r\n1,2.5,3\r\n".to_vec(), Some(CutLine { fields: 2, header_fields: 3 }))
+    );
+    // A line cut in the middle of the file is the parser's to refuse; a whole last line
+    // without its end, a comment or a header alone is kept.
+    for text in ["time_s,gyro_dps\n0\n1,2\n", "time_s,gyro_dps\n0,1\n# end", "time_s,gyro_dps,x\n"] {
+        assert_eq!(read_all(text.as_bytes(), true), (text.as_bytes().to_vec(), None), "{text}");
+    }
+}
+
+#[test]
+fn the_log_parses_and_errors_name_the_files_line_and_column() {
+    let log = crate::parse_log(comma_separated("# bias_s: 1\ntime_s;gyro_dps\n0;0,5\n0,5;-1,25\n".as_bytes())).unwrap();
+    assert_eq!(log.column(Column::GyroDps).unwrap(), &[0.5, -1.25]);
+    assert_eq!(log.column(Column::TimeS).unwrap(), &[0.0, 0.5]);
+    assert_eq!(log.meta.bias_s, Some(1.0));
+    let e = crate::parse_log(comma_separated("# x\ntime_s;gyro_dps\n0;0,5\n1;1,2,3\n".as_bytes())).unwrap_err().to_string();
+    assert!(e.contains("line 4") && e.contains("gyro_dps"), "{e}");
+}
