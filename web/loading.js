@@ -257,7 +257,6 @@ export async function loadFiles(given) {
   // preset they fit (a recipe .toml or .json dropped with them is used instead of detection).
   const logs = [];
   const raw = [];
-  const otherDialect = new Set();
   let recipe = null;
   const files = [];
   for (const f of given) {
@@ -287,8 +286,6 @@ export async function loadFiles(given) {
       continue;
     }
     logs.push(f);
-    // A log saved with `;` and decimal commas: the worker's module reads it.
-    if (gd.sniffFile(f.name, head).delimiter !== ",") otherDialect.add(f);
   }
   let last = null;
   if (raw.length) {
@@ -299,7 +296,7 @@ export async function loadFiles(given) {
     $("status").textContent = `reading ${f.name}…`;
     const buffer = await f.arrayBuffer();
     let e;
-    if ((buffer.byteLength > WORKER_BYTES || otherDialect.has(f)) && window.Worker) {
+    if (buffer.byteLength > WORKER_BYTES && window.Worker) {
       e = await addWorkerParsed(f, await parseInWorker(f, buffer));
       // Its first drawing in a task of its own, so none holds the page for long.
       await nextTask();
@@ -314,6 +311,12 @@ export async function loadFiles(given) {
       }
     } else {
       e = addLog(f.name, new Uint8Array(buffer));
+      if (e.error && window.Worker && !TIME_ORDER.test(e.error) && !CUT_ROW.test(e.error)) {
+        // The page's module reads the format as written; the worker's also reads what a
+        // spreadsheet writes (`;` and decimal commas, metadata lines padded or quoted).
+        state.entries.splice(state.entries.indexOf(e), 1);
+        e = await addWorkerParsed(f, await parseInWorker(f, buffer));
+      }
     }
     if (!e.error) {
       last = e;

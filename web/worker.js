@@ -11,7 +11,7 @@
 //   drive with one profile's errors added (to open a case as a log); profiles: their names;
 // - track, pipelineTrack, pipeline: the slow work on a large log this worker parsed and
 //   kept (`key`), so the page's Track view and pipeline never pause it.
-import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, columnGuesses, draftRecipe, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog, logInTimeOrder } from "./pkg/full/gyrodrift.js";
+import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, isDriveLog, columnGuesses, draftRecipe, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog, logInTimeOrder } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 /** Large logs parsed here, kept for later work on them (freed on "forget"). */
@@ -110,6 +110,15 @@ self.onmessage = async (ev) => {
     if (type === "toml-in") return self.postMessage({ id, data: recipeFromToml(ev.data.text) });
     if (type === "guess") return self.postMessage({ id, data: orNull(columnGuesses, headsOf(ev.data.files)) });
     if (type === "import") {
+      const names = Object.keys(ev.data.files);
+      if (!ev.data.recipe && names.length === 1 && isDriveLog(names[0], ev.data.files[names[0]])) {
+        // A drive log as a spreadsheet saved it (metadata lines padded or quoted), which the
+        // page's module does not read: this module reads it as the log it is.
+        const log = Log.fromBytes(ev.data.files[names[0]]);
+        const data = log.toColumns();
+        log.free();
+        return self.postMessage({ id, data }, buffers(data));
+      }
       let d;
       try {
         d = ev.data.recipe

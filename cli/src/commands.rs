@@ -411,13 +411,13 @@ pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>
 }
 
 /// A file that is a drive log v1 already (gzipped or not, with commas or as a spreadsheet
-/// saves it with `;` and decimal commas), by its head.
+/// saves it), by its head.
 fn is_drive_log_file(path: &Path) -> bool {
     use std::io::Read;
     let Ok(f) = gyrodrift::log::file::open_log(path) else { return false };
     let mut head = Vec::new();
     f.take(gyrodrift::import::SNIFF_BYTES as u64).read_to_end(&mut head).is_ok()
-        && gyrodrift::import::sniff(&path.display().to_string(), &head).is_ok_and(|s| s.is_drive_log())
+        && gyrodrift::import::is_drive_log_head(&path.display().to_string(), &head)
 }
 
 /// `import` given a drive log v1: no preset to detect; the log is read (with `--time-order`)

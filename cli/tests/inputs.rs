@@ -347,3 +347,33 @@ fn a_last_line_cut_short_is_dropped_and_said() {
     let err = String::from_utf8(got.stderr).unwrap();
     assert_eq!(err.lines().next().unwrap(), format!("{}: its last line, cut short (2 of 4 cells, no line end), dropped", cut.display()));
 }
+
+/// A log opened and saved by a spreadsheet (Excel or LibreOffice, either locale): metadata
+/// lines padded with separators to the header's width, one with a comma quoted, Excel's
+/// `sep=;` first: it runs as the log, and `import` writes it back as the log.
+#[test]
+fn a_log_a_spreadsheet_opened_and_saved_runs_as_the_log() {
+    let text = drive_csv().replace("# name: test drive\n", "# name: test drive\n# description: a, b\n# bias_s: 20\n");
+    let log = write("excel-log.csv", &text);
+    let saved = |sep: char, decimal: char| -> String {
+        let mut out = if sep == ';' { String::from("sep=;\r\n") } else { String::new() };
+        for l in text.lines() {
+            let row = match l.strip_prefix('#') {
+                Some(_) if l.contains(sep) => format!("\"{l}\"{sep}{sep}{sep}"),
+                Some(_) => format!("{l}{sep}{sep}{sep}"),
+                None => l.replace(',', &sep.to_string()).replace('.', &decimal.to_string()),
+            };
+            out += &format!("{row}\r\n");
+        }
+        out
+    };
+    let want = run(&["pipeline", "--json", log.to_str().unwrap()]);
+    for (name, sep, decimal) in [("excel-comma.csv", ',', '.'), ("excel-semicolon.csv", ';', ',')] {
+        let p = write(name, &saved(sep, decimal));
+        let got = run(&["pipeline", "--json", p.to_str().unwrap()]);
+        assert!(got.status.success(), "{name}: {}", String::from_utf8_lossy(&got.stderr));
+        assert_eq!(got.stdout, want.stdout, "{name}");
+        let back = run(&["import", p.to_str().unwrap()]);
+        assert_eq!(String::from_utf8(back.stdout).unwrap(), text, "{name}");
+    }
+}

@@ -131,6 +131,23 @@ test("a log whose last line a logger cut short opens without it, saying so, with
   await entry.locator("button.remove").click();
 });
 
+test("a log a spreadsheet opened and saved opens as the log, with the CLI's numbers", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-excel-"));
+  const text = readFileSync(join(SAMPLES, "test", "highway-3.csv"), "utf8").replace("# name: Highway 3", "# name: Highway 3 from Excel");
+  // Excel in a comma locale: metadata padded to the header's width, the one with a comma
+  // quoted; and the same with padding alone (which the page's module refuses first).
+  const padded = (quote) => text.split("\n").map((l) => (l.startsWith("#") ? (quote && l.includes(",") ? `"${l}",,,,` : `${l},,,,`) : l)).join("\r\n");
+  for (const [name, quote] of [["highway-3-excel.csv", true], ["highway-3-padded.csv", false]]) {
+    const file = join(dir, name);
+    writeFileSync(file, padded(quote));
+    await page.locator("#file-input").setInputFiles([file]);
+    await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Highway 3 from Excel"));
+    const native = JSON.parse(cli("hdr", file, "--json"));
+    assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2), name);
+    await page.locator("#logs li.selected button.remove").click();
+  }
+});
+
 test("a log with a clockwise gyro gets a check badge naming the fix; the shipped ones none", async () => {
   assert.equal(await page.locator("#logs li .check").count(), 0);
   const dir = mkdtempSync(join(tmpdir(), "gd-cw-"));

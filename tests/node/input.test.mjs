@@ -50,6 +50,20 @@ test("a last line cut short: Log.fromBytes refuses it naming the line, logInTime
   assert.deepEqual(Array.from(log.column("gyro_dps")), Array.from(want.column("gyro_dps")));
 });
 
+test("a log a spreadsheet opened and saved (metadata padded with separators, one quoted) is a drive log this module reads", () => {
+  const text = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const saved = text
+    .split("\n")
+    .map((l) => (l.startsWith("#") ? (l.includes(",") ? `"${l}",,,,` : `${l},,,,`) : l))
+    .join("\r\n");
+  const bytes = new TextEncoder().encode(saved);
+  assert.equal(gd.isDriveLog("city-1.csv", bytes), true);
+  const got = gd.Log.fromBytes(bytes);
+  const want = gd.Log.parse(text);
+  assert.deepEqual(got.meta(), want.meta());
+  assert.deepEqual(Array.from(got.column("gyro_dps")), Array.from(want.column("gyro_dps")));
+});
+
 test("wrong argument types throw TypeError (never a trap), misspelled recipe fields are refused, and the module keeps working", () => {
   const log = gd.Log.parse("time_s,gyro_dps\n0,1\n1,2\n");
   const typeErrors = [

@@ -96,6 +96,16 @@ pub fn sniff(name: &str, head: &[u8]) -> Result<Sniffed> {
     Ok(Sniffed { name: name.to_string(), delimiter, decimal_comma, skip_lines, header })
 }
 
+/// Whether a file's head is a drive log v1's, read as the native fronts and the worker's
+/// module read one (`log::dialect`: as a spreadsheet saved it too, its metadata lines
+/// padded with separators or quoted). The page's module asks [`Sniffed::is_drive_log`].
+pub fn is_drive_log_head(name: &str, head: &[u8]) -> bool {
+    use std::io::Read;
+    let head = &head[..head.len().min(SNIFF_BYTES)];
+    let mut written = Vec::with_capacity(head.len());
+    crate::log::dialect::comma_separated(head).read_to_end(&mut written).is_ok() && sniff(name, &written).is_ok_and(|s| s.is_drive_log())
+}
+
 /// The first data row of a sniffed head (after its skipped lines, its header and any blank
 /// or comment lines), split as the header was; empty when the head holds none.
 pub(super) fn first_row(s: &Sniffed, head: &[u8]) -> Vec<String> {
@@ -160,6 +170,8 @@ mod tests {
         assert_eq!(sniff("x.csv", b"gyro\n1\n").unwrap().delimiter, ',');
         assert!(sniff("d.csv", b"# name: x\ntime_s,gyro_dps\n0,1\n").unwrap().is_drive_log());
         assert!(sniff("d.csv", b"# name: x\ntime_s;gyro_dps\n0;1,5\n").unwrap().is_drive_log());
+        let excel = b"# name: x,\n\"# about: a, b\",\ntime_s,gyro_dps\n0,1\n";
+        assert!(!sniff("d.csv", excel).unwrap().is_drive_log() && is_drive_log_head("d.csv", excel));
         assert!(!s.is_drive_log());
     }
 

@@ -3,6 +3,9 @@
 //!   a tab, or `|`) and numbers like `0,25`. Outside `#` lines the separator becomes a
 //!   comma and a comma a decimal point, byte for byte, so an error names the same line and
 //!   column as in the file;
+//! - opened and saved by a spreadsheet in any locale: its `#` metadata lines padded with
+//!   separators to the header's width (`# bias_s: 20,,,,`), or quoted when they hold one
+//!   (`"# description: a, b",,,,`), or an Excel `sep=;` line first: read as written;
 //! - with its last line cut short (a logger stopped mid-write: no line end, fewer cells
 //!   than the header): that line can be dropped, and [`V1Reader::cut_last_line`] says so.
 //!
@@ -79,13 +82,54 @@ pub fn comma_separated<R: Read>(inner: R) -> V1Reader<R> {
     v1_reader(inner, false)
 }
 
-/// The header row of a head: the first line that is neither blank nor `#`.
-fn header_line(head: &[u8]) -> Option<&[u8]> {
-    let head = head.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(head);
-    head.split(|&b| b == b'\n').find(|l| {
-        let t = l.trim_ascii();
-        !t.is_empty() && t[0] != b'#'
-    })
+/// A line before the header: blank, `#` metadata, a spreadsheet's quoted `"#...` cell, or
+/// Excel's `sep=;`.
+fn is_preamble(line: &[u8]) -> bool {
+    let t = line.trim_ascii();
+    t.is_empty() || t[0] == b'#' || t.starts_with(b"\"#") || t.starts_with(b"sep=")
+}
+
+/// Where the header row of a head starts (after a byte-order mark), and the row.
+fn header_line(head: &[u8]) -> Option<(usize, &[u8])> {
+    let mut at = if head.starts_with(b"\xEF\xBB\xBF") { 3 } else { 0 };
+    for line in head[at..].split(|&b| b == b'\n') {
+        if !is_preamble(line) {
+            return Some((at, line));
+        }
+        at += line.len() + 1;
+    }
+    None
+}
+
+/// A metadata line as a spreadsheet saves it, back as written: its cell unquoted (`"# a, b"`
+/// -> `# a, b`, `""` -> `"`), the separators it was padded with to the header's width
+/// (`# bias_s: 20;;;;`) dropped, `sep=;` blank. Its line end is kept, so lines keep their
+/// numbers.
+fn metadata_line(line: &[u8], sep: u8, pad: usize) -> Vec<u8> {
+    let (body, end) = match line.strip_suffix(b"\r") {
+        Some(b) => (b, &b"\r"[..]),
+        None => (line, &b""[..]),
+    };
+    let t = body.trim_ascii_start();
+    let mut out = if t.starts_with(b"sep=") {
+        Vec::new()
+    } else if let Some(quoted) = t.strip_prefix(b"\"") {
+        // The cell up to its closing quote; what follows is padding.
+        let mut cell = Vec::with_capacity(quoted.len());
+        let mut bytes = quoted.iter().peekable();
+        while let Some(&b) = bytes.next() {
+            if b == b'"' && bytes.next_if_eq(&&b'"').is_none() {
+                break;
+            }
+            cell.push(b);
+        }
+        cell
+    } else {
+        let run = body.iter().rev().take_while(|&&b| b == sep).count();
+        body[..body.len() - if pad > 0 && run == pad { run } else { 0 }].to_vec()
+    };
+    out.extend_from_slice(end);
+    out
 }
 
 /// The separator of a v1 header row that is not comma-separated: the most frequent of `;`,
@@ -146,11 +190,22 @@ impl<R: Read> V1Reader<R> {
         self.eof = n < want - from;
         if !self.filled {
             self.filled = true;
-            if let Some(line) = header_line(&self.buf) {
-                self.separator = separator_of(line);
-                self.header_fields = Some(fields(line, self.separator.unwrap_or(b',')));
-            }
             let bom = if self.buf.starts_with(b"\xEF\xBB\xBF") { 3 } else { 0 };
+            if let Some((at, line)) = header_line(&self.buf) {
+                let sep = separator_of(line);
+                let cells = fields(line, sep.unwrap_or(b','));
+                (self.separator, self.header_fields) = (sep, Some(cells));
+                let preamble: Vec<u8> = self.buf[bom..at]
+                    .split_inclusive(|&b| b == b'\n')
+                    .flat_map(|l| {
+                        let (text, nl) = l.strip_suffix(b"\n").map_or((l, false), |t| (t, true));
+                        let mut m = metadata_line(text, sep.unwrap_or(b','), cells - 1);
+                        m.extend(nl.then_some(b'\n'));
+                        m
+                    })
+                    .collect();
+                self.buf.splice(bom..at, preamble);
+            }
             self.map(bom);
         } else {
             self.map(from);

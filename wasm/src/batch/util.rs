@@ -9,8 +9,13 @@ pub fn value_at(x: &[f64], y: &[f64], t: f64) -> f64 {
 }
 
 /// Whether a file (its first bytes suffice) is a drive log v1 already, not a raw export.
+/// The `full` module and Node's also know one a spreadsheet saved (metadata lines padded or
+/// quoted), which they read; the page's module, which does not, says no.
 #[wasm_bindgen(js_name = isDriveLog)]
 pub fn is_drive_log(name: &str, head: &[u8]) -> bool {
+    #[cfg(feature = "import")]
+    return gyrodrift::import::is_drive_log_head(name, head);
+    #[cfg(not(feature = "import"))]
     gyrodrift::import::sniff(name, head).is_ok_and(|s| s.is_drive_log())
 }
 

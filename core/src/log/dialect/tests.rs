@@ -90,3 +90,27 @@ fn the_log_parses_and_errors_name_the_files_line_and_column() {
     let e = crate::parse_log(comma_separated("# x\ntime_s;gyro_dps\n0;0,5\n1;1,2,3\n".as_bytes())).unwrap_err().to_string();
     assert!(e.contains("line 4") && e.contains("gyro_dps"), "{e}");
 }
+
+#[test]
+fn a_log_a_spreadsheet_opened_and_saved_reads_as_written() {
+    let log = "# name: Rural 3\n# description: simulated, 16.6 min\n# bias_s: 20\ntime_s,gyro_dps,speed_mps\n0,0.025,0.02\n0.1,0.05,0\n";
+    // Excel or LibreOffice, comma locale: metadata padded, the one with a comma quoted.
+    let us = "# name: Rural 3,,\r\n\"# description: simulated, 16.6 min\",,\r\n# bias_s: 20,,\r\ntime_s,gyro_dps,speed_mps\r\n0,0.025,0.02\r\n0.1,0.05,0\r\n";
+    // Comma-decimal locale, with Excel's `sep=;` line first and a quote in a value.
+    let eu = "sep=;\r\n# name: Rural 3;;\r\n\"# description: \"\"simulated\"\"; 16.6 min\";;\r\n# bias_s: 20;;\r\ntime_s;gyro_dps;speed_mps\r\n0;0,025;0,02\r\n0,1;0,05;0\r\n";
+    let want = crate::parse_log(log.as_bytes()).unwrap();
+    for text in [us, eu] {
+        let got = crate::parse_log(comma_separated(text.as_bytes())).unwrap();
+        assert_eq!(got.column(Column::GyroDps), want.column(Column::GyroDps), "{text}");
+        assert_eq!((got.meta.name.as_deref(), got.meta.bias_s), (Some("Rural 3"), Some(20.0)), "{text}");
+    }
+    let eu_meta = crate::parse_log(comma_separated(eu.as_bytes())).unwrap().meta;
+    assert_eq!(eu_meta.description.as_deref(), Some("\"simulated\"; 16.6 min"));
+    // Line numbers stay the file's: a bad cell on line 7 of the Excel file.
+    let bad = eu.replace("0,1;0,05;0", "0,1;x;0");
+    let e = crate::parse_log(comma_separated(bad.as_bytes())).unwrap_err().to_string();
+    assert!(e.starts_with("line 7, column gyro_dps"), "{e}");
+    // A value ending in separators other than the padding's count keeps them.
+    let (out, _) = read_all(b"# note: a,\ntime_s,gyro_dps,x\n0,1,2\n", true);
+    assert_eq!(out, b"# note: a,\ntime_s,gyro_dps,x\n0,1,2\n");
+}
