@@ -377,3 +377,19 @@ fn a_log_a_spreadsheet_opened_and_saved_runs_as_the_log() {
         assert_eq!(String::from_utf8(back.stdout).unwrap(), text, "{name}");
     }
 }
+
+/// Excel's "CSV" on Windows is Windows-1252, not UTF-8: a `ü` in a name reads as `ü`, said
+/// on stderr; the numbers are the UTF-8 log's.
+#[test]
+fn a_log_in_windows_1252_reads_and_says_so() {
+    let text = drive_csv().replace("# name: test drive", "# name: Fahrt München");
+    let utf8 = write("latin-utf8.csv", &text);
+    let latin: Vec<u8> = text.chars().map(|c| u8::try_from(u32::from(c)).unwrap()).collect();
+    let p = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("latin-1252.csv");
+    std::fs::write(&p, latin).unwrap();
+    let got = run(&["pipeline", "--json", p.to_str().unwrap()]);
+    assert!(got.status.success(), "{}", String::from_utf8_lossy(&got.stderr));
+    assert_eq!(got.stdout, run(&["pipeline", "--json", utf8.to_str().unwrap()]).stdout);
+    let err = String::from_utf8(got.stderr).unwrap();
+    assert!(err.starts_with(&format!("{}: its text read as Windows-1252 (it is not UTF-8)", p.display())), "{err}");
+}

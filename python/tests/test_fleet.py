@@ -276,6 +276,16 @@ def test_a_last_line_cut_short_is_dropped_with_a_warning(samples, tmp_path):
     assert row["error"] is None and said in row["warnings"]
 
 
+def test_a_log_in_windows_1252_reads_with_a_warning(samples, tmp_path):
+    """Excel's "CSV" on Windows is Windows-1252: read_log reads a name with a "ü" and says so."""
+    text = (samples / "train" / "city-1.csv").read_text().replace("# name: City 1", "# name: Fahrt München")
+    (tmp_path / "latin.csv").write_bytes(text.encode("cp1252"))
+    with pytest.warns(UserWarning, match=re.escape("its text read as Windows-1252 (it is not UTF-8)")):
+        got = g.read_log(str(tmp_path / "latin.csv"))
+    assert got.meta()["name"] == "Fahrt München"
+    assert np.array_equal(got.column("gyro_dps"), g.read_log(str(samples / "train" / "city-1.csv")).column("gyro_dps"))
+
+
 def test_a_loggers_table_refused_for_its_time_names_the_draft(tmp_path):
     """read_log of a table the import's draft reads (time in ms, date-times in time_s)
     names draft_recipe; a v1 log with one bad time further down does not."""

@@ -131,19 +131,22 @@ test("a log whose last line a logger cut short opens without it, saying so, with
   await entry.locator("button.remove").click();
 });
 
-test("a log a spreadsheet opened and saved opens as the log, with the CLI's numbers", async () => {
+test("a log a spreadsheet opened and saved (padded, quoted, Windows-1252) opens as the log, with the CLI's numbers", async () => {
   const dir = mkdtempSync(join(tmpdir(), "gd-excel-"));
   const text = readFileSync(join(SAMPLES, "test", "highway-3.csv"), "utf8").replace("# name: Highway 3", "# name: Highway 3 from Excel");
   // Excel in a comma locale: metadata padded to the header's width, the one with a comma
   // quoted; and the same with padding alone (which the page's module refuses first).
   const padded = (quote) => text.split("\n").map((l) => (l.startsWith("#") ? (quote && l.includes(",") ? `"${l}",,,,` : `${l},,,,`) : l)).join("\r\n");
-  for (const [name, quote] of [["highway-3-excel.csv", true], ["highway-3-padded.csv", false]]) {
+  // And saved on Windows: Windows-1252, with a "ü" in its name.
+  const latin = (s) => Buffer.from(s.replace("from Excel", "from Excel für"), "latin1");
+  for (const [name, bytes] of [["highway-3-excel.csv", padded(true)], ["highway-3-padded.csv", padded(false)], ["highway-3-1252.csv", latin(padded(false))]]) {
     const file = join(dir, name);
-    writeFileSync(file, padded(quote));
+    writeFileSync(file, bytes);
     await page.locator("#file-input").setInputFiles([file]);
     await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("Highway 3 from Excel"));
     const native = JSON.parse(cli("hdr", file, "--json"));
     assert.equal(await page.locator("#m-e-hdr").innerText(), native.E_psi_hdr_deg.toFixed(2), name);
+    if (name.includes("1252")) assert.match(await page.locator("#logs li.selected").innerText(), /Highway 3 from Excel für/);
     await page.locator("#logs li.selected button.remove").click();
   }
 });

@@ -34,10 +34,10 @@ pub enum TimeOrder {
     Fix,
 }
 
-/// Parses a v1 log file as the native fronts read one (`log::dialect`: a spreadsheet's `;`
-/// and decimal commas read as commas and points, a last line cut short dropped), by the
-/// time-order policy: the log, and what was done to read it ("time order: 1 rows of a
-/// repeated time merged", "its last line, cut short (...), dropped"; None when nothing).
+/// Parses a v1 log file as the native fronts read one (`log::dialect`: as a spreadsheet
+/// saved it, a last line cut short dropped, Windows-1252 text), by the time-order policy:
+/// the log, and what was done to read it ("its last line, cut short (...), dropped; time
+/// order: 1 rows of a repeated time merged"; None when nothing).
 pub fn parse_by<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveLog, Option<String>)> {
     let mut reader = super::dialect::v1_reader(reader, true);
     let (log, fixed) = match order {
@@ -48,7 +48,7 @@ pub fn parse_by<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveL
             (log, if said.is_empty() { said } else { format!("time order: {said}") })
         }
     };
-    let said: Vec<String> = reader.cut_last_line().map(|c| c.to_text()).into_iter().chain((!fixed.is_empty()).then_some(fixed)).collect();
+    let said: Vec<String> = reader.said().into_iter().chain((!fixed.is_empty()).then_some(fixed)).collect();
     Ok((log, (!said.is_empty()).then(|| said.join("; "))))
 }
 
@@ -58,8 +58,7 @@ pub fn parse_by<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveL
 pub fn parse_fixing<R: std::io::Read>(reader: R) -> Result<(DriveLog, String)> {
     let mut reader = super::dialect::v1_reader(reader, true);
     let (log, fixes) = super::parse_log_in_time_order(&mut reader, Default::default())?;
-    let cut = reader.cut_last_line().map(|c| c.to_text());
-    let said: Vec<String> = Some(fixes.to_text()).filter(|s| !s.is_empty()).into_iter().chain(cut).collect();
+    let said: Vec<String> = Some(fixes.to_text()).filter(|s| !s.is_empty()).into_iter().chain(reader.said()).collect();
     Ok((log, said.join("; ")))
 }
 

@@ -7,7 +7,10 @@
 //!   separators to the header's width (`# bias_s: 20,,,,`), or quoted when they hold one
 //!   (`"# description: a, b",,,,`), or an Excel `sep=;` line first: read as written;
 //! - with its last line cut short (a logger stopped mid-write: no line end, fewer cells
-//!   than the header): that line can be dropped, and [`V1Reader::cut_last_line`] says so.
+//!   than the header): that line can be dropped, and [`V1Reader::cut_last_line`] says so;
+//! - in Windows-1252 rather than UTF-8 (Excel's "CSV" on Windows, with a `ü` in a name or
+//!   a note): lines that are not UTF-8 are read as Windows-1252 (WHATWG's table), which
+//!   [`V1Reader::said`] says.
 //!
 //! A comma-separated log that ends cleanly (the format as written) passes through untouched.
 
@@ -56,6 +59,7 @@ pub struct V1Reader<R> {
     header_fields: Option<usize>,
     state: LineState,
     cut: Option<CutLine>,
+    windows_1252: bool,
 }
 
 /// Wraps `inner`, mapping a spreadsheet's dialect; with `drop_cut`, a last line cut short is
@@ -74,7 +78,28 @@ pub fn v1_reader<R: Read>(inner: R, drop_cut: bool) -> V1Reader<R> {
         header_fields: None,
         state: LineState::Start,
         cut: None,
+        windows_1252: false,
     }
+}
+
+/// Windows-1252's characters for bytes 0x80-0x9F (WHATWG's index; the five it leaves
+/// undefined map to the C1 controls of the same value, as browsers decode them).
+const WINDOWS_1252_80: [char; 32] = [
+    '\u{20AC}', '\u{81}', '\u{201A}', '\u{192}', '\u{201E}', '\u{2026}', '\u{2020}', '\u{2021}', '\u{2C6}', '\u{2030}', '\u{160}',
+    '\u{2039}', '\u{152}', '\u{8D}', '\u{17D}', '\u{8F}', '\u{90}', '\u{2018}', '\u{2019}', '\u{201C}', '\u{201D}', '\u{2022}', '\u{2013}',
+    '\u{2014}', '\u{2DC}', '\u{2122}', '\u{161}', '\u{203A}', '\u{153}', '\u{9D}', '\u{17E}', '\u{178}',
+];
+
+/// Bytes read as Windows-1252, as UTF-8.
+fn from_windows_1252(bytes: &[u8]) -> Vec<u8> {
+    let text: String = bytes
+        .iter()
+        .map(|&b| match b {
+            0x80..=0x9F => WINDOWS_1252_80[usize::from(b - 0x80)],
+            _ => char::from(b),
+        })
+        .collect();
+    text.into_bytes()
 }
 
 /// `inner` with a spreadsheet's dialect mapped, a cut last line left to the parser.
@@ -159,6 +184,13 @@ impl<R: Read> V1Reader<R> {
         self.cut
     }
 
+    /// What was done to read the file, as the fronts say it (empty when nothing): a last
+    /// line cut short dropped, text read as Windows-1252.
+    pub fn said(&self) -> Vec<String> {
+        let latin = self.windows_1252.then(|| "its text read as Windows-1252 (it is not UTF-8)".to_string());
+        self.cut.map(CutLine::to_text).into_iter().chain(latin).collect()
+    }
+
     /// Maps bytes in place (see the module's doc), carrying the line state across calls.
     fn map(&mut self, from: usize) {
         let Some(sep) = self.separator else { return };
@@ -217,6 +249,13 @@ impl<R: Read> V1Reader<R> {
             // A line longer than the buffer: given as it is.
             None => self.buf.len(),
         };
+        // Not UTF-8 (a character cut at the end of a long line's part aside): Windows-1252.
+        if std::str::from_utf8(&self.buf[..self.ready]).is_err_and(|e| e.error_len().is_some()) {
+            let text = from_windows_1252(&self.buf[..self.ready]);
+            let was = std::mem::replace(&mut self.ready, text.len());
+            self.buf.splice(..was, text);
+            self.windows_1252 = true;
+        }
         Ok(())
     }
 

@@ -114,3 +114,24 @@ fn a_log_a_spreadsheet_opened_and_saved_reads_as_written() {
     let (out, _) = read_all(b"# note: a,\ntime_s,gyro_dps,x\n0,1,2\n", true);
     assert_eq!(out, b"# note: a,\ntime_s,gyro_dps,x\n0,1,2\n");
 }
+
+#[test]
+fn text_that_is_not_utf8_is_read_as_windows_1252_and_said() {
+    // Excel's "CSV" on Windows: a name and a note column in Windows-1252.
+    let text = b"# name: Fahrt M\xfcnchen \x80 \x93x\x94\ntime_s;gyro_dps;note\n0;0,5;gr\xfcn\n1;1,5;\n";
+    let mut r = v1_reader(&text[..], true);
+    let log = crate::parse_log(&mut r).unwrap();
+    assert_eq!(log.meta.name.as_deref(), Some("Fahrt München € \u{201C}x\u{201D}"));
+    assert_eq!(log.column(Column::GyroDps).unwrap(), &[0.5, 1.5]);
+    assert_eq!(r.said(), ["its text read as Windows-1252 (it is not UTF-8)"]);
+    // UTF-8 stays UTF-8, a character split between reads included.
+    let utf8 = "# name: Fahrt München\ntime_s,gyro_dps\n0,1\n".as_bytes();
+    let mut out = Vec::new();
+    let mut r = v1_reader(Trickle(utf8, 1), true);
+    r.read_to_end(&mut out).unwrap();
+    assert_eq!((out.as_slice(), r.said().len()), (utf8, 0));
+    // Every byte has its character: the 32 of 0x80-0x9F, and Latin-1 above.
+    let all: Vec<u8> = (0x80..=0xFF).collect();
+    let chars: Vec<char> = String::from_utf8(from_windows_1252(&all)).unwrap().chars().collect();
+    assert_eq!((chars.len(), chars[0], chars[0x1F], chars[0x20], chars[0x7F]), (128, '€', 'Ÿ', '\u{A0}', 'ÿ'));
+}
