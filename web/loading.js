@@ -281,11 +281,7 @@ export async function loadFiles(given) {
       continue;
     }
     const head = new Uint8Array(await f.slice(0, 65536).arrayBuffer());
-    if (!gd.isDriveLog(f.name, head)) {
-      raw.push(f);
-      continue;
-    }
-    logs.push(f);
+    (gd.isDriveLog(f.name, head) ? logs : raw).push(f);
   }
   let last = null;
   if (raw.length) {
