@@ -431,16 +431,11 @@ fn rewrite_drive_log(path: &Path, print_recipe: bool, out: Option<&Path>, json: 
     if out.is_some() || !json {
         write_log(&log, out)?;
     }
-    let what = format!(
-        "{}: a drive log v1 already, {} rows, {:.1} min: written as gyrodrift writes logs",
-        path.display(),
-        log.len(),
-        log.duration_min()
-    );
     if json {
         print_json(&serde_json::json!({ "preset": null, "drive_log": true, "rows": log.len(), "duration_min": log.duration_min() }))
     } else {
-        eprintln!("{what}");
+        let (p, n, min) = (path.display(), log.len(), log.duration_min());
+        eprintln!("{p}: a drive log v1 already, {n} rows, {min:.1} min: written as gyrodrift writes logs");
         Ok(())
     }
 }

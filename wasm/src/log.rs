@@ -87,8 +87,9 @@ impl Log {
 }
 
 /// A v1 log's bytes as the parser reads them. With the import's code (the worker's module
-/// and Node's), a log a spreadsheet saved with `;` and decimal commas reads as the
-/// comma-separated one (core's `log::dialect`); the size-budgeted page module reads commas.
+/// and Node's), a log as a spreadsheet saved it (`;` and decimal commas, metadata lines
+/// padded or quoted, Windows-1252 text) reads as the log (core's `log::dialect`; a last
+/// line cut short still refused); the size-budgeted page module reads the format as written.
 pub(crate) fn v1_bytes(bytes: &[u8]) -> impl std::io::Read + '_ {
     #[cfg(feature = "import")]
     return gyrodrift::log::dialect::comma_separated(bytes);
@@ -99,14 +100,15 @@ pub(crate) fn v1_bytes(bytes: &[u8]) -> impl std::io::Read + '_ {
 #[wasm_bindgen]
 impl Log {
     /// Parses CSV v1 text; a bad file throws an Error naming line and column. The `full`
-    /// module and Node's also read a log saved with `;` (or tabs) and decimal commas.
+    /// module and Node's also read a log as a spreadsheet saved it (`;` or tabs and decimal
+    /// commas, metadata lines padded or quoted, Windows-1252 text).
     pub fn parse(#[wasm_bindgen(unchecked_param_type = "string")] text: JsValue) -> JsResult<Log> {
         let text = js_string(&text, "Log.parse(text)")?;
         gyrodrift::parse_log(v1_bytes(text.as_bytes())).map(Log::new).map_err(err)
     }
 
-    /// Parses CSV v1 bytes (e.g. from a File's arrayBuffer()); with `;` and decimal commas
-    /// as `parse` says.
+    /// Parses CSV v1 bytes (e.g. from a File's arrayBuffer()); a spreadsheet's log as
+    /// `parse` says.
     #[wasm_bindgen(js_name = fromBytes)]
     pub fn from_bytes(#[wasm_bindgen(unchecked_param_type = "Uint8Array | ArrayBuffer")] bytes: JsValue) -> JsResult<Log> {
         let bytes = js_bytes(&bytes, "Log.fromBytes(bytes)")?;

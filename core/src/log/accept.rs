@@ -39,16 +39,8 @@ pub enum TimeOrder {
 /// the log, and what was done to read it ("its last line, cut short (...), dropped; time
 /// order: 1 rows of a repeated time merged"; None when nothing).
 pub fn parse_by<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveLog, Option<String>)> {
-    let mut reader = super::dialect::v1_reader(reader, true);
-    let (log, fixed) = match order {
-        TimeOrder::Error => (super::parse_log(&mut reader)?, String::new()),
-        TimeOrder::Fix => {
-            let (log, fixes) = super::parse_log_in_time_order(&mut reader, Default::default())?;
-            let said = fixes.to_text();
-            (log, if said.is_empty() { said } else { format!("time order: {said}") })
-        }
-    };
-    let said: Vec<String> = reader.said().into_iter().chain((!fixed.is_empty()).then_some(fixed)).collect();
+    let (log, fixes, read) = read_v1(reader, order)?;
+    let said: Vec<String> = read.into_iter().chain((!fixes.is_empty()).then(|| format!("time order: {fixes}"))).collect();
     Ok((log, (!said.is_empty()).then(|| said.join("; "))))
 }
 
@@ -56,10 +48,23 @@ pub fn parse_by<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveL
 /// with `Fix`, and what was done in the words the page shows ("1 rows of a repeated time
 /// merged; its last line, cut short (...), dropped"; "" when nothing).
 pub fn parse_fixing<R: std::io::Read>(reader: R) -> Result<(DriveLog, String)> {
-    let mut reader = super::dialect::v1_reader(reader, true);
-    let (log, fixes) = super::parse_log_in_time_order(&mut reader, Default::default())?;
-    let said: Vec<String> = Some(fixes.to_text()).filter(|s| !s.is_empty()).into_iter().chain(reader.said()).collect();
+    let (log, fixes, read) = read_v1(reader, TimeOrder::Fix)?;
+    let said: Vec<String> = Some(fixes).filter(|s| !s.is_empty()).into_iter().chain(read).collect();
     Ok((log, said.join("; ")))
+}
+
+/// A v1 log read through `log::dialect` by the time-order policy: the log, what putting its
+/// time in order did ("" when nothing or `Error`) and what reading the file did.
+fn read_v1<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveLog, String, Vec<String>)> {
+    let mut reader = super::dialect::v1_reader(reader, true);
+    let (log, fixes) = match order {
+        TimeOrder::Error => (super::parse_log(&mut reader)?, String::new()),
+        TimeOrder::Fix => {
+            let (log, fixes) = super::parse_log_in_time_order(&mut reader, Default::default())?;
+            (log, fixes.to_text())
+        }
+    };
+    Ok((log, fixes, reader.said()))
 }
 
 /// Whether `e` is the parser's refusal of a time that repeats or steps back (what

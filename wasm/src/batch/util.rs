@@ -9,8 +9,9 @@ pub fn value_at(x: &[f64], y: &[f64], t: f64) -> f64 {
 }
 
 /// Whether a file (its first bytes suffice) is a drive log v1 already, not a raw export.
-/// The `full` module and Node's also know one a spreadsheet saved (metadata lines padded or
-/// quoted), which they read; the page's module, which does not, says no.
+/// The `full` module and Node's read the head as they read logs (a spreadsheet's metadata
+/// lines padded or quoted, Windows-1252); the page's module as written, so it says no to a
+/// head that is not UTF-8 or whose metadata a spreadsheet quoted.
 #[wasm_bindgen(js_name = isDriveLog)]
 pub fn is_drive_log(name: &str, head: &[u8]) -> bool {
     #[cfg(feature = "import")]
