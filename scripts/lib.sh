@@ -98,6 +98,9 @@ wasm_part() {
   # TextEncoder.encodeInto only (every browser since 2021, Node 12+): no fallback glue,
   # 62 bytes gzipped off the core module (BENCHMARKS.md).
   wasm-bindgen --target "$2" --weak-refs --encode-into always --out-dir "$3" --out-name "$4" target/wasm32-unknown-unknown/wasm-release/gyrodrift_wasm.wasm
+  # Its classes declare [Symbol.dispose] (for `using`): the types name the lib that declares
+  # it, so a project checking them with an ES2022 lib and skipLibCheck off compiles as is.
+  if grep -q 'Symbol.dispose' "$3/$4.d.ts"; then sed -i '1i /// <reference lib="esnext.disposable" />' "$3/$4.d.ts"; fi
   # The browser modules' glue without its JSDoc (the .d.ts keeps it): 3.5 KB gzipped.
   if [ "$2" = web ]; then node scripts/strip-jsdoc.mjs "$3/$4.js"; fi
   # shellcheck disable=SC2086

@@ -3,7 +3,7 @@
 # node tools, Debian's chromium, a Python venv in tools/venv), builds, checks format and lints, and runs every test: native (unit, property,
 # integration, CLI), wasm under Node (wasm-bindgen-test), the npm package under Node, the
 # TypeScript types, the Python package (pytest, with the Dask fleet job), and the dashboard
-# in headless Chromium. Exits non-zero if any failed.
+# in headless Chromium (with the npm package bundled by Vite and webpack). Exits non-zero if any failed.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 ensure_wasm_target
@@ -39,7 +39,9 @@ suite "native tests (cargo test --workspace)" cargo test --workspace --no-fail-f
 suite "wasm tests under Node (wasm-bindgen-test)" \
   cargo test -p gyrodrift-wasm --target wasm32-unknown-unknown --tests --no-fail-fast
 suite "npm package and Node example (node --test)" node --test tests/node/
-suite "TypeScript types (tsc --noEmit)" tsc -p tests/types
+# The types as Node resolves them, and as a bundler project does (ES2022 lib, skipLibCheck off).
+typecheck() { tsc -p tests/types && tsc -p tests/types/bundler; }
+suite "TypeScript types (tsc --noEmit)" typecheck
 suite "Python package and Dask fleet job (pytest)" "$TOOLS/venv/bin/python" -m pytest -q -p no:logging python/tests
 if [ -d tests/browser ]; then
   suite "dashboard in headless Chromium (playwright-core)" node --test --test-concurrency=1 tests/browser/
