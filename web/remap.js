@@ -33,7 +33,10 @@ export async function remap(entry) {
   // raw GPS course).
   const preset = Object.assign({ "map-lead": String(lead), "map-ref-sense": "ccw", "map-ref-min-speed": "0" }, ...fixes.map((x) => MAPPER_FIX[x.code]));
   const why = `${entry.name}: ${fixes.map((x) => x.message).join("; ")}.`;
-  const intro = "The fix is filled in below: check that the gyro, integrated, now follows the reference in the preview, then add the log (the one opened stays until you remove it).";
+  const course = fixes.some((x) => x.code === "gyro_sign")
+    ? " The gyro is set to right turn positive; if the reference is a GPS course (clockwise from north), set the reference's sign to clockwise instead and the gyro's back."
+    : "";
+  const intro = `The fix is filled in below: check that the gyro, integrated, now follows the reference in the preview, then add the log (the one opened stays until you remove it).${course}`;
   const guesses = (await inWorker({ type: "guess", files: bytes }, [], () => {})).data ?? null;
   const mapped = await openMapping([{ name: f.name, bytes: bytes[f.name] }], why, importer, { guesses, draft: null }, preset, intro);
   if (!mapped) return;

@@ -172,14 +172,14 @@ test("a log with a clockwise gyro gets a check badge naming the fix; the shipped
   assert.equal(await said.isVisible(), false);
   await badge.locator("summary").click();
   assert.equal(await said.isVisible(), true);
-  assert.match(await said.innerText(), /turns the other way.*fix: .*positive = "cw"/);
+  assert.match(await said.innerText(), /turn opposite ways.*fix: .*positive = "cw"/);
   await page.screenshot({ path: join(ARTIFACTS, "check-badge.png") });
   await badge.locator("summary").click();
   assert.equal(await said.isVisible(), false);
   // Above the view too, while it plots that log: its figures are not to be trusted.
   const banner = page.locator("#view-check");
   assert.equal(await banner.isVisible(), true);
-  assert.match(await banner.innerText(), /City CW: check found an error[\s\S]*fix: yaw_rate\.positive = "cw"/);
+  assert.match(await banner.innerText(), /City CW: check found an error[\s\S]*opposite ways[\s\S]*fix: heading\.positive or yaw_rate\.positive = "cw"/);
   await page.locator("#logs li", { hasText: "City 1" }).first().locator("button.pick").click();
   assert.equal(await banner.isVisible(), false);
   await page.locator("#logs li", { hasText: "City CW" }).locator("button.pick").click();
@@ -191,6 +191,7 @@ test("a log with a clockwise gyro gets a check badge naming the fix; the shipped
   await page.locator("#check-remap").click();
   await page.locator("#mapping[open]").waitFor();
   assert.equal(await page.locator("#map-rate-sense").inputValue(), "cw");
+  assert.match(await page.locator("#mapping-intro").innerText(), /if the reference is a GPS course.*reference's sign to clockwise instead/);
   assert.equal(await page.locator("#map-lead").inputValue(), "20");
   await page.waitForFunction(() => !document.getElementById("mapping-add").disabled);
   await page.screenshot({ path: join(ARTIFACTS, "check-remap.png") });

@@ -181,8 +181,8 @@ fn units_from_ratio(r: &mut CheckReport, k: f64, se: f64) {
     } else if near(k, -1.0) {
         (
             "gyro_sign",
-            "the gyro turns the other way from the reference: clockwise-positive, not counter-clockwise".to_string(),
-            "yaw_rate.positive = \"cw\" in the recipe (or negate gyro_dps)",
+            "the gyro and the reference turn opposite ways: one of them is clockwise-positive".to_string(),
+            "heading.positive or yaw_rate.positive = \"cw\" (a GPS course is cw)",
         )
     } else if near(k, 1.0 / deg) {
         (
