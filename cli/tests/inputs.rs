@@ -348,6 +348,26 @@ fn a_last_line_cut_short_is_dropped_and_said() {
     assert_eq!(err.lines().next().unwrap(), format!("{}: its last line, cut short (2 of 4 cells, no line end), dropped", cut.display()));
 }
 
+/// Two logs joined into one file (`cat a.csv b.csv`, a logger appending sessions): refused
+/// naming the second log's first line, whatever the time-order policy, not as a short row.
+#[test]
+fn two_logs_joined_are_refused_naming_the_seconds_first_line() {
+    let text = drive_csv();
+    let first_lines = text.lines().count();
+    let joined = write("joined.csv", &format!("{text}{}", text.replace("test drive", "second drive")));
+    for extra in [&[][..], &["--time-order", "fix"][..]] {
+        let out = run(&[&["hdr", joined.to_str().unwrap()][..], extra].concat());
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8(out.stderr).unwrap();
+        let want = format!(
+            "{}: line {}: a '#' line after the rows (\"# name: second drive\"): a second log joined on? A log's '#' lines come before its header; split the file before this line",
+            joined.display(),
+            first_lines + 1
+        );
+        assert_eq!(err.trim_end(), want);
+    }
+}
+
 /// A log opened and saved by a spreadsheet (Excel or LibreOffice, either locale): metadata
 /// lines padded with separators to the header's width, one with a comma quoted, Excel's
 /// `sep=;` first: it runs as the log, and `import` writes it back as the log.

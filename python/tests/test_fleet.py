@@ -276,6 +276,21 @@ def test_a_last_line_cut_short_is_dropped_with_a_warning(samples, tmp_path):
     assert row["error"] is None and said in row["warnings"]
 
 
+def test_two_logs_joined_are_refused_naming_the_seconds_first_line(samples, tmp_path):
+    """Two logs in one file (`cat a.csv b.csv`): read_log, Log.parse and the fleet's row name
+    the second log's first line, not a short row."""
+    a = (samples / "train" / "city-1.csv").read_text()
+    b = (samples / "train" / "city-2.csv").read_text()
+    (tmp_path / "joined.csv").write_text(a + b)
+    line = len(a.splitlines()) + 1
+    said = f"line {line}: a '#' line after the rows (\"# name: City 2\"): a second log joined on?"
+    for read in [lambda: g.read_log(str(tmp_path / "joined.csv")), lambda: g.Log.parse(a + b)]:
+        with pytest.raises(ValueError, match=re.escape(said)):
+            read()
+    (row,) = g.score_files([str(tmp_path / "joined.csv")], 1)
+    assert said in row["error"]
+
+
 def test_a_log_in_windows_1252_reads_with_a_warning(samples, tmp_path):
     """Excel's "CSV" on Windows is Windows-1252: read_log reads a name with a "ü" and says so."""
     text = (samples / "train" / "city-1.csv").read_text().replace("# name: City 1", "# name: Fahrt München")

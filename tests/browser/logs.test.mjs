@@ -131,6 +131,22 @@ test("a log whose last line a logger cut short opens without it, saying so, with
   await entry.locator("button.remove").click();
 });
 
+test("two logs joined into one file are an error naming the second log's first line; the rest stays", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-joined-"));
+  const a = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const b = readFileSync(join(SAMPLES, "train", "city-2.csv"), "utf8");
+  const file = join(dir, "joined.csv");
+  writeFileSync(file, a + b);
+  const before = await page.locator("#logs li:not(.bad)").count();
+  await page.locator("#file-input").setInputFiles([file]);
+  const bad = page.locator("#logs li.bad", { hasText: "joined.csv" });
+  await bad.waitFor();
+  const line = a.split("\n").length;
+  assert.match(await bad.innerText(), new RegExp(`line ${line}: a '#' line after the rows \\("# name: City 2"\\): a second log joined on\\?`));
+  assert.equal(await page.locator("#logs li:not(.bad)").count(), before);
+  await bad.locator("button.remove").click();
+});
+
 test("a log a spreadsheet opened and saved (padded, quoted, Windows-1252) opens as the log, with the CLI's numbers", async () => {
   const dir = mkdtempSync(join(tmpdir(), "gd-excel-"));
   const text = readFileSync(join(SAMPLES, "test", "highway-3.csv"), "utf8").replace("# name: Highway 3", "# name: Highway 3 from Excel");

@@ -50,6 +50,17 @@ test("a last line cut short: Log.fromBytes refuses it naming the line, logInTime
   assert.deepEqual(Array.from(log.column("gyro_dps")), Array.from(want.column("gyro_dps")));
 });
 
+test("two logs joined into one file: every parse names the second log's first line", () => {
+  const a = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const b = readFileSync(join(SAMPLES, "train", "city-2.csv"), "utf8");
+  const bytes = new TextEncoder().encode(a + b);
+  const line = a.split("\n").length;
+  const said = `line ${line}: a '#' line after the rows ("# name: City 2"): a second log joined on? A log's '#' lines come before its header; split the file before this line`;
+  for (const parse of [() => gd.Log.parse(a + b), () => gd.Log.fromBytes(bytes), () => gd.Log.fromBytesWithProgress(bytes, () => {}), () => gd.logInTimeOrder(bytes)]) {
+    assert.throws(parse, { message: said });
+  }
+});
+
 test("a log a spreadsheet opened and saved (metadata padded with separators, one quoted) is a drive log this module reads", () => {
   const text = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
   const saved = text

@@ -35,7 +35,8 @@ pub enum TimeOrder {
 }
 
 /// Parses a v1 log file as the native fronts read one (`log::dialect`: as a spreadsheet
-/// saved it, a last line cut short dropped, Windows-1252 text), by the time-order policy:
+/// saved it, a last line cut short dropped, Windows-1252 text, a second log joined on
+/// refused naming its first line), by the time-order policy:
 /// the log, and what was done to read it ("its last line, cut short (...), dropped; time
 /// order: 1 rows of a repeated time merged"; None when nothing).
 pub fn parse_by<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveLog, Option<String>)> {
@@ -57,13 +58,11 @@ pub fn parse_fixing<R: std::io::Read>(reader: R) -> Result<(DriveLog, String)> {
 /// time in order did ("" when nothing or `Error`) and what reading the file did.
 fn read_v1<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveLog, String, Vec<String>)> {
     let mut reader = super::dialect::v1_reader(reader, true);
-    let (log, fixes) = match order {
-        TimeOrder::Error => (super::parse_log(&mut reader)?, String::new()),
-        TimeOrder::Fix => {
-            let (log, fixes) = super::parse_log_in_time_order(&mut reader, Default::default())?;
-            (log, fixes.to_text())
-        }
+    let parsed = match order {
+        TimeOrder::Error => super::parse_log(&mut reader).map(|log| (log, String::new())),
+        TimeOrder::Fix => super::parse_log_in_time_order(&mut reader, Default::default()).map(|(log, fixes)| (log, fixes.to_text())),
     };
+    let (log, fixes) = reader.refuse_joined(parsed)?;
     Ok((log, fixes, reader.said()))
 }
 

@@ -10,7 +10,11 @@
 //!   than the header): that line can be dropped, and [`V1Reader::cut_last_line`] says so;
 //! - in Windows-1252 rather than UTF-8 (Excel's "CSV" on Windows, with a `ü` in a name or
 //!   a note): lines that are not UTF-8 are read as Windows-1252 (WHATWG's table), which
-//!   [`V1Reader::said`] says.
+//!   [`V1Reader::said`] says;
+//! - with a second log joined on (`cat a.csv b.csv`, or a logger appending each session to
+//!   one file): the reader ends before the first `#` line after the header, and
+//!   [`V1Reader::joined_at`] names it, so the fronts refuse the file naming that line, not
+//!   as a row with too few cells.
 //!
 //! A comma-separated log that ends cleanly (the format as written) passes through untouched.
 
@@ -60,6 +64,31 @@ pub struct V1Reader<R> {
     state: LineState,
     cut: Option<CutLine>,
     windows_1252: bool,
+    /// Lines given before `buf[0]`, counted until a second log is found, and whether
+    /// `buf[0]` starts a line (not after a line longer than the buffer, given in parts).
+    lines_before: u64,
+    line_start: bool,
+    joined: Option<Joined>,
+}
+
+/// A `#` line after a log's header: a second log's metadata (two logs joined into one file).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Joined {
+    /// Its 1-based line in the file.
+    pub line: u64,
+    /// The line, trimmed and shortened to 60 characters.
+    pub text: String,
+}
+
+impl Joined {
+    /// The refusal the fronts give for such a file.
+    pub fn to_error(&self) -> crate::error::Error {
+        let message = format!(
+            "a '#' line after the rows (\"{}\"): a second log joined on? A log's '#' lines come before its header; split the file before this line",
+            self.text
+        );
+        crate::error::Error::Line { line: self.line, message }
+    }
 }
 
 /// Wraps `inner`, mapping a spreadsheet's dialect; with `drop_cut`, a last line cut short is
@@ -79,6 +108,9 @@ pub fn v1_reader<R: Read>(inner: R, drop_cut: bool) -> V1Reader<R> {
         state: LineState::Start,
         cut: None,
         windows_1252: false,
+        lines_before: 0,
+        line_start: true,
+        joined: None,
     }
 }
 
@@ -184,6 +216,22 @@ impl<R: Read> V1Reader<R> {
         self.cut
     }
 
+    /// The first `#` line after the header, where the reader ended (see the module's doc).
+    pub fn joined_at(&self) -> Option<&Joined> {
+        self.joined.as_ref()
+    }
+
+    /// A parse of this reader as the fronts give it: a file the reader ended at a second log
+    /// is refused naming that line, unless the parse failed on a line before it.
+    pub fn refuse_joined<T>(&self, parsed: crate::error::Result<T>) -> crate::error::Result<T> {
+        use crate::error::Error;
+        match (parsed, &self.joined) {
+            (Err(e @ (Error::Line { .. } | Error::Cell { .. })), _) | (Err(e), None) => Err(e),
+            (_, Some(j)) => Err(j.to_error()),
+            (ok, None) => ok,
+        }
+    }
+
     /// What was done to read the file, as the fronts say it (empty when nothing): a last
     /// line cut short dropped, text read as Windows-1252.
     pub fn said(&self) -> Vec<String> {
@@ -220,6 +268,8 @@ impl<R: Read> V1Reader<R> {
         let want = BUF_BYTES.max(from + 4096);
         let n = (&mut self.inner).take((want - from) as u64).read_to_end(&mut self.buf)?;
         self.eof = n < want - from;
+        // Where this fill's rows start (after the header on the first fill); None: no header.
+        let mut rows_from = self.header_fields.map(|_| 0);
         if !self.filled {
             self.filled = true;
             let bom = if self.buf.starts_with(b"\xEF\xBB\xBF") { 3 } else { 0 };
@@ -237,6 +287,7 @@ impl<R: Read> V1Reader<R> {
                     })
                     .collect();
                 self.buf.splice(bom..at, preamble);
+                rows_from = header_line(&self.buf).map(|(at, line)| at + line.len() + 1);
             }
             self.map(bom);
         } else {
@@ -249,6 +300,9 @@ impl<R: Read> V1Reader<R> {
             // A line longer than the buffer: given as it is.
             None => self.buf.len(),
         };
+        if let Some(from) = rows_from.filter(|_| self.joined.is_none()) {
+            self.end_at_joined(from);
+        }
         // Not UTF-8 (a character cut at the end of a long line's part aside): Windows-1252.
         if std::str::from_utf8(&self.buf[..self.ready]).is_err_and(|e| e.error_len().is_some()) {
             let text = from_windows_1252(&self.buf[..self.ready]);
@@ -257,6 +311,28 @@ impl<R: Read> V1Reader<R> {
             self.windows_1252 = true;
         }
         Ok(())
+    }
+
+    /// Ends the file before the first `#` line of `buf[from..ready]` (`from` at a line start),
+    /// naming it; else counts the lines given.
+    fn end_at_joined(&mut self, from: usize) {
+        let chunk = &self.buf[..self.ready];
+        let at = match chunk.get(from) {
+            Some(b'#') if if from == 0 { self.line_start } else { chunk[from - 1] == b'\n' } => Some(from),
+            Some(_) => memchr::memmem::find(&chunk[from..], b"\n#").map(|i| from + i + 1),
+            None => None,
+        };
+        let Some(at) = at else {
+            self.lines_before += memchr::memchr_iter(b'\n', chunk).count() as u64;
+            self.line_start = chunk.last().is_none_or(|&b| b == b'\n');
+            return;
+        };
+        let end = chunk[at..].iter().position(|&b| b == b'\n').map_or(chunk.len(), |i| at + i);
+        let text = String::from_utf8_lossy(chunk[at..end].trim_ascii());
+        let text = if text.chars().count() > 60 { format!("{}...", text.chars().take(60).collect::<String>()) } else { text.into_owned() };
+        let line = self.lines_before + memchr::memchr_iter(b'\n', &chunk[..at]).count() as u64 + 1;
+        self.joined = Some(Joined { line, text });
+        (self.ready, self.eof, self.cut) = (at, true, None);
     }
 
     /// At the end: the bytes to give, without a last line cut short when dropping one.

@@ -75,10 +75,46 @@ fn a_last_line_cut_short_is_dropped_and_said_only_when_asked() {
         (b"time_s,gyro_dps,speed_mps\r\n0,1.5,2\r\n1,2.5,3\r\n".to_vec(), Some(CutLine { fields: 2, header_fields: 3 }))
     );
     // A line cut in the middle of the file is the parser's to refuse; a whole last line
-    // without its end, a comment or a header alone is kept.
-    for text in ["time_s,gyro_dps\n0\n1,2\n", "time_s,gyro_dps\n0,1\n# end", "time_s,gyro_dps,x\n"] {
+    // without its end or a header alone is kept; a last `#` line is not cut (it ends the log,
+    // below).
+    for text in ["time_s,gyro_dps\n0\n1,2\n", "time_s,gyro_dps,x\n"] {
         assert_eq!(read_all(text.as_bytes(), true), (text.as_bytes().to_vec(), None), "{text}");
     }
+    assert_eq!(read_all(b"time_s,gyro_dps\n0,1\n# end", true), (b"time_s,gyro_dps\n0,1\n".to_vec(), None));
+}
+
+#[test]
+fn a_second_log_joined_on_ends_the_first_and_is_refused_naming_its_line() {
+    let first = "\u{feff}# name: City 1\r\n# bias_s: 20\r\ntime_s,gyro_dps\r\n0,1\r\n1,2\r\n";
+    let second = "# name: City 2, part 2\r\n# bias_s: 20\r\ntime_s,gyro_dps\r\n0,1\r\n";
+    let joined = format!("{first}{second}");
+    let mut r = v1_reader(joined.as_bytes(), true);
+    let parsed = crate::parse_log(&mut r);
+    assert_eq!(parsed.as_ref().map(|l| l.len()).ok(), Some(2), "the first log alone parses");
+    assert_eq!(r.joined_at(), Some(&Joined { line: 6, text: "# name: City 2, part 2".into() }));
+    let e = r.refuse_joined(parsed).unwrap_err().to_string();
+    assert!(e.starts_with("line 6: a '#' line after the rows (\"# name: City 2, part 2\"): a second log joined on?"), "{e}");
+    // Far into the file, in a `;` log (a comma-decimal spreadsheet), over reads of any size:
+    // the line counted across the buffers.
+    let rows: String = (0..30_000).map(|i| format!("{i};0,5\n")).collect();
+    let long = format!("# name: a\ntime_s;gyro_dps\n{rows}# name: b\ntime_s;gyro_dps\n0;1\n");
+    for step in [1, 4093, 1 << 20] {
+        let mut r = v1_reader(Trickle(long.as_bytes(), step), true);
+        let parsed = crate::parse_log(&mut r);
+        assert_eq!(parsed.as_ref().map(|l| l.len()).ok(), Some(30_000), "reads of {step} bytes");
+        assert_eq!(r.joined_at().map(|j| j.line), Some(30_003), "reads of {step} bytes");
+    }
+    // The header alone, then a second log: refused for the join, not for having no rows.
+    let mut r = v1_reader(&b"time_s,gyro_dps\n# name: b\ntime_s,gyro_dps\n0,1\n"[..], true);
+    let parsed = crate::parse_log(&mut r);
+    assert!(r.refuse_joined(parsed).unwrap_err().to_string().starts_with("line 2: a '#' line"));
+    // A bad row before the join is the error; a `#` inside a row or a metadata line is none.
+    let mut r = v1_reader(&b"time_s,gyro_dps\n0,x\n# name: b\n"[..], true);
+    let parsed = crate::parse_log(&mut r);
+    assert!(r.refuse_joined(parsed).unwrap_err().to_string().starts_with("line 2, column gyro_dps"));
+    let mut r = v1_reader(&b"# a\n# b\ntime_s,note\n0,#1\n1, #2\n"[..], true);
+    let parsed = crate::parse_log(&mut r);
+    assert_eq!((r.refuse_joined(parsed).map(|l| l.len()).ok(), r.joined_at()), (Some(2), None));
 }
 
 #[test]
