@@ -437,6 +437,37 @@ fn a_folder_imports_as_its_files_named_by_the_folder() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("empty: no files in this folder to import"));
 }
 
+/// A logger's folder with a README.md and a photo beside its tables imports, both named as
+/// not used; a folder of recordings (a SOURCE.md and one folder per recording) is answered
+/// with the folders to import alone, and no draft recipe is made of its prose.
+#[test]
+fn prose_and_binaries_beside_the_tables_are_left_out_and_a_folder_of_recordings_names_its_folders() {
+    let d = dir("folder of recordings");
+    let trip = d.join("trip 1");
+    std::fs::create_dir_all(&trip).unwrap();
+    for f in wild("sensor-logger") {
+        std::fs::copy(&f, trip.join(PathBuf::from(&f).file_name().unwrap())).unwrap();
+    }
+    std::fs::write(trip.join("README.md"), "Phone on the dashboard, screen up, recorded with Sensor Logger, 10 minutes.\n").unwrap();
+    std::fs::write(trip.join("photo.jpg"), b"\xff\xd8\xff\xe0\x00\x10JFIF\x00").unwrap();
+    let out = dir("folder of recordings out").join("trip.csv");
+    let o = run(&["import", s(&trip), "--out", s(&out)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("not used: Accelerometer.csv, Metadata.csv, README.md, photo.jpg") && err.contains("trip 1: 1000 rows"), "{err}");
+    std::fs::create_dir_all(d.join("trip 2")).unwrap();
+    std::fs::write(d.join("SOURCE.md"), "Two drives, one per folder, recorded with Sensor Logger, phone on the dashboard.\n").unwrap();
+    let o = run(&["import", s(&d)]);
+    assert_eq!(o.status.code(), Some(2));
+    let want = format!(
+        "SOURCE.md: a Markdown document, not a table. Its folders may each hold a recording, to import alone: trip 1, trip 2 (gyrodrift import {})",
+        trip.display()
+    );
+    assert_eq!(String::from_utf8_lossy(&o.stderr).trim_end(), want);
+    let o = run(&["import", s(&d), "--print-recipe"]);
+    assert_eq!((o.status.code(), o.stdout.is_empty()), (Some(2), true), "{}", String::from_utf8_lossy(&o.stdout));
+}
+
 /// A logger's raw export given to a method: the error names the file and line, and the
 /// import command that makes a v1 log of it, with the files beside it that the preset uses;
 /// a table no preset reads gets the error alone.

@@ -20,8 +20,9 @@ pub use crate::table::is_zip;
 pub fn detect_unzipped(files: BTreeMap<String, Vec<u8>>) -> Result<(Detection, BTreeMap<String, Vec<u8>>)> {
     let stem = archive_stem(&files);
     let files = unzip_all(files)?;
-    let sniffed = files.iter().map(|(n, b)| super::sniff(n, b)).collect::<Result<Vec<_>>>()?;
+    let (sniffed, others) = super::sniff_tables(files.iter().map(|(n, b)| (n.as_str(), b.as_slice())))?;
     let mut d = super::detect(&sniffed)?;
+    d.ignored.extend(others);
     if let Some(stem) = stem {
         d.name(&stem);
     }

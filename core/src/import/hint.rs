@@ -88,6 +88,20 @@ pub(super) fn files_in(dir: &Path) -> Option<Vec<PathBuf>> {
     Some(files)
 }
 
+/// The folders in `dir` (sorted, hidden ones left out): where a folder of recordings keeps
+/// each of its recordings.
+pub(super) fn folders_in(dir: &Path) -> Vec<String> {
+    let visible = |p: &PathBuf| p.is_dir() && !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('.'));
+    let Ok(entries) = std::fs::read_dir(dir) else { return Vec::new() };
+    let mut names: Vec<String> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(visible)
+        .filter_map(|p| Some(p.file_name()?.to_string_lossy().into_owned()))
+        .collect();
+    names.sort();
+    names
+}
+
 /// For files that failed to read as v1 logs (a fleet folder of a logger's raw exports): one
 /// hint per folder whose files a preset reads, in the order the folders first appear, at
 /// most `max_folders` folders looked at (each reads the heads of at most 64 files).

@@ -41,7 +41,7 @@ pub use hint::{
 pub use presets::{detect, detect_and_import, presets, Detection};
 pub use recipe::*;
 pub use recipe_text::*;
-pub use sniff::{is_drive_log_head, sniff, Sniffed, SNIFF_BYTES};
+pub use sniff::{is_drive_log_head, sniff, sniff_tables, Sniffed, SNIFF_BYTES};
 pub use time::*;
 pub use units::{parse_iso8601, parse_time_of_day};
 

@@ -379,7 +379,8 @@ fn strip_nulls(v: &mut Value) {
     }
 }
 
-/// Why no preset fits: the closest preset's first role against the file nearest to it.
+/// Why no preset fits: the closest preset's first role against the file nearest to it, or
+/// the file with the most columns.
 fn no_fit(files: &[Sniffed]) -> Error {
     let mut best: Option<(usize, String)> = None;
     for p in PRESETS {
@@ -402,13 +403,15 @@ fn no_fit(files: &[Sniffed]) -> Error {
     }
     let names: Vec<&str> = PRESETS.iter().map(|p| p.id).collect();
     let header = |s: &Sniffed| s.header.iter().take(8).cloned().collect::<Vec<_>>().join(", ");
+    // The file with the most columns (the first of them) stands for the recording.
+    let widest = files.iter().rev().max_by_key(|s| s.header.len()).unwrap_or(&files[0]);
     Error::File(match best {
         Some((_, m)) => format!("no logger preset fits these files. {m}. Write a recipe (sample-logs/recipes/README.md)"),
         None => format!(
             "no logger preset ({}) recognises {} (header: {}). Write a recipe (sample-logs/recipes/README.md)",
             names.join(", "),
-            files[0].name,
-            header(&files[0])
+            widest.name,
+            header(widest)
         ),
     })
 }
@@ -417,13 +420,15 @@ fn no_fit(files: &[Sniffed]) -> Error {
 /// head, then again by the import): what `gyrodrift import FILE...` and the Python
 /// `import_files` do.
 pub fn detect_and_import(names: &[String], files: &mut dyn Files) -> Result<(Detection, DriveLog, ImportSummary)> {
-    let mut sniffed = Vec::with_capacity(names.len());
+    let mut heads = Vec::with_capacity(names.len());
     for name in names {
         let mut head = Vec::new();
         files.open(name)?.take(super::sniff::SNIFF_BYTES as u64).read_to_end(&mut head).map_err(|e| Error::File(format!("{name}: {e}")))?;
-        sniffed.push(super::sniff::sniff(name, &head)?);
+        heads.push((name.as_str(), head));
     }
-    let d = detect(&sniffed)?;
+    let (sniffed, others) = super::sniff::sniff_tables(heads.iter().map(|(n, h)| (*n, h.as_slice())))?;
+    let mut d = detect(&sniffed)?;
+    d.ignored.extend(others);
     let (log, summary) = import(&d.recipe, files)?;
     Ok((d, log, summary))
 }

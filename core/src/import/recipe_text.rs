@@ -102,7 +102,7 @@ mod files {
     /// gives the files inside it (`unzip_all`). Two files of one name are refused. A folder
     /// given alone gives the files in it (an unzipped export), and names the recording.
     pub fn import_paths(paths: &[PathBuf]) -> Result<(super::super::Detection, DriveLog, ImportSummary)> {
-        let (mut d, mut log, summary) = import_files(&given_files(paths)?)?;
+        let (mut d, mut log, summary) = given_files(paths).and_then(|f| import_files(&f)).map_err(|e| in_folders(e, paths))?;
         if let [dir] = paths {
             let name = dir.is_dir().then(|| dir.canonicalize().ok()).flatten();
             if let Some(name) = name.and_then(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())) {
@@ -111,6 +111,18 @@ mod files {
             }
         }
         Ok((d, log, summary))
+    }
+
+    /// A folder given alone whose own files import as no recording, but which holds folders
+    /// (a folder of recordings, one in each): the error, and which folders to import alone.
+    fn in_folders(e: Error, paths: &[PathBuf]) -> Error {
+        let [dir] = paths else { return e };
+        let folders = super::super::hint::folders_in(dir);
+        let Some(first) = folders.first() else { return e };
+        let shown =
+            if folders.len() > 6 { format!("{}, ... ({} in all)", folders[..6].join(", "), folders.len()) } else { folders.join(", ") };
+        let one = dir.join(first);
+        Error::File(format!("{e}. Its folders may each hold a recording, to import alone: {shown} (gyrodrift import {})", one.display()))
     }
 
     /// The files paths give: a folder given alone, the files in it (an unzipped export);
@@ -150,14 +162,18 @@ mod files {
     }
 
     /// For files no preset reads: a draft recipe from their column names, for `gyrodrift
-    /// import FILES --print-recipe`. None when a preset reads them (its recipe is the one
-    /// to print) or a file is not a text table.
+    /// import FILES --print-recipe`, of those that are text tables. None when a preset reads
+    /// them (its recipe is the one to print) or none is a text table.
     pub fn draft_for_paths(paths: &[PathBuf]) -> Result<Option<super::super::Draft>> {
         let Ok(heads) = read_heads(paths) else { return Ok(None) };
-        let sniffed: Option<Vec<_>> = heads.iter().map(|(name, head)| super::super::sniff(name, head).ok()).collect();
-        match sniffed {
-            Some(s) if !s.is_empty() && super::super::detect(&s).is_err() => super::super::draft::draft_sniffed(&s, &heads).map(Some),
-            _ => Ok(None),
+        let Ok((sniffed, others)) = super::super::sniff_tables(heads.iter().map(|(n, h)| (n.as_str(), h.as_slice()))) else {
+            return Ok(None);
+        };
+        // The draft reads the tables alone (a binary or a Markdown file beside them left out).
+        let heads: Vec<_> = heads.into_iter().filter(|(n, _)| !others.contains(n)).collect();
+        match super::super::detect(&sniffed) {
+            Err(_) => super::super::draft::draft_sniffed(&sniffed, &heads).map(Some),
+            Ok(_) => Ok(None),
         }
     }
 

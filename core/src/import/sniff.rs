@@ -96,6 +96,28 @@ pub fn sniff(name: &str, head: &[u8]) -> Result<Sniffed> {
     Ok(Sniffed { name: name.to_string(), delimiter, decimal_comma, skip_lines, header })
 }
 
+/// The heads (name, bytes) of a recording's files sniffed: the text tables, and the names of
+/// the files that are not (a binary file beside the logger's tables, an empty one, a
+/// Markdown document), left out; the first one's error when none is a table.
+pub fn sniff_tables<'a>(heads: impl IntoIterator<Item = (&'a str, &'a [u8])>) -> Result<(Vec<Sniffed>, Vec<String>)> {
+    let (mut tables, mut others, mut first) = (Vec::new(), Vec::new(), None);
+    for (name, head) in heads {
+        // Prose beside the tables (a README, a SOURCE.md) would read as a table of its first line's words.
+        let markdown = name.to_ascii_lowercase().ends_with(".md");
+        match if markdown { Err(Error::File(format!("{name}: a Markdown document, not a table"))) } else { sniff(name, head) } {
+            Ok(s) => tables.push(s),
+            Err(e) => {
+                others.push(name.to_string());
+                first.get_or_insert(e);
+            }
+        }
+    }
+    match first {
+        Some(e) if tables.is_empty() => Err(e),
+        _ => Ok((tables, others)),
+    }
+}
+
 /// Whether a file's head is a drive log v1's, read as the native fronts and the worker's
 /// module read one (`log::dialect`: as a spreadsheet saved it too, its metadata lines
 /// padded with separators or quoted). The page's module asks [`Sniffed::is_drive_log`].
@@ -186,5 +208,21 @@ mod tests {
         // A head cut inside a character is not an error.
         let cut = "t,w (°)\n1,2\n".as_bytes();
         assert!(sniff("f.csv", &cut[..6]).is_ok());
+    }
+
+    #[test]
+    fn a_recordings_files_that_are_not_tables_are_left_out_and_named() {
+        let heads: [(&str, &[u8]); 4] = [
+            ("Gyroscope.csv", b"time,z\n0,1\n"),
+            ("README.md", b"Phone on the dashboard, screen up, ten minutes.\n"),
+            ("photo.jpg", b"\xff\xd8\xff\xe0\x00\x10JFIF"),
+            ("Location.csv", b"time,bearing\n0,90\n"),
+        ];
+        let (tables, others) = sniff_tables(heads).unwrap();
+        let names: Vec<&str> = tables.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!((names, others), (vec!["Gyroscope.csv", "Location.csv"], vec!["README.md".to_string(), "photo.jpg".to_string()]));
+        // None a table: the first one's error.
+        let e = sniff_tables([heads[1], heads[2]]).unwrap_err().to_string();
+        assert_eq!(e, "README.md: a Markdown document, not a table");
     }
 }
