@@ -325,6 +325,13 @@ fn wild(name: &str) -> Vec<String> {
     v
 }
 
+/// A logger's sample export (`sample-logs/wild/NAME`) copied into `to`, as an unzipped export.
+fn copy_wild(name: &str, to: &Path) {
+    for f in wild(name) {
+        std::fs::copy(&f, to.join(PathBuf::from(&f).file_name().unwrap())).unwrap();
+    }
+}
+
 /// Without --recipe: the preset is detected and named; its recipe printed as TOML imports
 /// the same log through --recipe; files that fit no preset get the closest one's gap.
 #[test]
@@ -410,9 +417,7 @@ fn a_folder_imports_as_its_files_named_by_the_folder() {
     let d = dir("folder export");
     let folder = d.join("Drive 2026-11-27");
     std::fs::create_dir_all(&folder).unwrap();
-    for f in wild("sensor-logger") {
-        std::fs::copy(&f, folder.join(PathBuf::from(&f).file_name().unwrap())).unwrap();
-    }
+    copy_wild("sensor-logger", &folder);
     std::fs::write(folder.join(".DS_Store"), b"\x00\x01bin").unwrap();
     let (from_folder, from_files) = (d.join("folder.csv"), d.join("files.csv"));
     let o = run(&["import", s(&folder), "--out", s(&from_folder)]);
@@ -445,9 +450,7 @@ fn prose_and_binaries_beside_the_tables_are_left_out_and_a_folder_of_recordings_
     let d = dir("folder of recordings");
     let trip = d.join("trip 1");
     std::fs::create_dir_all(&trip).unwrap();
-    for f in wild("sensor-logger") {
-        std::fs::copy(&f, trip.join(PathBuf::from(&f).file_name().unwrap())).unwrap();
-    }
+    copy_wild("sensor-logger", &trip);
     std::fs::write(trip.join("README.md"), "Phone on the dashboard, screen up, recorded with Sensor Logger, 10 minutes.\n").unwrap();
     std::fs::write(trip.join("photo.jpg"), b"\xff\xd8\xff\xe0\x00\x10JFIF\x00").unwrap();
     let out = dir("folder of recordings out").join("trip.csv");

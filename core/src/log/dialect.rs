@@ -317,8 +317,9 @@ impl<R: Read> V1Reader<R> {
     /// naming it; else counts the lines given.
     fn end_at_joined(&mut self, from: usize) {
         let chunk = &self.buf[..self.ready];
+        let at_line_start = if from == 0 { self.line_start } else { chunk.get(from - 1) == Some(&b'\n') };
         let at = match chunk.get(from) {
-            Some(b'#') if if from == 0 { self.line_start } else { chunk[from - 1] == b'\n' } => Some(from),
+            Some(b'#') if at_line_start => Some(from),
             Some(_) => memchr::memmem::find(&chunk[from..], b"\n#").map(|i| from + i + 1),
             None => None,
         };
