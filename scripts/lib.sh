@@ -118,10 +118,11 @@ build_wasm() {
   # crates at "z" and "s" here (0.5 KB): the page parses files over 4 MB in the worker's full
   # module, which keeps them at "s" and 3; this module parses 100 MB in 1.6-2.2 s, not 1.4-1.5
   # (BENCHMARKS.md).
-  # wasm-opt restructures its control flow once between -Oz passes (flatten, rereloop): 3.8 KB
-  # raw and 0.6 KB gzipped off this module, the same speed (BENCHMARKS.md).
+  # wasm-opt restructures its control flow twice between -Oz passes (flatten, rereloop): the
+  # first round took 0.6 KB gzipped off this module, the second 0.35 KB; a third adds bytes.
+  # The same speed within this machine's noise (BENCHMARKS.md).
   wasm_part "--no-default-features --features core --config profile.wasm-release.package.gyrodrift-wasm.opt-level='z' --config profile.wasm-release.package.csv.opt-level='z' --config profile.wasm-release.package.csv-core.opt-level='s'" web web/pkg gyrodrift \
-    "-Oz --flatten --rereloop -Oz -Oz --converge"
+    "-Oz --flatten --rereloop -Oz --flatten --rereloop -Oz -Oz --converge"
   wasm_part "--no-default-features --features plot" web web/pkg/plot gyrodrift_plot
   # Everything: the Web Worker's module (import, tuning, parsing with progress) and Node's;
   # saving a live estimator's state (`snapshot`, 20.5 KB gzipped of serde code) in Node only.
