@@ -3,6 +3,7 @@
 //! bias and steady within their stop; and straight-road blocks, near the dominant rate (the
 //! half-sample mode) of the recent moving blocks, HDR's heuristic.
 
+use super::noise::NoiseLevel;
 use super::params::PipelineParams;
 use std::collections::VecDeque;
 
@@ -27,6 +28,10 @@ pub(super) struct Evidence {
     refused: StopStats,
     /// The last block was the declared lead-in's.
     in_lead: bool,
+    /// The gyro's noise at a standstill, from consecutive still blocks (`noise.rs`), and the
+    /// last still block's rate (None after a moving one).
+    noise: NoiseLevel,
+    last_still_dps: Option<f64>,
 }
 
 /// A standing this long (s) at a steady rate is the bias, however large: a road vehicle
@@ -42,6 +47,10 @@ impl Evidence {
         let mut stops: Vec<f64> = Vec::new();
         let lead_last = self.lead_last_dps;
         let after_lead = std::mem::replace(&mut self.in_lead, lead_in);
+        if let Some(last) = self.last_still_dps.filter(|_| still || lead_in) {
+            self.noise.add((rate_dps - last) * (rate_dps - last) / 2.0);
+        }
+        self.last_still_dps = (still || lead_in).then_some(rate_dps);
         if lead_in {
             self.lead_last_dps = Some(rate_dps);
             stops.push(rate_dps);
@@ -76,7 +85,7 @@ impl Evidence {
         // for good (a turn is not that steady). And steady within the stop or the
         // lead-in: a block far from its mean is a slow turn (a car that pulls away before
         // the declared lead-in ends).
-        let (max, tol) = (p.max_bias_dps, 4.0 * p.stop_sigma_dps + 0.1);
+        let (max, tol) = (p.max_bias_dps, 4.0 * self.stop_sigma_dps(p) + 0.1);
         let (mean, n, centre) = (self.stop.mean, self.stop.n, self.centre_dps);
         let plausible = |z: f64| (z - centre).abs() <= max || lead_in && lead_last.is_some_and(|l| (z - l).abs() <= tol);
         if !lead_in && !self.centre_known {
@@ -100,6 +109,12 @@ impl Evidence {
             (self.centre_dps, self.centre_known) = (self.stop.mean, true);
         }
         stops
+    }
+
+    /// A stop block's noise, what a stop's steadiness is judged by: the setting, or the
+    /// gyro's measured at a standstill where larger (deg/s).
+    pub(super) fn stop_sigma_dps(&self, p: &PipelineParams) -> f64 {
+        self.noise.at_least(p.stop_sigma_dps)
     }
 
     /// A stop block refused only as implausible joins this stop's steady run of such blocks

@@ -372,7 +372,7 @@ impl Pipeline {
     fn stop_guard(&mut self) -> bool {
         let s = self.evidence.stop;
         let r = self.p.stop_sigma_dps * self.p.stop_sigma_dps;
-        let steady = s.std() <= 3.0 * self.p.stop_sigma_dps;
+        let steady = s.std() <= 3.0 * self.evidence.stop_sigma_dps(&self.p);
         let long = s.last_s - s.first_s >= self.p.jump_min_s;
         if !(steady && long) {
             return false;

@@ -10,6 +10,7 @@ mod dating;
 mod evidence;
 pub mod filter;
 mod model;
+mod noise;
 pub mod params;
 mod records;
 mod smoother;
