@@ -1,5 +1,6 @@
 //! The gyro's noise at a standstill, measured from the log: half the squared difference of
-//! consecutive still blocks' rates (`evidence.rs`) is the noise variance of a block's mean.
+//! consecutive still blocks' rates (`evidence.rs`) is, in expectation, the noise variance
+//! of a block's mean.
 //! A stop is steady when its blocks agree within a few of its blocks' noise; the setting
 //! (`stop_sigma_dps`, 0.05 deg/s) is a quiet gyro's, and a noisy gyro's stops judged by it
 //! were refused block by block (1 deg/s on each 10 Hz row is 0.32 deg/s on a block's mean).
@@ -7,6 +8,10 @@
 //! value (a stochastic-approximation median: one odd pair, a slow turn with the GPS speed
 //! held at zero, moves it one step, however large; an exponential mean instead took the
 //! VN-100 circle drive's turning "standings" for noise and its NE_psi from 1.26 to 69).
+//! The median is not the mean: for Gaussian noise each value is sigma^2 times a chi-square
+//! of one degree, whose median is 0.455, so the level reads 0.67 sigma. Left as measured
+//! (the steadiness it judges is still four times it plus 0.1 deg/s; dividing by 0.455 was
+//! not tried: docs/pipeline.md).
 
 /// The median's step per block, in natural log of the variance: a factor e in 20 blocks,
 /// jitter of about 5 % once there.
