@@ -9,13 +9,16 @@
 //! held at zero, moves it one step, however large; an exponential mean instead took the
 //! VN-100 circle drive's turning "standings" for noise and its NE_psi from 1.26 to 69).
 //! The median is not the mean: for Gaussian noise each value is sigma^2 times a chi-square
-//! of one degree, whose median is 0.455, so the level reads 0.67 sigma. Left as measured
-//! (the steadiness it judges is still four times it plus 0.1 deg/s; dividing by 0.455 was
-//! not tried: docs/pipeline.md).
+//! of one degree, whose median is 0.455, so the median is divided by it to read sigma^2
+//! (as a MAD is scaled by 1.4826).
 
 /// The median's step per block, in natural log of the variance: a factor e in 20 blocks,
 /// jitter of about 5 % once there.
 const STEP: f64 = 0.05;
+
+/// One over the square root of a one-degree chi-square's median (0.455): the tracked
+/// median's square root times this is sigma (a MAD's 1.4826).
+const SIGMA_PER_ROOT_MEDIAN: f64 = 1.482_602_218_505_602;
 
 /// Smallest variance tracked (deg^2/s^2): a block of equal rows (a quantised gyro at rest)
 /// measures 0, whose log would pin the median.
@@ -42,7 +45,7 @@ impl NoiseLevel {
     /// larger (deg/s). What a stop's steadiness is judged by (`evidence.rs`, the step
     /// guard); the stop's update keeps the setting.
     pub(super) fn at_least(&self, sigma_dps: f64) -> f64 {
-        self.log_var.map_or(sigma_dps, |m| sigma_dps.max(libm::exp(m / 2.0)))
+        self.log_var.map_or(sigma_dps, |m| sigma_dps.max(SIGMA_PER_ROOT_MEDIAN * libm::exp(m / 2.0)))
     }
 }
 
@@ -50,11 +53,11 @@ impl NoiseLevel {
 mod tests {
     use super::*;
 
-    /// Blocks 0.04, then 0.09 and 0.01: the first sets the median (sigma 0.2), each next one
-    /// steps it by 0.05 in log toward itself: up, then down, back to sigma 0.2; a setting of
-    /// 0.05 is widened to it, one of 0.3 is kept. NaN is skipped. A block of equal rows (0)
-    /// starts from the floor's log and steps from there (a tie steps up), not from minus
-    /// infinity.
+    /// Blocks 0.04, then 0.09 and 0.01: the first sets the median (0.04, so sigma
+    /// 0.2 / 0.6745 = 0.2965), each next one steps it by 0.05 in log toward itself: up, then
+    /// down, back to sigma 0.2965; a setting of 0.05 is widened to it, one of 0.4 is kept. NaN
+    /// is skipped. A block of equal rows (0) starts from the floor's log and steps from there
+    /// (a tie steps up), not from minus infinity.
     #[test]
     fn the_measured_noise_widens_the_setting_only_above_it_hand_worked() {
         let mut n = NoiseLevel::default();
@@ -62,12 +65,13 @@ mod tests {
         for v in [0.04, f64::NAN, 0.09] {
             n.add(v);
         }
-        assert!((n.at_least(0.05) - 0.2 * libm::exp(0.025)).abs() < 1e-12);
+        let sigma = 0.2 / 0.674_489_750_196_081_7;
+        assert!((n.at_least(0.05) - sigma * libm::exp(0.025)).abs() < 1e-12);
         n.add(0.01);
-        assert!((n.at_least(0.05) - 0.2).abs() < 1e-12 && n.at_least(0.3) == 0.3);
+        assert!((n.at_least(0.05) - sigma).abs() < 1e-12 && n.at_least(0.4) == 0.4);
         let mut z = NoiseLevel::default();
         z.add(0.0);
         z.add(0.0);
-        assert!((z.at_least(0.0) / libm::exp((libm::log(FLOOR_DPS2) + STEP) / 2.0) - 1.0).abs() < 1e-12);
+        assert!((z.at_least(0.0) / libm::exp((libm::log(FLOOR_DPS2) + STEP) / 2.0) - 1.0 / 0.674_489_750_196_081_7).abs() < 1e-12);
     }
 }
