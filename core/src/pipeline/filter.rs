@@ -392,13 +392,17 @@ impl Pipeline {
     /// Stop evidence (rate = b). Its likelihood weighs the hypotheses; `weigh` = false for
     /// the declared lead-in (before any hypothesis could differ). `gate`: a hypothesis the
     /// evidence is beyond [`GYRO_STILL_GATE`] sigma of is weighed but not moved.
+    /// The update takes the setting's noise; the weights take the gyro's own where larger
+    /// (`noise.rs`): a noisy gyro's stop blocks judged by the setting's look like a moving
+    /// bias and hand the bank to its fast walks.
     fn stop_update(&mut self, z: f64, weigh: bool, gate: bool) {
         let r = self.p.stop_sigma_dps * self.p.stop_sigma_dps;
+        let widen = self.evidence.stop_sigma_dps(&self.p).powi(2) - r;
         for m in &mut self.models {
             let (b, p) = m.bias();
             let (nu, s) =
                 if gate && (z - b).abs() > GYRO_STILL_GATE * (p + r).sqrt() { (z - b, p + r) } else { m.update(H_STOP, z, r, true) };
-            let ll = log_likelihood(nu, s, self.p.huber_k);
+            let ll = log_likelihood(nu, s + widen, self.p.huber_k);
             if weigh {
                 m.logw += ll;
             }
