@@ -171,6 +171,21 @@ fn a_constant_the_lead_in_measures_barely_changes_the_result() {
     }
 }
 
+/// The pipeline's NE_psi and the best simple peer's (raw, Table-III HDR, Fusion's offset,
+/// ZARU) on a simulated drive (seed 7) with white noise of `noise_dps` on each 10 Hz row.
+fn noisy_drive_pipeline_and_best_peer(scenario: &str, noise_dps: f64) -> (f64, f64) {
+    let req = crate::sim::SimRequest {
+        scenario: Some(scenario.into()),
+        seed: 7,
+        errors: Some(crate::sim::errors::GyroErrors { noise_dps, ..Default::default() }),
+        ..Default::default()
+    };
+    let log = crate::sim::simulate(&req).unwrap();
+    let r = run(&log, &PipelineParams::default()).unwrap().result.unwrap();
+    let peers = [r.NE_psi_raw_deg_per_min, r.NE_psi_hdr_deg_per_min, r.NE_psi_fusion_offset_deg_per_min, r.NE_psi_zaru_deg_per_min];
+    (r.NE_psi_pipeline_deg_per_min, peers.iter().copied().fold(f64::INFINITY, f64::min))
+}
+
 /// A noisy gyro (1 deg/s of white noise on each 10 Hz row: 0.32 deg/s on a block's mean,
 /// six times the stop sigma) on a simulated drive with known truth: the noise measured at
 /// its standings keeps the stops' blocks as evidence, and the pipeline beats every simple peer
@@ -178,17 +193,8 @@ fn a_constant_the_lead_in_measures_barely_changes_the_result() {
 /// 4x ZARU's 0.36).
 #[test]
 fn a_noisy_gyro_is_measured_and_its_stops_still_count() {
-    let req = crate::sim::SimRequest {
-        scenario: Some("mixed".into()),
-        seed: 7,
-        errors: Some(crate::sim::errors::GyroErrors { noise_dps: 1.0, ..Default::default() }),
-        ..Default::default()
-    };
-    let log = crate::sim::simulate(&req).unwrap();
-    let r = run(&log, &PipelineParams::default()).unwrap().result.unwrap();
-    let peers = [r.NE_psi_raw_deg_per_min, r.NE_psi_hdr_deg_per_min, r.NE_psi_fusion_offset_deg_per_min, r.NE_psi_zaru_deg_per_min];
-    let best = peers.iter().copied().fold(f64::INFINITY, f64::min);
-    assert!(r.NE_psi_pipeline_deg_per_min < best, "pipeline {}, peers {peers:?}", r.NE_psi_pipeline_deg_per_min);
+    let (pipeline, best) = noisy_drive_pipeline_and_best_peer("mixed", 1.0);
+    assert!(pipeline < best, "pipeline {pipeline}, best peer {best}");
 }
 
 /// A gyro with 0.3 deg/s of white noise on each 10 Hz row (0.095 deg/s on a block's mean,
@@ -198,15 +204,6 @@ fn a_noisy_gyro_is_measured_and_its_stops_still_count() {
 /// 0.118). Weighed by the gyro's own noise, the pipeline is within 1.25x of the best peer.
 #[test]
 fn a_noisy_gyros_stops_do_not_hand_the_bank_to_fast_walks() {
-    let req = crate::sim::SimRequest {
-        scenario: Some("suburbs".into()),
-        seed: 7,
-        errors: Some(crate::sim::errors::GyroErrors { noise_dps: 0.3, ..Default::default() }),
-        ..Default::default()
-    };
-    let log = crate::sim::simulate(&req).unwrap();
-    let r = run(&log, &PipelineParams::default()).unwrap().result.unwrap();
-    let peers = [r.NE_psi_raw_deg_per_min, r.NE_psi_hdr_deg_per_min, r.NE_psi_fusion_offset_deg_per_min, r.NE_psi_zaru_deg_per_min];
-    let best = peers.iter().copied().fold(f64::INFINITY, f64::min);
-    assert!(r.NE_psi_pipeline_deg_per_min <= 1.25 * best + 0.05, "pipeline {}, peers {peers:?}", r.NE_psi_pipeline_deg_per_min);
+    let (pipeline, best) = noisy_drive_pipeline_and_best_peer("suburbs", 0.3);
+    assert!(pipeline <= 1.25 * best + 0.05, "pipeline {pipeline}, best peer {best}");
 }
