@@ -12,6 +12,9 @@
 //! start after the lead-in, at the first block where the bank knows its bias to better than
 //! one of HDR's own correction steps (Table III's i_c, 0.0422 deg/s: HDR's static bias eps0
 //! is a standstill's, known that well), from the bank's bias then; before, the bank's alone.
+//! Until the first stop, where the road alone may never take the bank there (no lead-in, no
+//! speed), they start once HDR could acquire what is left: three sigma within its straight
+//! threshold theta_w (0.188 deg/s).
 //! The stream and the batch path blend alike, block for block. Beyond the paper, like the
 //! bank.
 
@@ -43,6 +46,8 @@ pub struct Blend {
     last: Option<(f64, f64)>,
     /// What the blend has added to the bank's heading so far, deg.
     offset_deg: f64,
+    /// The bank has had stop evidence since the lead-in (the experts then wait for i_c).
+    seen_stop: bool,
 }
 
 impl Blend {
@@ -64,7 +69,10 @@ impl Blend {
             return Ok(bank);
         }
         let table_iii = HdrParams::table_iii();
-        if self.experts.is_none() && !(bank.bias_sigma_dps < table_iii.i_c_dps) {
+        self.seen_stop |= bank.stop;
+        let sigma = bank.bias_sigma_dps;
+        let known = sigma < table_iii.i_c_dps || (!self.seen_stop && 3.0 * sigma < table_iii.theta_w_dps);
+        if self.experts.is_none() && !known {
             return Ok(bank);
         }
         let e = match self.experts.as_mut() {
@@ -125,11 +133,13 @@ mod tests {
     #[test]
     fn agreeing_moves_are_averaged_and_a_diverging_expert_is_left_out() {
         let mut b = Blend::new(2.0, 0.0);
-        // In the lead-in, with the blend off, or while the bank's bias is less sure than one
-        // of HDR's steps (0.0422 deg/s): the bank's output as it is, and no expert started.
+        // In the lead-in, with the blend off, or after a stop while the bank's bias is less
+        // sure than one of HDR's steps (0.0422 deg/s): the bank's output as it is, and no
+        // expert started.
         assert_eq!(b.update(false, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
         assert_eq!(Blend::new(0.0, 0.0).update(true, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
-        assert_eq!(b.update(true, 0.0, 0.0, bank(0.3, 0.05)).unwrap(), bank(0.3, 0.05));
+        let stop = PipelineOutput { stop: true, ..bank(0.3, 0.05) };
+        assert_eq!(b.update(true, 0.0, 0.0, stop).unwrap(), stop);
         assert!(b.experts.is_none());
         // The experts start from the bank's bias (0); their first block moves nothing.
         assert_eq!(b.update(true, 1.0, 0.0, bank(0.0, 0.04)).unwrap(), bank(0.0, 0.04));
@@ -158,6 +168,22 @@ mod tests {
         assert!(m.abs() <= 3.0 * 0.0422 + 1e-12, "{m}");
         let o = b.update(true, 4.0, 0.0, bank(bank_deg + 0.3, 0.04)).unwrap();
         assert!((o.heading_deg - (bank_deg + 0.3 + gain + gain2)).abs() < 1e-12 && o.bias_dps == 0.0);
+    }
+
+    /// Before any stop the experts start once three of the bank's sigma fit within HDR's
+    /// straight threshold theta_w (0.564 deg/s): 3 x 0.19 = 0.57, not yet; 3 x 0.18 = 0.54,
+    /// started. After a stop they wait for i_c: 0.05 does not start them.
+    #[test]
+    fn before_a_stop_the_experts_start_once_hdr_could_acquire_the_rest() {
+        let mut b = Blend::new(2.0, 0.0);
+        b.update(true, 1.0, 0.0, bank(0.0, 0.19)).unwrap();
+        assert!(b.experts.is_none());
+        b.update(true, 2.0, 0.0, bank(0.0, 0.18)).unwrap();
+        assert!(b.experts.is_some());
+        let mut s = Blend::new(2.0, 0.0);
+        s.update(true, 1.0, 0.0, PipelineOutput { stop: true, ..bank(0.0, 0.05) }).unwrap();
+        s.update(true, 2.0, 0.0, bank(0.0, 0.05)).unwrap();
+        assert!(s.experts.is_none());
     }
 
     /// Between stops the guard grows as the walk since the last stop: Fusion's offset 0.5
