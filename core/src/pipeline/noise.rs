@@ -3,7 +3,8 @@
 //! of a block's mean.
 //! A stop is steady when its blocks agree within a few of its blocks' noise; the setting
 //! (`stop_sigma_dps`, 0.05 deg/s) is a quiet gyro's, and a noisy gyro's stops judged by it
-//! were refused block by block (1 deg/s on each 10 Hz row is 0.32 deg/s on a block's mean).
+//! were refused block by block (1 deg/s on each 10 Hz row is 0.32 deg/s on a block's mean);
+//! weighed by it, they looked like a moving bias to the bank (`filter.rs`, `stop_update`).
 //! The level is a running median, tracked in the log domain by a fixed step toward each new
 //! value (a stochastic-approximation median: one odd pair, a slow turn with the GPS speed
 //! held at zero, moves it one step, however large; an exponential mean instead took the
@@ -43,7 +44,7 @@ impl NoiseLevel {
 
     /// A stop block's noise: the setting `sigma_dps` or the measured one, whichever is
     /// larger (deg/s). What a stop's steadiness is judged by (`evidence.rs`, the step
-    /// guard); the stop's update keeps the setting.
+    /// guard) and its blocks weigh the hypotheses by; the stop's update keeps the setting.
     pub(super) fn at_least(&self, sigma_dps: f64) -> f64 {
         self.log_var.map_or(sigma_dps, |m| sigma_dps.max(SIGMA_PER_ROOT_MEDIAN * libm::exp(m / 2.0)))
     }

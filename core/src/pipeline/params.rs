@@ -23,6 +23,8 @@ pub struct PipelineParams {
     /// pulling away into a turn), s. Delays the stop evidence by this much.
     pub min_still_s: f64,
     /// Noise of one 1 s stop block as a measurement of the bias (idle vibration), deg/s.
+    /// The gyro's own, measured at standstill, replaces it where larger in the steadiness
+    /// tests and the weights, not in the update (`noise.rs`).
     pub stop_sigma_dps: f64,
     /// A stop block whose rate is further than this from the turn-on bias (the lead-in's; 0
     /// without one) is not standing (a slow turn with the GPS speed held at zero), deg/s.
