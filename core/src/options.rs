@@ -44,7 +44,11 @@ fn checked_object(value: Value, parse: &mut dyn FnMut(Value) -> std::result::Res
     };
     let Err(e) = parse(Value::Object(obj.clone())) else { return Ok(()) };
     for (k, v) in &obj {
-        if let Err(e1) = parse(Value::Object(Map::from_iter([(k.clone(), v.clone())]))) {
+        // Inserted, not collected: a collect into the map sorts, code the size-capped wasm
+        // module would carry for this alone.
+        let mut one = Map::new();
+        one.insert(k.clone(), v.clone());
+        if let Err(e1) = parse(Value::Object(one)) {
             return Err(Error::param(k, e1));
         }
     }
