@@ -7,6 +7,7 @@ use crate::log::DriveLog;
 use serde::{Deserialize, Serialize};
 use units::units_and_sign;
 
+mod speed;
 #[cfg(test)]
 mod tests;
 mod units;
@@ -86,6 +87,7 @@ pub fn check(log: &DriveLog) -> CheckReport {
     gaps(&mut r, log);
     let standing_s = lead_in(&mut r, log);
     let limit_dps = units_and_sign(&mut r, log, standing_s);
+    speed::speed_unit(&mut r, log);
     if log.kind() == crate::log::LogKind::Drive && !log.has_reference() {
         let message = "no reference heading: the methods run, nothing is scored, and the gyro's units and sign go unchecked";
         r.findings.push(finding(Severity::Info, "no_reference", message.into(), Some("add a ref_heading_deg column (the GPS course)")));

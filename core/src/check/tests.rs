@@ -232,3 +232,47 @@ fn one_turn_judges_units_but_not_a_scale() {
     assert!((r.gyro_over_reference.unwrap() - 1.05).abs() < 0.01, "{}", r.to_text());
     assert!(codes(&scaled).is_empty(), "{}", r.to_text());
 }
+
+/// A speed in km/h read as m/s: Highway 1 holds 30 m/s, 108 "m/s" in km/h, over 70 for 30 s
+/// from where it first passes 70 km/h; as shipped, and every sample drive, nothing. A run
+/// under 30 s, or broken by a slower row, is not enough; empty cells do not break it.
+#[test]
+fn a_speed_in_km_per_h_is_found_where_it_holds_past_a_road_vehicle() {
+    let p = concat!(env!("CARGO_MANIFEST_DIR"), "/../sample-logs/train/highway-1.csv");
+    let log = parse_log(std::fs::File::open(p).unwrap()).unwrap();
+    let found = |log: &DriveLog| check(log).findings.into_iter().find(|f| f.code == "speed_unit");
+    for set in ["train", "test"] {
+        for e in std::fs::read_dir(format!("{}/../sample-logs/{set}", env!("CARGO_MANIFEST_DIR"))).unwrap() {
+            let l = parse_log(std::fs::File::open(e.unwrap().path()).unwrap()).unwrap();
+            assert!(found(&l).is_none(), "{}", check(&l).to_text());
+        }
+    }
+    let kmh = scaled(&log, Column::SpeedMps, 3.6);
+    let f = found(&kmh).expect("km/h not found");
+    assert_eq!(f.severity, Severity::Warning);
+    let (t, v) = (kmh.time_s(), kmh.column(Column::SpeedMps).unwrap());
+    let first = t[v.iter().position(|v| *v > 70.0).unwrap()];
+    assert!(f.message.contains(&format!("from t = {first:.0} s")), "{} (first over 70 at {first})", f.message);
+    // 80 m/s for 28.8 s, one row at 69 m/s, then 80 for 28.8 s, with empty cells among
+    // them: no run of 30 s; with the slow row empty instead, one of 57.8 s.
+    let rows = |slow: f64| -> Vec<f64> {
+        (0..580)
+            .map(|i| {
+                if i == 290 {
+                    slow
+                } else if i % 7 == 0 {
+                    f64::NAN
+                } else {
+                    80.0
+                }
+            })
+            .collect()
+    };
+    let time: Vec<f64> = (0..580).map(|i| i as f64 * 0.1).collect();
+    let run = |speed: Vec<f64>| {
+        let cols = vec![(Column::TimeS, time.clone()), (Column::GyroDps, vec![0.0; 580]), (Column::SpeedMps, speed)];
+        DriveLog::from_columns(log.meta.clone(), vec![0; 580], cols).unwrap()
+    };
+    assert!(found(&run(rows(69.0))).is_none());
+    assert!(found(&run(rows(f64::NAN))).is_some());
+}
