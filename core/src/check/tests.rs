@@ -276,3 +276,31 @@ fn a_speed_in_km_per_h_is_found_where_it_holds_past_a_road_vehicle() {
     assert!(found(&run(rows(69.0))).is_none());
     assert!(found(&run(rows(f64::NAN))).is_some());
 }
+
+/// City 1 with its reference kept once a minute: where the course turned by more than 180
+/// deg while it was blank, detail 6's unwrap takes the nearer branch, and the check names
+/// the first such gap; as shipped (a course every 0.1 s), nothing.
+#[test]
+fn a_reference_that_resumes_a_turn_off_the_gyro_is_named_at_its_gap() {
+    let log = city();
+    let turn = |log: &DriveLog| check(log).findings.into_iter().find(|f| f.code == "reference_turn");
+    assert!(turn(&log).is_none());
+    let mut sparse = log.clone();
+    let t = log.time_s().to_vec();
+    for (h, t) in sparse.column_mut(Column::RefHeadingDeg).unwrap().iter_mut().zip(&t) {
+        if (t % 60.0).abs() > 1e-6 {
+            *h = f64::NAN;
+        }
+    }
+    let f = turn(&sparse).expect("no reference_turn");
+    assert_eq!(f.severity, Severity::Warning);
+    // The gap it names: the first minute over which the reference and the gyro part by a turn.
+    let r = crate::metrics::Reference::from_log(&sparse).unwrap();
+    let first = r.time_s.windows(2).zip(r.heading_deg.windows(2)).find(|(t, h)| {
+        let p = crate::metrics::Reference::from_log(&log).unwrap();
+        let at = |x: f64| crate::metrics::value_at(&p.time_s, &p.heading_deg, x);
+        ((at(t[1]) - at(t[0])) - (h[1] - h[0])).abs() > 270.0
+    });
+    let (t, _) = first.expect("the thinned reference never parts from the full one by a turn");
+    assert!(f.message.contains(&format!("at {:.0} s", t[0])), "{} against {}", f.message, t[0]);
+}

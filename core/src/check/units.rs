@@ -52,8 +52,31 @@ pub(super) fn units_and_sign(r: &mut CheckReport, log: &DriveLog, standing_s: Op
             (Some(k), _) => units_from_ratio(r, k, se.unwrap_or(0.0)),
             _ => {}
         }
+        // Unless the units or sign are off (an error above), or the reference in radians.
+        if let (Some(gy), None | Some(true), None) = (&gyro, k.map(near_one), k_rad) {
+            reference_turns(r, log, gy, k.map_or(1.0, f64::signum));
+        }
     }
     limit_dps
+}
+
+/// Where the reference first resumes after a gap (5 s or more) a whole turn off the gyro's
+/// heading change: a U-turn or a garage ramp while the GPS course was blank. Detail 6's
+/// unwrap takes the nearer branch, so from there the reference, and every method's E_psi,
+/// is a turn off. Judged unless the units are off (`sign`: the gyro's, +1 unmeasured).
+fn reference_turns(r: &mut CheckReport, log: &DriveLog, (gt, psi): &(Vec<f64>, Vec<f64>), sign: f64) {
+    let Ok(Reference { time_s: t, heading_deg: h }) = Reference::from_log(log) else { return };
+    let at = |x: f64| sign * value_at(gt, psi, x);
+    for k in 1..t.len() {
+        if t[k] - t[k - 1] >= 5.0 && (at(t[k]) - at(t[k - 1]) - (h[k] - h[k - 1])).abs() > 270.0 {
+            let message = format!(
+                "the reference resumes a turn off the gyro after its gap at {:.0} s: from there every E_psi is a turn off",
+                t[k - 1]
+            );
+            r.findings.push(finding(Severity::Warning, "reference_turn", message, Some("score the log up to that gap")));
+            return;
+        }
+    }
 }
 
 /// One window between two reference samples: the integrated gyro's and the reference's
