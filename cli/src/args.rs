@@ -277,6 +277,16 @@ pub(crate) enum Cmd {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Write each log of a file that holds several joined on (`cat a.csv b.csv`, a logger
+    /// appending each session to one file), which the other commands refuse naming the line
+    /// where the second starts, as a v1 log of its own: STEM.1.csv, STEM.2.csv, ...
+    Split {
+        #[arg(help = LOG_HELP)]
+        log: PathBuf,
+        /// Folder to write them to (default: the log's own; created if missing).
+        #[arg(long)]
+        out_dir: Option<PathBuf>,
+    },
     /// Write every shipped sample log (bit-identical for the same version) under a folder.
     Samples {
         #[arg(long, default_value = "sample-logs")]

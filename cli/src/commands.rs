@@ -1,7 +1,8 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
 use crate::{
-    expand_recipes, fail, import_recipe, is_stdin, output, print_json, read_log, settings, shell_quoted, shown, write_stdout, Failure,
+    expand_recipes, fail, import_recipe, is_stdin, open_input, output, print_json, read_log, settings, shell_quoted, shown, time_order,
+    write_stdout, Failure,
 };
 use gyrodrift::log::accept::{accept, InputPolicy};
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
@@ -473,6 +474,32 @@ fn files_folder(paths: &[PathBuf]) -> String {
         },
         _ => "FOLDER".into(),
     }
+}
+
+/// `split`: each log joined in the file as a v1 log of its own, `STEM.K.csv` in `out_dir`
+/// (the file's folder by default), a line each on stdout: where it starts, its rows and
+/// length, and what reading it did. A file that reads as one log as it is (nothing joined,
+/// nothing dropped) is said and nothing written.
+pub fn split(path: &Path, out_dir: Option<&Path>) -> Result<(), Failure> {
+    let dir = match out_dir {
+        Some(d) => d.to_path_buf(),
+        None if is_stdin(path) => return Err(Failure("split -: name the folder to write the logs to (--out-dir DIR)".into())),
+        None => path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new(".")).to_path_buf(),
+    };
+    let logs = gyrodrift::log::accept::parse_joined(open_input(path)?, time_order()).map_err(|e| fail(path, e))?;
+    if let [(_, None, _)] = logs.as_slice() {
+        return write_stdout(&format!("{}: one log, nothing joined on: nothing written\n", shown(path)));
+    }
+    std::fs::create_dir_all(&dir).map_err(|e| Failure(format!("{}: cannot create: {e}", dir.display())))?;
+    let stem = if is_stdin(path) { "stdin".to_string() } else { gyrodrift::log::file::log_stem(path) };
+    let mut text = Vec::new();
+    for (k, (log, said, line)) in logs.iter().enumerate() {
+        let out = dir.join(format!("{stem}.{}.csv", k + 1));
+        write_log(log, Some(&out))?;
+        let said = said.as_deref().map(|s| format!("; {s}")).unwrap_or_default();
+        text.push(format!("{}: from line {line}, {} rows, {:.1} min{said}", out.display(), log.len(), log.duration_min()));
+    }
+    write_stdout(&(text.join("\n") + "\n"))
 }
 
 pub fn allan(log: &Path, json: bool) -> Result<(), Failure> {

@@ -45,10 +45,15 @@ fn shown(path: &Path) -> String {
 /// The `--time-order` policy every log is read by (set once, before any is read).
 static TIME_ORDER: std::sync::OnceLock<TimeOrder> = std::sync::OnceLock::new();
 
+/// The `--time-order` policy.
+fn time_order() -> TimeOrder {
+    TIME_ORDER.get().copied().unwrap_or_default()
+}
+
 /// Parses a v1 log by the `--time-order` policy; what fixing did is said on stderr, and a
 /// refused time order names the option that fixes it.
 fn parse_ordered(path: &Path, reader: impl std::io::Read) -> Result<DriveLog, Failure> {
-    let order = TIME_ORDER.get().copied().unwrap_or_default();
+    let order = time_order();
     match gyrodrift::log::accept::parse_by(reader, order) {
         Ok((log, fixed)) => {
             if let Some(f) = fixed {
@@ -58,9 +63,13 @@ fn parse_ordered(path: &Path, reader: impl std::io::Read) -> Result<DriveLog, Fa
         }
         Err(e) => {
             let out_of_order = gyrodrift::log::accept::refused_for_time_order(&e);
-            let drafted = !out_of_order && !is_stdin(path) && gyrodrift::import::draft_reads_refused(path, &e);
+            let joined = gyrodrift::log::accept::refused_for_join(&e);
+            let drafted = !out_of_order && !joined && !is_stdin(path) && gyrodrift::import::draft_reads_refused(path, &e);
             let mut f = fail(path, e);
-            if out_of_order {
+            if joined {
+                let out = if is_stdin(path) { " --out-dir DIR" } else { "" };
+                f.0 += &format!("; `gyrodrift split {}{out}` writes each log in it as a file of its own", shell_quoted(path));
+            } else if out_of_order {
                 f.0 += "; `--time-order fix` merges repeated times and sorts rows up to 1 s late in";
             } else if drafted {
                 // A logger's own table (time in ms, date-times, another name): the import reads it.
@@ -73,6 +82,18 @@ fn parse_ordered(path: &Path, reader: impl std::io::Read) -> Result<DriveLog, Fa
 }
 
 fn read_log(path: &Path) -> Result<DriveLog, Failure> {
+    let reader = open_input(path)?;
+    parse_ordered(path, reader).map_err(|mut f| {
+        if let Some(hint) = import_hint(path).filter(|_| !is_stdin(path)) {
+            f.0 += &format!("; {hint}");
+        }
+        f
+    })
+}
+
+/// A log file's bytes as the commands read them: standard input for `-` (once), a
+/// gzip-compressed file as the plain one; a folder is answered with what reads it.
+fn open_input(path: &Path) -> Result<Box<dyn std::io::Read>, Failure> {
     if is_stdin(path) {
         // Standard input can be read once: `-` given twice would be an empty second log.
         static READ: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
@@ -80,7 +101,7 @@ fn read_log(path: &Path) -> Result<DriveLog, Failure> {
             return Err(Failure("-: standard input is given twice; it can be read once".into()));
         }
         let stdin = gyrodrift::log::file::decompressed(std::io::BufReader::new(std::io::stdin()));
-        return parse_ordered(path, stdin.map_err(|e| fail(path, Error::from(e)))?);
+        return Ok(Box::new(stdin.map_err(|e| fail(path, Error::from(e)))?));
     }
     if path.is_dir() {
         let what = match gyrodrift::import::folder_hint(path) {
@@ -91,12 +112,7 @@ fn read_log(path: &Path) -> Result<DriveLog, Failure> {
     }
     // A gzip-compressed log (drive.csv.gz) reads as the plain file.
     let file = gyrodrift::log::file::open_log(path).map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
-    parse_ordered(path, file).map_err(|mut f| {
-        if let Some(hint) = import_hint(path) {
-            f.0 += &format!("; {hint}");
-        }
-        f
-    })
+    Ok(Box::new(file))
 }
 
 /// For a file that is not a v1 log but a logger's raw export a preset reads (core's
@@ -252,6 +268,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         },
         Cmd::Allan { log, json } => c::allan(&log, json),
         Cmd::Check { log, json } => c::check(&log, json),
+        Cmd::Split { log, out_dir } => c::split(&log, out_dir.as_deref()),
         Cmd::Roads { recipes, data, json, plot } => c::roads(&recipes, data.as_deref(), json, plot.as_deref()),
     }
 }

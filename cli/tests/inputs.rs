@@ -349,7 +349,8 @@ fn a_last_line_cut_short_is_dropped_and_said() {
 }
 
 /// Two logs joined into one file (`cat a.csv b.csv`, a logger appending sessions): refused
-/// naming the second log's first line, whatever the time-order policy, not as a short row.
+/// naming the second log's first line, whatever the time-order policy, not as a short row,
+/// with the command that splits it; `split` writes the two, each scoring as the log joined.
 #[test]
 fn two_logs_joined_are_refused_naming_the_seconds_first_line() {
     let text = drive_csv();
@@ -360,12 +361,33 @@ fn two_logs_joined_are_refused_naming_the_seconds_first_line() {
         assert_eq!(out.status.code(), Some(2));
         let err = String::from_utf8(out.stderr).unwrap();
         let want = format!(
-            "{}: line {}: a '#' line after the rows (\"# name: second drive\"): a second log joined on? A log's '#' lines come before its header; split the file before this line",
+            "{}: line {}: a '#' line after the rows (\"# name: second drive\"): a second log joined on? A log's '#' lines come before its header; split the file before this line; `gyrodrift split {}` writes each log in it as a file of its own",
             joined.display(),
-            first_lines + 1
+            first_lines + 1,
+            joined.display()
         );
         assert_eq!(err.trim_end(), want);
     }
+    let dir = std::env::temp_dir().join(format!("gd-split-{}", std::process::id()));
+    let out = run(&["split", joined.to_str().unwrap(), "--out-dir", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let said = String::from_utf8(out.stdout).unwrap();
+    let (a, b) = (dir.join("joined.1.csv"), dir.join("joined.2.csv"));
+    assert!(
+        said.contains(&format!("{}: from line 1,", a.display()))
+            && said.contains(&format!("{}: from line {},", b.display(), first_lines + 1)),
+        "{said}"
+    );
+    let alone = write("alone.csv", &text);
+    let second = write("second.csv", &text.replace("test drive", "second drive"));
+    for (part, log) in [(&a, &alone), (&b, &second)] {
+        let hdr = |p: &PathBuf| run(&["hdr", "--json", p.to_str().unwrap()]).stdout;
+        assert_eq!(hdr(part), hdr(log), "{}", part.display());
+    }
+    // A file of one log: nothing written.
+    let out = run(&["split", alone.to_str().unwrap(), "--out-dir", dir.to_str().unwrap()]);
+    assert!(String::from_utf8(out.stdout).unwrap().ends_with("one log, nothing joined on: nothing written\n"));
+    assert!(!dir.join("alone.1.csv").exists());
 }
 
 /// A log opened and saved by a spreadsheet (Excel or LibreOffice, either locale): metadata

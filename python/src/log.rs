@@ -91,7 +91,8 @@ pub(crate) fn read_path(path: &str, order: TimeOrder) -> PyResult<(DriveLog, Opt
             }
             None => String::new(),
         };
-        value_err(format!("{path}: {e}{order_hint}{hint}", order_hint = time_order_hint(&e)))
+        let joined = if gyrodrift::log::accept::refused_for_join(&e) { "; gyrodrift.Log.read_joined reads each log in it" } else { "" };
+        value_err(format!("{path}: {e}{order_hint}{joined}{hint}", order_hint = time_order_hint(&e)))
     })
 }
 
@@ -156,6 +157,20 @@ impl PyLog {
         let (p, order) = (path.display().to_string(), self::time_order(time_order)?);
         let read = py.detach(|| read_path(&p, order))?;
         warned(py, &p, read)
+    }
+
+    /// Reads each log of a file that holds several joined on (`cat a.csv b.csv`, a logger
+    /// appending each session), which `read` refuses naming the second's first line: a Log
+    /// each; what reading one did is a UserWarning naming the line it starts on.
+    #[staticmethod]
+    #[pyo3(signature = (path, time_order="error"))]
+    fn read_joined(py: Python<'_>, path: std::path::PathBuf, time_order: &str) -> PyResult<Vec<PyLog>> {
+        let (p, order) = (path.display().to_string(), self::time_order(time_order)?);
+        let logs = py.detach(|| {
+            let f = gyrodrift::log::file::open_log(&path).map_err(|e| PyOSError::new_err(format!("{p}: cannot open: {e}")))?;
+            gyrodrift::log::accept::parse_joined(f, order).map_err(|e| value_err(format!("{p}: {e}{}", time_order_hint(&e))))
+        })?;
+        logs.into_iter().map(|(log, said, line)| warned(py, &format!("{p} (from line {line})"), (log, said))).collect()
     }
 
     /// Parses CSV v1 text (or as a spreadsheet saves it with `;` and decimal commas; a last

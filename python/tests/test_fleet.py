@@ -278,7 +278,7 @@ def test_a_last_line_cut_short_is_dropped_with_a_warning(samples, tmp_path):
 
 def test_two_logs_joined_are_refused_naming_the_seconds_first_line(samples, tmp_path):
     """Two logs in one file (`cat a.csv b.csv`): read_log, Log.parse and the fleet's row name
-    the second log's first line, not a short row."""
+    the second log's first line, not a short row; Log.read_joined reads each."""
     a = (samples / "train" / "city-1.csv").read_text()
     b = (samples / "train" / "city-2.csv").read_text()
     (tmp_path / "joined.csv").write_text(a + b)
@@ -289,6 +289,16 @@ def test_two_logs_joined_are_refused_naming_the_seconds_first_line(samples, tmp_
             read()
     (row,) = g.score_files([str(tmp_path / "joined.csv")], 1)
     assert said in row["error"]
+    with pytest.raises(ValueError, match=re.escape("gyrodrift.Log.read_joined reads each log in it")):
+        g.Log.read(str(tmp_path / "joined.csv"))
+    # Log.read_joined: each log as read alone; a '#' note after the last rows said, not a log.
+    (tmp_path / "noted.csv").write_text(a + b + "# stopped by the user\n")
+    with pytest.warns(UserWarning, match=re.escape(f"(from line {line}): the '#' lines from line")):
+        logs = g.Log.read_joined(str(tmp_path / "noted.csv"))
+    alone = [g.Log.parse(a), g.Log.parse(b)]
+    assert [x.meta()["name"] for x in logs] == ["City 1", "City 2"]
+    for got, want in zip(logs, alone):
+        assert len(got) == len(want) and np.array_equal(got.column("gyro_dps"), want.column("gyro_dps"))
 
 
 def test_a_log_in_windows_1252_reads_with_a_warning(samples, tmp_path):

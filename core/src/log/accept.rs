@@ -58,12 +58,62 @@ pub fn parse_fixing<R: std::io::Read>(reader: R) -> Result<(DriveLog, String)> {
 /// time in order did ("" when nothing or `Error`) and what reading the file did.
 fn read_v1<R: std::io::Read>(reader: R, order: TimeOrder) -> Result<(DriveLog, String, Vec<String>)> {
     let mut reader = super::dialect::v1_reader(reader, true);
-    let parsed = match order {
-        TimeOrder::Error => super::parse_log(&mut reader).map(|log| (log, String::new())),
-        TimeOrder::Fix => super::parse_log_in_time_order(&mut reader, Default::default()).map(|(log, fixes)| (log, fixes.to_text())),
-    };
+    let parsed = read_one(&mut reader, order);
     let (log, fixes) = reader.refuse_joined(parsed)?;
     Ok((log, fixes, reader.said()))
+}
+
+/// The log `reader` gives, by the time-order policy, and what putting its time in order did.
+fn read_one<R: std::io::Read>(reader: &mut super::dialect::V1Reader<R>, order: TimeOrder) -> Result<(DriveLog, String)> {
+    match order {
+        TimeOrder::Error => super::parse_log(reader).map(|log| (log, String::new())),
+        TimeOrder::Fix => super::parse_log_in_time_order(reader, Default::default()).map(|(log, fixes)| (log, fixes.to_text())),
+    }
+}
+
+/// Every log of a file that holds several joined on (`cat a.csv b.csv`, a logger appending
+/// each session to one file), each read as [`parse_by`] reads a file of its own, with what
+/// was done to read it and the line it starts on. An error names the file's line. A second
+/// log with no rows (a `#` note after the last row) is none: said on the log before it.
+pub fn parse_joined<'a, R: std::io::Read + 'a>(reader: R, order: TimeOrder) -> Result<Vec<(DriveLog, Option<String>, u64)>> {
+    let mut out: Vec<(DriveLog, Option<String>, u64)> = Vec::new();
+    let (mut rest, mut first_line): (Box<dyn std::io::Read + 'a>, u64) = (Box::new(reader), 1);
+    loop {
+        let mut reader = super::dialect::v1_reader(rest, true);
+        let (log, fixes) = match (read_one(&mut reader, order), out.last_mut()) {
+            (Ok(read), _) => read,
+            // Comments alone after the last log's rows: not a log.
+            (Err(Error::File(m)), Some(last)) if m.starts_with("empty file") => {
+                let note = format!("the '#' lines from line {first_line} on, with no rows after them, ignored");
+                last.1 = Some(last.1.take().map_or(note.clone(), |s| format!("{s}; {note}")));
+                return Ok(out);
+            }
+            (Err(e @ Error::File(_)), Some(_)) => return Err(e.within(&format!("the log from line {first_line}"))),
+            (Err(e), _) => return Err(shifted(e, first_line - 1)),
+        };
+        let said: Vec<String> = reader.said().into_iter().chain((!fixes.is_empty()).then(|| format!("time order: {fixes}"))).collect();
+        out.push((log, (!said.is_empty()).then(|| said.join("; ")), first_line));
+        match reader.into_rest() {
+            Some((joined, r)) => (rest, first_line) = (Box::new(r), first_line + joined.line - 1),
+            None => return Ok(out),
+        }
+    }
+}
+
+/// `e` with its line numbers `by` lines further on (a log that starts that far into its file).
+fn shifted(e: Error, by: u64) -> Error {
+    match e {
+        Error::Cell { line, column, message } => Error::Cell { line: line + by, column, message },
+        Error::Line { line, message } => Error::Line { line: line + by, message },
+        Error::In { name, source } => Error::In { name, source: Box::new(shifted(*source, by)) },
+        e => e,
+    }
+}
+
+/// Whether `e` is the refusal of a file with a second log joined on, which
+/// [`parse_joined`] reads: the fronts add what splits it in their own words.
+pub fn refused_for_join(e: &Error) -> bool {
+    matches!(e, Error::Line { message, .. } if message.contains(super::dialect::JOINED_REFUSAL))
 }
 
 /// Whether `e` is the parser's refusal of a time that repeats or steps back (what
@@ -162,5 +212,47 @@ mod tests {
         assert_eq!(refusal(&drive((0..200).map(|i| (i as f64, 0.0)))), None);
         let a = accept(log, "cw", InputPolicy { ignore_check: true, ..Default::default() }, None).unwrap();
         assert!(a.warnings.iter().any(|w| w.starts_with("check: error [gyro_sign]")), "{:?}", a.warnings);
+    }
+
+    /// Two logs joined (a BOM and CRLF lines in the first, as a spreadsheet saves): both,
+    /// each with its own metadata and the line it starts on; `parse_by` refuses the file,
+    /// and the refusal is the one `refused_for_join` knows.
+    #[test]
+    fn joined_logs_are_read_each_as_a_log_of_its_own() {
+        let first = "\u{feff}# name: City 1\r\n# bias_s: 20\r\ntime_s,gyro_dps\r\n0,1\r\n1,2\r\n";
+        let second = "# name: City 2\n# bias_s: 5\ntime_s,gyro_dps\n0,3\n";
+        let text = format!("{first}{second}");
+        let logs = parse_joined(text.as_bytes(), TimeOrder::Error).unwrap();
+        let got: Vec<_> =
+            logs.iter().map(|(l, said, line)| (l.meta.name.clone().unwrap(), l.meta.bias_s, l.len(), said.clone(), *line)).collect();
+        assert_eq!(got, [("City 1".into(), Some(20.0), 2, None, 1), ("City 2".into(), Some(5.0), 1, None, 6)]);
+        assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), &[3.0]);
+        let e = parse_by(text.as_bytes(), TimeOrder::Error).unwrap_err();
+        assert!(refused_for_join(&e) && e.to_string().starts_with("line 6:"), "{e}");
+        assert!(!refused_for_join(&Error::Line { line: 6, message: "a bad row".into() }));
+        // Three logs: the third starts where the second's line count says.
+        let three = format!("{text}{second}");
+        let lines: Vec<u64> = parse_joined(three.as_bytes(), TimeOrder::Error).unwrap().iter().map(|x| x.2).collect();
+        assert_eq!(lines, [1, 6, 10]);
+    }
+
+    /// A bad cell in a later log names the file's line; one with a header and no rows is an
+    /// error naming where it starts; `#` lines alone after the last rows are a note, not a
+    /// log; a `;` log with decimal commas joined to another reads both.
+    #[test]
+    fn a_joined_log_is_read_or_refused_naming_the_files_lines() {
+        let text = "time_s,gyro_dps\n0,1\n# name: b\ntime_s,gyro_dps\n0,1\n1,x\n";
+        let e = parse_joined(text.as_bytes(), TimeOrder::Error).unwrap_err().to_string();
+        assert!(e.starts_with("line 6, column gyro_dps"), "{e}");
+        let e = parse_joined(&b"time_s,gyro_dps\n0,1\n# name: b\ntime_s,gyro_dps\n"[..], TimeOrder::Error).unwrap_err().to_string();
+        assert!(e.starts_with("the log from line 3: no data rows"), "{e}");
+        let logs = parse_joined(&b"time_s,gyro_dps\n0,1\n1,2\n# stopped by the user\n"[..], TimeOrder::Fix).unwrap();
+        assert_eq!(logs.len(), 1);
+        assert_eq!(logs[0].1.as_deref(), Some("the '#' lines from line 4 on, with no rows after them, ignored"));
+        let rows: String = (0..30_000).map(|i| format!("{i};0,5\n")).collect();
+        let semi = format!("# name: a\ntime_s;gyro_dps\n{rows}# name: b\ntime_s;gyro_dps\n0;1,5\n");
+        let logs = parse_joined(semi.as_bytes(), TimeOrder::Error).unwrap();
+        assert_eq!((logs[0].0.len(), logs[1].0.len(), logs[1].2), (30_000, 1, 30_003));
+        assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), &[1.5]);
     }
 }

@@ -14,7 +14,8 @@
 //! - with a second log joined on (`cat a.csv b.csv`, or a logger appending each session to
 //!   one file): the reader ends before the first `#` line after the header, and
 //!   [`V1Reader::joined_at`] names it, so the fronts refuse the file naming that line, not
-//!   as a row with too few cells.
+//!   as a row with too few cells; [`V1Reader::into_rest`] gives the rest to read on
+//!   (`accept::parse_joined`, the CLI's `split`).
 //!
 //! A comma-separated log that ends cleanly (the format as written) passes through untouched.
 
@@ -80,11 +81,14 @@ pub struct Joined {
     pub text: String,
 }
 
+/// What the refusal of a file with a second log joined on says (`accept::refused_for_join`).
+pub(crate) const JOINED_REFUSAL: &str = "a second log joined on?";
+
 impl Joined {
     /// The refusal the fronts give for such a file.
     pub fn to_error(&self) -> crate::error::Error {
         let message = format!(
-            "a '#' line after the rows (\"{}\"): a second log joined on? A log's '#' lines come before its header; split the file before this line",
+            "a '#' line after the rows (\"{}\"): {JOINED_REFUSAL} A log's '#' lines come before its header; split the file before this line",
             self.text
         );
         crate::error::Error::Line { line: self.line, message }
@@ -219,6 +223,13 @@ impl<R: Read> V1Reader<R> {
     /// The first `#` line after the header, where the reader ended (see the module's doc).
     pub fn joined_at(&self) -> Option<&Joined> {
         self.joined.as_ref()
+    }
+
+    /// After a second log was found ([`Self::joined_at`]): where it starts, and the bytes
+    /// from there on (those held, then the rest of the input), to read as a log of its own.
+    pub fn into_rest(self) -> Option<(Joined, impl Read)> {
+        let joined = self.joined?;
+        Some((joined, io::Cursor::new(self.buf[self.ready..].to_vec()).chain(self.inner)))
     }
 
     /// A parse of this reader as the fronts give it: a file the reader ended at a second log
