@@ -1,7 +1,7 @@
 // The log list, the selection, and the parameter forms.
 import { $, fmt, state, VIEW_KIND, logFor } from "./state.js";
 import { render, scheduleRender } from "./render.js";
-import { saveRecipe, fixTimeOrder } from "./loading.js";
+import { saveRecipe, fixTimeOrder, readJoined } from "./loading.js";
 import { forget } from "./background.js";
 
 // ---------- list and selection ----------
@@ -26,6 +26,16 @@ export function renderList() {
         fix.setAttribute("aria-label", `Put ${e.name} in time order and open it`);
         fix.addEventListener("click", () => fixTimeOrder(e));
         li.append(fix);
+      }
+      if (e.joined) {
+        const each = document.createElement("button");
+        each.type = "button";
+        each.className = "link fix-joined";
+        each.textContent = "read each log";
+        each.title = "Open each log joined in the file as a log of its own, as gyrodrift split writes them";
+        each.setAttribute("aria-label", `Read each log joined in ${e.name}`);
+        each.addEventListener("click", () => readJoined(e));
+        li.append(each);
       }
     } else {
       // the highlighted log is the one the view plots

@@ -321,6 +321,9 @@ export async function loadFiles(given) {
     } else if (TIME_ORDER.test(e.error) && window.Worker) {
       // A time that repeats or steps back: the list offers to put it in order (fixTimeOrder).
       Object.assign(e, { source: f, timeOrder: true });
+    } else if (JOINED.test(e.error) && window.Worker) {
+      // Several logs joined in one file: the list offers to read each (readJoined).
+      Object.assign(e, { source: f, joined: true });
     } else if (CUT_ROW.test(e.error) && window.Worker) {
       // A logger stopped mid-line: the worker's module reads the log without its cut last
       // line and says so (a row cut anywhere else stays the error it is).
@@ -336,6 +339,8 @@ export async function loadFiles(given) {
 
 /** Core's refusal of a log whose time does not strictly increase. */
 const TIME_ORDER = /time must strictly increase/;
+/** Core's refusal of a file with a second log joined on. */
+const JOINED = /a second log joined on\?/;
 /** Core's refusal of a row with fewer cells than the header (a last line cut short?). */
 const CUT_ROW = /\(truncated row\?\)$/;
 
@@ -350,10 +355,38 @@ export async function fixTimeOrder(entry, label = "⇅ put in time order") {
   state.entries.splice(state.entries.indexOf(entry), 1);
   const e = await addWorkerParsed(f, res);
   if (!e.error) Object.assign(e, { orderNote: res.fixed, orderLabel: label });
+  // The page's module reads a second log joined on as a row cut short: the worker's names it.
+  else if (JOINED.test(e.error)) Object.assign(e, { source: f, joined: true });
   $("status").textContent = "";
   if (!e.error) selectEntry(state.entries.indexOf(e));
   else renderList();
   return e;
+}
+
+/** A file of several logs joined on (`cat a.csv b.csv`), read in the worker as the CLI's
+ * `split` reads it: each log takes the error entry's place as a log of its own, its note the
+ * line it starts on (and what putting its time in order did). Returns the first. */
+export async function readJoined(entry) {
+  const f = entry.source;
+  const res = await parseInWorker(f, await f.arrayBuffer(), { joined: true });
+  $("status").textContent = "";
+  if (res.error) {
+    entry.error = `${f.name}: ${res.error}`;
+    renderList();
+    return entry;
+  }
+  state.entries.splice(state.entries.indexOf(entry), 1);
+  const added = [];
+  for (const l of res.logs) {
+    const e = await addWorkerParsed(f, { data: l.data, check: l.check });
+    const note = `from line ${l.line} of ${f.name}${l.fixed ? `; ${l.fixed}` : ""}`;
+    if (!e.error) Object.assign(e, { orderNote: note, orderLabel: "✂ one of the logs joined in its file" });
+    added.push(e);
+  }
+  const first = added.find((e) => !e.error);
+  if (first) selectEntry(state.entries.indexOf(first));
+  else renderList();
+  return first ?? added[0];
 }
 
 /** The shipped sample logs, fetched next to the page (absent on a bare static host). */

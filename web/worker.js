@@ -1,7 +1,8 @@
 // Work off the main thread with the whole wasm package (pkg/full: the page's own module has
 // no import, tuning or simulation), so the page never freezes:
 // - parse: a large log, with progress, and its check; the columns go back transferred, not
-//   copied, and the page rebuilds the Log from them; or a log put in time order;
+//   copied, and the page rebuilds the Log from them; or a log put in time order; or each
+//   log of a file that holds several joined on (not kept: the page runs them);
 // - import: raw logger files by their detected preset (or a given recipe; with none fitting,
 //   core's reading of their columns and its draft recipe for the mapping panel); guess:
 //   that reading alone;
@@ -11,7 +12,7 @@
 //   drive with one profile's errors added (to open a case as a log); profiles: their names;
 // - track, pipelineTrack, pipeline: the slow work on a large log this worker parsed and
 //   kept (`key`), so the page's Track view and pipeline never pause it.
-import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, isDriveLog, columnGuesses, draftRecipe, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog, logInTimeOrder } from "./pkg/full/gyrodrift.js";
+import init, { Log, tune, battery, batteryProfiles, addGyroErrors, detectImport, isDriveLog, columnGuesses, draftRecipe, importLog, recipeToToml, recipeFromToml, track, pipelineTrack, runPipeline, checkLog, logInTimeOrder, logsJoined } from "./pkg/full/gyrodrift.js";
 
 const ready = init();
 /** Large logs parsed here, kept for later work on them (freed on "forget"). */
@@ -137,9 +138,19 @@ self.onmessage = async (ev) => {
       self.postMessage({ id, data, detection: { ...d, summary } }, buffers(data));
       return;
     }
+    const bytes = new Uint8Array(ev.data.buffer);
+    if (ev.data.joined) {
+      const logs = logsJoined(bytes).map(({ log, fixed, line }) => {
+        const data = log.toColumns();
+        const check = checkLog(log);
+        log.free();
+        return { data, check, fixed, line };
+      });
+      self.postMessage({ id, logs }, buffers(logs.map((l) => l.data)));
+      return;
+    }
     // timeOrder "fix": a time that repeats or steps back a little is put in order (the
     // page's module refuses such a log), and `fixed` says what was done.
-    const bytes = new Uint8Array(ev.data.buffer);
     const { log, fixed } = ev.data.timeOrder === "fix" ? logInTimeOrder(bytes) : { log: Log.fromBytesWithProgress(bytes, progressReporter(id)), fixed: "" };
     const data = log.toColumns();
     // `gyrodrift check` here too, so the page does not run it on millions of rows.

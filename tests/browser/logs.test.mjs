@@ -131,7 +131,7 @@ test("a log whose last line a logger cut short opens without it, saying so, with
   await entry.locator("button.remove").click();
 });
 
-test("two logs joined into one file are an error naming the second log's first line; the rest stays", async () => {
+test("two logs joined into one file are an error naming the second log's first line, the rest stays; each log read on request", async () => {
   const dir = mkdtempSync(join(tmpdir(), "gd-joined-"));
   const a = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
   const b = readFileSync(join(SAMPLES, "train", "city-2.csv"), "utf8");
@@ -144,7 +144,19 @@ test("two logs joined into one file are an error naming the second log's first l
   const line = a.split("\n").length;
   assert.match(await bad.innerText(), new RegExp(`line ${line}: a '#' line after the rows \\("# name: City 2"\\): a second log joined on\\?`));
   assert.equal(await page.locator("#logs li:not(.bad)").count(), before);
-  await bad.locator("button.remove").click();
+  // Read each: two logs in the error's place, each noted with its first line, City 2 with
+  // the CLI's numbers for city-2.csv alone.
+  await bad.locator("button.fix-joined").click();
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n + 2, before);
+  assert.equal(await page.locator("#logs li.bad", { hasText: "joined.csv" }).count(), 0);
+  const second = page.locator("#logs li", { hasText: `from line ${line} of joined.csv` });
+  assert.equal(await second.count(), 1);
+  await second.locator("button.pick").click();
+  const native = JSON.parse(cli("hdr", join(SAMPLES, "train", "city-2.csv"), "--json"));
+  await page.waitForFunction((v) => document.querySelector("#m-e-hdr")?.innerText === v, native.E_psi_hdr_deg.toFixed(2));
+  await page.screenshot({ path: join(ARTIFACTS, "joined.png"), fullPage: false });
+  for (const l of [1, line]) await page.locator("#logs li", { hasText: `from line ${l} of joined.csv` }).locator("button.remove").click();
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n, before);
 });
 
 test("a log a spreadsheet opened and saved (padded, quoted, Windows-1252) opens as the log, with the CLI's numbers", async () => {

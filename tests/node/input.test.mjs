@@ -50,7 +50,7 @@ test("a last line cut short: Log.fromBytes refuses it naming the line, logInTime
   assert.deepEqual(Array.from(log.column("gyro_dps")), Array.from(want.column("gyro_dps")));
 });
 
-test("two logs joined into one file: every parse names the second log's first line", () => {
+test("two logs joined into one file: every parse names the second log's first line; logsJoined reads each", () => {
   const a = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
   const b = readFileSync(join(SAMPLES, "train", "city-2.csv"), "utf8");
   const bytes = new TextEncoder().encode(a + b);
@@ -59,6 +59,17 @@ test("two logs joined into one file: every parse names the second log's first li
   for (const parse of [() => gd.Log.parse(a + b), () => gd.Log.fromBytes(bytes), () => gd.Log.fromBytesWithProgress(bytes, () => {}), () => gd.logInTimeOrder(bytes)]) {
     assert.throws(parse, { message: said });
   }
+  // logsJoined: each log as parsed alone, with the line it starts on (the CLI's `split`).
+  const logs = gd.logsJoined(bytes);
+  assert.deepEqual(logs.map((l) => [l.log.name, l.line, l.fixed]), [["City 1", 1, ""], ["City 2", line, ""]]);
+  for (const [got, text] of [[logs[0].log, a], [logs[1].log, b]]) {
+    const want = gd.Log.parse(text);
+    assert.deepEqual(got.meta(), want.meta());
+    assert.deepEqual(Array.from(got.column("gyro_dps")), Array.from(want.column("gyro_dps")));
+  }
+  assert.throws(() => gd.logsJoined(new TextEncoder().encode(a + "# name: x\ntime_s,gyro_dps\n0,1\n1,x\n")), {
+    message: `line ${line + 3}, column gyro_dps: "x" is not a number`,
+  });
 });
 
 test("a log a spreadsheet opened and saved (metadata padded with separators, one quoted) is a drive log this module reads", () => {

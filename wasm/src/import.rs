@@ -40,6 +40,25 @@ pub fn log_in_time_order(#[wasm_bindgen(unchecked_param_type = "Uint8Array | Arr
     Ok(out.into())
 }
 
+/// Each log of a file that holds several joined on (`cat a.csv b.csv`, a logger appending
+/// each session; core's `log::accept::parse_joined`, as the CLI's `split`), its time put in
+/// order as by `logInTimeOrder`: `[{ log, fixed, line }]`, `line` where it starts in the file.
+/// The other parsers refuse such a file, naming the second log's first line.
+#[wasm_bindgen(js_name = logsJoined, unchecked_return_type = "{ log: Log; fixed: string; line: number }[]")]
+pub fn logs_joined(#[wasm_bindgen(unchecked_param_type = "Uint8Array | ArrayBuffer")] bytes: JsValue) -> JsResult<JsValue> {
+    let bytes = js_bytes(&bytes, "logsJoined(bytes)")?;
+    let logs = gyrodrift::log::accept::parse_joined(&bytes[..], gyrodrift::log::accept::TimeOrder::Fix).map_err(err)?;
+    let out = js_sys::Array::new();
+    for (log, fixed, line) in logs {
+        let o = Object::new();
+        set(&o, "log", &JsValue::from(Log::new(log)))?;
+        set(&o, "fixed", &JsValue::from_str(&fixed.unwrap_or_default()))?;
+        set(&o, "line", &JsValue::from_f64(line as f64))?;
+        out.push(&o);
+    }
+    Ok(out.into())
+}
+
 /// `files` as name -> bytes, as given.
 fn raw_files(files: &JsValue) -> JsResult<BTreeMap<String, Vec<u8>>> {
     let obj: &Object =
