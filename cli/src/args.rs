@@ -27,6 +27,17 @@ pub(crate) struct Cli {
     /// always refused.
     #[arg(long, global = true, value_enum, default_value = "error")]
     pub(crate) time_order: TimeOrderArg,
+    /// A file of several logs joined on (`cat a.csv b.csv`, a logger appending each session):
+    /// refuse it naming the second log's first line, or score each log as a drive of its own
+    /// (said on stderr). `split` writes them as files.
+    #[arg(long, global = true, value_enum, default_value = "error")]
+    pub(crate) joined: JoinedArg,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub(crate) enum JoinedArg {
+    Error,
+    Split,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]

@@ -1,10 +1,10 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
 use crate::{
-    expand_recipes, fail, import_recipe, is_stdin, open_input, output, print_json, read_log, settings, shell_quoted, shown, time_order,
-    write_stdout, Failure,
+    expand_recipes, fail, import_recipe, is_stdin, open_input, output, print_json, read_all, read_log, settings, shell_quoted, shown,
+    time_order, write_stdout, Failure,
 };
-use gyrodrift::log::accept::{accept, InputPolicy};
+use gyrodrift::log::accept::{accept, InputPolicy, JoinedLogs};
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
 use std::path::{Path, PathBuf};
 
@@ -35,14 +35,22 @@ pub type Input = InputPolicy;
 /// stderr (a line each), a log with a check error is refused unless `--ignore-check`, and
 /// the gap policy gives the parts to score, each a drive of its own, named by `# name:` or
 /// the file stem; the split is said on stderr.
+/// With `--joined split`, each log of a file of several joined on, an unnamed one named by
+/// the stem and its number.
 fn read_checked(path: &Path, input: Input, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
-    let drive = read_log(path)?;
+    let logs = if input.joined == JoinedLogs::Split { read_all(path, input)? } else { vec![read_log(path)?] };
     let stem = if is_stdin(path) { "stdin".to_string() } else { gyrodrift::log::file::log_stem(path) };
-    let a = accept(drive, &stem, input, bias_s).map_err(|e| fail(path, e))?;
-    for line in a.warnings.iter().chain(&a.split) {
-        eprintln!("{}: {line}", shown(path));
+    let n = logs.len();
+    let mut parts = Vec::new();
+    for (k, drive) in logs.into_iter().enumerate() {
+        let stem = if n > 1 { format!("{stem} ({})", k + 1) } else { stem.clone() };
+        let a = accept(drive, &stem, input, bias_s).map_err(|e| fail(path, e))?;
+        for line in a.warnings.iter().chain(&a.split) {
+            eprintln!("{}: {line}", shown(path));
+        }
+        parts.extend(a.parts);
     }
-    Ok(a.parts)
+    Ok(parts)
 }
 
 /// Reads many logs (checked and split as `read_checked`), with their names.

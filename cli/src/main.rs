@@ -14,7 +14,7 @@ static ALLOC: oom::Graceful = oom::Graceful;
 
 use args::*;
 use clap::Parser;
-use gyrodrift::log::accept::TimeOrder;
+use gyrodrift::log::accept::{JoinedLogs, TimeOrder};
 use gyrodrift::sim::{GyroErrors, SimKind, SimRequest};
 use gyrodrift::{battery, DriveLog, Error};
 use std::path::{Path, PathBuf};
@@ -53,32 +53,51 @@ fn time_order() -> TimeOrder {
 /// Parses a v1 log by the `--time-order` policy; what fixing did is said on stderr, and a
 /// refused time order names the option that fixes it.
 fn parse_ordered(path: &Path, reader: impl std::io::Read) -> Result<DriveLog, Failure> {
-    let order = time_order();
-    match gyrodrift::log::accept::parse_by(reader, order) {
+    match gyrodrift::log::accept::parse_by(reader, time_order()) {
         Ok((log, fixed)) => {
             if let Some(f) = fixed {
                 eprintln!("{}: {f}", shown(path));
             }
             Ok(log)
         }
-        Err(e) => {
-            let out_of_order = gyrodrift::log::accept::refused_for_time_order(&e);
-            let joined = gyrodrift::log::accept::refused_for_join(&e);
-            let drafted = !out_of_order && !joined && !is_stdin(path) && gyrodrift::import::draft_reads_refused(path, &e);
-            let mut f = fail(path, e);
-            if joined {
-                let out = if is_stdin(path) { " --out-dir DIR" } else { "" };
-                f.0 += &format!("; `gyrodrift split {}{out}` writes each log in it as a file of its own", shell_quoted(path));
-            } else if out_of_order {
-                f.0 += "; `--time-order fix` merges repeated times and sorts rows up to 1 s late in";
-            } else if drafted {
-                // A logger's own table (time in ms, date-times, another name): the import reads it.
-                let p = shell_quoted(path);
-                f.0 += &format!("; if it is a logger's table, `gyrodrift import {p} --print-recipe` drafts a recipe from its column names");
-            }
-            Err(f)
-        }
+        Err(e) => Err(read_failure(path, e)),
     }
+}
+
+/// Every log of a file by the input policy (`--joined split`: each log joined on; core's
+/// `parse_by_policy`), what reading each did said on stderr.
+fn read_all(path: &Path, input: gyrodrift::log::accept::InputPolicy) -> Result<Vec<DriveLog>, Failure> {
+    let logs = gyrodrift::log::accept::parse_by_policy(open_input(path)?, input).map_err(|e| read_failure(path, e))?;
+    let said = |(log, s): (DriveLog, Option<String>)| {
+        if let Some(s) = s {
+            eprintln!("{}: {s}", shown(path));
+        }
+        log
+    };
+    Ok(logs.into_iter().map(said).collect())
+}
+
+/// A log's refusal with the option or command that reads it: `--time-order fix` for a time
+/// that repeats, `split` for logs joined on, the import's draft for a logger's own table.
+fn read_failure(path: &Path, e: Error) -> Failure {
+    let out_of_order = gyrodrift::log::accept::refused_for_time_order(&e);
+    let joined = gyrodrift::log::accept::refused_for_join(&e);
+    let drafted = !out_of_order && !joined && !is_stdin(path) && gyrodrift::import::draft_reads_refused(path, &e);
+    let mut f = fail(path, e);
+    if joined {
+        let out = if is_stdin(path) { " --out-dir DIR" } else { "" };
+        let p = shell_quoted(path);
+        f.0 += &format!(
+            "; `gyrodrift split {p}{out}` writes each log in it as a file of its own (the scoring commands take `--joined split`)"
+        );
+    } else if out_of_order {
+        f.0 += "; `--time-order fix` merges repeated times and sorts rows up to 1 s late in";
+    } else if drafted {
+        // A logger's own table (time in ms, date-times, another name): the import reads it.
+        let p = shell_quoted(path);
+        f.0 += &format!("; if it is a logger's table, `gyrodrift import {p} --print-recipe` drafts a recipe from its column names");
+    }
+    f
 }
 
 fn read_log(path: &Path) -> Result<DriveLog, Failure> {
@@ -216,7 +235,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
         TimeOrderArg::Fix => TimeOrder::Fix,
     };
     let _ = TIME_ORDER.set(time_order);
-    let input = commands::Input { gaps, ignore_check: cli.ignore_check, time_order };
+    let joined = match cli.joined {
+        JoinedArg::Error => JoinedLogs::Error,
+        JoinedArg::Split => JoinedLogs::Split,
+    };
+    let input = commands::Input { gaps, ignore_check: cli.ignore_check, time_order, joined };
     match cli.cmd {
         Cmd::Hdr { log, no_resample, set, json, trace } => c::hdr(&log, !no_resample, &set, json, trace.as_deref(), input),
         Cmd::Pipeline { log, set, json, trace, track } => c::pipeline(&log, &set, json, [trace.as_deref(), track.as_deref()], input),

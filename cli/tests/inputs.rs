@@ -361,7 +361,7 @@ fn two_logs_joined_are_refused_naming_the_seconds_first_line() {
         assert_eq!(out.status.code(), Some(2));
         let err = String::from_utf8(out.stderr).unwrap();
         let want = format!(
-            "{}: line {}: a '#' line after the rows (\"# name: second drive\"): a second log joined on? A log's '#' lines come before its header; split the file before this line; `gyrodrift split {}` writes each log in it as a file of its own",
+            "{}: line {}: a '#' line after the rows (\"# name: second drive\"): a second log joined on? A log's '#' lines come before its header; split the file before this line; `gyrodrift split {}` writes each log in it as a file of its own (the scoring commands take `--joined split`)",
             joined.display(),
             first_lines + 1,
             joined.display()
@@ -384,6 +384,14 @@ fn two_logs_joined_are_refused_naming_the_seconds_first_line() {
         let hdr = |p: &PathBuf| run(&["hdr", "--json", p.to_str().unwrap()]).stdout;
         assert_eq!(hdr(part), hdr(log), "{}", part.display());
     }
+    // --joined split: the scoring commands take each log as a drive of its own.
+    let both = run(&["hdr", "--json", "--joined", "split", joined.to_str().unwrap()]);
+    assert!(both.status.success(), "{}", String::from_utf8_lossy(&both.stderr));
+    let each: Vec<serde_json::Value> =
+        [&alone, &second].iter().map(|p| serde_json::from_slice(&run(&["hdr", "--json", p.to_str().unwrap()]).stdout).unwrap()).collect();
+    assert_eq!(serde_json::from_slice::<serde_json::Value>(&both.stdout).unwrap(), serde_json::Value::from(each));
+    let err = String::from_utf8(both.stderr).unwrap();
+    assert!(err.contains(&format!("log 2 of 2 joined in the file, from line {}", first_lines + 1)), "{err}");
     // A file of one log: nothing written.
     let out = run(&["split", alone.to_str().unwrap(), "--out-dir", dir.to_str().unwrap()]);
     assert!(String::from_utf8(out.stdout).unwrap().ends_with("one log, nothing joined on: nothing written\n"));

@@ -251,20 +251,27 @@ pub fn score_bytes(file: &str, bytes: &[u8], opts: &FleetOptions) -> Vec<DriveRo
 
 /// Parses a v1 log from `reader` and scores it; a parse error is one error row naming the
 /// line and column.
+/// With the input policy's `joined: "split"`, a file of several logs joined on gives each
+/// log's rows, an unnamed one named by the stem and its number.
 pub fn score_reader<R: Read>(file: &str, stem: &str, reader: R, opts: &FleetOptions) -> Vec<DriveRow> {
-    match crate::log::accept::parse_by(reader, opts.input.time_order) {
-        Ok((log, fixed)) => {
-            let mut rows = score_log(file, stem, log, opts);
-            // What reading the file fixed (time order, a cut last line) is the rows' first warning.
-            if let Some(f) = fixed {
-                for r in &mut rows {
-                    r.warnings = if r.warnings.is_empty() { f.clone() } else { format!("{f}; {}", r.warnings) };
-                }
+    let logs = match crate::log::accept::parse_by_policy(reader, opts.input) {
+        Ok(logs) => logs,
+        Err(e) => return vec![DriveRow::failed(file, e.to_string())],
+    };
+    let n = logs.len();
+    let mut rows = Vec::new();
+    for (k, (log, fixed)) in logs.into_iter().enumerate() {
+        let stem = if n > 1 { format!("{stem} ({})", k + 1) } else { stem.to_string() };
+        let mut these = score_log(file, &stem, log, opts);
+        // What reading the file fixed (time order, a cut last line) is the rows' first warning.
+        if let Some(f) = fixed {
+            for r in &mut these {
+                r.warnings = if r.warnings.is_empty() { f.clone() } else { format!("{f}; {}", r.warnings) };
             }
-            rows
         }
-        Err(e) => vec![DriveRow::failed(file, e.to_string())],
+        rows.append(&mut these);
     }
+    rows
 }
 
 /// The recordings of a logger's raw exports among the files of `rows` that failed

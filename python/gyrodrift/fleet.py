@@ -269,7 +269,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     ap.add_argument("--processes", action="store_true", help="LocalCluster workers as processes (default: threads; core releases the GIL)")
     ap.add_argument("--import", dest="import_raw", action="store_true", help="import a logger's raw exports among the files (SensorLog, Sensor Logger, phyphox, ...) and score them, a drive per recording")
     ap.add_argument("--recipe", help="read the files that are not v1 logs by this recipe (TOML or JSON; a logger of your own), a drive per recording: a folder holding the files it names, or each file for a recipe of one table")
-    ap.add_argument("--options", help='fleet options as JSON, e.g. \'{"input": {"gaps": "error", "time_order": "fix"}, "pipeline": {"min_still_s": 3}}\'')
+    ap.add_argument("--options", help='fleet options as JSON, e.g. \'{"input": {"gaps": "error", "time_order": "fix", "joined": "split"}, "pipeline": {"min_still_s": 3}}\'')
     ap.add_argument("--fail-on-error", action="store_true", help="exit 1 when a file could not be scored, once every row is written (a CI job); without it a fleet job exits 0")
     args = ap.parse_args(argv)
     try:

@@ -299,6 +299,10 @@ def test_two_logs_joined_are_refused_naming_the_seconds_first_line(samples, tmp_
     assert [x.meta()["name"] for x in logs] == ["City 1", "City 2"]
     for got, want in zip(logs, alone):
         assert len(got) == len(want) and np.array_equal(got.column("gyro_dps"), want.column("gyro_dps"))
+    # The fleet with {"input": {"joined": "split"}}: a row each, saying which log it is.
+    rows = g.score_files([str(tmp_path / "joined.csv")], 1, {"input": {"joined": "split"}})
+    assert [r["name"] for r in rows] == ["City 1", "City 2"] and all(r["error"] is None for r in rows)
+    assert rows[1]["warnings"].startswith(f"log 2 of 2 joined in the file, from line {line}")
 
 
 def test_a_log_in_windows_1252_reads_with_a_warning(samples, tmp_path):

@@ -87,6 +87,29 @@ fn a_log_with_a_gap_gives_a_row_per_part() {
     assert!(rows.iter().all(|r| r.error.is_none() && r.ne_psi_hdr_deg_per_min.is_some()));
 }
 
+/// Two logs joined in one file: one error row naming the line by default; with the input
+/// policy's `joined: "split"` a row each, scored as the log alone, the second unnamed one
+/// named by the stem and its number, each saying which log it is.
+#[test]
+fn joined_logs_are_an_error_row_or_a_row_each_by_the_policy() {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../sample-logs/train/city-1.csv")).unwrap();
+    let unnamed: String = text.lines().filter(|l| !l.starts_with("# name:")).map(|l| format!("{l}\n")).collect();
+    let joined = format!("{text}{unnamed}");
+    let refused = score_reader("j.csv", "j", joined.as_bytes(), &FleetOptions::default());
+    assert_eq!(refused.len(), 1);
+    assert!(refused[0].error.as_deref().unwrap().contains("a second log joined on?"), "{:?}", refused[0].error);
+    let opts: FleetOptions = serde_json::from_str(r#"{"input": {"joined": "split"}}"#).unwrap();
+    let rows = score_reader("j.csv", "j", joined.as_bytes(), &opts);
+    let alone = score_reader("c.csv", "c", text.as_bytes(), &FleetOptions::default());
+    assert_eq!(rows.iter().map(|r| r.name.as_str()).collect::<Vec<_>>(), ["City 1", "j (2)"]);
+    let line = text.lines().count() + 1;
+    assert!(rows[0].warnings.starts_with("log 1 of 2 joined in the file, from line 1"), "{}", rows[0].warnings);
+    assert!(rows[1].warnings.starts_with(&format!("log 2 of 2 joined in the file, from line {line}")), "{}", rows[1].warnings);
+    for r in &rows {
+        assert_eq!((r.error.as_deref(), r.ne_psi_pipeline_deg_per_min), (None, alone[0].ne_psi_pipeline_deg_per_min));
+    }
+}
+
 #[test]
 fn the_summary_averages_scored_rows_and_counts_errors() {
     let row = |file: &str, raw: f64, hdr: f64| {

@@ -19,6 +19,20 @@ pub struct InputPolicy {
     pub ignore_check: bool,
     /// A v1 log whose time repeats or steps back a little: refused, or put in time order.
     pub time_order: TimeOrder,
+    /// A file of several v1 logs joined on: refused naming the line, or each log a drive.
+    pub joined: JoinedLogs,
+}
+
+/// What to do with a file of several v1 logs joined on (`cat a.csv b.csv`, a logger
+/// appending each session to one file).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JoinedLogs {
+    /// An error naming the second log's first line (the default: the file is not one log).
+    #[default]
+    Error,
+    /// Each log read as a drive of its own ([`parse_joined`]), said in a warning.
+    Split,
 }
 
 /// What to do with a v1 log whose time repeats or steps back by at most 1 s (a logger
@@ -98,6 +112,26 @@ pub fn parse_joined<'a, R: std::io::Read + 'a>(reader: R, order: TimeOrder) -> R
             None => return Ok(out),
         }
     }
+}
+
+/// A v1 log file's logs by the input policy's time order and joined-logs rule: one, as
+/// [`parse_by`] reads it; or, with [`JoinedLogs::Split`], each log joined on, what reading it
+/// did then naming which it is and its first line.
+pub fn parse_by_policy<R: std::io::Read>(reader: R, policy: InputPolicy) -> Result<Vec<(DriveLog, Option<String>)>> {
+    if policy.joined == JoinedLogs::Error {
+        return parse_by(reader, policy.time_order).map(|read| vec![read]);
+    }
+    let logs = parse_joined(reader, policy.time_order)?;
+    let n = logs.len();
+    let said = |k: usize, line: u64, s: Option<String>| {
+        let at = format!("log {} of {n} joined in the file, from line {line}", k + 1);
+        if n == 1 {
+            s
+        } else {
+            Some(s.map_or(at.clone(), |s| format!("{at}; {s}")))
+        }
+    };
+    Ok(logs.into_iter().enumerate().map(|(k, (log, s, line))| (log, said(k, line, s))).collect())
 }
 
 /// `e` with its line numbers `by` lines further on (a log that starts that far into its file).
