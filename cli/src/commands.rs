@@ -1,10 +1,7 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
-use crate::{
-    expand_recipes, fail, import_recipe, is_stdin, open_input, output, print_json, read_all, read_log, settings, shell_quoted, shown,
-    time_order, write_stdout, Failure,
-};
-use gyrodrift::log::accept::{accept, InputPolicy, JoinedLogs};
+use crate::input::{open_input, read_checked, read_log, scored_logs, time_order, Input};
+use crate::{expand_recipes, fail, import_recipe, is_stdin, output, print_json, settings, shell_quoted, shown, write_stdout, Failure};
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
 use std::path::{Path, PathBuf};
 
@@ -25,62 +22,6 @@ fn write_log(log: &DriveLog, out: Option<&Path>) -> Result<(), Failure> {
         }
         None => log.write_csv(std::io::stdout().lock()).map_err(|e| Failure(format!("standard output: cannot write: {e}"))),
     }
-}
-
-/// How the commands take their input logs: the gap policy, and whether a log `check` finds
-/// an error in (a unit or sign mistake) is refused (the default) or run anyway.
-pub type Input = InputPolicy;
-
-/// Reads a log and takes it as core's `accept` does: what `check` finds is printed to
-/// stderr (a line each), a log with a check error is refused unless `--ignore-check`, and
-/// the gap policy gives the parts to score, each a drive of its own, named by `# name:` or
-/// the file stem; the split is said on stderr.
-/// With `--joined split`, each log of a file of several joined on, an unnamed one named by
-/// the stem and its number.
-fn read_checked(path: &Path, input: Input, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
-    let logs = if input.joined == JoinedLogs::Split { read_all(path, input)? } else { vec![read_log(path)?] };
-    let stem = if is_stdin(path) { "stdin".to_string() } else { gyrodrift::log::file::log_stem(path) };
-    let n = logs.len();
-    let mut parts = Vec::new();
-    for (k, drive) in logs.into_iter().enumerate() {
-        let stem = if n > 1 { format!("{stem} ({})", k + 1) } else { stem.clone() };
-        let a = accept(drive, &stem, input, bias_s).map_err(|e| fail(path, e))?;
-        for line in a.warnings.iter().chain(&a.split) {
-            eprintln!("{}: {line}", shown(path));
-        }
-        parts.extend(a.parts);
-    }
-    Ok(parts)
-}
-
-/// Reads many logs (checked and split as `read_checked`), with their names.
-fn read_logs(paths: &[PathBuf], input: Input, bias_s: Option<f64>) -> Result<Vec<(String, DriveLog)>, Failure> {
-    let mut out = Vec::new();
-    for p in paths {
-        for part in read_checked(p, input, bias_s)? {
-            out.push((part.meta.name.clone().unwrap_or_default(), part));
-        }
-    }
-    Ok(out)
-}
-
-/// The logs a table scores: those with a reference heading. A drive without one is named on
-/// stderr and left out, as the dashboard's Report leaves it out (its heading is `pipeline`'s
-/// and `hdr`'s unscored summary); none left is an error.
-fn scored_logs(paths: &[PathBuf], input: Input, bias_s: Option<f64>) -> Result<Vec<(String, DriveLog)>, Failure> {
-    let mut logs = read_logs(paths, input, bias_s)?;
-    let n = logs.len();
-    logs.retain(|(name, log)| {
-        let keep = log.has_reference();
-        if !keep {
-            eprintln!("{name}: not scored: no reference heading (ref_heading_deg absent or empty)");
-        }
-        keep
-    });
-    if logs.is_empty() && n > 0 {
-        return Err(Failure("no drive has a reference heading to score against".into()));
-    }
-    Ok(logs)
 }
 
 /// Logs named by their `# name:` or file stem, as core's batch functions take them.

@@ -4,6 +4,7 @@
 mod args;
 mod batch;
 mod commands;
+mod input;
 mod oom;
 mod output;
 mod parquet_out;
@@ -17,6 +18,7 @@ use clap::Parser;
 use gyrodrift::log::accept::{JoinedLogs, TimeOrder};
 use gyrodrift::sim::{GyroErrors, SimKind, SimRequest};
 use gyrodrift::{battery, DriveLog, Error};
+use input::TIME_ORDER;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -40,98 +42,6 @@ fn shown(path: &Path) -> String {
     } else {
         path.display().to_string()
     }
-}
-
-/// The `--time-order` policy every log is read by (set once, before any is read).
-static TIME_ORDER: std::sync::OnceLock<TimeOrder> = std::sync::OnceLock::new();
-
-/// The `--time-order` policy.
-fn time_order() -> TimeOrder {
-    TIME_ORDER.get().copied().unwrap_or_default()
-}
-
-/// Parses a v1 log by the `--time-order` policy; what fixing did is said on stderr, and a
-/// refused time order names the option that fixes it.
-fn parse_ordered(path: &Path, reader: impl std::io::Read) -> Result<DriveLog, Failure> {
-    match gyrodrift::log::accept::parse_by(reader, time_order()) {
-        Ok((log, fixed)) => {
-            if let Some(f) = fixed {
-                eprintln!("{}: {f}", shown(path));
-            }
-            Ok(log)
-        }
-        Err(e) => Err(read_failure(path, e)),
-    }
-}
-
-/// Every log of a file by the input policy (`--joined split`: each log joined on; core's
-/// `parse_by_policy`), what reading each did said on stderr.
-fn read_all(path: &Path, input: gyrodrift::log::accept::InputPolicy) -> Result<Vec<DriveLog>, Failure> {
-    let logs = gyrodrift::log::accept::parse_by_policy(open_input(path)?, input).map_err(|e| read_failure(path, e))?;
-    let said = |(log, s): (DriveLog, Option<String>)| {
-        if let Some(s) = s {
-            eprintln!("{}: {s}", shown(path));
-        }
-        log
-    };
-    Ok(logs.into_iter().map(said).collect())
-}
-
-/// A log's refusal with the option or command that reads it: `--time-order fix` for a time
-/// that repeats, `split` for logs joined on, the import's draft for a logger's own table.
-fn read_failure(path: &Path, e: Error) -> Failure {
-    let out_of_order = gyrodrift::log::accept::refused_for_time_order(&e);
-    let joined = gyrodrift::log::accept::refused_for_join(&e);
-    let drafted = !out_of_order && !joined && !is_stdin(path) && gyrodrift::import::draft_reads_refused(path, &e);
-    let mut f = fail(path, e);
-    if joined {
-        let out = if is_stdin(path) { " --out-dir DIR" } else { "" };
-        let p = shell_quoted(path);
-        f.0 += &format!(
-            "; `gyrodrift split {p}{out}` writes each log in it as a file of its own (the scoring commands take `--joined split`)"
-        );
-    } else if out_of_order {
-        f.0 += "; `--time-order fix` merges repeated times and sorts rows up to 1 s late in";
-    } else if drafted {
-        // A logger's own table (time in ms, date-times, another name): the import reads it.
-        let p = shell_quoted(path);
-        f.0 += &format!("; if it is a logger's table, `gyrodrift import {p} --print-recipe` drafts a recipe from its column names");
-    }
-    f
-}
-
-fn read_log(path: &Path) -> Result<DriveLog, Failure> {
-    let reader = open_input(path)?;
-    parse_ordered(path, reader).map_err(|mut f| {
-        if let Some(hint) = import_hint(path).filter(|_| !is_stdin(path)) {
-            f.0 += &format!("; {hint}");
-        }
-        f
-    })
-}
-
-/// A log file's bytes as the commands read them: standard input for `-` (once), a
-/// gzip-compressed file as the plain one; a folder is answered with what reads it.
-fn open_input(path: &Path) -> Result<Box<dyn std::io::Read>, Failure> {
-    if is_stdin(path) {
-        // Standard input can be read once: `-` given twice would be an empty second log.
-        static READ: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-        if READ.swap(true, std::sync::atomic::Ordering::SeqCst) {
-            return Err(Failure("-: standard input is given twice; it can be read once".into()));
-        }
-        let stdin = gyrodrift::log::file::decompressed(std::io::BufReader::new(std::io::stdin()));
-        return Ok(Box::new(stdin.map_err(|e| fail(path, Error::from(e)))?));
-    }
-    if path.is_dir() {
-        let what = match gyrodrift::import::folder_hint(path) {
-            Some(h) => hint_text(&h, "a recording"),
-            None => format!("to score every log in it: `gyrodrift report --dir {}`", path.display()),
-        };
-        return Err(Failure(format!("{}: a folder, not a log file; {what}", path.display())));
-    }
-    // A gzip-compressed log (drive.csv.gz) reads as the plain file.
-    let file = gyrodrift::log::file::open_log(path).map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
-    Ok(Box::new(file))
 }
 
 /// For a file that is not a v1 log but a logger's raw export a preset reads (core's
@@ -239,7 +149,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         JoinedArg::Error => JoinedLogs::Error,
         JoinedArg::Split => JoinedLogs::Split,
     };
-    let input = commands::Input { gaps, ignore_check: cli.ignore_check, time_order, joined };
+    let input = input::Input { gaps, ignore_check: cli.ignore_check, time_order, joined };
     match cli.cmd {
         Cmd::Hdr { log, no_resample, set, json, trace } => c::hdr(&log, !no_resample, &set, json, trace.as_deref(), input),
         Cmd::Pipeline { log, set, json, trace, track } => c::pipeline(&log, &set, json, [trace.as_deref(), track.as_deref()], input),
