@@ -11,6 +11,7 @@ mod speed;
 #[cfg(test)]
 mod tests;
 mod units;
+mod wheels;
 
 /// How much a finding matters.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -88,6 +89,7 @@ pub fn check(log: &DriveLog) -> CheckReport {
     let standing_s = lead_in(&mut r, log);
     let limit_dps = units_and_sign(&mut r, log, standing_s);
     speed::speed_unit(&mut r, log);
+    wheels::wheel_units(&mut r, log);
     if log.kind() == crate::log::LogKind::Drive && !log.has_reference() {
         let message = "no reference heading: the methods run, nothing is scored, and the gyro's units and sign go unchecked";
         r.findings.push(finding(Severity::Info, "no_reference", message.into(), Some("add a ref_heading_deg column (the GPS course)")));

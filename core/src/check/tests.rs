@@ -304,3 +304,34 @@ fn a_reference_that_resumes_a_turn_off_the_gyro_is_named_at_its_gap() {
     let (t, _) = first.expect("the thinned reference never parts from the full one by a turn");
     assert!(f.message.contains(&format!("at {:.0} s", t[0])), "{} against {}", f.message, t[0]);
 }
+
+/// The robot square's wheels against its gyro over its four turns: as shipped nothing (1.10,
+/// a bump under one wheel); the travel in mm or cm, or the sides swapped, an error naming
+/// the fix; a wheelbase 0.6 m for 0.34 a warning; the straight run has no clear turn.
+#[test]
+fn the_wheels_unit_and_sides_are_judged_on_the_gyros_turns() {
+    let read =
+        |f: &str| parse_log(std::fs::File::open(format!("{}/../sample-logs/robot/{f}", env!("CARGO_MANIFEST_DIR"))).unwrap()).unwrap();
+    let square = read("square.csv");
+    let wheels = |log: &DriveLog| check(log).findings.into_iter().find(|f| f.code == "wheel_units");
+    assert!(wheels(&square).is_none(), "{}", check(&square).to_text());
+    let k = super::wheels::wheels_over_gyro(&square, check(&square).eps0_dps.unwrap()).unwrap();
+    assert!((k - 1.0).abs() < 0.25, "{k}");
+    assert_eq!(super::wheels::wheels_over_gyro(&read("straight.csv"), 0.0), None);
+    for (unit, times) in [("mm", 1000.0), ("cm", 100.0)] {
+        let log = scaled(&scaled(&square, Column::OdoLeftM, times), Column::OdoRightM, times);
+        let f = wheels(&log).unwrap_or_else(|| panic!("{unit} not found"));
+        assert_eq!(f.severity, Severity::Error);
+        assert!(f.message.contains(&format!("{:.0} times the gyro: the wheel travel is in mm or cm", k * times)), "{}", f.message);
+    }
+    let (l, r) = (square.column(Column::OdoLeftM).unwrap().to_vec(), square.column(Column::OdoRightM).unwrap().to_vec());
+    let mut swapped = square.clone();
+    swapped.column_mut(Column::OdoLeftM).unwrap().copy_from_slice(&r);
+    swapped.column_mut(Column::OdoRightM).unwrap().copy_from_slice(&l);
+    let f = wheels(&swapped).unwrap();
+    assert!(f.severity == Severity::Error && f.message.contains("swapped"), "{}", f.message);
+    let mut wide = square.clone();
+    wide.meta.wheelbase_m = Some(0.6);
+    let f = wheels(&wide).unwrap();
+    assert!(f.severity == Severity::Warning && f.message.contains(&format!("{:.2} times", k * 0.34 / 0.6)), "{}", f.message);
+}
