@@ -52,8 +52,8 @@ pub(super) fn wheel_units(r: &mut CheckReport, log: &DriveLog) {
     } else if near(-1.0) {
         (
             Severity::Error,
-            format!("the wheels turn {k:.2} times the gyro: the other way; odo_left_m and odo_right_m swapped?"),
-            "swap odometry.left and right in the recipe",
+            format!("the wheels turn {k:.2} times the gyro: the other way; odo_left_m and odo_right_m swapped (or the gyro clockwise)?"),
+            "swap odometry.left and right in the recipe (or yaw_rate.positive = \"cw\")",
         )
     } else if near(1000.0) || near(100.0) {
         (
