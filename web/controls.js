@@ -18,24 +18,12 @@ export function renderList() {
       li.append(text, removeButton(i, `Dismiss the error of ${e.name}`));
       li.dataset.error = "1";
       if (e.timeOrder) {
-        const fix = document.createElement("button");
-        fix.type = "button";
-        fix.className = "link fix-order";
-        fix.textContent = "put in time order";
-        fix.title = "Merge rows of one time (each column's mean) and sort rows up to 1 s late in, as gyrodrift --time-order fix";
-        fix.setAttribute("aria-label", `Put ${e.name} in time order and open it`);
-        fix.addEventListener("click", () => fixTimeOrder(e));
-        li.append(fix);
+        const title = "Merge rows of one time (each column's mean) and sort rows up to 1 s late in, as gyrodrift --time-order fix";
+        li.append(fixButton("fix-order", "put in time order", title, `Put ${e.name} in time order and open it`, () => fixTimeOrder(e)));
       }
       if (e.joined) {
-        const each = document.createElement("button");
-        each.type = "button";
-        each.className = "link fix-joined";
-        each.textContent = "read each log";
-        each.title = "Open each log joined in the file as a log of its own, as gyrodrift split writes them";
-        each.setAttribute("aria-label", `Read each log joined in ${e.name}`);
-        each.addEventListener("click", () => readJoined(e));
-        li.append(each);
+        const title = "Open each log joined in the file as a log of its own, as gyrodrift split writes them";
+        li.append(fixButton("fix-joined", "read each log", title, `Read each log joined in ${e.name}`, () => readJoined(e)));
       }
     } else {
       // the highlighted log is the one the view plots
@@ -81,6 +69,18 @@ export function renderList() {
 
 /** A check's findings as each says them: the message, then its fix. */
 export const said = (findings) => findings.map((f) => `${f.message}${f.fix ? ` — fix: ${f.fix}` : ""}`);
+
+/** A link-styled button on an error entry that reads its file again another way. */
+function fixButton(kind, text, title, label, onClick) {
+  const b = document.createElement("button");
+  b.type = "button";
+  b.className = `link ${kind}`;
+  b.textContent = text;
+  b.title = title;
+  b.setAttribute("aria-label", label);
+  b.addEventListener("click", onClick);
+  return b;
+}
 
 /** A note on a log: its summary in the list, what it says under it, opened by a click, a tap
  * or the keyboard (a tooltip alone shows nothing on a phone), and on hover as before. */
