@@ -1,6 +1,6 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
-use crate::input::{open_input, read_checked, read_log, scored_logs, time_order, Input};
+use crate::input::{open_input, read_checked, read_log, scored_logs, stem_of, time_order, Input};
 use crate::{expand_recipes, fail, import_recipe, is_stdin, output, print_json, settings, shell_quoted, shown, write_stdout, Failure};
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
 use std::path::{Path, PathBuf};
@@ -440,7 +440,7 @@ pub fn split(path: &Path, out_dir: Option<&Path>) -> Result<(), Failure> {
         return write_stdout(&format!("{}: one log, nothing joined on: nothing written\n", shown(path)));
     }
     std::fs::create_dir_all(&dir).map_err(|e| Failure(format!("{}: cannot create: {e}", dir.display())))?;
-    let stem = if is_stdin(path) { "stdin".to_string() } else { gyrodrift::log::file::log_stem(path) };
+    let stem = stem_of(path);
     let mut text = Vec::new();
     for (k, (log, said, line)) in logs.iter().enumerate() {
         let out = dir.join(format!("{stem}.{}.csv", k + 1));

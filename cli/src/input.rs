@@ -3,7 +3,7 @@
 //! reads the log; and the checked parts each scoring command runs on (core's `accept`).
 
 use crate::{fail, hint_text, import_hint, is_stdin, shell_quoted, shown, Failure};
-use gyrodrift::log::accept::{accept, InputPolicy, JoinedLogs, TimeOrder};
+use gyrodrift::log::accept::{accept, stem_in_file, InputPolicy, JoinedLogs, TimeOrder};
 use gyrodrift::{DriveLog, Error};
 use std::path::{Path, PathBuf};
 
@@ -99,6 +99,15 @@ pub(crate) fn open_input(path: &Path) -> Result<Box<dyn std::io::Read>, Failure>
     Ok(Box::new(file))
 }
 
+/// What names a log read from `path` that has no `# name:`: the file's stem ("stdin" for `-`).
+pub(crate) fn stem_of(path: &Path) -> String {
+    if is_stdin(path) {
+        "stdin".to_string()
+    } else {
+        gyrodrift::log::file::log_stem(path)
+    }
+}
+
 /// How the commands take their input logs: the gap policy, and whether a log `check` finds
 /// an error in (a unit or sign mistake) is refused (the default) or run anyway.
 pub(crate) type Input = InputPolicy;
@@ -111,12 +120,10 @@ pub(crate) type Input = InputPolicy;
 /// the stem and its number.
 pub(crate) fn read_checked(path: &Path, input: Input, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
     let logs = if input.joined == JoinedLogs::Split { read_all(path, input)? } else { vec![read_log(path)?] };
-    let stem = if is_stdin(path) { "stdin".to_string() } else { gyrodrift::log::file::log_stem(path) };
-    let n = logs.len();
+    let (stem, n) = (stem_of(path), logs.len());
     let mut parts = Vec::new();
     for (k, drive) in logs.into_iter().enumerate() {
-        let stem = if n > 1 { format!("{stem} ({})", k + 1) } else { stem.clone() };
-        let a = accept(drive, &stem, input, bias_s).map_err(|e| fail(path, e))?;
+        let a = accept(drive, &stem_in_file(&stem, k, n), input, bias_s).map_err(|e| fail(path, e))?;
         for line in a.warnings.iter().chain(&a.split) {
             eprintln!("{}: {line}", shown(path));
         }

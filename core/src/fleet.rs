@@ -261,8 +261,7 @@ pub fn score_reader<R: Read>(file: &str, stem: &str, reader: R, opts: &FleetOpti
     let n = logs.len();
     let mut rows = Vec::new();
     for (k, (log, fixed)) in logs.into_iter().enumerate() {
-        let stem = if n > 1 { format!("{stem} ({})", k + 1) } else { stem.to_string() };
-        let mut these = score_log(file, &stem, log, opts);
+        let mut these = score_log(file, &crate::log::accept::stem_in_file(stem, k, n), log, opts);
         // What reading the file fixed (time order, a cut last line) is the rows' first warning.
         if let Some(f) = fixed {
             for r in &mut these {

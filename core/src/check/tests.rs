@@ -305,9 +305,9 @@ fn a_reference_that_resumes_a_turn_off_the_gyro_is_named_at_its_gap() {
     assert!(f.message.contains(&format!("at {:.0} s", t[0])), "{} against {}", f.message, t[0]);
 }
 
-/// The robot square's wheels against its gyro over its four turns: as shipped nothing (1.10,
-/// a bump under one wheel); the travel in mm or cm, or the sides swapped, an error naming
-/// the fix; a wheelbase 0.6 m for 0.34 a warning; the straight run has no clear turn.
+/// The robot square's wheels against its gyro over its four turns: as shipped nothing (1.01);
+/// the travel in mm or cm, or the sides swapped, an error naming the fix; a wheelbase 0.6 m
+/// for 0.34 a warning; the straight run has no clear turn.
 #[test]
 fn the_wheels_unit_and_sides_are_judged_on_the_gyros_turns() {
     let read =

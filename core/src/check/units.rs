@@ -91,7 +91,7 @@ struct Window {
 /// The gyro's heading less `eps0` (deg/s) on the 1 Hz blocks, the paper's "without HDR":
 /// (block times, heading), or None without a gyro or with under 20 blocks. Computed once
 /// for every window below.
-fn gyro_heading(log: &DriveLog, eps0: Option<f64>) -> Option<(Vec<f64>, Vec<f64>)> {
+pub(super) fn gyro_heading(log: &DriveLog, eps0: Option<f64>) -> Option<(Vec<f64>, Vec<f64>)> {
     let blocks = preprocess::block_average_1hz(log.time_s(), log.column(Column::GyroDps)?);
     if blocks.len() < 20 {
         return None;

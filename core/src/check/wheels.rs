@@ -6,38 +6,31 @@
 use super::{finding, CheckReport, Severity};
 use crate::gyrodometry::odo_increment_deg;
 use crate::log::{Column, DriveLog};
+use crate::metrics::value_at;
 
 /// A row-to-row rate beyond this is a turn the ratio is taken over, deg/s.
 const TURN_DPS: f64 = 5.0;
 /// The gyro's turning this much in all is a clear turn, deg.
 const MIN_TURN_DEG: f64 = 90.0;
 
-/// The wheels' heading change over the gyro's own through its turns (signed by the gyro's
-/// turn, so left and right turns add), or None without wheels, a wheelbase, or a clear turn.
+/// The wheels' heading change over the gyro's own (its 1 Hz heading, `units::gyro_heading`)
+/// between wheel samples where the gyro turns (signed by the gyro's turn, so left and right
+/// turns add), or None without wheels, a wheelbase, 20 s of gyro or a clear turn.
 pub(super) fn wheels_over_gyro(log: &DriveLog, eps0_dps: f64) -> Option<f64> {
-    let (g, l, r, b) = (log.column(Column::GyroDps)?, log.column(Column::OdoLeftM)?, log.column(Column::OdoRightM)?, log.meta.wheelbase_m?);
-    // The gyro's heading less eps0 (deg) and its last row's time; the last row with wheels.
-    let (mut psi, mut last_g) = (0.0, None::<f64>);
-    let mut last_odo: Option<(f64, f64, f64, f64)> = None;
+    let (l, r, b) = (log.column(Column::OdoLeftM)?, log.column(Column::OdoRightM)?, log.meta.wheelbase_m?);
+    let (gt, psi) = super::units::gyro_heading(log, Some(eps0_dps))?;
+    let mut last: Option<(f64, f64, f64, f64)> = None;
     let (mut wheels_deg, mut gyro_deg) = (0.0, 0.0);
-    for (i, &t) in log.time_s().iter().enumerate() {
-        if g[i].is_finite() {
-            if let Some(t0) = last_g {
-                psi += (g[i] - eps0_dps) * (t - t0);
-            }
-            last_g = Some(t);
-        }
-        if !(l[i].is_finite() && r[i].is_finite()) {
-            continue;
-        }
-        if let Some((t0, psi0, l0, r0)) = last_odo {
-            let d_gyro = psi - psi0;
+    for ((&t, &l), &r) in log.time_s().iter().zip(l).zip(r).filter(|((_, l), r)| l.is_finite() && r.is_finite()) {
+        let heading = value_at(&gt, &psi, t);
+        if let Some((t0, h0, l0, r0)) = last {
+            let d_gyro = heading - h0;
             if t > t0 && (d_gyro / (t - t0)).abs() > TURN_DPS {
-                wheels_deg += odo_increment_deg(l[i] - l0, r[i] - r0, b) * d_gyro.signum();
+                wheels_deg += odo_increment_deg(l - l0, r - r0, b) * d_gyro.signum();
                 gyro_deg += d_gyro.abs();
             }
         }
-        last_odo = Some((t, psi, l[i], r[i]));
+        last = Some((t, heading, l, r));
     }
     (gyro_deg >= MIN_TURN_DEG).then(|| wheels_deg / gyro_deg)
 }

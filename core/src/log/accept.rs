@@ -134,6 +134,16 @@ pub fn parse_by_policy<R: std::io::Read>(reader: R, policy: InputPolicy) -> Resu
     Ok(logs.into_iter().enumerate().map(|(k, (log, s, line))| (log, said(k, line, s))).collect())
 }
 
+/// The name of log `k` of `n` read from one file, should it have no `# name:`: the file's
+/// stem, with its number when the file held several joined on ("drive (2)").
+pub fn stem_in_file(stem: &str, k: usize, n: usize) -> String {
+    if n > 1 {
+        format!("{stem} ({})", k + 1)
+    } else {
+        stem.to_string()
+    }
+}
+
 /// `e` with its line numbers `by` lines further on (a log that starts that far into its file).
 fn shifted(e: Error, by: u64) -> Error {
     match e {
