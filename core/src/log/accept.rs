@@ -299,4 +299,24 @@ mod tests {
         assert_eq!((logs[0].0.len(), logs[1].0.len(), logs[1].2), (30_000, 1, 30_003));
         assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), &[1.5]);
     }
+
+    /// Two logs a spreadsheet saved with `;` and decimal commas, their metadata padded to the
+    /// header's width, joined: the second, starting past the first read's buffer, is read with
+    /// its own separator and padding as the log alone is (before, its `# bias_s: 20;` was
+    /// refused as not a number).
+    #[test]
+    fn joined_spreadsheet_logs_with_padded_metadata_read_as_each_alone() {
+        let log = |name: &str, n: usize| {
+            let rows: String = (0..n).map(|i| format!("{i};0,{}\n", i % 10)).collect();
+            format!("# name: {name};\n# bias_s: 20;\ntime_s;gyro_dps\n{rows}")
+        };
+        let (a, b) = (log("a", 20_000), log("b", 3));
+        let logs = parse_joined(format!("{a}{b}").as_bytes(), TimeOrder::Error).unwrap();
+        let alone = parse_joined(b.as_bytes(), TimeOrder::Error).unwrap();
+        assert_eq!(logs.len(), 2);
+        assert_eq!((logs[0].0.len(), logs[0].0.meta.bias_s, logs[1].2), (20_000, Some(20.0), 20_004));
+        assert_eq!((logs[1].0.meta.name.as_deref(), logs[1].0.meta.bias_s), (Some("b"), Some(20.0)));
+        assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), alone[0].0.column(crate::log::Column::GyroDps).unwrap());
+        assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), &[0.0, 0.1, 0.2]);
+    }
 }

@@ -250,10 +250,12 @@ impl<R: Read> V1Reader<R> {
         self.cut.map(CutLine::to_text).into_iter().chain(latin).collect()
     }
 
-    /// Maps bytes in place (see the module's doc), carrying the line state across calls.
-    fn map(&mut self, from: usize) {
+    /// Maps `buf[from..to]` in place (see the module's doc), carrying the line state across
+    /// calls. Only bytes about to be given are mapped: those held back, or after a second
+    /// log's start, stay as written, so that log is read with its own separator.
+    fn map(&mut self, from: usize, to: usize) {
         let Some(sep) = self.separator else { return };
-        for b in &mut self.buf[from..] {
+        for b in &mut self.buf[from..to] {
             self.state = match (self.state, *b) {
                 (_, b'\n') => LineState::Start,
                 (LineState::Start, b'#') => LineState::Comment,
@@ -276,6 +278,8 @@ impl<R: Read> V1Reader<R> {
     fn fill(&mut self) -> io::Result<()> {
         self.buf.drain(..self.ready);
         let from = self.buf.len();
+        // The held-back bytes were not mapped (see `map`).
+        let mut unmapped = 0;
         let want = BUF_BYTES.max(from + 4096);
         let n = (&mut self.inner).take((want - from) as u64).read_to_end(&mut self.buf)?;
         self.eof = n < want - from;
@@ -300,9 +304,7 @@ impl<R: Read> V1Reader<R> {
                 self.buf.splice(bom..at, preamble);
                 rows_from = header_line(&self.buf).map(|(at, line)| at + line.len() + 1);
             }
-            self.map(bom);
-        } else {
-            self.map(from);
+            unmapped = bom;
         }
         self.start = 0;
         self.ready = match self.buf.iter().rposition(|&b| b == b'\n') {
@@ -314,6 +316,7 @@ impl<R: Read> V1Reader<R> {
         if let Some(from) = rows_from.filter(|_| self.joined.is_none()) {
             self.end_at_joined(from);
         }
+        self.map(unmapped, self.ready);
         // Not UTF-8 (a character cut at the end of a long line's part aside): Windows-1252.
         if std::str::from_utf8(&self.buf[..self.ready]).is_err_and(|e| e.error_len().is_some()) {
             let text = from_windows_1252(&self.buf[..self.ready]);
@@ -354,7 +357,7 @@ impl<R: Read> V1Reader<R> {
         let t = line.trim_ascii();
         if self.drop_cut && !t.is_empty() && t[0] != b'#' {
             if let Some(header) = self.header_fields {
-                let n = fields(line, b',');
+                let n = fields(line, self.separator.unwrap_or(b','));
                 if n < header && last > 0 {
                     self.cut = Some(CutLine { fields: n, header_fields: header });
                     return last;
