@@ -6,12 +6,13 @@ import { selectEntry } from "./controls.js";
 import { openMapping } from "./mapping.js";
 import { addParsed, inWorker } from "./loading.js";
 
-/** A check error the column mapper fixes: the form's field and the value that fixes it. */
+/** A check error the column mapper fixes: the form's field and the value that fixes it
+ * (the time's unit is the one check found, its `fix_value`). */
 const MAPPER_FIX = {
-  gyro_sign: { "map-rate-sense": "cw" },
-  gyro_unit: { "map-rate-unit": "rad/s" },
-  heading_unit: { "map-ref-unit": "rad" },
-  time_unit: { "map-time-unit-0": "ms" },
+  gyro_sign: () => ({ "map-rate-sense": "cw" }),
+  gyro_unit: () => ({ "map-rate-unit": "rad/s" }),
+  heading_unit: () => ({ "map-ref-unit": "rad" }),
+  time_unit: (f) => ({ "map-time-unit-0": f.fix_value ?? "ms" }),
 };
 
 /** Whether the column mapper can fix `entry`'s check errors (a v1 log opened from a file). */
@@ -31,7 +32,7 @@ export async function remap(entry) {
   const lead = entry.log.meta().bias_s ?? gd.defaultBiasS();
   // A v1 log's reference is counter-clockwise positive already and kept at any speed (not a
   // raw GPS course).
-  const preset = Object.assign({ "map-lead": String(lead), "map-ref-sense": "ccw", "map-ref-min-speed": "0" }, ...fixes.map((x) => MAPPER_FIX[x.code]));
+  const preset = Object.assign({ "map-lead": String(lead), "map-ref-sense": "ccw", "map-ref-min-speed": "0" }, ...fixes.map((x) => MAPPER_FIX[x.code](x)));
   const why = `${entry.name}: ${fixes.map((x) => x.message).join("; ")}.`;
   const course = fixes.some((x) => x.code === "gyro_sign")
     ? " The gyro is set to right turn positive; if the reference is a GPS course (clockwise from north), set the reference's sign to clockwise instead and the gyro's back."

@@ -239,6 +239,22 @@ test("a log with a clockwise gyro gets a check badge naming the fix; the shipped
   assert.equal(await banner.isVisible(), false);
   await page.locator("#tabs button[data-view=hdr]").click();
   await page.locator("#logs li", { hasText: "City CW" }).locator("button.remove").click();
+  // Time in microseconds: check names the unit, and the mapper opens with it filled in;
+  // the fixed log scores as City 1.
+  const us = join(dir, "city-us.csv");
+  writeFileSync(us, lines.map((l, i) => (l.startsWith("# name:") ? "# name: City us" : i <= h || !l ? l : l.split(",").map((c, j) => (j === 0 ? String(Math.round(Number(c) * 1e6)) : c)).join(","))).join("\n"));
+  await page.locator("#file-input").setInputFiles([us]);
+  const usBadge = page.locator("#logs li", { hasText: "City us" }).locator(".check.error");
+  await usBadge.waitFor();
+  assert.match(await usBadge.getAttribute("title"), /microseconds, not seconds.*time\.unit = "us"/);
+  await page.locator("#check-remap").click();
+  await page.locator("#mapping[open]").waitFor();
+  assert.equal(await page.locator("#map-time-unit-0").inputValue(), "us");
+  await page.waitForFunction(() => !document.getElementById("mapping-add").disabled);
+  await page.locator("#mapping-add").click();
+  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City us (fixed)"));
+  assert.equal(await page.locator("#m-e-hdr").innerText(), e1);
+  for (const n of ["City us (fixed)", "City us"]) await page.locator("#logs li", { hasText: n }).first().locator("button.remove").click();
   // Information (`check`'s info findings) gets a quiet note of its own: City 1 without its
   // speed column and its lead-in, at 1 Hz (too sparse for the gyro's own white-noise test
   // of standing, which needs 5 rows a second), has nothing that shows when it stands.

@@ -69,6 +69,7 @@ const badRecipe: Recipe = { ...recipe, yaw_rate: { ...recipe.yaw_rate, unit: "fu
 pr.E_psi_kalman_deg;
 const chk: CheckReport = checkLog(log);
 const fix: string | null = chk.findings[0]?.fix ?? null;
+const fixValue: string | null = chk.findings[0]?.fix_value ?? null;
 const gap: number = chk.gaps_s[0]?.[1] ?? 0;
 // @ts-expect-error: a finding's code is one of the named checks
 const badCode: CheckFinding["code"] = "colour";
@@ -80,7 +81,7 @@ const why: string | undefined = checkOptions("hdr", { i_c_dps: -1 });
 const split: GapSplit = log.splitAtGaps(undefined);
 const part: Log | undefined = split.parts[0];
 const gapLine: number = split.gaps[0]?.line ?? 0;
-export { e, h, psi, st, rep, t, tcv, trec, sim, c0, rows, pe, stops, smoothed, ps, cm, badRecipe, chk, fix, gap, badCode, split, part, gapLine, why, ver, tables };
+export { e, h, psi, st, rep, t, tcv, trec, sim, c0, rows, pe, stops, smoothed, ps, cm, badRecipe, chk, fix, fixValue, gap, badCode, split, part, gapLine, why, ver, tables };
 const bat: Battery = battery([log], { warm_sigma_dps: 0.3 });
 const firstCase: BatteryCase | undefined = bat.cases[0];
 const within: number = (bat.added?.n_within ?? 0) + (firstCase?.ne_psi[firstCase.best] ?? 0);

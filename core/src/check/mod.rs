@@ -39,11 +39,15 @@ impl Severity {
 pub struct Finding {
     pub severity: Severity,
     /// A stable name: time_unit, gap, heading_unit, gyro_unit, gyro_sign, gyro_scale, bias,
-    /// lead_in, no_stops, no_reference, outlier.
+    /// lead_in, no_stops, no_reference, outlier, reference_turn, speed_unit, wheel_units.
     pub code: String,
     pub message: String,
     /// The recipe field or setting that fixes it.
     pub fix: Option<String>,
+    /// The value that fix sets, where it is one a front can fill in (time_unit: "ms", "us"
+    /// or "ns", the recipe's `time.unit`).
+    #[serde(default)]
+    pub fix_value: Option<String>,
 }
 
 /// What the check measured, and its findings.
@@ -64,7 +68,7 @@ pub struct CheckReport {
 }
 
 fn finding(severity: Severity, code: &str, message: String, fix: Option<&str>) -> Finding {
-    Finding { severity, code: code.into(), message, fix: fix.map(str::to_string) }
+    Finding { severity, code: code.into(), message, fix: fix.map(str::to_string), fix_value: None }
 }
 
 /// Checks a parsed log.
@@ -84,7 +88,16 @@ pub fn check(log: &DriveLog) -> CheckReport {
         gyro_over_reference: None,
         findings: Vec::new(),
     };
-    time_unit(&mut r, t);
+    // Time in another unit: the other checks read it as that unit, so they say what they
+    // would once it is fixed, not what a log 1000 times too long looks like.
+    let in_seconds = time_unit(&mut r, t).map(|per_s| {
+        let mut log = log.clone();
+        if let Some(t) = log.column_mut(crate::log::Column::TimeS) {
+            t.iter_mut().for_each(|v| *v /= per_s);
+        }
+        log
+    });
+    let log = in_seconds.as_ref().unwrap_or(log);
     gaps(&mut r, log);
     let standing_s = lead_in(&mut r, log);
     let limit_dps = units_and_sign(&mut r, log, standing_s);
@@ -168,20 +181,27 @@ fn lead_in(r: &mut CheckReport, log: &DriveLog) -> Option<f64> {
     })
 }
 
-/// Time in milliseconds: a median step of 2 s or more on a log spanning days of "seconds".
-fn time_unit(r: &mut CheckReport, t: &[f64]) {
-    if r.median_step_s >= 2.0 && t.len() > 100 {
-        let message = format!(
-            "time_s steps by {:.0} (median) over {} rows: milliseconds, not seconds? ({:.0} min as seconds)",
-            r.median_step_s, r.rows, r.duration_min
-        );
-        r.findings.push(finding(
-            Severity::Error,
-            "time_unit",
-            message,
-            Some("time.unit = \"ms\" in the recipe (or divide time_s by 1000)"),
-        ));
+/// Time in milliseconds, microseconds or nanoseconds: a median step of 2 s or more on a log
+/// spanning days of "seconds". The unit is the first that brings the step within a logger's
+/// (2 s or less: 10 ms read as microseconds would be 0.01 ms); returned as units per second.
+fn time_unit(r: &mut CheckReport, t: &[f64]) -> Option<f64> {
+    if r.median_step_s < 2.0 || t.len() <= 100 {
+        return None;
     }
+    const UNITS: [(&str, &str, f64); 3] = [("ms", "milliseconds", 1e3), ("us", "microseconds", 1e6), ("ns", "nanoseconds", 1e9)];
+    let (unit, name, per_s) = UNITS.into_iter().find(|u| r.median_step_s / u.2 <= 2.0).unwrap_or(UNITS[2]);
+    let message = format!(
+        "time_s steps by {:.0} (median) over {} rows: {name}, not seconds? ({:.0} min as seconds, {:.1} min in {name}; the other checks read it in {name})",
+        r.median_step_s,
+        r.rows,
+        r.duration_min,
+        r.duration_min / per_s
+    );
+    let fix = format!("time.unit = \"{unit}\" in the recipe (or divide time_s by {per_s:.0})");
+    let mut f = finding(Severity::Error, "time_unit", message, Some(&fix));
+    f.fix_value = Some(unit.into());
+    r.findings.push(f);
+    Some(per_s)
 }
 
 /// Gyro cells far beyond a road vehicle's yaw rate.

@@ -78,6 +78,32 @@ fn unit_sign_and_gap_mistakes_are_found_with_their_fix() {
     assert!(codes(&gap).contains(&"gap".to_string()));
 }
 
+/// Time in ms, us or ns: the unit found by the step (10 Hz: 100, 1e5, 1e8; 100 Hz in us:
+/// 1e4, not 10 s in ms), named with the value a front fills in; the other checks read the
+/// time in that unit, so they find what they would in seconds (before, the reference's gaps
+/// in "seconds" gave a spurious reference_turn) and a second mistake is found with the first.
+#[test]
+fn time_in_ms_us_or_ns_is_named_and_the_other_checks_read_it_so() {
+    let log = city();
+    for (k, unit) in [(1e3, "ms"), (1e6, "us"), (1e9, "ns")] {
+        let r = check(&scaled(&log, Column::TimeS, k));
+        let f = r.findings.iter().find(|f| f.code == "time_unit").unwrap();
+        assert_eq!(f.fix_value.as_deref(), Some(unit), "{}", r.to_text());
+        assert!(f.fix.as_deref().unwrap().starts_with(&format!("time.unit = \"{unit}\"")), "{}", r.to_text());
+        assert_eq!(codes(&scaled(&log, Column::TimeS, k)), ["time_unit"], "{}", r.to_text());
+        assert!((r.gyro_over_reference.unwrap() - 1.0).abs() < 0.05, "{}", r.to_text());
+    }
+    let mut fast = log.clone();
+    let t: Vec<f64> = (0..log.len()).map(|i| i as f64 * 0.01).collect();
+    fast.column_mut(Column::TimeS).unwrap().copy_from_slice(&t);
+    let r = check(&scaled(&fast, Column::TimeS, 1e6));
+    assert_eq!(r.findings.iter().find(|f| f.code == "time_unit").unwrap().fix_value.as_deref(), Some("us"), "{}", r.to_text());
+    let rad = std::f64::consts::PI / 180.0;
+    let both = scaled(&scaled(&log, Column::TimeS, 1e6), Column::GyroDps, rad);
+    assert_eq!(codes(&both), ["time_unit", "gyro_unit"], "{}", check(&both).to_text());
+    assert!(check(&log).findings.iter().all(|f| f.fix_value.is_none()));
+}
+
 /// A declared lead-in (60 s) longer than the standing (20 s): found with the standing
 /// as its fix; units and sign are judged with the standing's bias, so the drive's first
 /// turns inside the lead-in are not read as a scale error.

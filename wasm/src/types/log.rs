@@ -26,9 +26,13 @@ export interface LogColumns {
 /** One finding of `checkLog`, with the recipe field or setting that fixes it. */
 export interface CheckFinding {
   severity: "error" | "warning" | "info";
-  code: "time_unit" | "gap" | "heading_unit" | "gyro_unit" | "gyro_sign" | "gyro_scale" | "bias" | "lead_in" | "no_stops" | "no_reference" | "outlier";
+  code:
+    | "time_unit" | "gap" | "heading_unit" | "gyro_unit" | "gyro_sign" | "gyro_scale" | "bias" | "lead_in" | "no_stops"
+    | "no_reference" | "outlier" | "reference_turn" | "speed_unit" | "wheel_units";
   message: string;
   fix: string | null;
+  /** The value the fix sets where a front can fill it in (time_unit: "ms", "us" or "ns"). */
+  fix_value: string | null;
 }
 
 /** `Log.splitAtGaps`: the drives between a log's gaps in time. */
