@@ -22,7 +22,7 @@ export function renderList() {
         li.append(fixButton("fix-order", "put in time order", title, `Put ${e.name} in time order and open it`, () => fixTimeOrder(e)));
       }
       if (e.joined) {
-        const title = "Open each log joined in the file as a log of its own, as gyrodrift split writes them";
+        const title = "Open each log joined in the file (or each part after a clock reset) as a log of its own, as gyrodrift split writes them";
         li.append(fixButton("fix-joined", "read each log", title, `Read each log joined in ${e.name}`, () => readJoined(e)));
       }
     } else {

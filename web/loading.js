@@ -318,11 +318,12 @@ export async function loadFiles(given) {
       last = e;
       // Its file, should check find an error the column mapper can fix (remap).
       for (const x of state.entries) if (x.file === f.name && !x.error && !x.source) x.source = f;
-    } else if (TIME_ORDER.test(e.error) && window.Worker) {
+    } else if (TIME_ORDER.test(e.error) && !CLOCK_RESET.test(e.error) && window.Worker) {
       // A time that repeats or steps back: the list offers to put it in order (fixTimeOrder).
       Object.assign(e, { source: f, timeOrder: true });
-    } else if (JOINED.test(e.error) && window.Worker) {
-      // Several logs joined in one file: the list offers to read each (readJoined).
+    } else if ((JOINED.test(e.error) || CLOCK_RESET.test(e.error)) && window.Worker) {
+      // Several logs joined in one file, or a logger's clock reset: the list offers to read
+      // each (readJoined).
       Object.assign(e, { source: f, joined: true });
     } else if (CUT_ROW.test(e.error) && window.Worker) {
       // A logger stopped mid-line: the worker's module reads the log without its cut last
@@ -341,6 +342,9 @@ export async function loadFiles(given) {
 const TIME_ORDER = /time must strictly increase/;
 /** Core's refusal of a file with a second log joined on. */
 const JOINED = /a second log joined on\?/;
+/** Core's refusal of a time more than 1 s back (a logger restarted its clock), which no
+ * time-order fix mends and `split` reads as logs of their own. */
+const CLOCK_RESET = /a clock reset\?/;
 /** Core's refusal of a row with fewer cells than the header (a last line cut short?). */
 const CUT_ROW = /\(truncated row\?\)$/;
 
@@ -348,7 +352,8 @@ const CUT_ROW = /\(truncated row\?\)$/;
  * (whose module has the fixing parser) with its time put in order: rows of one time merged by
  * their mean, rows up to 1 s late sorted in, as the CLI's `--time-order fix`, and a last line
  * cut short dropped. It takes the error entry's place; what was fixed is its note, under
- * `label`. A clock reset stays an error entry. Returns the new entry. */
+ * `label`. A clock reset stays an error entry, offered to be read in parts. Returns the new
+ * entry. */
 export async function fixTimeOrder(entry, label = "⇅ put in time order") {
   const f = entry.source;
   const res = await parseInWorker(f, await f.arrayBuffer(), { timeOrder: "fix" });
@@ -356,7 +361,7 @@ export async function fixTimeOrder(entry, label = "⇅ put in time order") {
   const e = await addWorkerParsed(f, res);
   if (!e.error) Object.assign(e, { orderNote: res.fixed, orderLabel: label });
   // The page's module reads a second log joined on as a row cut short: the worker's names it.
-  else if (JOINED.test(e.error)) Object.assign(e, { source: f, joined: true });
+  else if (JOINED.test(e.error) || CLOCK_RESET.test(e.error)) Object.assign(e, { source: f, joined: true });
   $("status").textContent = "";
   if (!e.error) selectEntry(state.entries.indexOf(e));
   else renderList();

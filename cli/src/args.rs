@@ -23,13 +23,14 @@ pub(crate) struct Cli {
     pub(crate) ignore_check: bool,
     /// A log whose time repeats or steps back by at most 1 s (a logger writing a sample twice,
     /// or a row late): refuse it naming the line, or fix it: rows of one time merged by their
-    /// mean, late rows sorted in, as `import` does (said on stderr). A larger step back is
-    /// always refused.
+    /// mean, late rows sorted in, as `import` does (said on stderr). A larger step back (a
+    /// clock reset) is refused unless `--joined split` reads each part as a log.
     #[arg(long, global = true, value_enum, default_value = "error")]
     pub(crate) time_order: TimeOrderArg,
-    /// A file of several logs joined on (`cat a.csv b.csv`, a logger appending each session):
-    /// refuse it naming the second log's first line, or score each log as a drive of its own
-    /// (said on stderr). `split` writes them as files.
+    /// A file of several logs joined on (`cat a.csv b.csv`, a logger appending each session,
+    /// or restarting its clock without a new header): refuse it naming the second log's first
+    /// line, or score each log as a drive of its own (said on stderr). `split` writes them as
+    /// files.
     #[arg(long, global = true, value_enum, default_value = "error")]
     pub(crate) joined: JoinedArg,
 }
@@ -289,8 +290,9 @@ pub(crate) enum Cmd {
         out: Option<PathBuf>,
     },
     /// Write each log of a file that holds several joined on (`cat a.csv b.csv`, a logger
-    /// appending each session to one file), which the other commands refuse naming the line
-    /// where the second starts, as a v1 log of its own: STEM.1.csv, STEM.2.csv, ...
+    /// appending each session to one file, or restarting its clock without a new header),
+    /// which the other commands refuse naming the line where the second starts, as a v1 log
+    /// of its own: STEM.1.csv, STEM.2.csv, ...
     Split {
         #[arg(help = LOG_HELP)]
         log: PathBuf,

@@ -43,18 +43,19 @@ fn read_all(path: &Path, input: InputPolicy) -> Result<Vec<DriveLog>, Failure> {
 }
 
 /// A log's refusal with the option or command that reads it: `--time-order fix` for a time
-/// that repeats, `split` for logs joined on, the import's draft for a logger's own table.
+/// that repeats, `split` for logs joined on or a clock reset, the import's draft for a
+/// logger's own table.
 fn read_failure(path: &Path, e: Error) -> Failure {
     let out_of_order = gyrodrift::log::accept::refused_for_time_order(&e);
-    let joined = gyrodrift::log::accept::refused_for_join(&e);
+    let reset = gyrodrift::log::accept::refused_for_clock_reset(&e);
+    let joined = gyrodrift::log::accept::refused_for_join(&e) || reset;
     let drafted = !out_of_order && !joined && !is_stdin(path) && gyrodrift::import::draft_reads_refused(path, &e);
     let mut f = fail(path, e);
     if joined {
         let out = if is_stdin(path) { " --out-dir DIR" } else { "" };
         let p = shell_quoted(path);
-        f.0 += &format!(
-            "; `gyrodrift split {p}{out}` writes each log in it as a file of its own (the scoring commands take `--joined split`)"
-        );
+        let each = if reset { "each part (a logger restarted?)" } else { "each log in it" };
+        f.0 += &format!("; `gyrodrift split {p}{out}` writes {each} as a file of its own (the scoring commands take `--joined split`)");
     } else if out_of_order {
         f.0 += "; `--time-order fix` merges repeated times and sorts rows up to 1 s late in";
     } else if drafted {

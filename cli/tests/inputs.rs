@@ -398,6 +398,42 @@ fn two_logs_joined_are_refused_naming_the_seconds_first_line() {
     assert!(!dir.join("alone.1.csv").exists());
 }
 
+/// A logger that restarted its clock without a new header: refused naming the line as a
+/// clock reset, with `split` as the way on (not `--time-order fix`, which cannot mend it);
+/// `--joined split` scores each part as the log it is, `split` writes them.
+#[test]
+fn a_clock_reset_is_refused_with_split_and_read_in_parts() {
+    let text = drive_csv();
+    let rows = text.lines().skip(2).collect::<Vec<_>>().join("\n");
+    let reset = write("reset.csv", &format!("{text}{rows}\n"));
+    let reset_line = text.lines().count() + 1;
+    for extra in [&[][..], &["--time-order", "fix"][..]] {
+        let out = run(&[&["hdr", reset.to_str().unwrap()][..], extra].concat());
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(err.contains(&format!("line {reset_line}, column time_s: time 0 goes back")) && err.contains("a clock reset?"), "{err}");
+        assert!(
+            err.contains("writes each part (a logger restarted?) as a file of its own") && !err.contains("`--time-order fix` merges"),
+            "{err}"
+        );
+    }
+    let both = run(&["hdr", "--json", "--joined", "split", reset.to_str().unwrap()]);
+    assert!(both.status.success(), "{}", String::from_utf8_lossy(&both.stderr));
+    let alone: serde_json::Value =
+        serde_json::from_slice(&run(&["hdr", "--json", write("one.csv", &text).to_str().unwrap()]).stdout).unwrap();
+    assert_eq!(serde_json::from_slice::<serde_json::Value>(&both.stdout).unwrap(), serde_json::Value::from(vec![alone.clone(), alone]));
+    let err = String::from_utf8(both.stderr).unwrap();
+    assert!(
+        err.contains(&format!("log 2 of 2 joined in the file, from line {reset_line}; its clock reset on this line (time 0 after 600)")),
+        "{err}"
+    );
+    let dir = std::env::temp_dir().join(format!("gd-reset-{}", std::process::id()));
+    let out = run(&["split", reset.to_str().unwrap(), "--out-dir", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let second = std::fs::read_to_string(dir.join("reset.2.csv")).unwrap();
+    assert!(second.starts_with("# name: test drive (2)\n"), "{second}");
+}
+
 /// A log opened and saved by a spreadsheet (Excel or LibreOffice, either locale): metadata
 /// lines padded with separators to the header's width, one with a comma quoted, Excel's
 /// `sep=;` first: it runs as the log, and `import` writes it back as the log.

@@ -91,7 +91,13 @@ pub(crate) fn read_path(path: &str, order: TimeOrder) -> PyResult<(DriveLog, Opt
             }
             None => String::new(),
         };
-        let joined = if gyrodrift::log::accept::refused_for_join(&e) { "; gyrodrift.Log.read_joined reads each log in it" } else { "" };
+        let joined = if gyrodrift::log::accept::refused_for_join(&e) {
+            "; gyrodrift.Log.read_joined reads each log in it"
+        } else if gyrodrift::log::accept::refused_for_clock_reset(&e) {
+            "; gyrodrift.Log.read_joined reads each part (a logger restarted?) as a log of its own"
+        } else {
+            ""
+        };
         value_err(format!("{path}: {e}{order_hint}{joined}{hint}", order_hint = time_order_hint(&e)))
     })
 }

@@ -305,6 +305,29 @@ def test_two_logs_joined_are_refused_naming_the_seconds_first_line(samples, tmp_
     assert rows[1]["warnings"].startswith(f"log 2 of 2 joined in the file, from line {line}")
 
 
+def test_a_clock_reset_is_refused_and_read_in_parts(samples, tmp_path):
+    """A logger restarting its clock without a new header: refused naming the line as a clock
+    reset, with read_joined as the way on (not time_order="fix"); read_joined and the fleet's
+    joined split read each part as the log it is."""
+    a = (samples / "train" / "city-1.csv").read_text()
+    b = (samples / "train" / "city-2.csv").read_text()
+    rows = [l for l in b.splitlines() if l and not l.startswith("#") and not l.startswith("time_s")]
+    (tmp_path / "reset.csv").write_text(a + "\n".join(rows) + "\n")
+    line = len(a.splitlines()) + 1
+    for order in ["error", "fix"]:
+        with pytest.raises(ValueError, match=re.escape(f"line {line}, column time_s: time 0 goes back")) as e:
+            g.Log.read(str(tmp_path / "reset.csv"), time_order=order)
+        assert "a clock reset?" in str(e.value) and "read_joined reads each part" in str(e.value)
+        assert 'time_order="fix" merges' not in str(e.value)
+    with pytest.warns(UserWarning, match=re.escape(f"(from line {line}): its clock reset on this line (time 0 after 1164)")):
+        logs = g.Log.read_joined(str(tmp_path / "reset.csv"))
+    assert [x.meta()["name"] for x in logs] == ["City 1 (1)", "City 1 (2)"]
+    assert np.array_equal(logs[1].column("gyro_dps"), g.Log.parse(b).column("gyro_dps"))
+    rows = g.score_files([str(tmp_path / "reset.csv")], 1, {"input": {"joined": "split"}})
+    assert [r["name"] for r in rows] == ["City 1 (1)", "City 1 (2)"] and all(r["error"] is None for r in rows)
+    assert f"from line {line}; its clock reset on this line" in rows[1]["warnings"]
+
+
 def test_a_log_in_windows_1252_reads_with_a_warning(samples, tmp_path):
     """Excel's "CSV" on Windows is Windows-1252: read_log reads a name with a "ü" and says so."""
     text = (samples / "train" / "city-1.csv").read_text().replace("# name: City 1", "# name: Fahrt München")

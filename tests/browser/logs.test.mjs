@@ -159,6 +159,30 @@ test("two logs joined into one file are an error naming the second log's first l
   await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n, before);
 });
 
+test("a logger's clock reset (time back to 0 without a new header) is offered to be read in parts, not put in time order", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-reset-"));
+  const a = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const b = readFileSync(join(SAMPLES, "train", "city-2.csv"), "utf8");
+  const file = join(dir, "reset.csv");
+  writeFileSync(file, a + b.split("\n").filter((l) => l && !l.startsWith("#") && !l.startsWith("time_s")).join("\n") + "\n");
+  const before = await page.locator("#logs li:not(.bad)").count();
+  await page.locator("#file-input").setInputFiles([file]);
+  const bad = page.locator("#logs li.bad", { hasText: "reset.csv" });
+  await bad.waitFor();
+  const line = a.split("\n").length;
+  assert.match(await bad.innerText(), new RegExp(`line ${line}, column time_s: time 0 goes back .*a clock reset\\?`));
+  assert.equal(await bad.locator("button.fix-order").count(), 0);
+  await bad.locator("button.fix-joined").click();
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n + 2, before);
+  const second = page.locator("#logs li", { hasText: `from line ${line} of reset.csv` });
+  assert.match(await second.innerText(), /City 1 \(2\)/);
+  await second.locator("button.pick").click();
+  const native = JSON.parse(cli("hdr", join(SAMPLES, "train", "city-2.csv"), "--json"));
+  await page.waitForFunction((v) => document.querySelector("#m-e-hdr")?.innerText === v, native.E_psi_hdr_deg.toFixed(2));
+  for (const l of [1, line]) await page.locator("#logs li", { hasText: `from line ${l} of reset.csv` }).locator("button.remove").click();
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n, before);
+});
+
 test("a log a spreadsheet opened and saved (padded, quoted, Windows-1252) opens as the log, with the CLI's numbers", async () => {
   const dir = mkdtempSync(join(tmpdir(), "gd-excel-"));
   const text = readFileSync(join(SAMPLES, "test", "highway-3.csv"), "utf8").replace("# name: Highway 3", "# name: Highway 3 from Excel");

@@ -55,8 +55,11 @@ impl Default for TimeSpec {
 }
 
 pub(super) fn default_max_backward_s() -> f64 {
-    1.0
+    MAX_BACKWARD_S
 }
+
+/// The largest step back a row may take and be sorted in (1 s); beyond it, a clock reset.
+pub const MAX_BACKWARD_S: f64 = 1.0;
 
 /// What the import does with rows that repeat a time.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
@@ -168,7 +171,7 @@ pub(crate) fn put_v1_in_time_order(time: &mut Vec<f64>, line: &mut Vec<u64>, col
     for (&t, &l) in time.iter().zip(line.iter()) {
         if latest - t > spec.max_backward_s {
             let message = format!(
-                "time {t} goes back {:.3} s from {latest}: a clock reset? (rows up to 1 s late are sorted in; split the log there)",
+                "time {t} goes back {:.3} s from {latest}: a clock reset? (rows up to 1 s late are sorted in; the joined-logs rule `split` reads each part as a log of its own)",
                 latest - t
             );
             return Err(Error::Cell { line: l, column: "time_s".into(), message });

@@ -85,16 +85,51 @@ fn read_one<R: std::io::Read>(reader: &mut super::dialect::V1Reader<R>, order: T
     }
 }
 
+/// The logs `reader` gives, cut where the clock resets (time back by more than 1 s: a logger
+/// restarted without writing a new header), each put in time order by the policy: the log,
+/// what that did, and for a part after a reset the latest time before it. A named log cut
+/// so is named "name (1)", "name (2)", ...
+fn read_restarts<R: std::io::Read>(
+    reader: &mut super::dialect::V1Reader<R>,
+    order: TimeOrder,
+) -> Result<Vec<(DriveLog, String, Option<f64>)>> {
+    let mut log = super::parse::parse_log_unordered(reader)?;
+    let (mut latest, mut cuts) = (f64::NEG_INFINITY, Vec::new());
+    for (i, &x) in log.time_s().iter().enumerate() {
+        if latest - x > crate::import::MAX_BACKWARD_S {
+            cuts.push((i, latest));
+            latest = x;
+        }
+        latest = latest.max(x);
+    }
+    let mut parts: Vec<(DriveLog, Option<f64>)> = cuts.iter().rev().map(|&(i, after)| (log.split_off(i), Some(after))).collect();
+    parts.push((log, None));
+    parts.reverse();
+    let n = parts.len();
+    let in_order = |(k, (mut part, after)): (usize, (DriveLog, Option<f64>))| {
+        if n > 1 {
+            part.meta.name = part.meta.name.take().map(|name| format!("{name} ({})", k + 1));
+        }
+        let (part, fixes) = match order {
+            TimeOrder::Error => super::parse::strictly_increasing(&part).map(|_| (part, String::new()))?,
+            TimeOrder::Fix => super::parse::in_time_order(part).map(|(l, f)| (l, f.to_text()))?,
+        };
+        Ok((part, fixes, after))
+    };
+    parts.into_iter().enumerate().map(in_order).collect()
+}
+
 /// Every log of a file that holds several joined on (`cat a.csv b.csv`, a logger appending
-/// each session to one file), each read as [`parse_by`] reads a file of its own, with what
-/// was done to read it and the line it starts on. An error names the file's line. A second
-/// log with no rows (a `#` note after the last row) is none: said on the log before it.
+/// each session to one file, or restarting its clock without a new header), each read as
+/// [`parse_by`] reads a file of its own, with what was done to read it and the line it starts
+/// on. An error names the file's line. A second log with no rows (a `#` note after the last
+/// row) is none: said on the log before it.
 pub fn parse_joined<'a, R: std::io::Read + 'a>(reader: R, order: TimeOrder) -> Result<Vec<(DriveLog, Option<String>, u64)>> {
     let mut out: Vec<(DriveLog, Option<String>, u64)> = Vec::new();
     let (mut rest, mut first_line): (Box<dyn std::io::Read + 'a>, u64) = (Box::new(reader), 1);
     loop {
         let mut reader = super::dialect::v1_reader(rest, true);
-        let (log, fixes) = match (read_one(&mut reader, order), out.last_mut()) {
+        let parts = match (read_restarts(&mut reader, order), out.last_mut()) {
             (Ok(read), _) => read,
             // Comments alone after the last log's rows: not a log.
             (Err(Error::File(m)), Some(last)) if m.starts_with("empty file") => {
@@ -105,8 +140,20 @@ pub fn parse_joined<'a, R: std::io::Read + 'a>(reader: R, order: TimeOrder) -> R
             (Err(e @ Error::File(_)), Some(_)) => return Err(e.within(&format!("the log from line {first_line}"))),
             (Err(e), _) => return Err(shifted(e, first_line - 1)),
         };
-        let said: Vec<String> = reader.said().into_iter().chain((!fixes.is_empty()).then(|| format!("time order: {fixes}"))).collect();
-        out.push((log, (!said.is_empty()).then(|| said.join("; ")), first_line));
+        let read = reader.said();
+        for (mut log, fixes, reset_after) in parts {
+            // Lines of the file, not of the log joined on.
+            log.line.iter_mut().for_each(|l| *l += first_line - 1);
+            let (line, reset) = match (reset_after, log.line.first(), log.time_s().first()) {
+                (Some(after), Some(&l), Some(t)) => {
+                    (l, Some(format!("its clock reset on this line (time {t} after {after}): read on as a log of its own")))
+                }
+                _ => (first_line, None),
+            };
+            let fixes = (!fixes.is_empty()).then(|| format!("time order: {fixes}"));
+            let said: Vec<String> = reset.into_iter().chain(read.iter().cloned()).chain(fixes).collect();
+            out.push((log, (!said.is_empty()).then(|| said.join("; ")), line));
+        }
         match reader.into_rest() {
             Some((joined, r)) => (rest, first_line) = (Box::new(r), first_line + joined.line - 1),
             None => return Ok(out),
@@ -160,10 +207,18 @@ pub fn refused_for_join(e: &Error) -> bool {
     matches!(e, Error::Line { message, .. } if message.contains(super::dialect::JOINED_REFUSAL))
 }
 
-/// Whether `e` is the parser's refusal of a time that repeats or steps back (what
-/// `TimeOrder::Fix` fixes): the fronts add the option that fixes it in their own words.
+/// Whether `e` is the parser's refusal of a time that repeats or steps back by at most 1 s
+/// (what `TimeOrder::Fix` fixes; not a clock reset): the fronts add the option that fixes it
+/// in their own words.
 pub fn refused_for_time_order(e: &Error) -> bool {
     matches!(e, Error::Cell { column, message, .. } if column == "time_s" && message.ends_with(super::parse::TIME_ORDER_REFUSAL))
+        && !refused_for_clock_reset(e)
+}
+
+/// Whether `e` is a refusal for a clock reset (time back by more than 1 s: a logger restarted
+/// without a new header), which [`JoinedLogs::Split`] reads as logs of their own.
+pub fn refused_for_clock_reset(e: &Error) -> bool {
+    matches!(e, Error::Cell { column, message, .. } if column == "time_s" && message.contains(super::parse::CLOCK_RESET))
 }
 
 /// A log taken: its parts (one without gaps), the check's warnings and what splitting did.
@@ -298,6 +353,44 @@ mod tests {
         let logs = parse_joined(semi.as_bytes(), TimeOrder::Error).unwrap();
         assert_eq!((logs[0].0.len(), logs[1].0.len(), logs[1].2), (30_000, 1, 30_003));
         assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), &[1.5]);
+    }
+
+    /// A logger that restarted its clock without a new header (time back by more than 1 s):
+    /// refused naming the line as a clock reset, which no time-order fix mends; read as joined
+    /// logs, each part is a log of its own named by its number, its lines the file's, the
+    /// second's rows as they were; a step back of 1 s or less within a part is the time-order
+    /// policy's, as in a file of its own.
+    #[test]
+    fn a_clock_reset_is_refused_or_read_as_logs_of_their_own() {
+        let text = "# name: a\n# bias_s: 2\ntime_s,gyro_dps\n0,1\n1,2\n2,3\n0,4\n0.5,5\n1,6\n";
+        for order in [TimeOrder::Error, TimeOrder::Fix] {
+            let e = parse_by(text.as_bytes(), order).unwrap_err();
+            assert!(refused_for_clock_reset(&e) && !refused_for_time_order(&e), "{e}");
+            assert!(e.to_string().starts_with("line 7, column time_s: time 0 goes back"), "{e}");
+        }
+        let logs = parse_joined(text.as_bytes(), TimeOrder::Error).unwrap();
+        let got: Vec<_> =
+            logs.iter().map(|(l, _, line)| (l.meta.name.clone().unwrap(), l.meta.bias_s, l.len(), *line, l.line.clone())).collect();
+        assert_eq!(got, [("a (1)".into(), Some(2.0), 3, 1, vec![4, 5, 6]), ("a (2)".into(), Some(2.0), 3, 7, vec![7, 8, 9])]);
+        assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), &[4.0, 5.0, 6.0]);
+        assert_eq!(logs[1].1.as_deref(), Some("its clock reset on this line (time 0 after 2): read on as a log of its own"));
+        assert_eq!(logs[0].1, None);
+        let by_policy = parse_by_policy(text.as_bytes(), InputPolicy { joined: JoinedLogs::Split, ..Default::default() }).unwrap();
+        assert!(by_policy[1].1.as_deref().unwrap().starts_with("log 2 of 2 joined in the file, from line 7; its clock reset"));
+        // A row 0.5 s late in the second part: refused as in a file of its own, or sorted in.
+        let late = format!("{text}0.5,7\n");
+        let e = parse_joined(late.as_bytes(), TimeOrder::Error).unwrap_err();
+        assert!(
+            refused_for_time_order(&e) && e.to_string().starts_with("line 10, column time_s: time 0.5 goes back from 1 on line 9"),
+            "{e}"
+        );
+        let fixed = parse_joined(late.as_bytes(), TimeOrder::Fix).unwrap();
+        assert_eq!(fixed[1].0.len(), 3);
+        assert!(fixed[1].1.as_deref().unwrap().contains("; time order: "), "{:?}", fixed[1].1);
+        // A second log joined on after a reset: three logs, lines as in the file.
+        let three = format!("{text}# name: b\ntime_s,gyro_dps\n0,1\n");
+        let lines: Vec<u64> = parse_joined(three.as_bytes(), TimeOrder::Error).unwrap().iter().map(|x| x.2).collect();
+        assert_eq!(lines, [1, 7, 10]);
     }
 
     /// Two logs a spreadsheet saved with `;` and decimal commas, their metadata padded to the

@@ -185,6 +185,12 @@ impl DriveLog {
         }
         self.line.drain(..first.min(self.line.len()));
     }
+    /// The rows from index `at` on, moved into a log of their own with the same metadata.
+    pub(crate) fn split_off(&mut self, at: usize) -> DriveLog {
+        let at = at.min(self.len());
+        let columns = std::array::from_fn(|i| self.columns[i].as_mut().map(|c| c.split_off(at)));
+        DriveLog { meta: self.meta.clone(), line: self.line.split_off(at.min(self.line.len())), columns }
+    }
     /// Keeps rows `a..b` (one part of a log split at its gaps).
     pub fn keep_range(&mut self, a: usize, b: usize) {
         for col in self.columns.iter_mut().flatten() {

@@ -64,7 +64,28 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
 /// time merged, each column the mean of its present values; rows up to 1 s late sorted in),
 /// with counts of what they did. A larger step back (a clock reset) is still an error.
 pub fn parse_log_in_time_order<R: Read>(reader: R, opts: ParseOptions) -> Result<(DriveLog, crate::import::TimeFixes)> {
-    let mut log = parse_rows::<false>(reader, opts, &mut |_| {})?;
+    in_time_order(parse_rows::<false>(reader, opts, &mut |_| {})?)
+}
+
+/// A v1 log's rows in file order, time unchecked (for `accept`, which cuts it at clock resets
+/// before putting each part in order).
+pub(super) fn parse_log_unordered<R: Read>(reader: R) -> Result<DriveLog> {
+    parse_rows::<false>(reader, ParseOptions::default(), &mut |_| {})
+}
+
+/// The first row whose time does not strictly increase, refused as the strict parser refuses it.
+pub(super) fn strictly_increasing(log: &DriveLog) -> Result<()> {
+    let t = log.time_s();
+    match (1..t.len()).find(|&i| t[i] <= t[i - 1]) {
+        None => Ok(()),
+        Some(i) => {
+            Err(Error::Cell { line: log.line[i], column: "time_s".into(), message: time_order_message(t[i], t[i - 1], log.line[i - 1]) })
+        }
+    }
+}
+
+/// Rows in file order put in time order as [`parse_log_in_time_order`] does.
+pub(super) fn in_time_order(mut log: DriveLog) -> Result<(DriveLog, crate::import::TimeFixes)> {
     let mut time = log.columns[Column::TimeS.index()].take().unwrap_or_default();
     let present: Vec<usize> = (0..log.columns.len()).filter(|&i| log.columns[i].is_some()).collect();
     let mut cols: Vec<Vec<f64>> = present.iter().map(|&i| log.columns[i].take().unwrap_or_default()).collect();
@@ -128,6 +149,19 @@ fn parse_rows<const STRICT: bool>(reader: impl Read, opts: ParseOptions, progres
 /// `accept::refused_for_time_order`, whose CLI and Python hints the tests check).
 pub(super) const TIME_ORDER_REFUSAL: &str = "time must strictly increase";
 
+/// What a clock reset's refusal says (`accept::refused_for_clock_reset`).
+pub(super) const CLOCK_RESET: &str = "a clock reset?";
+
+/// Why time `v` on a row after time `pt` (on line `pl`) is refused; a step back of more than
+/// 1 s is named a clock reset (a logger restarted), which no time-order fix mends.
+fn time_order_message(v: f64, pt: f64, pl: u64) -> String {
+    let what = if v == pt { "repeats" } else { "goes back from" };
+    let reset = if pt - v > crate::import::MAX_BACKWARD_S { " a clock reset?" } else { "" };
+    // Ends with TIME_ORDER_REFUSAL (a literal here: the const in the format string grows the
+    // size-capped browser module).
+    format!("time {v} {what} {pt} on line {pl}:{reset} time must strictly increase")
+}
+
 /// One data row into the columns; time must be present and, with `STRICT`, strictly increase.
 #[inline(always)]
 fn data_row<const STRICT: bool>(h: &Header, r: &Row, prev_time: &mut Option<(f64, u64)>, log: &mut DriveLog) -> Result<()> {
@@ -146,11 +180,7 @@ fn data_row<const STRICT: bool>(h: &Header, r: &Row, prev_time: &mut Option<(f64
             }
             if let Some((pt, pl)) = *prev_time {
                 if STRICT && v <= pt {
-                    let what = if v == pt { "repeats" } else { "goes back from" };
-                    // Ends with TIME_ORDER_REFUSAL (a literal here: the const in the format
-                    // string grows the size-capped browser module).
-                    let message = format!("time {v} {what} {pt} on line {pl}: time must strictly increase");
-                    return Err(Error::Cell { line, column: c.name().into(), message });
+                    return Err(Error::Cell { line, column: c.name().into(), message: time_order_message(v, pt, pl) });
                 }
             }
             *prev_time = Some((v, line));
