@@ -159,6 +159,24 @@ test("two logs joined into one file are an error naming the second log's first l
   await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n, before);
 });
 
+test("a second log that starts with its header row alone is named as one and read on request", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-header-"));
+  const a = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const b = readFileSync(join(SAMPLES, "train", "city-2.csv"), "utf8");
+  const file = join(dir, "headers.csv");
+  writeFileSync(file, a + b.split("\n").filter((l) => !l.startsWith("#")).join("\n"));
+  const before = await page.locator("#logs li:not(.bad)").count();
+  await page.locator("#file-input").setInputFiles([file]);
+  const bad = page.locator("#logs li.bad", { hasText: "headers.csv" });
+  await bad.waitFor();
+  const line = a.split("\n").length;
+  assert.match(await bad.innerText(), new RegExp(`line ${line}: the header row again after the rows .*a second log joined on\\?`));
+  await bad.locator("button.fix-joined").click();
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n + 2, before);
+  for (const l of [1, line]) await page.locator("#logs li", { hasText: `from line ${l} of headers.csv` }).locator("button.remove").click();
+  await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n, before);
+});
+
 test("a logger's clock reset (time back to 0 without a new header) is offered to be read in parts, not put in time order", async () => {
   const dir = mkdtempSync(join(tmpdir(), "gd-reset-"));
   const a = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");

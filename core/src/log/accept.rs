@@ -355,6 +355,31 @@ mod tests {
         assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), &[1.5]);
     }
 
+    /// A second log that starts with its header row alone (a logger appending each session
+    /// with a header, no metadata), or with a byte-order mark (`cat` of two files Excel
+    /// saved): refused naming that line as a second log, not a cell that is not a number;
+    /// read on, each log is the log alone.
+    #[test]
+    fn a_header_row_again_or_a_byte_order_mark_starts_a_second_log() {
+        let first = "# name: a\ntime_s,gyro_dps\n0,1\n1,2\n";
+        for (second, text) in [
+            ("time_s,gyro_dps\r\n5,3\n6,4\n", "the header row again after the rows (\"time_s,gyro_dps\")"),
+            ("\u{feff}# name: b\ntime_s,gyro_dps\n5,3\n6,4\n", "a '#' line after the rows (\"# name: b\")"),
+            ("\u{feff}time_s,gyro_dps\n5,3\n6,4\n", "the header row again after the rows (\"time_s,gyro_dps\")"),
+        ] {
+            let joined = format!("{first}{second}");
+            let e = parse_by(joined.as_bytes(), TimeOrder::Error).unwrap_err();
+            assert!(refused_for_join(&e) && e.to_string().starts_with(&format!("line 5: {text}: a second log joined on?")), "{e}");
+            let logs = parse_joined(joined.as_bytes(), TimeOrder::Error).unwrap();
+            let alone = parse_by(second.as_bytes(), TimeOrder::Error).unwrap().0;
+            assert_eq!((logs.len(), logs[1].2, logs[1].0.meta.name.clone()), (2, 5, alone.meta.name.clone()));
+            assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), alone.column(crate::log::Column::GyroDps).unwrap());
+        }
+        // A row that starts with the header's text is no header.
+        let logs = parse_joined(&b"time_s,gyro_dps\n0,1\ntime_s,gyro_dps,x\n"[..], TimeOrder::Error);
+        assert!(logs.is_err_and(|e| e.to_string().starts_with("line 3: row has 3 fields")));
+    }
+
     /// A logger that restarted its clock without a new header (time back by more than 1 s):
     /// refused naming the line as a clock reset, which no time-order fix mends; read as joined
     /// logs, each part is a log of its own named by its number, its lines the file's, the

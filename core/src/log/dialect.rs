@@ -12,7 +12,8 @@
 //!   a note): lines that are not UTF-8 are read as Windows-1252 (WHATWG's table), which
 //!   [`V1Reader::said`] says;
 //! - with a second log joined on (`cat a.csv b.csv`, or a logger appending each session to
-//!   one file): the reader ends before the first `#` line after the header, and
+//!   one file): the reader ends before the first `#` line after the header, or the header
+//!   row found again, and
 //!   [`V1Reader::joined_at`] names it, so the fronts refuse the file naming that line, not
 //!   as a row with too few cells; [`V1Reader::into_rest`] gives the rest to read on
 //!   (`accept::parse_joined`, the CLI's `split`).
@@ -60,8 +61,10 @@ pub struct V1Reader<R> {
     drop_cut: bool,
     /// The file's separator when it is not a comma (`None`: no mapping).
     separator: Option<u8>,
-    /// Cells of the header row, once found.
+    /// Cells of the header row, once found, and the row as written (without its line end):
+    /// found again after the rows, it starts a second log.
     header_fields: Option<usize>,
+    header_row: Vec<u8>,
     state: LineState,
     cut: Option<CutLine>,
     windows_1252: bool,
@@ -72,7 +75,8 @@ pub struct V1Reader<R> {
     joined: Option<Joined>,
 }
 
-/// A `#` line after a log's header: a second log's metadata (two logs joined into one file).
+/// A `#` line after a log's header, a second log's metadata, or the header row again, a
+/// second log's header (two logs joined into one file).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Joined {
     /// Its 1-based line in the file.
@@ -87,10 +91,14 @@ pub(crate) const JOINED_REFUSAL: &str = "a second log joined on?";
 impl Joined {
     /// The refusal the fronts give for such a file.
     pub fn to_error(&self) -> crate::error::Error {
-        let message = format!(
-            "a '#' line after the rows (\"{}\"): {JOINED_REFUSAL} A log's '#' lines come before its header; split the file before this line",
-            self.text
-        );
+        let message = if self.text.starts_with('#') {
+            format!(
+                "a '#' line after the rows (\"{}\"): {JOINED_REFUSAL} A log's '#' lines come before its header; split the file before this line",
+                self.text
+            )
+        } else {
+            format!("the header row again after the rows (\"{}\"): {JOINED_REFUSAL} Split the file before this line", self.text)
+        };
         crate::error::Error::Line { line: self.line, message }
     }
 }
@@ -109,6 +117,7 @@ pub fn v1_reader<R: Read>(inner: R, drop_cut: bool) -> V1Reader<R> {
         drop_cut,
         separator: None,
         header_fields: None,
+        header_row: Vec::new(),
         state: LineState::Start,
         cut: None,
         windows_1252: false,
@@ -289,6 +298,7 @@ impl<R: Read> V1Reader<R> {
             self.filled = true;
             let bom = if self.buf.starts_with(b"\xEF\xBB\xBF") { 3 } else { 0 };
             if let Some((at, line)) = header_line(&self.buf) {
+                self.header_row = line.trim_ascii_end().to_vec();
                 let sep = separator_of(line);
                 let cells = fields(line, sep.unwrap_or(b','));
                 (self.separator, self.header_fields) = (sep, Some(cells));
@@ -332,22 +342,41 @@ impl<R: Read> V1Reader<R> {
     fn end_at_joined(&mut self, from: usize) {
         let chunk = &self.buf[..self.ready];
         let at_line_start = if from == 0 { self.line_start } else { chunk.get(from - 1) == Some(&b'\n') };
-        let at = match chunk.get(from) {
-            Some(b'#') if at_line_start => Some(from),
-            Some(_) => memchr::memmem::find(&chunk[from..], b"\n#").map(|i| from + i + 1),
-            None => None,
-        };
+        let at = self.second_log_at(chunk, from, at_line_start);
         let Some(at) = at else {
             self.lines_before += memchr::memchr_iter(b'\n', chunk).count() as u64;
             self.line_start = chunk.last().is_none_or(|&b| b == b'\n');
             return;
         };
         let end = chunk[at..].iter().position(|&b| b == b'\n').map_or(chunk.len(), |i| at + i);
-        let text = String::from_utf8_lossy(chunk[at..end].trim_ascii());
+        let line = &chunk[at..end];
+        let text = String::from_utf8_lossy(line.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(line).trim_ascii());
         let text = if text.chars().count() > 60 { format!("{}...", text.chars().take(60).collect::<String>()) } else { text.into_owned() };
         let line = self.lines_before + memchr::memchr_iter(b'\n', &chunk[..at]).count() as u64 + 1;
         self.joined = Some(Joined { line, text });
         (self.ready, self.eof, self.cut) = (at, true, None);
+    }
+
+    /// Where in `chunk[from..]` a second log starts: the first line that is a `#` line or the
+    /// header row again, after a byte-order mark or not (`cat` of two files a spreadsheet
+    /// saved); `from` is at a line start when `at_line_start`.
+    fn second_log_at(&self, chunk: &[u8], from: usize, at_line_start: bool) -> Option<usize> {
+        let header = &self.header_row[..];
+        let starts_log = |i: usize| {
+            let line = &chunk[i..];
+            let line = &line[..memchr::memchr(b'\n', line).unwrap_or(line.len())];
+            let line = line.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(line);
+            line.first() == Some(&b'#') || (!header.is_empty() && line.trim_ascii_end() == header)
+        };
+        if at_line_start && from < chunk.len() && starts_log(from) {
+            return Some(from);
+        }
+        let rest = chunk.get(from..)?;
+        let find = |pattern: &[u8]| memchr::memmem::find_iter(rest, pattern).map(|i| from + i + 1).find(|&i| starts_log(i));
+        let mut again = vec![b'\n'];
+        again.extend_from_slice(header);
+        let header_again = if header.is_empty() { None } else { find(&again) };
+        [find(b"\n#"), find(b"\n\xEF\xBB\xBF"), header_again].into_iter().flatten().min()
     }
 
     /// At the end: the bytes to give, without a last line cut short when dropping one.
