@@ -7,10 +7,10 @@ import { openMapping } from "./mapping.js";
 import { addParsed, inWorker } from "./loading.js";
 
 /** A check error the column mapper fixes: the form's field and the value that fixes it
- * (the time's unit is the one check found, its `fix_value`). */
+ * (the time's and the gyro's unit are those check found, its `fix_value`). */
 const MAPPER_FIX = {
   gyro_sign: () => ({ "map-rate-sense": "cw" }),
-  gyro_unit: () => ({ "map-rate-unit": "rad/s" }),
+  gyro_unit: (f) => ({ "map-rate-unit": f.fix_value ?? "rad/s" }),
   heading_unit: () => ({ "map-ref-unit": "rad" }),
   time_unit: (f) => ({ "map-time-unit-0": f.fix_value ?? "ms" }),
 };

@@ -45,7 +45,8 @@ pub struct Finding {
     /// The recipe field or setting that fixes it.
     pub fix: Option<String>,
     /// The value that fix sets, where it is one a front can fill in (time_unit: "ms", "us"
-    /// or "ns", the recipe's `time.unit`).
+    /// or "ns", the recipe's `time.unit`; gyro_unit: "rad/s", "mrad/s" or "deg/h", its
+    /// `yaw_rate.unit`).
     #[serde(default)]
     pub fix_value: Option<String>,
 }

@@ -104,6 +104,23 @@ fn time_in_ms_us_or_ns_is_named_and_the_other_checks_read_it_so() {
     assert!(check(&log).findings.iter().all(|f| f.fix_value.is_none()));
 }
 
+/// The gyro in each rate unit the recipe reads, either sense: found as that unit, with the
+/// value the dashboard's mapper fills in (before, mrad/s and deg/h were "a unit or scale
+/// mistake").
+#[test]
+fn the_gyro_in_rad_mrad_or_deg_per_hour_is_named() {
+    let deg = 180.0 / std::f64::consts::PI;
+    for (unit, k) in [("rad/s", 1.0 / deg), ("mrad/s", 1000.0 / deg), ("deg/h", 3600.0)] {
+        for sense in [1.0, -1.0] {
+            let r = check(&scaled(&city(), Column::GyroDps, sense * k));
+            let f = r.findings.iter().find(|f| f.code == "gyro_unit").unwrap_or_else(|| panic!("{unit}: {}", r.to_text()));
+            assert_eq!((f.severity, f.fix_value.as_deref()), (Severity::Error, Some(unit)), "{}", r.to_text());
+            assert_eq!(f.message.ends_with("clockwise"), sense < 0.0, "{}", f.message);
+            assert_eq!(f.fix.as_deref().unwrap().contains("positive = \"cw\""), sense < 0.0);
+        }
+    }
+}
+
 /// A declared lead-in (60 s) longer than the standing (20 s): found with the standing
 /// as its fix; units and sign are judged with the standing's bias, so the drive's first
 /// turns inside the lead-in are not read as a scale error.

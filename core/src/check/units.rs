@@ -1,6 +1,6 @@
 //! Units and sign: the integrated gyro against the reference heading's change on clear
-//! turns says whether the gyro is in rad/s or clockwise, or the heading in radians, and the
-//! gyro's scale error.
+//! turns says whether the gyro is in rad/s, mrad/s or deg/h or clockwise, or the heading in
+//! radians, and the gyro's scale error.
 
 use super::{finding, outliers, CheckReport, Severity};
 use crate::log::{Column, DriveLog};
@@ -193,7 +193,7 @@ pub(super) fn gyro_over_reference(log: &DriveLog, eps0: Option<f64>, in_radians:
 fn units_from_ratio(r: &mut CheckReport, k: f64, se: f64) {
     let deg = 180.0 / std::f64::consts::PI;
     let near = |x: f64, want: f64| (x / want - 1.0).abs() < 0.25;
-    let (code, message, fix) = if near(k, 1.0) {
+    if near(k, 1.0) {
         // A scale error only where the turns tell it apart from none (beyond 2 standard errors).
         if (k - 1.0).abs() > 0.03_f64.max(2.0 * se) {
             let (e, pm) = ((k - 1.0) * 100.0, 200.0 * se);
@@ -201,25 +201,24 @@ fn units_from_ratio(r: &mut CheckReport, k: f64, se: f64) {
             r.findings.push(finding(Severity::Info, "gyro_scale", m, Some("yaw_rate.scale in the recipe, or calibrate")));
         }
         return;
-    } else if near(k, -1.0) {
-        (
-            "gyro_sign",
-            "the gyro and the reference turn opposite ways: one of them is clockwise-positive".to_string(),
-            "heading.positive or yaw_rate.positive = \"cw\" (a GPS course is cw)",
-        )
-    } else if near(k, 1.0 / deg) {
-        (
-            "gyro_unit",
-            format!("the gyro's heading change is {k:.4} of the reference's (1/57.3): the gyro is in rad/s"),
-            "yaw_rate.unit = \"rad/s\" in the recipe",
-        )
-    } else if near(k, -1.0 / deg) {
-        (
-            "gyro_unit",
-            format!("the gyro's heading change is {k:.4} of the reference's: rad/s and clockwise"),
-            "yaw_rate.unit = \"rad/s\", positive = \"cw\"",
-        )
-    } else if near(k, deg) {
+    }
+    if near(k, -1.0) {
+        let message = "the gyro and the reference turn opposite ways: one of them is clockwise-positive".to_string();
+        let fix = "heading.positive or yaw_rate.positive = \"cw\" (a GPS course is cw)";
+        return r.findings.push(finding(Severity::Error, "gyro_sign", message, Some(fix)));
+    }
+    // The gyro in a rate unit the recipe reads (its values `k` times deg/s), either sense.
+    for (unit, times) in [("rad/s", 1.0 / deg), ("mrad/s", 1000.0 / deg), ("deg/h", 3600.0)] {
+        if let Some(cw) = [false, true].into_iter().find(|&cw| near(k, if cw { -times } else { times })) {
+            let (sense, positive) = if cw { (" and clockwise", ", positive = \"cw\"") } else { ("", "") };
+            let message = format!("the gyro's heading change is {k:.4} times the reference's ({times:.4}): the gyro is in {unit}{sense}");
+            let mut f =
+                finding(Severity::Error, "gyro_unit", message, Some(&format!("yaw_rate.unit = \"{unit}\"{positive} in the recipe")));
+            f.fix_value = Some(unit.into());
+            return r.findings.push(f);
+        }
+    }
+    let (code, message, fix) = if near(k, deg) {
         (
             "heading_unit",
             format!("the reference changes {:.4} of the gyro's heading (1/57.3): ref_heading_deg is in radians", 1.0 / k),

@@ -31,7 +31,8 @@ export interface CheckFinding {
     | "no_reference" | "outlier" | "reference_turn" | "speed_unit" | "wheel_units";
   message: string;
   fix: string | null;
-  /** The value the fix sets where a front can fill it in (time_unit: "ms", "us" or "ns"). */
+  /** The value the fix sets where a front can fill it in (time_unit: "ms", "us" or "ns";
+   * gyro_unit: "rad/s", "mrad/s" or "deg/h"). */
   fix_value: string | null;
 }
 
