@@ -147,8 +147,9 @@ export function addParsed(name, make, checked = null) {
       // What `gyrodrift check` would say: unit, sign and gap mistakes, each with its fix.
       const findings = parts.length > 1 ? gd.checkLog(log).findings : check.findings;
       entry.findings = findings.filter((f) => f.severity !== "info");
-      // Its errors (ms time, radian heading, rad/s or clockwise gyro): the CLI refuses such a
-      // log; the page flags it, leaves it out of the Report and offers the fix.
+      // Its errors (time not in seconds, heading in radians, gyro in another unit or
+      // clockwise): the CLI refuses such a log; the page flags it, leaves it out of the
+      // Report and offers the fix.
       entry.errors = findings.filter((f) => f.severity === "error");
       // Information (no stops to judge the bias at, a scale to check): a quiet note of its own.
       entry.info = findings.filter((f) => f.severity === "info");

@@ -17,8 +17,9 @@ pub(crate) struct Cli {
     /// their own (parts under 30 s dropped), or refuse it. No method integrates across one.
     #[arg(long, global = true, value_enum, default_value = "split")]
     pub(crate) gaps: GapsArg,
-    /// Run a log even when `check` finds an error in it (ms time, radian heading, rad/s or
-    /// clockwise gyro), whose results would otherwise be absurd and are refused.
+    /// Run a log even when `check` finds an error in it (time not in seconds, heading in
+    /// radians, gyro in another unit or clockwise), whose results would otherwise be absurd
+    /// and are refused.
     #[arg(long, global = true)]
     pub(crate) ignore_check: bool,
     /// A log whose time repeats or steps back by at most 1 s (a logger writing a sample twice,

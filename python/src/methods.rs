@@ -196,8 +196,8 @@ fn borrowed(v: &[(String, std::sync::Arc<DriveLog>)]) -> Vec<(String, &DriveLog)
     v.iter().map(|(n, l)| (n.clone(), l.as_ref())).collect()
 }
 
-/// The logs as the CLI takes them: one that `check` finds an error in (ms time, radian
-/// heading, rad/s or clockwise gyro; core's `refusal`) is a ValueError naming it and the fix,
+/// The logs as the CLI takes them: one that `check` finds an error in (time not in seconds,
+/// heading in radians, gyro in another unit or clockwise; core's `refusal`) is a ValueError naming it and the fix,
 /// since every figure from it would be absurd, unless `ignore_check`.
 fn checked(
     py: Python<'_>,

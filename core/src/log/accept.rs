@@ -1,8 +1,9 @@
 //! How every front takes a log before scoring it: what `check` finds is said (warnings),
-//! a log with an error finding (ms time, radian heading, rad/s or clockwise gyro) is refused
-//! unless asked to run it anyway, since every figure from it would be absurd, and the gap
-//! policy splits it into parts scored as drives of their own. One place, so the CLI, the
-//! fleet batch and the Python package refuse and split the same logs.
+//! a log with an error finding (time not in seconds, heading in radians, gyro in another
+//! unit or clockwise) is refused unless asked to run it anyway, since every figure from it
+//! would be absurd, and the gap policy splits it into parts scored as drives of their own.
+//! One place, so the CLI, the fleet batch and the Python package refuse and split the same
+//! logs.
 
 use super::gaps::{split_at_gaps, GapPolicy, MIN_PART_S};
 use super::DriveLog;
