@@ -159,46 +159,35 @@ test("two logs joined into one file are an error naming the second log's first l
   await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n, before);
 });
 
-test("a second log that starts with its header row alone is named as one and read on request", async () => {
-  const dir = mkdtempSync(join(tmpdir(), "gd-header-"));
+test("a second log that starts with its header row alone, or a logger's clock reset, is named as such and read in parts on request (not put in time order)", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "gd-parts-"));
   const a = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
-  const b = readFileSync(join(SAMPLES, "train", "city-2.csv"), "utf8");
-  const file = join(dir, "headers.csv");
-  writeFileSync(file, a + b.split("\n").filter((l) => !l.startsWith("#")).join("\n"));
-  const before = await page.locator("#logs li:not(.bad)").count();
-  await page.locator("#file-input").setInputFiles([file]);
-  const bad = page.locator("#logs li.bad", { hasText: "headers.csv" });
-  await bad.waitFor();
+  const b = readFileSync(join(SAMPLES, "train", "city-2.csv"), "utf8").split("\n");
   const line = a.split("\n").length;
-  assert.match(await bad.innerText(), new RegExp(`line ${line}: the header row again after the rows .*a second log joined on\\?`));
-  await bad.locator("button.fix-joined").click();
-  await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n + 2, before);
-  for (const l of [1, line]) await page.locator("#logs li", { hasText: `from line ${l} of headers.csv` }).locator("button.remove").click();
-  await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n, before);
-});
-
-test("a logger's clock reset (time back to 0 without a new header) is offered to be read in parts, not put in time order", async () => {
-  const dir = mkdtempSync(join(tmpdir(), "gd-reset-"));
-  const a = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
-  const b = readFileSync(join(SAMPLES, "train", "city-2.csv"), "utf8");
-  const file = join(dir, "reset.csv");
-  writeFileSync(file, a + b.split("\n").filter((l) => l && !l.startsWith("#") && !l.startsWith("time_s")).join("\n") + "\n");
-  const before = await page.locator("#logs li:not(.bad)").count();
-  await page.locator("#file-input").setInputFiles([file]);
-  const bad = page.locator("#logs li.bad", { hasText: "reset.csv" });
-  await bad.waitFor();
-  const line = a.split("\n").length;
-  assert.match(await bad.innerText(), new RegExp(`line ${line}, column time_s: time 0 goes back .*a clock reset\\?`));
-  assert.equal(await bad.locator("button.fix-order").count(), 0);
-  await bad.locator("button.fix-joined").click();
-  await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n + 2, before);
-  const second = page.locator("#logs li", { hasText: `from line ${line} of reset.csv` });
-  assert.match(await second.innerText(), /City 1 \(2\)/);
-  await second.locator("button.pick").click();
+  const cases = [
+    // A logger that writes no metadata: City 2 with its header row alone.
+    ["headers.csv", b.filter((l) => !l.startsWith("#")), `line ${line}: the header row again after the rows .*a second log joined on\\?`, /^headers$/m],
+    // Restarted without a new header: City 2's rows go on from time 0, named after City 1.
+    ["reset.csv", b.filter((l) => l && !l.startsWith("#") && !l.startsWith("time_s")), `line ${line}, column time_s: time 0 goes back .*a clock reset\\?`, /City 1 \(2\)/],
+  ];
   const native = JSON.parse(cli("hdr", join(SAMPLES, "train", "city-2.csv"), "--json"));
-  await page.waitForFunction((v) => document.querySelector("#m-e-hdr")?.innerText === v, native.E_psi_hdr_deg.toFixed(2));
-  for (const l of [1, line]) await page.locator("#logs li", { hasText: `from line ${l} of reset.csv` }).locator("button.remove").click();
-  await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n, before);
+  for (const [name, rows, error, named] of cases) {
+    writeFileSync(join(dir, name), a + rows.join("\n") + "\n");
+    const before = await page.locator("#logs li:not(.bad)").count();
+    await page.locator("#file-input").setInputFiles([join(dir, name)]);
+    const bad = page.locator("#logs li.bad", { hasText: name });
+    await bad.waitFor();
+    assert.match(await bad.innerText(), new RegExp(error));
+    assert.equal(await bad.locator("button.fix-order").count(), 0, name);
+    await bad.locator("button.fix-joined").click();
+    await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n + 2, before);
+    const second = page.locator("#logs li", { hasText: `from line ${line} of ${name}` });
+    assert.match(await second.innerText(), named);
+    await second.locator("button.pick").click();
+    await page.waitForFunction((v) => document.querySelector("#m-e-hdr")?.innerText === v, native.E_psi_hdr_deg.toFixed(2));
+    for (const l of [1, line]) await page.locator("#logs li", { hasText: `from line ${l} of ${name}` }).locator("button.remove").click();
+    await page.waitForFunction((n) => document.querySelectorAll("#logs li:not(.bad)").length === n, before);
+  }
 });
 
 test("a log a spreadsheet opened and saved (padded, quoted, Windows-1252) opens as the log, with the CLI's numbers", async () => {
