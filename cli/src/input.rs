@@ -3,7 +3,7 @@
 //! reads the log; and the checked parts each scoring command runs on (core's `accept`).
 
 use crate::{fail, hint_text, import_hint, is_stdin, shell_quoted, shown, Failure};
-use gyrodrift::log::accept::{accept, stem_in_file, InputPolicy, JoinedLogs, TimeOrder};
+use gyrodrift::log::accept::{accept, stem_in_file, InputPolicy, TimeOrder};
 use gyrodrift::{DriveLog, Error};
 use std::path::{Path, PathBuf};
 
@@ -15,24 +15,18 @@ pub(crate) fn time_order() -> TimeOrder {
     TIME_ORDER.get().copied().unwrap_or_default()
 }
 
-/// Parses a v1 log by the `--time-order` policy; what fixing did is said on stderr, and a
-/// refused time order names the option that fixes it.
-fn parse_ordered(path: &Path, reader: impl std::io::Read) -> Result<DriveLog, Failure> {
-    match gyrodrift::log::accept::parse_by(reader, time_order()) {
-        Ok((log, fixed)) => {
-            if let Some(f) = fixed {
-                eprintln!("{}: {f}", shown(path));
-            }
-            Ok(log)
-        }
-        Err(e) => Err(read_failure(path, e)),
-    }
-}
-
-/// Every log of a file by the input policy (`--joined split`: each log joined on; core's
-/// `parse_by_policy`), what reading each did said on stderr.
+/// Every log of a file by the input policy (core's `parse_by_policy`): one, or with
+/// `--joined split` each log joined on; what reading each did is said on stderr, and a
+/// refusal names the option or command that reads the log (or the import, for a logger's
+/// export).
 fn read_all(path: &Path, input: InputPolicy) -> Result<Vec<DriveLog>, Failure> {
-    let logs = gyrodrift::log::accept::parse_by_policy(open_input(path)?, input).map_err(|e| read_failure(path, e))?;
+    let logs = gyrodrift::log::accept::parse_by_policy(open_input(path)?, input).map_err(|e| {
+        let mut f = read_failure(path, e);
+        if let Some(hint) = import_hint(path).filter(|_| !is_stdin(path)) {
+            f.0 += &format!("; {hint}");
+        }
+        f
+    })?;
     let said = |(log, s): (DriveLog, Option<String>)| {
         if let Some(s) = s {
             eprintln!("{}: {s}", shown(path));
@@ -66,14 +60,10 @@ fn read_failure(path: &Path, e: Error) -> Failure {
     f
 }
 
+/// The one log of a file, by the `--time-order` policy (a file of several joined on refused).
 pub(crate) fn read_log(path: &Path) -> Result<DriveLog, Failure> {
-    let reader = open_input(path)?;
-    parse_ordered(path, reader).map_err(|mut f| {
-        if let Some(hint) = import_hint(path).filter(|_| !is_stdin(path)) {
-            f.0 += &format!("; {hint}");
-        }
-        f
-    })
+    let input = InputPolicy { time_order: time_order(), ..Default::default() };
+    read_all(path, input)?.pop().ok_or_else(|| Failure(format!("{}: no log", shown(path))))
 }
 
 /// A log file's bytes as the commands read them: standard input for `-` (once), a
@@ -120,7 +110,7 @@ pub(crate) type Input = InputPolicy;
 /// With `--joined split`, each log of a file of several joined on, an unnamed one named by
 /// the stem and its number.
 pub(crate) fn read_checked(path: &Path, input: Input, bias_s: Option<f64>) -> Result<Vec<DriveLog>, Failure> {
-    let logs = if input.joined == JoinedLogs::Split { read_all(path, input)? } else { vec![read_log(path)?] };
+    let logs = read_all(path, input)?;
     let (stem, n) = (stem_of(path), logs.len());
     let mut parts = Vec::new();
     for (k, drive) in logs.into_iter().enumerate() {

@@ -197,8 +197,8 @@ fn borrowed(v: &[(String, std::sync::Arc<DriveLog>)]) -> Vec<(String, &DriveLog)
 }
 
 /// The logs as the CLI takes them: one that `check` finds an error in (time not in seconds,
-/// heading in radians, gyro in another unit or clockwise; core's `refusal`) is a ValueError naming it and the fix,
-/// since every figure from it would be absurd, unless `ignore_check`.
+/// heading in radians, gyro in another unit or clockwise; core's `refusal`) is a ValueError
+/// naming it and the fix, since every figure from it would be absurd, unless `ignore_check`.
 fn checked(
     py: Python<'_>,
     named: Vec<(String, std::sync::Arc<DriveLog>)>,

@@ -58,7 +58,8 @@ impl Log {
 
     /// The logs of a JS array of `Log` objects, with their names, without taking them. One
     /// `check` finds an error in (core's `refusal`: time not in seconds, heading in radians,
-    /// gyro in another unit or clockwise) is refused, as the CLI refuses it, unless `ignore_check`.
+    /// gyro in another unit or clockwise) is refused, as the CLI refuses it, unless
+    /// `ignore_check`.
     pub(crate) fn from_array(value: &JsValue, what: &str, ignore_check: Option<bool>) -> JsResult<Vec<(String, Rc<DriveLog>)>> {
         if value.is_undefined() || value.is_null() {
             return Ok(Vec::new());

@@ -61,6 +61,13 @@ pub(super) fn default_max_backward_s() -> f64 {
 /// The largest step back a row may take and be sorted in (1 s); beyond it, a clock reset.
 pub const MAX_BACKWARD_S: f64 = 1.0;
 
+/// Whether time `t` after the latest time `latest` is a clock reset in a v1 log: more than
+/// [`MAX_BACKWARD_S`] back (the parser's refusal, `put_v1_in_time_order`, and where
+/// `accept::parse_joined` cuts a log).
+pub(crate) fn is_clock_reset(latest: f64, t: f64) -> bool {
+    latest - t > MAX_BACKWARD_S
+}
+
 /// What the import does with rows that repeat a time.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -169,7 +176,7 @@ pub(crate) fn put_v1_in_time_order(time: &mut Vec<f64>, line: &mut Vec<u64>, col
     let spec = TimeSpec::default();
     let mut latest = f64::NEG_INFINITY;
     for (&t, &l) in time.iter().zip(line.iter()) {
-        if latest - t > spec.max_backward_s {
+        if is_clock_reset(latest, t) {
             let message = format!(
                 "time {t} goes back {:.3} s from {latest}: a clock reset? (rows up to 1 s late are sorted in; the joined-logs rule `split` reads each part as a log of its own)",
                 latest - t

@@ -97,7 +97,7 @@ fn read_restarts<R: std::io::Read>(
     let mut log = super::parse::parse_log_unordered(reader)?;
     let (mut latest, mut cuts) = (f64::NEG_INFINITY, Vec::new());
     for (i, &x) in log.time_s().iter().enumerate() {
-        if latest - x > crate::import::MAX_BACKWARD_S {
+        if crate::import::is_clock_reset(latest, x) {
             cuts.push((i, latest));
             latest = x;
         }
@@ -108,9 +108,7 @@ fn read_restarts<R: std::io::Read>(
     parts.reverse();
     let n = parts.len();
     let in_order = |(k, (mut part, after)): (usize, (DriveLog, Option<f64>))| {
-        if n > 1 {
-            part.meta.name = part.meta.name.take().map(|name| format!("{name} ({})", k + 1));
-        }
+        part.meta.name = part.meta.name.take().map(|name| stem_in_file(&name, k, n));
         let (part, fixes) = match order {
             TimeOrder::Error => super::parse::strictly_increasing(&part).map(|_| (part, String::new()))?,
             TimeOrder::Fix => super::parse::in_time_order(part).map(|(l, f)| (l, f.to_text()))?,

@@ -79,7 +79,8 @@ pub(super) fn strictly_increasing(log: &DriveLog) -> Result<()> {
     match (1..t.len()).find(|&i| t[i] <= t[i - 1]) {
         None => Ok(()),
         Some(i) => {
-            Err(Error::Cell { line: log.line[i], column: "time_s".into(), message: time_order_message(t[i], t[i - 1], log.line[i - 1]) })
+            let line = |i: usize| log.line.get(i).copied().unwrap_or(i as u64 + 2);
+            Err(Error::Cell { line: line(i), column: "time_s".into(), message: time_order_message(t[i], t[i - 1], line(i - 1)) })
         }
     }
 }
@@ -156,7 +157,7 @@ pub(super) const CLOCK_RESET: &str = "a clock reset?";
 /// 1 s is named a clock reset (a logger restarted), which no time-order fix mends.
 fn time_order_message(v: f64, pt: f64, pl: u64) -> String {
     let what = if v == pt { "repeats" } else { "goes back from" };
-    let reset = if pt - v > crate::import::MAX_BACKWARD_S { " a clock reset?" } else { "" };
+    let reset = if crate::import::is_clock_reset(pt, v) { " a clock reset?" } else { "" };
     // Ends with TIME_ORDER_REFUSAL (a literal here: the const in the format string grows the
     // size-capped browser module).
     format!("time {v} {what} {pt} on line {pl}:{reset} time must strictly increase")
