@@ -95,7 +95,7 @@ export async function parseInWorker(file, buffer, options = {}) {
 async function addWorkerParsed(f, res) {
   let built;
   try {
-    built = res.error ? { error: new Error(res.error) } : { log: await buildInTasks(res.data) };
+    built = res.error ? { error: Object.assign(new Error(res.error), { code: res.code }) } : { log: await buildInTasks(res.data) };
   } catch (err) {
     built = { error: err };
   }
@@ -158,7 +158,8 @@ export function addParsed(name, make, checked = null) {
     state.entries.push(...entries);
     return entries[0];
   } catch (e) {
-    const entry = { name, file: name, log: null, error: `${name}: ${e.message}`, kind: null, headline: "" };
+    // `code`: the kind of a parser's refusal that another reading mends (core's `Refusal`).
+    const entry = { name, file: name, log: null, error: `${name}: ${e.message}`, code: e.code ?? null, kind: null, headline: "" };
     state.entries.push(entry);
     return entry;
   }
@@ -308,7 +309,7 @@ export async function loadFiles(given) {
       }
     } else {
       e = addLog(f.name, new Uint8Array(buffer));
-      if (e.error && window.Worker && !TIME_ORDER.test(e.error) && !CUT_ROW.test(e.error)) {
+      if (e.error && window.Worker && !ORDER_CODES.includes(e.code)) {
         // The page's module reads the format as written; the worker's also reads what a
         // spreadsheet writes (`;` and decimal commas, metadata lines padded or quoted).
         state.entries.splice(state.entries.indexOf(e), 1);
@@ -319,14 +320,14 @@ export async function loadFiles(given) {
       last = e;
       // Its file, should check find an error the column mapper can fix (remap).
       for (const x of state.entries) if (x.file === f.name && !x.error && !x.source) x.source = f;
-    } else if (TIME_ORDER.test(e.error) && !CLOCK_RESET.test(e.error) && window.Worker) {
+    } else if (e.code === "time_order" && window.Worker) {
       // A time that repeats or steps back: the list offers to put it in order (fixTimeOrder).
       Object.assign(e, { source: f, timeOrder: true });
-    } else if ((JOINED.test(e.error) || CLOCK_RESET.test(e.error)) && window.Worker) {
+    } else if (JOINED_CODES.includes(e.code) && window.Worker) {
       // Several logs joined in one file, or a logger's clock reset: the list offers to read
       // each (readJoined).
       Object.assign(e, { source: f, joined: true });
-    } else if (CUT_ROW.test(e.error) && window.Worker) {
+    } else if (e.code === "cut_row" && window.Worker) {
       // A logger stopped mid-line: the worker's module reads the log without its cut last
       // line and says so (a row cut anywhere else stays the error it is).
       Object.assign(e, { source: f });
@@ -339,15 +340,14 @@ export async function loadFiles(given) {
   else renderList();
 }
 
-/** Core's refusal of a log whose time does not strictly increase. */
-const TIME_ORDER = /time must strictly increase/;
-/** Core's refusal of a file with a second log joined on. */
-const JOINED = /a second log joined on\?/;
-/** Core's refusal of a time more than 1 s back (a logger restarted its clock), which no
- * time-order fix mends and `split` reads as logs of their own. */
-const CLOCK_RESET = /a clock reset\?/;
-/** Core's refusal of a row with fewer cells than the header (a last line cut short?). */
-const CUT_ROW = /\(truncated row\?\)$/;
+/** Core's refusals (`Error.code`) that the worker's module reads another way, not by
+ * reading the file again as a spreadsheet's: a time that repeats or steps back a little
+ * (put in order), a clock reset (read in parts), a row cut short (dropped where it is the
+ * last line; the page's module also reads a second log joined on as one). */
+const ORDER_CODES = ["time_order", "clock_reset", "cut_row"];
+/** Core's refusals of a file the worker reads as logs of their own: a second log joined
+ * on, or a clock reset (a logger restarted), which no time-order fix mends. */
+const JOINED_CODES = ["joined", "clock_reset"];
 
 /** A log refused for its time order (or its last line cut short), read again in the worker
  * (whose module has the fixing parser) with its time put in order: rows of one time merged by
@@ -362,7 +362,7 @@ export async function fixTimeOrder(entry, label = "⇅ put in time order") {
   const e = await addWorkerParsed(f, res);
   if (!e.error) Object.assign(e, { orderNote: res.fixed, orderLabel: label });
   // The page's module reads a second log joined on as a row cut short: the worker's names it.
-  else if (JOINED.test(e.error) || CLOCK_RESET.test(e.error)) Object.assign(e, { source: f, joined: true });
+  else if (JOINED_CODES.includes(e.code)) Object.assign(e, { source: f, joined: true });
   $("status").textContent = "";
   if (!e.error) selectEntry(state.entries.indexOf(e));
   else renderList();

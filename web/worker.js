@@ -158,6 +158,7 @@ self.onmessage = async (ev) => {
     kept.set(id, log);
     self.postMessage({ id, data, key: id, check, fixed }, buffers(data));
   } catch (e) {
-    self.postMessage({ id, error: e.message });
+    // `code`: the kind of a parser's refusal that another reading mends (core's `Refusal`).
+    self.postMessage({ id, error: e.message, code: e.code });
   }
 };

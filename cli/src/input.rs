@@ -3,7 +3,7 @@
 //! reads the log; and the checked parts each scoring command runs on (core's `accept`).
 
 use crate::{fail, hint_text, import_hint, is_stdin, shell_quoted, shown, Failure};
-use gyrodrift::log::accept::{accept, stem_in_file, InputPolicy, TimeOrder};
+use gyrodrift::log::accept::{accept, stem_in_file, InputPolicy, Refusal, TimeOrder};
 use gyrodrift::{DriveLog, Error};
 use std::path::{Path, PathBuf};
 
@@ -40,9 +40,10 @@ fn read_all(path: &Path, input: InputPolicy) -> Result<Vec<DriveLog>, Failure> {
 /// that repeats, `split` for logs joined on or a clock reset, the import's draft for a
 /// logger's own table.
 fn read_failure(path: &Path, e: Error) -> Failure {
-    let out_of_order = gyrodrift::log::accept::refused_for_time_order(&e);
-    let reset = gyrodrift::log::accept::refused_for_clock_reset(&e);
-    let joined = gyrodrift::log::accept::refused_for_join(&e) || reset;
+    let refusal = Refusal::of(&e);
+    let out_of_order = refusal == Some(Refusal::TimeOrder);
+    let reset = refusal == Some(Refusal::ClockReset);
+    let joined = refusal == Some(Refusal::Joined) || reset;
     let drafted = !out_of_order && !joined && !is_stdin(path) && gyrodrift::import::draft_reads_refused(path, &e);
     let mut f = fail(path, e);
     if joined {

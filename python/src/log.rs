@@ -1,7 +1,7 @@
 //! `Log`: a parsed drive log (CSV v1), read from a file or text, or made from numpy columns.
 
 use crate::{array, from_py, result_dict, value_err, values};
-use gyrodrift::log::accept::TimeOrder;
+use gyrodrift::log::accept::{Refusal, TimeOrder};
 use gyrodrift::{Column, DriveLog};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::{PyKeyError, PyOSError};
@@ -91,14 +91,14 @@ pub(crate) fn read_path(path: &str, order: TimeOrder) -> PyResult<(DriveLog, Opt
             }
             None => String::new(),
         };
-        let joined = if gyrodrift::log::accept::refused_for_join(&e) {
+        let joined = if Refusal::of(&e) == Some(Refusal::Joined) {
             "; gyrodrift.Log.read_joined reads each log in it"
-        } else if gyrodrift::log::accept::refused_for_clock_reset(&e) {
+        } else if Refusal::of(&e) == Some(Refusal::ClockReset) {
             "; gyrodrift.Log.read_joined reads each part (a logger restarted?) as a log of its own"
         } else {
             ""
         };
-        value_err(format!("{path}: {e}{order_hint}{joined}{hint}", order_hint = time_order_hint(&e)))
+        refusal_err(&e, format!("{path}: {e}{order_hint}{joined}{hint}", order_hint = time_order_hint(&e)))
     })
 }
 
@@ -111,9 +111,21 @@ pub(crate) fn time_order(s: &str) -> PyResult<TimeOrder> {
     }
 }
 
+/// A parser's refusal as a ValueError with `message`, its `code` the refusal's kind
+/// ("time_order", "clock_reset", "joined", "cut_row"; core's `accept::Refusal`) or None, so
+/// a fleet job tells which reading mends a log without matching the words.
+pub(crate) fn refusal_err(e: &gyrodrift::Error, message: String) -> PyErr {
+    let err = value_err(message);
+    let code = Refusal::of(e).map(Refusal::code);
+    Python::attach(|py| match err.value(py).setattr("code", code) {
+        Ok(()) => err,
+        Err(set) => set,
+    })
+}
+
 /// For a log refused for its time order: the argument that fixes it.
 fn time_order_hint(e: &gyrodrift::Error) -> &'static str {
-    match gyrodrift::log::accept::refused_for_time_order(e) {
+    match Refusal::of(e) == Some(Refusal::TimeOrder) {
         true => "; time_order=\"fix\" merges repeated times and sorts rows up to 1 s late in",
         false => "",
     }
@@ -174,7 +186,7 @@ impl PyLog {
         let (p, order) = (path.display().to_string(), self::time_order(time_order)?);
         let logs = py.detach(|| {
             let f = gyrodrift::log::file::open_log(&path).map_err(|e| PyOSError::new_err(format!("{p}: cannot open: {e}")))?;
-            gyrodrift::log::accept::parse_joined(f, order).map_err(|e| value_err(format!("{p}: {e}{}", time_order_hint(&e))))
+            gyrodrift::log::accept::parse_joined(f, order).map_err(|e| refusal_err(&e, format!("{p}: {e}{}", time_order_hint(&e))))
         })?;
         logs.into_iter().map(|(log, said, line)| warned(py, &format!("{p} (from line {line})"), (log, said))).collect()
     }
@@ -183,7 +195,8 @@ impl PyLog {
     /// line cut short is dropped with a UserWarning).
     #[staticmethod]
     fn parse(py: Python<'_>, text: &str) -> PyResult<PyLog> {
-        let read = py.detach(|| gyrodrift::log::accept::parse_by(text.as_bytes(), TimeOrder::Error)).map_err(value_err)?;
+        let read = py.detach(|| gyrodrift::log::accept::parse_by(text.as_bytes(), TimeOrder::Error));
+        let read = read.map_err(|e| refusal_err(&e, e.to_string()))?;
         warned(py, "log", read)
     }
 
@@ -196,7 +209,7 @@ impl PyLog {
         let order = self::time_order(time_order)?;
         let parse = |r| gyrodrift::log::accept::parse_by(r, order);
         let parsed = py.detach(|| gyrodrift::log::file::decompressed(&data[..]).map_err(gyrodrift::Error::from).and_then(parse));
-        let read = parsed.map_err(|e| value_err(format!("{e}{}", time_order_hint(&e))))?;
+        let read = parsed.map_err(|e| refusal_err(&e, format!("{e}{}", time_order_hint(&e))))?;
         warned(py, "log", read)
     }
 

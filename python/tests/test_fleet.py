@@ -289,8 +289,9 @@ def test_two_logs_joined_are_refused_naming_the_seconds_first_line(samples, tmp_
             read()
     (row,) = g.score_files([str(tmp_path / "joined.csv")], 1)
     assert said in row["error"]
-    with pytest.raises(ValueError, match=re.escape("gyrodrift.Log.read_joined reads each log in it")):
+    with pytest.raises(ValueError, match=re.escape("gyrodrift.Log.read_joined reads each log in it")) as e:
         g.Log.read(str(tmp_path / "joined.csv"))
+    assert e.value.code == "joined"
     # Log.read_joined: each log as read alone; a '#' note after the last rows said, not a log.
     (tmp_path / "noted.csv").write_text(a + b + "# stopped by the user\n")
     with pytest.warns(UserWarning, match=re.escape(f"(from line {line}): the '#' lines from line")):
@@ -319,6 +320,7 @@ def test_a_clock_reset_is_refused_and_read_in_parts(samples, tmp_path):
             g.Log.read(str(tmp_path / "reset.csv"), time_order=order)
         assert "a clock reset?" in str(e.value) and "read_joined reads each part" in str(e.value)
         assert 'time_order="fix" merges' not in str(e.value)
+        assert e.value.code == "clock_reset"
     with pytest.warns(UserWarning, match=re.escape(f"(from line {line}): its clock reset on this line (time 0 after 1164)")):
         logs = g.Log.read_joined(str(tmp_path / "reset.csv"))
     assert [x.meta()["name"] for x in logs] == ["City 1 (1)", "City 1 (2)"]
@@ -326,6 +328,27 @@ def test_a_clock_reset_is_refused_and_read_in_parts(samples, tmp_path):
     rows = g.score_files([str(tmp_path / "reset.csv")], 1, {"input": {"joined": "split"}})
     assert [r["name"] for r in rows] == ["City 1 (1)", "City 1 (2)"] and all(r["error"] is None for r in rows)
     assert f"from line {line}; its clock reset on this line" in rows[1]["warnings"]
+
+
+def test_a_refusal_another_reading_mends_carries_its_kind_as_code(tmp_path):
+    """Each parser refusal says by `code` which reading mends it (core's Refusal), so a fleet
+    job sorts its failures without matching the words; any other parse error's code is None."""
+    rows = "time_s,gyro_dps,temp_c\n0,1,20\n1,1,20\n"
+    for text, code in [
+        (rows + "1,1,20\n", "time_order"),
+        (rows + "5,1,20\n0,1,20\n", "clock_reset"),
+        (rows + "# name: b\ntime_s,gyro_dps\n0,1\n", "joined"),
+        (rows + "2,1\n3,1,20\n", "cut_row"),
+        (rows + "2,x,20\n", None),
+    ]:
+        (tmp_path / "a.csv").write_text(text)
+        for read in [lambda: g.Log.parse(text), lambda: g.Log.from_bytes(text.encode()), lambda: g.Log.read(str(tmp_path / "a.csv"))]:
+            with pytest.raises(ValueError, match=r"line \d+") as e:
+                read()
+            assert e.value.code == code, (text, str(e.value))
+    with pytest.raises(ValueError) as e:
+        g.Log.read_joined(str(tmp_path / "a.csv"))
+    assert e.value.code is None and "is not a number" in str(e.value)
 
 
 def test_a_log_in_windows_1252_reads_with_a_warning(samples, tmp_path):

@@ -72,6 +72,45 @@ test("two logs joined into one file: every parse names the second log's first li
   });
 });
 
+test("a refusal another reading mends carries its kind as Error.code, in the full package and the page's core module", async () => {
+  const pkg = join(ROOT, "web", "pkg");
+  const page = await import(join(pkg, "gyrodrift.js"));
+  page.initSync({ module: readFileSync(join(pkg, "gyrodrift_bg.wasm")) });
+  const a = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
+  const rows = "# name: x\ntime_s,gyro_dps,temp_c\n0,1,20\n1,1,20\n";
+  const cases = [
+    [rows + "1,1,20\n", "time_order"],
+    [rows + "5,1,20\n0,1,20\n", "clock_reset"],
+    [rows + "2,1\n3,1,20\n", "cut_row"],
+    [rows + "2,x,20\n", undefined],
+    [rows + "2,1,20,4\n", undefined],
+  ];
+  const code = (parse) => {
+    try {
+      parse();
+    } catch (e) {
+      assert.ok(e instanceof Error && /^line \d+/.test(e.message), e.message);
+      return e.code;
+    }
+    assert.fail("not refused");
+  };
+  for (const [text, want] of cases) {
+    const bytes = new TextEncoder().encode(text);
+    for (const m of [gd, page]) {
+      for (const parse of [() => m.Log.parse(text), () => m.Log.fromBytes(bytes)]) assert.equal(code(parse), want, `${want}: ${text}`);
+    }
+    assert.equal(code(() => gd.Log.fromBytesWithProgress(bytes, () => {})), want, text);
+  }
+  // The full package names a second log joined on; the page's module reads it as a row cut
+  // short (the page then asks the worker, which names it).
+  const joined = new TextEncoder().encode(a + rows);
+  assert.equal(code(() => gd.Log.fromBytes(joined)), "joined");
+  assert.equal(code(() => gd.logInTimeOrder(joined)), "joined");
+  assert.equal(code(() => page.Log.fromBytes(joined)), "cut_row");
+  // Put in time order, a clock reset is still refused, and named so.
+  assert.equal(code(() => gd.logInTimeOrder(new TextEncoder().encode(rows + "5,1,20\n0,1,20\n"))), "clock_reset");
+});
+
 test("a log a spreadsheet opened and saved (metadata padded with separators, one quoted) is a drive log this module reads", () => {
   const text = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
   const saved = text

@@ -1,6 +1,6 @@
 // Compiled with `tsc --noEmit`: the package's types describe options and results (no `any`).
 import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, draftRecipe, columnGuesses, isDriveLog, pipeline, runPipeline, pipelineTrack, track, compare, checkLog, battery, batteryMarkdown, PipelineEstimator, addGyroErrors, batteryProfiles } from "gyrodrift";
-import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, Draft, ColumnGuesses, PipelineResult, PipelineRun, PipelineTracks, Tracks, Compare, CheckReport, CheckFinding, GapSplit, Battery, BatteryCase, PipelineState, GyroErrors, BatteryProfile } from "gyrodrift";
+import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, Draft, ColumnGuesses, PipelineResult, PipelineRun, PipelineTracks, Tracks, Compare, CheckReport, CheckFinding, GapSplit, ParseError, RefusalCode, Battery, BatteryCase, PipelineState, GyroErrors, BatteryProfile } from "gyrodrift";
 
 const log: Log = Log.parse("time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1,0\n");
 const opts: HdrOptions = { i_c_dps: 0.0422, tau_s: 0.75, resample: true };
@@ -75,6 +75,14 @@ const gap: number = chk.gaps_s[0]?.[1] ?? 0;
 const badCode: CheckFinding["code"] = "colour";
 const noRef: CheckFinding["code"] = "no_reference";
 void noRef;
+try {
+  Log.parse("time_s,gyro_dps\n0,1\n0,1\n");
+} catch (e) {
+  const code: RefusalCode | undefined = (e as ParseError).code;
+  // @ts-expect-error: a refusal's code is one of the named kinds
+  const badRefusal: RefusalCode = "time_travel";
+  void code, badRefusal;
+}
 const ver: string = version();
 const tables: string = compareTable([log], {}, "csv") + reportCsv([log], {});
 const why: string | undefined = checkOptions("hdr", { i_c_dps: -1 });

@@ -45,6 +45,18 @@ pub(crate) fn err(msg: impl std::fmt::Display) -> JsValue {
     js_sys::Error::new(&msg.to_string()).into()
 }
 
+/// A parser's refusal as a JS `Error`, its `code` the refusal's kind where another way of
+/// reading mends it (core's `accept::Refusal`: "time_order", "clock_reset", "joined",
+/// "cut_row"), so the page offers that way without matching the message's words.
+pub(crate) fn refusal(e: gyrodrift::Error) -> JsValue {
+    let code = gyrodrift::log::accept::Refusal::of(&e).map(|r| r.code());
+    let out = err(e);
+    if let Some(code) = code {
+        let _ = Reflect::set(&out, &"code".into(), &code.into());
+    }
+    out
+}
+
 /// Options from JS: undefined/null = all defaults; otherwise read by core's one schema
 /// (`options::from_json`: the structs' serde with their aliases, then their `validate`),
 /// which names an unknown or mistyped field. JSON has no NaN, so a non-finite number is

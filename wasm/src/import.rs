@@ -33,7 +33,7 @@ pub fn import_log(
 #[wasm_bindgen(js_name = logInTimeOrder, unchecked_return_type = "{ log: Log; fixed: string }")]
 pub fn log_in_time_order(#[wasm_bindgen(unchecked_param_type = "Uint8Array | ArrayBuffer")] bytes: JsValue) -> JsResult<JsValue> {
     let bytes = js_bytes(&bytes, "logInTimeOrder(bytes)")?;
-    let (log, fixed) = gyrodrift::log::accept::parse_fixing(&bytes[..]).map_err(err)?;
+    let (log, fixed) = gyrodrift::log::accept::parse_fixing(&bytes[..]).map_err(refusal)?;
     let out = Object::new();
     set(&out, "log", &JsValue::from(Log::new(log)))?;
     set(&out, "fixed", &JsValue::from_str(&fixed))?;
@@ -47,7 +47,7 @@ pub fn log_in_time_order(#[wasm_bindgen(unchecked_param_type = "Uint8Array | Arr
 #[wasm_bindgen(js_name = logsJoined, unchecked_return_type = "{ log: Log; fixed: string; line: number }[]")]
 pub fn logs_joined(#[wasm_bindgen(unchecked_param_type = "Uint8Array | ArrayBuffer")] bytes: JsValue) -> JsResult<JsValue> {
     let bytes = js_bytes(&bytes, "logsJoined(bytes)")?;
-    let logs = gyrodrift::log::accept::parse_joined(&bytes[..], gyrodrift::log::accept::TimeOrder::Fix).map_err(err)?;
+    let logs = gyrodrift::log::accept::parse_joined(&bytes[..], gyrodrift::log::accept::TimeOrder::Fix).map_err(refusal)?;
     let out = js_sys::Array::new();
     for (log, fixed, line) in logs {
         let o = Object::new();

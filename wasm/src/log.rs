@@ -119,7 +119,7 @@ impl Log {
     /// commas, metadata lines padded or quoted, Windows-1252 text).
     pub fn parse(#[wasm_bindgen(unchecked_param_type = "string")] text: JsValue) -> JsResult<Log> {
         let text = js_string(&text, "Log.parse(text)")?;
-        parse_v1_whole(text.as_bytes()).map(Log::new).map_err(err)
+        parse_v1_whole(text.as_bytes()).map(Log::new).map_err(refusal)
     }
 
     /// Parses CSV v1 bytes (e.g. from a File's arrayBuffer()); a spreadsheet's log as
@@ -127,7 +127,7 @@ impl Log {
     #[wasm_bindgen(js_name = fromBytes)]
     pub fn from_bytes(#[wasm_bindgen(unchecked_param_type = "Uint8Array | ArrayBuffer")] bytes: JsValue) -> JsResult<Log> {
         let bytes = js_bytes(&bytes, "Log.fromBytes(bytes)")?;
-        parse_v1_whole(&bytes).map(Log::new).map_err(err)
+        parse_v1_whole(&bytes).map(Log::new).map_err(refusal)
     }
 
     /// Parses CSV v1 bytes, calling `progress(fraction)` now and then (for a Web Worker
@@ -142,7 +142,7 @@ impl Log {
         let mut cb = |b: u64| {
             let _ = progress.call1(&JsValue::NULL, &JsValue::from_f64(b as f64 / total));
         };
-        parse_v1(&bytes, &mut cb).map(Log::new).map_err(err)
+        parse_v1(&bytes, &mut cb).map(Log::new).map_err(refusal)
     }
 
     /// The parsed log as plain data `{ meta, line, columns: { name: Float64Array } }`,

@@ -200,24 +200,50 @@ fn shifted(e: Error, by: u64) -> Error {
     }
 }
 
-/// Whether `e` is the refusal of a file with a second log joined on, which
-/// [`parse_joined`] reads: the fronts add what splits it in their own words.
-pub fn refused_for_join(e: &Error) -> bool {
-    matches!(e, Error::Line { message, .. } if message.contains(super::dialect::JOINED_REFUSAL))
+/// A refusal that another way of reading mends, told by kind so each front offers its way
+/// (an option, a command, a button) without matching the message's words.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Refusal {
+    /// A time that repeats or steps back by at most 1 s: [`TimeOrder::Fix`] puts it in order.
+    TimeOrder,
+    /// A time more than 1 s back (a logger restarted without a new header):
+    /// [`JoinedLogs::Split`] reads each part as a log of its own.
+    ClockReset,
+    /// A second log joined on (`cat a.csv b.csv`): [`JoinedLogs::Split`] reads each.
+    Joined,
+    /// A row with fewer cells than the header: where it is the last line (a logger stopped
+    /// mid-line), [`parse_fixing`] drops it.
+    CutRow,
 }
 
-/// Whether `e` is the parser's refusal of a time that repeats or steps back by at most 1 s
-/// (what `TimeOrder::Fix` fixes; not a clock reset): the fronts add the option that fixes it
-/// in their own words.
-pub fn refused_for_time_order(e: &Error) -> bool {
-    matches!(e, Error::Cell { column, message, .. } if column == "time_s" && message.ends_with(super::parse::TIME_ORDER_REFUSAL))
-        && !refused_for_clock_reset(e)
-}
+impl Refusal {
+    /// The kind of the parser's refusal `e`, or None for any other error.
+    pub fn of(e: &Error) -> Option<Refusal> {
+        // A plain window search: `str::contains`' two-way searcher would add 0.6 kB to the
+        // size-capped browser module (BENCHMARKS.md).
+        let has = |message: &str, text: &str| message.as_bytes().windows(text.len()).any(|w| w == text.as_bytes());
+        match e {
+            Error::Cell { column, message, .. } if column == "time_s" && has(message, super::parse::CLOCK_RESET) => {
+                Some(Refusal::ClockReset)
+            }
+            Error::Cell { column, message, .. } if column == "time_s" && message.ends_with(super::parse::TIME_ORDER_REFUSAL) => {
+                Some(Refusal::TimeOrder)
+            }
+            Error::Line { message, .. } if has(message, super::dialect::JOINED_REFUSAL) => Some(Refusal::Joined),
+            Error::Line { message, .. } if message.ends_with(super::parse::CUT_ROW) => Some(Refusal::CutRow),
+            _ => None,
+        }
+    }
 
-/// Whether `e` is a refusal for a clock reset (time back by more than 1 s: a logger restarted
-/// without a new header), which [`JoinedLogs::Split`] reads as logs of their own.
-pub fn refused_for_clock_reset(e: &Error) -> bool {
-    matches!(e, Error::Cell { column, message, .. } if column == "time_s" && message.contains(super::parse::CLOCK_RESET))
+    /// Its name for the fronts (the wasm package's `Error.code`, Python's `ValueError.code`).
+    pub fn code(self) -> &'static str {
+        match self {
+            Refusal::TimeOrder => "time_order",
+            Refusal::ClockReset => "clock_reset",
+            Refusal::Joined => "joined",
+            Refusal::CutRow => "cut_row",
+        }
+    }
 }
 
 /// A log taken: its parts (one without gaps), the check's warnings and what splitting did.
@@ -314,7 +340,7 @@ mod tests {
 
     /// Two logs joined (a BOM and CRLF lines in the first, as a spreadsheet saves): both,
     /// each with its own metadata and the line it starts on; `parse_by` refuses the file,
-    /// and the refusal is the one `refused_for_join` knows.
+    /// and the refusal is the one `Refusal::of` knows as joined.
     #[test]
     fn joined_logs_are_read_each_as_a_log_of_its_own() {
         let first = "\u{feff}# name: City 1\r\n# bias_s: 20\r\ntime_s,gyro_dps\r\n0,1\r\n1,2\r\n";
@@ -326,8 +352,8 @@ mod tests {
         assert_eq!(got, [("City 1".into(), Some(20.0), 2, None, 1), ("City 2".into(), Some(5.0), 1, None, 6)]);
         assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), &[3.0]);
         let e = parse_by(text.as_bytes(), TimeOrder::Error).unwrap_err();
-        assert!(refused_for_join(&e) && e.to_string().starts_with("line 6:"), "{e}");
-        assert!(!refused_for_join(&Error::Line { line: 6, message: "a bad row".into() }));
+        assert!(Refusal::of(&e) == Some(Refusal::Joined) && e.to_string().starts_with("line 6:"), "{e}");
+        assert_eq!(Refusal::of(&Error::Line { line: 6, message: "a bad row".into() }), None);
         // Three logs: the third starts where the second's line count says.
         let three = format!("{text}{second}");
         let lines: Vec<u64> = parse_joined(three.as_bytes(), TimeOrder::Error).unwrap().iter().map(|x| x.2).collect();
@@ -368,7 +394,10 @@ mod tests {
         ] {
             let joined = format!("{first}{second}");
             let e = parse_by(joined.as_bytes(), TimeOrder::Error).unwrap_err();
-            assert!(refused_for_join(&e) && e.to_string().starts_with(&format!("line 5: {text}: a second log joined on?")), "{e}");
+            assert!(
+                Refusal::of(&e) == Some(Refusal::Joined) && e.to_string().starts_with(&format!("line 5: {text}: a second log joined on?")),
+                "{e}"
+            );
             let logs = parse_joined(joined.as_bytes(), TimeOrder::Error).unwrap();
             let alone = parse_by(second.as_bytes(), TimeOrder::Error).unwrap().0;
             assert_eq!((logs.len(), logs[1].2, logs[1].0.meta.name.clone()), (2, 5, alone.meta.name.clone()));
@@ -389,7 +418,7 @@ mod tests {
         let text = "# name: a\n# bias_s: 2\ntime_s,gyro_dps\n0,1\n1,2\n2,3\n0,4\n0.5,5\n1,6\n";
         for order in [TimeOrder::Error, TimeOrder::Fix] {
             let e = parse_by(text.as_bytes(), order).unwrap_err();
-            assert!(refused_for_clock_reset(&e) && !refused_for_time_order(&e), "{e}");
+            assert_eq!(Refusal::of(&e), Some(Refusal::ClockReset), "{e}");
             assert!(e.to_string().starts_with("line 7, column time_s: time 0 goes back"), "{e}");
         }
         let logs = parse_joined(text.as_bytes(), TimeOrder::Error).unwrap();
@@ -405,7 +434,8 @@ mod tests {
         let late = format!("{text}0.5,7\n");
         let e = parse_joined(late.as_bytes(), TimeOrder::Error).unwrap_err();
         assert!(
-            refused_for_time_order(&e) && e.to_string().starts_with("line 10, column time_s: time 0.5 goes back from 1 on line 9"),
+            Refusal::of(&e) == Some(Refusal::TimeOrder)
+                && e.to_string().starts_with("line 10, column time_s: time 0.5 goes back from 1 on line 9"),
             "{e}"
         );
         let fixed = parse_joined(late.as_bytes(), TimeOrder::Fix).unwrap();
@@ -435,5 +465,29 @@ mod tests {
         assert_eq!((logs[1].0.meta.name.as_deref(), logs[1].0.meta.bias_s), (Some("b"), Some(20.0)));
         assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), alone[0].0.column(crate::log::Column::GyroDps).unwrap());
         assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), &[0.0, 0.1, 0.2]);
+    }
+
+    /// Each refusal a way of reading mends is told by kind, with its front name, from the
+    /// parser's own error; other errors have none: a row cut short is one wherever it is
+    /// (only `parse_fixing` judges whether it is the last line), a row with too many cells
+    /// or a bad cell is not.
+    #[test]
+    fn a_refusal_is_told_by_kind() {
+        let kind = |text: &str| Refusal::of(&parse_by(text.as_bytes(), TimeOrder::Error).unwrap_err()).map(Refusal::code);
+        assert_eq!(kind("time_s,gyro_dps\n0,1\n1,1\n1,1\n"), Some("time_order"));
+        assert_eq!(kind("time_s,gyro_dps\n0,1\n5,1\n1,1\n"), Some("clock_reset"));
+        assert_eq!(kind("time_s,gyro_dps\n0,1\n1,1\n# name: b\ntime_s,gyro_dps\n0,1\n"), Some("joined"));
+        // The page's parser refuses a cut last line, which this reader drops and says so.
+        let cut = "time_s,gyro_dps,temp_c\n0,1,20\n0.1,1";
+        assert_eq!(Refusal::of(&crate::log::parse_log(cut.as_bytes()).unwrap_err()), Some(Refusal::CutRow));
+        assert_eq!(kind("time_s,gyro_dps,temp_c\n0,1\n1,1,20\n"), Some("cut_row"));
+        assert_eq!(kind("time_s,gyro_dps\n0,1\n1,1,2\n"), None);
+        assert_eq!(kind("time_s,gyro_dps\n0,x\n"), None);
+        assert_eq!(kind("gyro_dps\n1\n"), None);
+        // Only a row's time: a gyro cell that repeats is no time-order refusal.
+        let e = Error::Cell { line: 3, column: "gyro_dps".into(), message: "time must strictly increase".into() };
+        assert_eq!(Refusal::of(&e), None);
+        // Named inside a drive or file, it is the error of that drive or file, not the parser's.
+        assert_eq!(Refusal::of(&parse_by(&b"time_s\n0\n0\n"[..], TimeOrder::Error).unwrap_err().within("a.csv")), None);
     }
 }

@@ -85,7 +85,7 @@ pub struct Joined {
     pub text: String,
 }
 
-/// What the refusal of a file with a second log joined on says (`accept::refused_for_join`).
+/// What the refusal of a file with a second log joined on says (`accept::Refusal::of`).
 pub(crate) const JOINED_REFUSAL: &str = "a second log joined on?";
 
 impl Joined {

@@ -147,11 +147,14 @@ fn parse_rows<const STRICT: bool>(reader: impl Read, opts: ParseOptions, progres
 }
 
 /// How the parser's refusal of a time that repeats or steps back ends (`data_row`;
-/// `accept::refused_for_time_order`, whose CLI and Python hints the tests check).
+/// `accept::Refusal::of`, whose CLI and Python hints the tests check).
 pub(super) const TIME_ORDER_REFUSAL: &str = "time must strictly increase";
 
-/// What a clock reset's refusal says (`accept::refused_for_clock_reset`).
+/// What a clock reset's refusal says (`accept::Refusal::of`).
 pub(super) const CLOCK_RESET: &str = "a clock reset?";
+
+/// How the refusal of a row with fewer cells than the header ends (`accept::Refusal::of`).
+pub(super) const CUT_ROW: &str = " (truncated row?)";
 
 /// Why time `v` on a row after time `pt` (on line `pl`) is refused; a step back of more than
 /// 1 s is named a clock reset (a logger restarted), which no time-order fix mends.

@@ -23,6 +23,18 @@ export interface LogColumns {
   columns: Record<string, Float64Array>;
 }
 
+/** The kind of a parser's refusal that another way of reading mends (core's
+ * `log::accept::Refusal`): a time that repeats or steps back by at most 1 s (`logInTimeOrder`
+ * puts it in order), a clock reset and a second log joined on (`logsJoined` reads each part),
+ * a row cut short (`logInTimeOrder` drops a cut last line). */
+export type RefusalCode = "time_order" | "clock_reset" | "joined" | "cut_row";
+
+/** What `Log.parse`, `Log.fromBytes`, `logInTimeOrder` and `logsJoined` throw: an Error naming
+ * the line and column, with `code` where another way of reading mends it. */
+export interface ParseError extends Error {
+  code?: RefusalCode;
+}
+
 /** One finding of `checkLog`, with the recipe field or setting that fixes it. */
 export interface CheckFinding {
   severity: "error" | "warning" | "info";
