@@ -97,6 +97,26 @@ fn write_rows(out: &Path, rows: &[DriveRow]) -> Result<(), Failure> {
     written.map_err(|e| Failure(format!("{}: cannot write: {e}", out.display())))
 }
 
+/// For the error rows another reading mends (core's refusal kinds, counted by the
+/// summary), the option that reads them, once: a front's words for core's `InputPolicy`.
+fn refusal_hints(summary: &fleet::FleetSummary) -> Vec<String> {
+    let n = |code: &str| summary.errors_by_code.get(code).copied().unwrap_or(0);
+    let mut out = Vec::new();
+    if n("time_order") > 0 {
+        out.push(format!(
+            "{} file(s) refused for a time that repeats or steps back by at most 1 s: `--time-order fix` puts it in order",
+            n("time_order")
+        ));
+    }
+    if n("joined") + n("clock_reset") > 0 {
+        out.push(format!(
+            "{} file(s) refused for a second log joined on or a clock reset: `--joined split` scores each log as a drive of its own",
+            n("joined") + n("clock_reset")
+        ));
+    }
+    out
+}
+
 /// `report --dir`: scores every log under `dir`; prints the summary (Markdown or JSON) and
 /// each error row's message on stderr; writes the rows to `out`. Files that failed are rows,
 /// not a failed command (exit 0): a fleet job keeps what it could score; with
@@ -126,6 +146,9 @@ pub fn run(dir: &Path, batch: Batch, opts: &FleetOptions, json: bool) -> Result<
         eprintln!("{}: {}{or}", h.folder.display(), crate::hint_text(&h, "a recording"));
     }
     let summary = fleet::summarize(&rows);
+    for line in refusal_hints(&summary) {
+        eprintln!("{line}");
+    }
     if json {
         print_json(&summary)?;
     } else {

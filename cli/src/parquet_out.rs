@@ -21,7 +21,7 @@ enum Kind {
 
 fn kind(column: &str) -> Kind {
     match column {
-        "file" | "name" | "still_source" | "warnings" | "not_scored" | "error" => Kind::Text,
+        "file" | "name" | "still_source" | "warnings" | "not_scored" | "error" | "error_code" => Kind::Text,
         "part" | "parts" | "rows" => Kind::Int,
         _ => Kind::Double,
     }

@@ -38,11 +38,47 @@ fn a_folder_is_scored_with_a_bad_file_as_an_error_row() {
     // Sorted by path: city-1, day2/broken, day2/highway-3.
     assert!(lines[1].contains("city-1.csv,1,1,City 1,"), "{}", lines[1]);
     assert!(
-        lines[2].contains("broken.csv") && lines[2].ends_with("\"line 3, column gyro_dps: \"\"abc\"\" is not a number\""),
+        lines[2].contains("broken.csv") && lines[2].ends_with("\"line 3, column gyro_dps: \"\"abc\"\" is not a number\","),
         "{}",
         lines[2]
     );
     assert!(lines[3].contains("Highway 3"), "{}", lines[3]);
+}
+
+/// Files refused for what an option reads (a time that repeats, logs joined on, a clock
+/// reset) are error rows with the refusal's kind in `error_code`, and the option is named
+/// once for them all; with the options given, each is scored.
+#[test]
+fn refusals_an_option_reads_are_counted_by_kind_and_name_the_option_once() {
+    let dir = fleet_dir("fleet-kinds");
+    let city = std::fs::read_to_string(dir.join("city-1.csv")).unwrap();
+    let (head, rows) = city.split_at(city.find("time_s,").unwrap());
+    let rows: Vec<&str> = rows.lines().collect();
+    let repeated = format!("{head}{}\n{}\n{}\n", rows[..3].join("\n"), rows[2], rows[3..].join("\n"));
+    std::fs::write(dir.join("repeat.csv"), repeated).unwrap();
+    std::fs::write(dir.join("joined.csv"), format!("{city}{city}")).unwrap();
+    std::fs::write(dir.join("reset.csv"), format!("{city}{}\n", rows[1..].join("\n"))).unwrap();
+    let json = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fleet-kinds.json");
+    let o = report_dir(&dir, &["--out", json.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let code = |file: &str| {
+        let r = v.as_array().unwrap().iter().find(|r| r["file"].as_str().unwrap().ends_with(file)).unwrap();
+        r["error_code"].as_str().map(str::to_string)
+    };
+    let got: Vec<Option<String>> = ["repeat.csv", "joined.csv", "reset.csv", "broken.csv", "city-1.csv"].map(code).into();
+    assert_eq!(got, [Some("time_order".into()), Some("joined".into()), Some("clock_reset".into()), None, None]);
+    let hint = |s: &str| stderr.matches(s).count();
+    assert_eq!(
+        hint("1 file(s) refused for a time that repeats or steps back by at most 1 s: `--time-order fix` puts it in order"),
+        1,
+        "{stderr}"
+    );
+    assert_eq!(hint("2 file(s) refused for a second log joined on or a clock reset: `--joined split`"), 1, "{stderr}");
+    let o = report_dir(&dir, &["--time-order", "fix", "--joined", "split"]);
+    let (stdout, stderr) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(stdout.starts_with("6 files, 7 drives scored") && !stderr.contains("file(s) refused"), "{stdout}{stderr}");
 }
 
 /// A CI job's exit: 1 with --fail-on-error when a file is an error row (the rows written

@@ -84,12 +84,22 @@ pub struct DriveRow {
     pub not_scored: Option<String>,
     /// Why this file or part has no scores.
     pub error: Option<String>,
+    /// Where another reading mends the file's refusal, its kind (core's
+    /// `log::accept::Refusal` code: "time_order", "clock_reset", "joined", "cut_row"), so a
+    /// fleet's failures are sorted by the option that reads them; None otherwise.
+    pub error_code: Option<String>,
 }
 
 impl DriveRow {
     /// A row that says why `file` has no scores.
     pub fn failed(file: &str, message: impl Into<String>) -> DriveRow {
         DriveRow { error: Some(message.into()), ..DriveRow::blank(file) }
+    }
+
+    /// A row that says why `file` was refused, with the refusal's kind where it has one.
+    pub fn refused(file: &str, e: &crate::Error) -> DriveRow {
+        let error_code = crate::log::accept::Refusal::of(e).map(|r| r.code().to_string());
+        DriveRow { error_code, ..DriveRow::failed(file, e.to_string()) }
     }
 
     /// A row of `file` with nothing in it yet.
@@ -124,6 +134,7 @@ impl DriveRow {
             warnings: String::new(),
             not_scored: None,
             error: None,
+            error_code: None,
         }
     }
 
@@ -256,7 +267,7 @@ pub fn score_bytes(file: &str, bytes: &[u8], opts: &FleetOptions) -> Vec<DriveRo
 pub fn score_reader<R: Read>(file: &str, stem: &str, reader: R, opts: &FleetOptions) -> Vec<DriveRow> {
     let logs = match crate::log::accept::parse_by_policy(reader, opts.input) {
         Ok(logs) => logs,
-        Err(e) => return vec![DriveRow::failed(file, e.to_string())],
+        Err(e) => return vec![DriveRow::refused(file, &e)],
     };
     let n = logs.len();
     let mut rows = Vec::new();
@@ -339,6 +350,9 @@ pub struct FleetSummary {
     pub not_scored: usize,
     /// Rows with an error.
     pub errors: usize,
+    /// The error rows another reading mends, counted by kind (`DriveRow::error_code`), so a
+    /// front names the option once for all of them.
+    pub errors_by_code: std::collections::BTreeMap<String, usize>,
     pub hours: f64,
     pub methods: Vec<MethodSummary>,
 }
@@ -373,6 +387,10 @@ pub fn summarize(rows: &[DriveRow]) -> FleetSummary {
         scored: scored.len(),
         not_scored: rows.iter().filter(|r| r.error.is_none() && r.not_scored.is_some()).count(),
         errors: rows.iter().filter(|r| r.error.is_some()).count(),
+        errors_by_code: rows.iter().filter_map(|r| r.error_code.clone()).fold(Default::default(), |mut m, c| {
+            *m.entry(c).or_insert(0) += 1;
+            m
+        }),
         // + 0: an empty float sum is -0 in Rust ("-0.0 h" when nothing scored).
         hours: (scored.iter().filter_map(|r| r.duration_min).sum::<f64>() + 0.0) / 60.0,
         methods,
@@ -424,6 +442,7 @@ pub fn rows_to_csv(rows: &[DriveRow]) -> String {
         cells.push(r.warnings.clone());
         cells.push(r.not_scored.clone().unwrap_or_default());
         cells.push(r.error.clone().unwrap_or_default());
+        cells.push(r.error_code.clone().unwrap_or_default());
         s.push_str(&crate::report::csv_line(&r.file, cells));
     }
     s
@@ -436,7 +455,7 @@ e_psi_fusion_offset_deg,ne_psi_fusion_offset_deg_per_min,e_psi_zaru_deg,ne_psi_z
 e_psi_pipeline_deg,ne_psi_pipeline_deg_per_min,e_psi_pipeline_smoothed_deg,ne_psi_pipeline_smoothed_deg_per_min,\
 pipeline_heading_change_deg,pipeline_heading_change_sigma_deg,pipeline_heading_change_smoothed_deg,\
 pipeline_final_bias_dps,pipeline_final_bias_sigma_dps,pipeline_stop_s,\
-warnings,not_scored,error";
+warnings,not_scored,error,error_code";
 
 #[cfg(test)]
 mod tests;

@@ -31,7 +31,7 @@ import posixpath
 import sys
 from typing import Any, Dict, List, Mapping, Optional, Sequence
 
-from ._core import error_row, folder_hints, recipe_endings, score_bytes, score_files, score_log, summary_markdown
+from ._core import error_row, folder_hints, recipe_endings, score_bytes, score_files, score_log, summarize, summary_markdown
 from .frames import from_pandas, rows_to_pandas
 from .remote import fetch, is_url
 
@@ -260,6 +260,19 @@ def summary(rows: Any) -> str:
     return summary_markdown(records)
 
 
+def refusal_hints(rows: Any) -> List[str]:
+    """For the error rows another reading mends (core's refusal kinds, ``error_code``, as the
+    summary counts them): the fleet option that reads them, once for all."""
+    by_code = summarize(json.loads(rows.to_json(orient="records")))["errors_by_code"]
+    out = []
+    if by_code.get("time_order"):
+        out.append(f"{by_code['time_order']} file(s) refused for a time that repeats or steps back by at most 1 s: --options '{{\"input\": {{\"time_order\": \"fix\"}}}}' puts it in order")
+    joined = by_code.get("joined", 0) + by_code.get("clock_reset", 0)
+    if joined:
+        out.append(f"{joined} file(s) refused for a second log joined on or a clock reset: --options '{{\"input\": {{\"joined\": \"split\"}}}}' scores each log as a drive of its own")
+    return out
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m gyrodrift.fleet", description=__doc__.split("\n\n")[0])
     ap.add_argument("input", help="folder of CSV logs (*.csv, *.csv.gz), a glob, or a Parquet dataset (a drive per file or per drive=KEY partition); local, or an fsspec URL (s3://bucket/drives/)")
@@ -285,6 +298,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         print(f"{r['file']}: {r['error']}", file=sys.stderr)
     # Folders of a logger's raw exports: the import that makes v1 logs of them, once each.
     for hint in folder_hints(list(failed["file"])):
+        print(hint, file=sys.stderr)
+    for hint in refusal_hints(rows):
         print(hint, file=sys.stderr)
     print(summary(rows))
     if args.fail_on_error and len(failed):

@@ -6,6 +6,7 @@ import json
 import os
 import re
 import shutil
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -114,6 +115,31 @@ def test_the_command_line(folder, tmp_path, capsys):
     assert fleet.main([str(folder), "--out", str(tmp_path / "r2.parquet"), "--workers", "1", "--fail-on-error"]) == 1
     assert "1 of 20 rows are errors (--fail-on-error)" in capsys.readouterr().err
     assert len(pd.read_parquet(tmp_path / "r2.parquet")) == 20
+
+
+def test_the_command_line_names_the_option_for_refusals_by_kind(samples, tmp_path, capsys):
+    """Files refused for what an option reads are error rows with the refusal's kind in
+    ``error_code``, and the fleet job names the option once for them; given, it scores each."""
+    city = (samples / "train" / "city-1.csv").read_text()
+    head, body = city[: city.index("time_s,")], city[city.index("time_s,") :]
+    rows = body.splitlines()
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    (logs / "repeat.csv").write_text(head + "\n".join(rows[:3] + [rows[2]] + rows[3:]) + "\n")
+    (logs / "joined.csv").write_text(city + city)
+    (logs / "reset.csv").write_text(city + "\n".join(rows[1:]) + "\n")
+    (logs / "city.csv").write_text(city)
+    assert fleet.main([str(logs), "--out", str(tmp_path / "r.parquet"), "--workers", "1"]) == 0
+    err = capsys.readouterr().err
+    assert err.count("""1 file(s) refused for a time that repeats or steps back by at most 1 s: --options '{"input": {"time_order": "fix"}}'""") == 1, err
+    assert err.count("""2 file(s) refused for a second log joined on or a clock reset: --options '{"input": {"joined": "split"}}'""") == 1, err
+    out = pd.read_parquet(tmp_path / "r.parquet").set_index("file")
+    codes = {Path(f).name: (None if pd.isna(c) else c) for f, c in out["error_code"].items()}
+    assert codes == {"city.csv": None, "joined.csv": "joined", "repeat.csv": "time_order", "reset.csv": "clock_reset"}
+    options = '{"input": {"joined": "split", "time_order": "fix"}}'
+    assert fleet.main([str(logs), "--workers", "1", "--options", options]) == 0
+    captured = capsys.readouterr()
+    assert captured.out.startswith("4 files, 6 drives scored") and "file(s) refused" not in captured.err, captured
 
 
 def test_options_as_the_command_line_documents_them(folder):

@@ -98,6 +98,7 @@ fn joined_logs_are_an_error_row_or_a_row_each_by_the_policy() {
     let refused = score_reader("j.csv", "j", joined.as_bytes(), &FleetOptions::default());
     assert_eq!(refused.len(), 1);
     assert!(refused[0].error.as_deref().unwrap().contains("a second log joined on?"), "{:?}", refused[0].error);
+    assert_eq!(refused[0].error_code.as_deref(), Some("joined"));
     let opts: FleetOptions = serde_json::from_str(r#"{"input": {"joined": "split"}}"#).unwrap();
     let rows = score_reader("j.csv", "j", joined.as_bytes(), &opts);
     let alone = score_reader("c.csv", "c", text.as_bytes(), &FleetOptions::default());
@@ -133,6 +134,25 @@ fn the_summary_averages_scored_rows_and_counts_errors() {
     assert!(s.to_markdown().contains("| HDR Table III | 2 | 9.000 | 0.3000 |"), "{}", s.to_markdown());
 }
 
+/// Error rows another reading mends are counted by kind; a refusal without one (a bad cell)
+/// and a failure that is not a refusal are errors only.
+#[test]
+fn the_summary_counts_refusals_by_kind() {
+    let refusal = |text: &str| crate::log::accept::parse_by(text.as_bytes(), crate::log::accept::TimeOrder::Error).unwrap_err();
+    let rows = vec![
+        DriveRow::refused("a", &refusal("time_s\n0\n0\n")),
+        DriveRow::refused("b", &refusal("time_s\n0\n1\n# name: b\ntime_s\n0\n")),
+        DriveRow::refused("c", &refusal("time_s\n0\n1\n1\n")),
+        DriveRow::refused("d", &refusal("time_s,gyro_dps\n0,x\n")),
+        DriveRow::failed("e", "cannot open: no such file"),
+    ];
+    let codes: Vec<Option<&str>> = rows.iter().map(|r| r.error_code.as_deref()).collect();
+    assert_eq!(codes, [Some("time_order"), Some("joined"), Some("time_order"), None, None]);
+    let s = summarize(&rows);
+    assert_eq!(s.errors, 5);
+    assert_eq!(s.errors_by_code.into_iter().collect::<Vec<_>>(), [("joined".to_string(), 1), ("time_order".to_string(), 2)]);
+}
+
 /// A fleet where every file failed scores +0 h, not "-0.0 h" (an empty float sum is -0).
 #[test]
 fn a_fleet_with_nothing_scored_says_zero_hours() {
@@ -150,8 +170,8 @@ fn csv_rows_have_the_header_and_quote_messages() {
     assert_eq!(lines.next(), Some(CSV_HEADER));
     let line = lines.next().unwrap();
     assert!(line.starts_with("\"a,b.csv\",1,1,\"a,b.csv\",0,,,"), "{line}");
-    assert!(line.ends_with(",\"line 3, column gyro_dps: \"\"x\"\" is not a number\""), "{line}");
-    assert_eq!(CSV_HEADER.split(',').count(), 29);
+    assert!(line.ends_with(",\"line 3, column gyro_dps: \"\"x\"\" is not a number\","), "{line}");
+    assert_eq!(CSV_HEADER.split(',').count(), 30);
     // The header names are the JSON keys, in the struct's order.
     let json = serde_json::to_value(&rows[0]).unwrap();
     let keys: Vec<&str> = json.as_object().unwrap().keys().map(|k| k.as_str()).collect();
