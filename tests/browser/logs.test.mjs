@@ -270,22 +270,30 @@ test("a log with a clockwise gyro gets a check badge naming the fix; the shipped
   assert.equal(await banner.isVisible(), false);
   await page.locator("#tabs button[data-view=hdr]").click();
   await page.locator("#logs li", { hasText: "City CW" }).locator("button.remove").click();
-  // Time in microseconds: check names the unit, and the mapper opens with it filled in;
-  // the fixed log scores as City 1.
-  const us = join(dir, "city-us.csv");
-  writeFileSync(us, lines.map((l, i) => (l.startsWith("# name:") ? "# name: City us" : i <= h || !l ? l : l.split(",").map((c, j) => (j === 0 ? String(Math.round(Number(c) * 1e6)) : c)).join(","))).join("\n"));
-  await page.locator("#file-input").setInputFiles([us]);
-  const usBadge = page.locator("#logs li", { hasText: "City us" }).locator(".check.error");
-  await usBadge.waitFor();
-  assert.match(await usBadge.getAttribute("title"), /microseconds, not seconds.*time\.unit = "us"/);
-  await page.locator("#check-remap").click();
-  await page.locator("#mapping[open]").waitFor();
-  assert.equal(await page.locator("#map-time-unit-0").inputValue(), "us");
-  await page.waitForFunction(() => !document.getElementById("mapping-add").disabled);
-  await page.locator("#mapping-add").click();
-  await page.waitForFunction(() => document.querySelector("#logs li.selected")?.innerText.includes("City us (fixed)"));
-  assert.equal(await page.locator("#m-e-hdr").innerText(), e1);
-  for (const n of ["City us (fixed)", "City us"]) await page.locator("#logs li", { hasText: n }).first().locator("button.remove").click();
+  // Time in microseconds; a gyro in rad/s and clockwise (two errors, each with its fix):
+  // check names them, the mapper opens with every fix filled in, and the fixed log scores as
+  // City 1.
+  const rad = (c) => String((-Number(c) * Math.PI) / 180);
+  const mistakes = [
+    ["City us", 0, (c) => String(Math.round(Number(c) * 1e6)), /microseconds, not seconds.*time\.unit = "us"/, { "map-time-unit-0": "us" }],
+    ["City rad cw", g, rad, /gyro_unit, gyro_sign[\s\S]*the gyro is in rad\/s[\s\S]*opposite ways/, { "map-rate-unit": "rad/s", "map-rate-sense": "cw" }],
+  ];
+  for (const [n, col, f, said, filled] of mistakes) {
+    const file = join(dir, `${n.replaceAll(" ", "-")}.csv`);
+    writeFileSync(file, lines.map((l, i) => (l.startsWith("# name:") ? `# name: ${n}` : i <= h || !l ? l : l.split(",").map((c, j) => (j === col ? f(c) : c)).join(","))).join("\n"));
+    await page.locator("#file-input").setInputFiles([file]);
+    const nBadge = page.locator("#logs li", { hasText: n }).locator(".check.error");
+    await nBadge.waitFor();
+    assert.match(`${await nBadge.innerText()} ${await nBadge.getAttribute("title")}`, said);
+    await page.locator("#check-remap").click();
+    await page.locator("#mapping[open]").waitFor();
+    for (const [id, want] of Object.entries(filled)) assert.equal(await page.locator(`#${id}`).inputValue(), want, `${n}: ${id}`);
+    await page.waitForFunction(() => !document.getElementById("mapping-add").disabled);
+    await page.locator("#mapping-add").click();
+    await page.waitForFunction((x) => document.querySelector("#logs li.selected")?.innerText.includes(`${x} (fixed)`), n);
+    assert.equal(await page.locator("#m-e-hdr").innerText(), e1, n);
+    for (const x of [`${n} (fixed)`, n]) await page.locator("#logs li", { hasText: x }).first().locator("button.remove").click();
+  }
   // Information (`check`'s info findings) gets a quiet note of its own: City 1 without its
   // speed column and its lead-in, at 1 Hz (too sparse for the gyro's own white-noise test
   // of standing, which needs 5 rows a second), has nothing that shows when it stands.

@@ -51,13 +51,16 @@ fn a_drive_without_a_reference_is_told_what_goes_unchecked() {
 fn unit_sign_and_gap_mistakes_are_found_with_their_fix() {
     let log = city();
     let rad = 1.0 / (180.0 / std::f64::consts::PI);
-    let mut radians = scaled(&log, Column::RefHeadingDeg, rad);
     // Radians wrap at +-pi.
-    radians
-        .column_mut(Column::RefHeadingDeg)
-        .unwrap()
-        .iter_mut()
-        .for_each(|v| *v = (*v + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI);
+    let wrapped = |k: f64| {
+        let mut l = scaled(&log, Column::RefHeadingDeg, k);
+        let pi = std::f64::consts::PI;
+        l.column_mut(Column::RefHeadingDeg).unwrap().iter_mut().for_each(|v| *v = (*v + pi).rem_euclid(2.0 * pi) - pi);
+        l
+    };
+    let radians = wrapped(rad);
+    // In radians and clockwise (a GPS course in radians): the unit's finding and the sign's.
+    assert_eq!(codes(&wrapped(-rad)), ["heading_unit", "gyro_sign"], "{}", check(&wrapped(-rad)).to_text());
     let cases = [
         ("time_unit", scaled(&log, Column::TimeS, 1000.0)),
         ("heading_unit", radians),
@@ -106,7 +109,8 @@ fn time_in_ms_us_or_ns_is_named_and_the_other_checks_read_it_so() {
 
 /// The gyro in each rate unit the recipe reads, either sense: found as that unit, with the
 /// value the dashboard's mapper fills in (before, mrad/s and deg/h were "a unit or scale
-/// mistake").
+/// mistake"), and a clockwise one also as the sign's finding (before, one finding whose fix
+/// the mapper filled in only half).
 #[test]
 fn the_gyro_in_rad_mrad_or_deg_per_hour_is_named() {
     let deg = 180.0 / std::f64::consts::PI;
@@ -115,8 +119,11 @@ fn the_gyro_in_rad_mrad_or_deg_per_hour_is_named() {
             let r = check(&scaled(&city(), Column::GyroDps, sense * k));
             let f = r.findings.iter().find(|f| f.code == "gyro_unit").unwrap_or_else(|| panic!("{unit}: {}", r.to_text()));
             assert_eq!((f.severity, f.fix_value.as_deref()), (Severity::Error, Some(unit)), "{}", r.to_text());
-            assert_eq!(f.message.ends_with("clockwise"), sense < 0.0, "{}", f.message);
-            assert_eq!(f.fix.as_deref().unwrap().contains("positive = \"cw\""), sense < 0.0);
+            // Clockwise as well: the sign's own finding, with its own fix (the mapper fills in both).
+            let want: &[&str] = if sense < 0.0 { &["gyro_unit", "gyro_sign"] } else { &["gyro_unit"] };
+            let errors: Vec<&str> = r.findings.iter().filter(|f| f.severity == Severity::Error).map(|f| f.code.as_str()).collect();
+            assert_eq!(errors, want, "{}", r.to_text());
+            assert!(f.message.ends_with(&format!("the gyro is in {unit}")) && !f.fix.as_deref().unwrap().contains("cw"), "{}", f.message);
         }
     }
 }

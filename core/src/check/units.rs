@@ -42,12 +42,14 @@ pub(super) fn units_and_sign(r: &mut CheckReport, log: &DriveLog, standing_s: Op
         let k_rad = if within_pi { ratio(true, true).map(|(k, _)| k) } else { None };
         match (k, k_rad) {
             (k, Some(kr)) if near_one(kr) && !k.is_some_and(near_one) => {
-                let cw = if kr < 0.0 { ", positive = \"cw\"" } else { "" };
                 let message = format!(
                     "ref_heading_deg stays within +-pi and, read as radians, agrees with the gyro ({kr:.3}): the heading is in radians"
                 );
-                let fix = format!("heading.unit = \"rad\"{cw} in the recipe");
-                r.findings.push(finding(Severity::Error, "heading_unit", message, Some(&fix)));
+                r.findings.push(finding(Severity::Error, "heading_unit", message, Some("heading.unit = \"rad\" in the recipe")));
+                // Turning the other way as well (a GPS course in radians): the sign's own finding.
+                if kr < 0.0 {
+                    opposite_ways(r);
+                }
             }
             (Some(k), _) => units_from_ratio(r, k, se.unwrap_or(0.0)),
             _ => {}
@@ -189,6 +191,13 @@ pub(super) fn gyro_over_reference(log: &DriveLog, eps0: Option<f64>, in_radians:
     ratio_of(log, &gyro_heading(log, eps0)?, in_radians, road)
 }
 
+/// The gyro and the reference turn opposite ways: one of them is clockwise-positive.
+fn opposite_ways(r: &mut CheckReport) {
+    let message = "the gyro and the reference turn opposite ways: one of them is clockwise-positive".to_string();
+    let fix = "heading.positive or yaw_rate.positive = \"cw\" (a GPS course is cw)";
+    r.findings.push(finding(Severity::Error, "gyro_sign", message, Some(fix)));
+}
+
 /// What a gyro-over-reference ratio (standard error `se`) says about units and sign.
 fn units_from_ratio(r: &mut CheckReport, k: f64, se: f64) {
     let deg = 180.0 / std::f64::consts::PI;
@@ -203,32 +212,28 @@ fn units_from_ratio(r: &mut CheckReport, k: f64, se: f64) {
         return;
     }
     if near(k, -1.0) {
-        let message = "the gyro and the reference turn opposite ways: one of them is clockwise-positive".to_string();
-        let fix = "heading.positive or yaw_rate.positive = \"cw\" (a GPS course is cw)";
-        return r.findings.push(finding(Severity::Error, "gyro_sign", message, Some(fix)));
+        return opposite_ways(r);
     }
-    // The gyro in a rate unit the recipe reads (its values `k` times deg/s), either sense.
+    // The gyro in a rate unit the recipe reads (its values `k` times deg/s), either sense: a
+    // clockwise one is also the sign's finding, so each has its own fix (the dashboard's
+    // mapper fills in both).
     for (unit, times) in [("rad/s", 1.0 / deg), ("mrad/s", 1000.0 / deg), ("deg/h", 3600.0)] {
         if let Some(cw) = [false, true].into_iter().find(|&cw| near(k, if cw { -times } else { times })) {
-            let (sense, positive) = if cw { (" and clockwise", ", positive = \"cw\"") } else { ("", "") };
-            let message = format!("the gyro's heading change is {k:.4} times the reference's ({times:.4}): the gyro is in {unit}{sense}");
-            let mut f =
-                finding(Severity::Error, "gyro_unit", message, Some(&format!("yaw_rate.unit = \"{unit}\"{positive} in the recipe")));
+            let message = format!("the gyro's heading change is {k:.4} times the reference's ({times:.4}): the gyro is in {unit}");
+            let mut f = finding(Severity::Error, "gyro_unit", message, Some(&format!("yaw_rate.unit = \"{unit}\" in the recipe")));
             f.fix_value = Some(unit.into());
-            return r.findings.push(f);
+            r.findings.push(f);
+            if cw {
+                opposite_ways(r);
+            }
+            return;
         }
     }
-    let (code, message, fix) = if near(k, deg) {
+    let (code, message, fix) = if near(k, deg) || near(k, -deg) {
         (
             "heading_unit",
-            format!("the reference changes {:.4} of the gyro's heading (1/57.3): ref_heading_deg is in radians", 1.0 / k),
+            format!("the reference changes {:.4} of the gyro's heading (1/57.3): ref_heading_deg is in radians", 1.0 / k.abs()),
             "heading.unit = \"rad\" in the recipe",
-        )
-    } else if near(k, -deg) {
-        (
-            "heading_unit",
-            "ref_heading_deg is in radians and turns the other way (clockwise)".to_string(),
-            "heading.unit = \"rad\", positive = \"cw\"",
         )
     } else {
         (
@@ -238,4 +243,8 @@ fn units_from_ratio(r: &mut CheckReport, k: f64, se: f64) {
         )
     };
     r.findings.push(finding(Severity::Error, code, message, Some(fix)));
+    // A reference in radians that also turns the other way is the sign's finding too.
+    if code == "heading_unit" && k < 0.0 {
+        opposite_ways(r);
+    }
 }
