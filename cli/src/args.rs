@@ -359,10 +359,13 @@ pub(crate) enum Cmd {
         plot: Option<PathBuf>,
     },
     /// What a log looks like before any method runs: rate, gaps, units and sign against the
-    /// reference, bias, outliers; each finding with its fix. Exit 1 when it finds an error.
+    /// reference, bias, outliers; each finding with its fix. Exit 1 when it finds an error,
+    /// 2 when a log cannot be read (the others are checked all the same).
     Check {
-        #[arg(help = LOG_HELP)]
-        log: PathBuf,
+        /// The drive logs (v1 CSV, gzipped or not, or - for standard input); with `--joined
+        /// split` each log of a file of several joined on (or cut at a clock reset) is checked
+        #[arg(required = true, num_args = 1..)]
+        logs: Vec<PathBuf>,
         /// Print the results as JSON instead of the table.
         #[arg(long)]
         json: bool,

@@ -459,13 +459,42 @@ pub fn allan(log: &Path, json: bool) -> Result<(), Failure> {
     emit(json, &with, || output::allan_table(log, &result, &conf))
 }
 
-/// `check`: the findings, text or JSON; exit 1 when one is an error (the log would give
-/// wrong results), so a pipeline can stop on it.
-pub fn check(log: &Path, json: bool) -> Result<(), Failure> {
-    let drive = read_log(log)?;
-    let r = gyrodrift::check::check(&drive);
-    emit(json, &r, || format!("{}: {}", shown(log), r.to_text()))?;
-    if r.findings.iter().any(|f| f.severity == gyrodrift::check::Severity::Error) {
+/// `check`: each log's findings, text or JSON (one log: its report; several: a list, each
+/// with its `file`); exit 1 when one is an error (the log would give wrong results), so a
+/// pipeline can stop on it. A file that cannot be read is said on stderr and the rest are
+/// checked, then exit 2. With `--joined split` each log of a file of several is checked,
+/// labelled "FILE (log k of n)".
+pub fn check(paths: &[PathBuf], json: bool, input: Input) -> Result<(), Failure> {
+    let (mut reports, mut unread) = (Vec::new(), Vec::new());
+    for path in paths {
+        match crate::input::read_all(path, input) {
+            Ok(logs) => {
+                let n = logs.len();
+                for (k, drive) in logs.into_iter().enumerate() {
+                    let label = if n > 1 { format!("{} (log {} of {n})", shown(path), k + 1) } else { shown(path) };
+                    reports.push((label, gyrodrift::check::check(&drive)));
+                }
+            }
+            Err(Failure(m)) if paths.len() > 1 => {
+                eprintln!("{m}");
+                unread.push(shown(path));
+            }
+            Err(f) => return Err(f),
+        }
+    }
+    let text = || reports.iter().map(|(label, r)| format!("{label}: {}", r.to_text())).collect::<Vec<_>>().join("");
+    match &reports[..] {
+        [(_, r)] if paths.len() == 1 => emit(json, r, text)?,
+        _ => {
+            let listed: Vec<serde_json::Value> =
+                reports.iter().map(|(label, r)| serde_json::json!({ "file": label, "report": r })).collect();
+            emit(json, &listed, text)?
+        }
+    }
+    if !unread.is_empty() {
+        return Err(Failure(format!("{} of {} files could not be read: {}", unread.len(), paths.len(), unread.join(", "))));
+    }
+    if reports.iter().any(|(_, r)| r.findings.iter().any(|f| f.severity == gyrodrift::check::Severity::Error)) {
         std::process::exit(1);
     }
     Ok(())

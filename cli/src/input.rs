@@ -19,7 +19,7 @@ pub(crate) fn time_order() -> TimeOrder {
 /// `--joined split` each log joined on; what reading each did is said on stderr, and a
 /// refusal names the option or command that reads the log (or the import, for a logger's
 /// export).
-fn read_all(path: &Path, input: InputPolicy) -> Result<Vec<DriveLog>, Failure> {
+pub(crate) fn read_all(path: &Path, input: InputPolicy) -> Result<Vec<DriveLog>, Failure> {
     let logs = gyrodrift::log::accept::parse_by_policy(open_input(path)?, input).map_err(|e| {
         let mut f = read_failure(path, e);
         if let Some(hint) = import_hint(path).filter(|_| !is_stdin(path)) {

@@ -200,7 +200,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             None => c::import_detected(&files, print_recipe, out.as_deref(), json),
         },
         Cmd::Allan { log, json } => c::allan(&log, json),
-        Cmd::Check { log, json } => c::check(&log, json),
+        Cmd::Check { logs, json } => c::check(&logs, json, input),
         Cmd::Split { log, out_dir } => c::split(&log, out_dir.as_deref()),
         Cmd::Roads { recipes, data, json, plot } => c::roads(&recipes, data.as_deref(), json, plot.as_deref()),
     }

@@ -222,6 +222,54 @@ fn a_log_check_finds_an_error_in_is_refused_unless_ignored() {
     assert!(String::from_utf8_lossy(&forced.stderr).contains("check: error [gyro_sign]"));
 }
 
+/// `check` takes several logs, as a linter does: each checked and said with its file; exit 1
+/// when one has an error, 2 when one cannot be read (the others checked all the same); JSON a
+/// list with each `file`; with `--joined split` each log of a file of several joined on.
+#[test]
+fn check_takes_several_logs_and_exits_by_the_worst() {
+    let good = write("check-good.csv", &drive_csv());
+    let cw: String = drive_csv()
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            let mut c: Vec<String> = l.split(',').map(str::to_string).collect();
+            if i > 1 {
+                c[1] = format!("{}", -c[1].parse::<f64>().unwrap());
+            }
+            c.join(",") + "\n"
+        })
+        .collect();
+    let cw = write("check-cw.csv", &cw);
+    let missing = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("check-missing.csv");
+    let (g, c, m) = (good.to_str().unwrap(), cw.to_str().unwrap(), missing.to_str().unwrap());
+    let out = run(&["check", g]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = run(&["check", g, c]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(text.starts_with(&format!("{g}: ")) && text.contains(&format!("\n{c}: ")) && text.contains("error [gyro_sign]"), "{text}");
+    let out = run(&["check", m, g, c]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains(&format!("{m}: cannot open")) && err.ends_with(&format!("1 of 3 files could not be read: {m}\n")), "{err}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("error [gyro_sign]"));
+    let out = run(&["check", "--json", g, c]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let files: Vec<&str> = v.as_array().unwrap().iter().map(|r| r["file"].as_str().unwrap()).collect();
+    assert_eq!(files, [g, c]);
+    assert!(v[1]["report"]["findings"].as_array().unwrap().iter().any(|f| f["code"] == "gyro_sign"), "{v}");
+    // A file of two logs joined on: refused, or each log checked under --joined split.
+    let joined = write("check-joined.csv", &format!("{}{}", drive_csv(), drive_csv()));
+    let j = joined.to_str().unwrap();
+    assert_eq!(run(&["check", j]).status.code(), Some(2));
+    let out = run(&["check", "--joined", "split", j]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && text.contains(&format!("{j} (log 1 of 2): ")) && text.contains(&format!("{j} (log 2 of 2): ")),
+        "{text}"
+    );
+}
+
 /// `-` reads the log from standard input, so commands chain (`import | inject | pipeline -`):
 /// the same numbers as the file, named "stdin" (or by its `# name:`), errors said as
 /// "standard input: ..."; `-` twice is refused, as standard input can be read once.
