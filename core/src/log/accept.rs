@@ -6,6 +6,7 @@
 //! logs.
 
 use super::gaps::{split_at_gaps, GapPolicy, MIN_PART_S};
+pub use super::refusal::Refusal;
 use super::DriveLog;
 use crate::check::{check, Finding, Severity};
 use crate::error::{Error, Result};
@@ -197,52 +198,6 @@ fn shifted(e: Error, by: u64) -> Error {
         Error::Line { line, message } => Error::Line { line: line + by, message },
         Error::In { name, source } => Error::In { name, source: Box::new(shifted(*source, by)) },
         e => e,
-    }
-}
-
-/// A refusal that another way of reading mends, told by kind so each front offers its way
-/// (an option, a command, a button) without matching the message's words.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Refusal {
-    /// A time that repeats or steps back by at most 1 s: [`TimeOrder::Fix`] puts it in order.
-    TimeOrder,
-    /// A time more than 1 s back (a logger restarted without a new header):
-    /// [`JoinedLogs::Split`] reads each part as a log of its own.
-    ClockReset,
-    /// A second log joined on (`cat a.csv b.csv`): [`JoinedLogs::Split`] reads each.
-    Joined,
-    /// A row with fewer cells than the header: where it is the last line (a logger stopped
-    /// mid-line), [`parse_fixing`] drops it.
-    CutRow,
-}
-
-impl Refusal {
-    /// The kind of the parser's refusal `e`, or None for any other error.
-    pub fn of(e: &Error) -> Option<Refusal> {
-        // A plain window search: `str::contains`' two-way searcher would add 0.6 kB to the
-        // size-capped browser module (BENCHMARKS.md).
-        let has = |message: &str, text: &str| message.as_bytes().windows(text.len()).any(|w| w == text.as_bytes());
-        match e {
-            Error::Cell { column, message, .. } if column == "time_s" && has(message, super::parse::CLOCK_RESET) => {
-                Some(Refusal::ClockReset)
-            }
-            Error::Cell { column, message, .. } if column == "time_s" && message.ends_with(super::parse::TIME_ORDER_REFUSAL) => {
-                Some(Refusal::TimeOrder)
-            }
-            Error::Line { message, .. } if has(message, super::dialect::JOINED_REFUSAL) => Some(Refusal::Joined),
-            Error::Line { message, .. } if message.ends_with(super::parse::CUT_ROW) => Some(Refusal::CutRow),
-            _ => None,
-        }
-    }
-
-    /// Its name for the fronts (the wasm package's `Error.code`, Python's `ValueError.code`).
-    pub fn code(self) -> &'static str {
-        match self {
-            Refusal::TimeOrder => "time_order",
-            Refusal::ClockReset => "clock_reset",
-            Refusal::Joined => "joined",
-            Refusal::CutRow => "cut_row",
-        }
     }
 }
 
@@ -465,29 +420,5 @@ mod tests {
         assert_eq!((logs[1].0.meta.name.as_deref(), logs[1].0.meta.bias_s), (Some("b"), Some(20.0)));
         assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), alone[0].0.column(crate::log::Column::GyroDps).unwrap());
         assert_eq!(logs[1].0.column(crate::log::Column::GyroDps).unwrap(), &[0.0, 0.1, 0.2]);
-    }
-
-    /// Each refusal a way of reading mends is told by kind, with its front name, from the
-    /// parser's own error; other errors have none: a row cut short is one wherever it is
-    /// (only `parse_fixing` judges whether it is the last line), a row with too many cells
-    /// or a bad cell is not.
-    #[test]
-    fn a_refusal_is_told_by_kind() {
-        let kind = |text: &str| Refusal::of(&parse_by(text.as_bytes(), TimeOrder::Error).unwrap_err()).map(Refusal::code);
-        assert_eq!(kind("time_s,gyro_dps\n0,1\n1,1\n1,1\n"), Some("time_order"));
-        assert_eq!(kind("time_s,gyro_dps\n0,1\n5,1\n1,1\n"), Some("clock_reset"));
-        assert_eq!(kind("time_s,gyro_dps\n0,1\n1,1\n# name: b\ntime_s,gyro_dps\n0,1\n"), Some("joined"));
-        // The page's parser refuses a cut last line, which this reader drops and says so.
-        let cut = "time_s,gyro_dps,temp_c\n0,1,20\n0.1,1";
-        assert_eq!(Refusal::of(&crate::log::parse_log(cut.as_bytes()).unwrap_err()), Some(Refusal::CutRow));
-        assert_eq!(kind("time_s,gyro_dps,temp_c\n0,1\n1,1,20\n"), Some("cut_row"));
-        assert_eq!(kind("time_s,gyro_dps\n0,1\n1,1,2\n"), None);
-        assert_eq!(kind("time_s,gyro_dps\n0,x\n"), None);
-        assert_eq!(kind("gyro_dps\n1\n"), None);
-        // Only a row's time: a gyro cell that repeats is no time-order refusal.
-        let e = Error::Cell { line: 3, column: "gyro_dps".into(), message: "time must strictly increase".into() };
-        assert_eq!(Refusal::of(&e), None);
-        // Named inside a drive or file, it is the error of that drive or file, not the parser's.
-        assert_eq!(Refusal::of(&parse_by(&b"time_s\n0\n0\n"[..], TimeOrder::Error).unwrap_err().within("a.csv")), None);
     }
 }

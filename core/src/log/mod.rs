@@ -353,6 +353,7 @@ pub use builder::LogBuilder;
 pub mod file;
 pub mod gaps;
 mod parse;
+mod refusal;
 pub use parse::{parse_log, parse_log_in_time_order, parse_log_progress, parse_log_str, parse_log_with};
 
 #[cfg(test)]
