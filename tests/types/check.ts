@@ -1,6 +1,6 @@
 // Compiled with `tsc --noEmit`: the package's types describe options and results (no `any`).
 import { checkOptions, version, compareTable, reportCsv, Log, hdr, runHdr, HdrEstimator, report, tune, simulate, importLog, detectImport, draftRecipe, columnGuesses, isDriveLog, pipeline, runPipeline, pipelineTrack, track, compare, checkLog, battery, batteryMarkdown, PipelineEstimator, addGyroErrors, batteryProfiles } from "gyrodrift";
-import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, Draft, ColumnGuesses, PipelineResult, PipelineRun, PipelineTracks, Tracks, Compare, CheckReport, CheckFinding, GapSplit, ParseError, RefusalCode, Battery, BatteryCase, PipelineState, GyroErrors, BatteryProfile } from "gyrodrift";
+import type { HdrOptions, HdrResult, HdrRun, HdrState, Report, TuneReport, CalibrationRun, Recipe, ImportResult, Detection, Draft, ColumnGuesses, PipelineResult, PipelineRun, PipelineTracks, Tracks, Compare, CheckReport, CheckFinding, GapSplit, ParseError, RefusalCode, CheckRefusal, Battery, BatteryCase, PipelineState, GyroErrors, BatteryProfile } from "gyrodrift";
 
 const log: Log = Log.parse("time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1,0\n");
 const opts: HdrOptions = { i_c_dps: 0.0422, tau_s: 0.75, resample: true };
@@ -82,6 +82,12 @@ try {
   // @ts-expect-error: a refusal's code is one of the named kinds
   const badRefusal: RefusalCode = "time_travel";
   void code, badRefusal;
+}
+try {
+  report([log], {});
+} catch (e) {
+  const refused: string = (e as CheckRefusal).code === "check" ? (e as CheckRefusal).log : "";
+  void refused;
 }
 const ver: string = version();
 const tables: string = compareTable([log], {}, "csv") + reportCsv([log], {});

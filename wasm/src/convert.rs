@@ -57,6 +57,15 @@ pub(crate) fn refusal(e: gyrodrift::Error) -> JsValue {
     out
 }
 
+/// A table's refusal of the log `name` that `check` finds an error in: a JS `Error` with
+/// `code: "check"` and `log: name`, so a front offers that log's fix or `ignore_check`.
+pub(crate) fn check_refusal(name: &str, message: String) -> JsValue {
+    let out = err(message);
+    let _ = Reflect::set(&out, &"code".into(), &"check".into());
+    let _ = Reflect::set(&out, &"log".into(), &name.into());
+    out
+}
+
 /// Options from JS: undefined/null = all defaults; otherwise read by core's one schema
 /// (`options::from_json`: the structs' serde with their aliases, then their `validate`),
 /// which names an unknown or mistyped field. JSON has no NaN, so a non-finite number is

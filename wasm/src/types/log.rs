@@ -35,6 +35,14 @@ export interface ParseError extends Error {
   code?: RefusalCode;
 }
 
+/** What the tables over logs (`report`, `compare`, `battery`, `tune`, ...) throw for a log
+ * `checkLog` finds an error in (time not in seconds, heading in radians, gyro in another unit
+ * or clockwise): `log` names it; its fix is `checkLog`'s, or `ignore_check` runs it anyway. */
+export interface CheckRefusal extends Error {
+  code: "check";
+  log: string;
+}
+
 /** One finding of `checkLog`, with the recipe field or setting that fixes it. */
 export interface CheckFinding {
   severity: "error" | "warning" | "info";
