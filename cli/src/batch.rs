@@ -114,6 +114,12 @@ fn refusal_hints(summary: &fleet::FleetSummary) -> Vec<String> {
             n("joined") + n("clock_reset")
         ));
     }
+    if n("check") > 0 {
+        out.push(format!(
+            "{} file(s) refused for a unit or sign mistake `check` found: `gyrodrift check FILE` names each fix (`--ignore-check` runs them anyway, with absurd figures)",
+            n("check")
+        ));
+    }
     out
 }
 

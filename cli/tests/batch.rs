@@ -46,8 +46,9 @@ fn a_folder_is_scored_with_a_bad_file_as_an_error_row() {
 }
 
 /// Files refused for what an option reads (a time that repeats, logs joined on, a clock
-/// reset) are error rows with the refusal's kind in `error_code`, and the option is named
-/// once for them all; with the options given, each is scored.
+/// reset) or runs anyway (a unit or sign mistake `check` finds) are error rows with the
+/// refusal's kind in `error_code`, and the option is named once for them all; with the
+/// options given, each is scored.
 #[test]
 fn refusals_an_option_reads_are_counted_by_kind_and_name_the_option_once() {
     let dir = fleet_dir("fleet-kinds");
@@ -58,6 +59,18 @@ fn refusals_an_option_reads_are_counted_by_kind_and_name_the_option_once() {
     std::fs::write(dir.join("repeat.csv"), repeated).unwrap();
     std::fs::write(dir.join("joined.csv"), format!("{city}{city}")).unwrap();
     std::fs::write(dir.join("reset.csv"), format!("{city}{}\n", rows[1..].join("\n"))).unwrap();
+    // A clockwise gyro: every rate negated (the gyro is the second column).
+    let cw: Vec<String> = city
+        .lines()
+        .map(|l| match l.split_once(',') {
+            Some((t, rest)) if !l.starts_with('#') && !l.starts_with("time_s") => {
+                let (g, more) = rest.split_once(',').unwrap();
+                format!("{t},{},{more}", -g.parse::<f64>().unwrap())
+            }
+            _ => l.to_string(),
+        })
+        .collect();
+    std::fs::write(dir.join("cw.csv"), cw.join("\n") + "\n").unwrap();
     let json = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fleet-kinds.json");
     let o = report_dir(&dir, &["--out", json.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&o.stderr);
@@ -67,8 +80,9 @@ fn refusals_an_option_reads_are_counted_by_kind_and_name_the_option_once() {
         let r = v.as_array().unwrap().iter().find(|r| r["file"].as_str().unwrap().ends_with(file)).unwrap();
         r["error_code"].as_str().map(str::to_string)
     };
-    let got: Vec<Option<String>> = ["repeat.csv", "joined.csv", "reset.csv", "broken.csv", "city-1.csv"].map(code).into();
-    assert_eq!(got, [Some("time_order".into()), Some("joined".into()), Some("clock_reset".into()), None, None]);
+    let got: Vec<Option<String>> = ["repeat.csv", "joined.csv", "reset.csv", "cw.csv", "broken.csv", "city-1.csv"].map(code).into();
+    let want = ["time_order", "joined", "clock_reset", "check"].map(|c| Some(c.to_string()));
+    assert_eq!(got, [&want[..], &[None, None]].concat());
     let hint = |s: &str| stderr.matches(s).count();
     assert_eq!(
         hint("1 file(s) refused for a time that repeats or steps back by at most 1 s: `--time-order fix` puts it in order"),
@@ -76,9 +90,10 @@ fn refusals_an_option_reads_are_counted_by_kind_and_name_the_option_once() {
         "{stderr}"
     );
     assert_eq!(hint("2 file(s) refused for a second log joined on or a clock reset: `--joined split`"), 1, "{stderr}");
-    let o = report_dir(&dir, &["--time-order", "fix", "--joined", "split"]);
+    assert_eq!(hint("1 file(s) refused for a unit or sign mistake `check` found: `gyrodrift check FILE` names each fix"), 1, "{stderr}");
+    let o = report_dir(&dir, &["--time-order", "fix", "--joined", "split", "--ignore-check"]);
     let (stdout, stderr) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
-    assert!(stdout.starts_with("6 files, 7 drives scored") && !stderr.contains("file(s) refused"), "{stdout}{stderr}");
+    assert!(stdout.starts_with("7 files, 8 drives scored") && !stderr.contains("file(s) refused"), "{stdout}{stderr}");
 }
 
 /// A CI job's exit: 1 with --fail-on-error when a file is an error row (the rows written

@@ -85,8 +85,9 @@ pub struct DriveRow {
     /// Why this file or part has no scores.
     pub error: Option<String>,
     /// Where another reading mends the file's refusal, its kind (core's
-    /// `log::accept::Refusal` code: "time_order", "clock_reset", "joined", "cut_row"), so a
-    /// fleet's failures are sorted by the option that reads them; None otherwise.
+    /// `log::accept::Refusal` code: "time_order", "clock_reset", "joined", "cut_row", or
+    /// "check" for a unit or sign mistake), so a fleet's failures are sorted by the option
+    /// that reads them; None otherwise.
     pub error_code: Option<String>,
 }
 
@@ -216,7 +217,7 @@ pub fn score_log(file: &str, stem: &str, log: DriveLog, opts: &FleetOptions) -> 
     }
     let accepted = match accept(log, stem, opts.input, opts.pipeline.bias_s) {
         Ok(a) => a,
-        Err(e) => return vec![DriveRow::failed(file, e.to_string())],
+        Err(e) => return vec![DriveRow::refused(file, &e)],
     };
     let warnings = accepted.warnings.iter().chain(&accepted.split).cloned().collect::<Vec<_>>().join("; ");
     let n = accepted.parts.len() as u32;

@@ -270,6 +270,8 @@ def refusal_hints(rows: Any) -> List[str]:
     joined = by_code.get("joined", 0) + by_code.get("clock_reset", 0)
     if joined:
         out.append(f"{joined} file(s) refused for a second log joined on or a clock reset: --options '{{\"input\": {{\"joined\": \"split\"}}}}' scores each log as a drive of its own")
+    if by_code.get("check"):
+        out.append(f"{by_code['check']} file(s) refused for a unit or sign mistake check found: gyrodrift.check(gyrodrift.read_log(path)) names each fix (--options '{{\"input\": {{\"ignore_check\": true}}}}' runs them anyway, with absurd figures)")
     return out
 
 

@@ -129,17 +129,20 @@ def test_the_command_line_names_the_option_for_refusals_by_kind(samples, tmp_pat
     (logs / "joined.csv").write_text(city + city)
     (logs / "reset.csv").write_text(city + "\n".join(rows[1:]) + "\n")
     (logs / "city.csv").write_text(city)
+    cw = [l if l.startswith("#") or l.startswith("time_s") or not l else ",".join([c if j != 1 else repr(-float(c)) for j, c in enumerate(l.split(","))]) for l in city.splitlines()]
+    (logs / "cw.csv").write_text("\n".join(cw) + "\n")
     assert fleet.main([str(logs), "--out", str(tmp_path / "r.parquet"), "--workers", "1"]) == 0
     err = capsys.readouterr().err
     assert err.count("""1 file(s) refused for a time that repeats or steps back by at most 1 s: --options '{"input": {"time_order": "fix"}}'""") == 1, err
     assert err.count("""2 file(s) refused for a second log joined on or a clock reset: --options '{"input": {"joined": "split"}}'""") == 1, err
     out = pd.read_parquet(tmp_path / "r.parquet").set_index("file")
     codes = {Path(f).name: (None if pd.isna(c) else c) for f, c in out["error_code"].items()}
-    assert codes == {"city.csv": None, "joined.csv": "joined", "repeat.csv": "time_order", "reset.csv": "clock_reset"}
-    options = '{"input": {"joined": "split", "time_order": "fix"}}'
+    assert err.count("""1 file(s) refused for a unit or sign mistake check found: gyrodrift.check(gyrodrift.read_log(path)) names each fix""") == 1, err
+    assert codes == {"city.csv": None, "joined.csv": "joined", "repeat.csv": "time_order", "reset.csv": "clock_reset", "cw.csv": "check"}
+    options = '{"input": {"joined": "split", "time_order": "fix", "ignore_check": true}}'
     assert fleet.main([str(logs), "--workers", "1", "--options", options]) == 0
     captured = capsys.readouterr()
-    assert captured.out.startswith("4 files, 6 drives scored") and "file(s) refused" not in captured.err, captured
+    assert captured.out.startswith("5 files, 7 drives scored") and "file(s) refused" not in captured.err, captured
 
 
 def test_options_as_the_command_line_documents_them(folder):

@@ -61,7 +61,7 @@ pub(crate) fn refusal(e: gyrodrift::Error) -> JsValue {
 /// `code: "check"` and `log: name`, so a front offers that log's fix or `ignore_check`.
 pub(crate) fn check_refusal(name: &str, message: String) -> JsValue {
     let out = err(message);
-    let _ = Reflect::set(&out, &"code".into(), &"check".into());
+    let _ = Reflect::set(&out, &"code".into(), &gyrodrift::log::accept::Refusal::Check.code().into());
     let _ = Reflect::set(&out, &"log".into(), &name.into());
     out
 }

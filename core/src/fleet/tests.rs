@@ -134,8 +134,8 @@ fn the_summary_averages_scored_rows_and_counts_errors() {
     assert!(s.to_markdown().contains("| HDR Table III | 2 | 9.000 | 0.3000 |"), "{}", s.to_markdown());
 }
 
-/// Error rows another reading mends are counted by kind; a refusal without one (a bad cell)
-/// and a failure that is not a refusal are errors only.
+/// Error rows another reading mends (or `ignore_check` runs) are counted by kind; a refusal
+/// without one (a bad cell) and a failure that is not a refusal are errors only.
 #[test]
 fn the_summary_counts_refusals_by_kind() {
     let refusal = |text: &str| crate::log::accept::parse_by(text.as_bytes(), crate::log::accept::TimeOrder::Error).unwrap_err();
@@ -148,9 +148,16 @@ fn the_summary_counts_refusals_by_kind() {
     ];
     let codes: Vec<Option<&str>> = rows.iter().map(|r| r.error_code.as_deref()).collect();
     assert_eq!(codes, [Some("time_order"), Some("joined"), Some("time_order"), None, None]);
-    let s = summarize(&rows);
-    assert_eq!(s.errors, 5);
-    assert_eq!(s.errors_by_code.into_iter().collect::<Vec<_>>(), [("joined".to_string(), 1), ("time_order".to_string(), 2)]);
+    // A log check refuses (a clockwise gyro): "check".
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../sample-logs/train/city-1.csv")).unwrap();
+    let mut log = crate::log::parse_log_str(&text).unwrap();
+    log.column_mut(crate::log::Column::GyroDps).unwrap().iter_mut().for_each(|v| *v = -*v);
+    let cw = score_log("cw.csv", "cw", log, &FleetOptions::default());
+    assert_eq!(cw[0].error_code.as_deref(), Some("check"), "{:?}", cw[0].error);
+    let s = summarize(&[rows, cw].concat());
+    assert_eq!(s.errors, 6);
+    let by: Vec<(&str, usize)> = s.errors_by_code.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+    assert_eq!(by, [("check", 1), ("joined", 1), ("time_order", 2)]);
 }
 
 /// A fleet where every file failed scores +0 h, not "-0.0 h" (an empty float sum is -0).

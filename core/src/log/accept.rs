@@ -219,7 +219,7 @@ pub fn accept(mut log: DriveLog, name: &str, policy: InputPolicy, bias_s: Option
     for f in check(&log).findings.iter().filter(|f| f.severity != Severity::Info && f.code != "gap") {
         let line = said(f);
         if f.severity == Severity::Error && !policy.ignore_check {
-            return Err(Error::data(format!("{line} (refused: its results would be absurd; --ignore-check runs it anyway)")));
+            return Err(Error::data(format!("{line} {CHECK_REFUSED} --ignore-check runs it anyway)")));
         }
         warnings.push(line);
     }
@@ -232,6 +232,10 @@ pub fn accept(mut log: DriveLog, name: &str, policy: InputPolicy, bias_s: Option
     let split = s.summary();
     Ok(Accepted { parts: s.parts, warnings, split })
 }
+
+/// What `accept`'s refusal of a log with a check error says after the finding
+/// (`Refusal::of`).
+pub(super) const CHECK_REFUSED: &str = "(refused: its results would be absurd;";
 
 /// A finding as the fronts say it: "check: <severity> [<code>]: <message>; fix: <fix>".
 fn said(f: &Finding) -> String {
@@ -286,6 +290,9 @@ mod tests {
         log.column_mut(crate::log::Column::GyroDps).unwrap().iter_mut().for_each(|v| *v = -*v);
         let e = accept(log.clone(), "cw", InputPolicy::default(), None).unwrap_err();
         assert!(e.to_string().contains("[gyro_sign]") && e.to_string().contains("refused"), "{e}");
+        assert_eq!(Refusal::of(&e), Some(Refusal::Check));
+        // A message that names a check without being its refusal is none.
+        assert_eq!(Refusal::of(&Error::data("check: error [gyro_sign]: a note")), None);
         let r = refusal(&log).unwrap();
         assert!(r.starts_with("check: error [gyro_sign]") && e.to_string().starts_with(&r), "{r}");
         assert_eq!(refusal(&drive((0..200).map(|i| (i as f64, 0.0)))), None);

@@ -1,6 +1,7 @@
-//! The parser's refusals that another way of reading mends, told by kind (`Refusal::of`), so
-//! each front offers its way (an option, a command, a button) without matching the words:
-//! the wasm package's `Error.code`, Python's `ValueError.code`, the fleet rows' `error_code`.
+//! The refusals of a log that another way of reading mends (or an option runs anyway), told
+//! by kind (`Refusal::of`), so each front offers its way (an option, a command, a button)
+//! without matching the words: the wasm package's `Error.code`, Python's `ValueError.code`,
+//! the fleet rows' `error_code`.
 
 use crate::error::Error;
 
@@ -21,10 +22,14 @@ pub enum Refusal {
     /// A row with fewer cells than the header: where it is the last line (a logger stopped
     /// mid-line), [`parse_fixing`](super::accept::parse_fixing) drops it.
     CutRow,
+    /// A log `check` finds an error in (a unit or sign mistake; [`accept`](super::accept::accept)):
+    /// the finding's fix, or `ignore_check` runs it anyway.
+    Check,
 }
 
 impl Refusal {
-    /// The kind of the parser's refusal `e`, or None for any other error.
+    /// The kind of the refusal `e` (the parser's, or `accept`'s for a check error), or None
+    /// for any other error.
     pub fn of(e: &Error) -> Option<Refusal> {
         // A plain window search: `str::contains`' two-way searcher would add 0.6 kB to the
         // size-capped browser module (BENCHMARKS.md).
@@ -38,6 +43,9 @@ impl Refusal {
             }
             Error::Line { message, .. } if has(message, super::dialect::JOINED_REFUSAL) => Some(Refusal::Joined),
             Error::Line { message, .. } if message.ends_with(super::parse::CUT_ROW) => Some(Refusal::CutRow),
+            Error::Data(message) if message.starts_with("check: error [") && has(message, super::accept::CHECK_REFUSED) => {
+                Some(Refusal::Check)
+            }
             _ => None,
         }
     }
@@ -49,6 +57,7 @@ impl Refusal {
             Refusal::ClockReset => "clock_reset",
             Refusal::Joined => "joined",
             Refusal::CutRow => "cut_row",
+            Refusal::Check => "check",
         }
     }
 }
