@@ -198,16 +198,22 @@ fn borrowed(v: &[(String, std::sync::Arc<DriveLog>)]) -> Vec<(String, &DriveLog)
 
 /// The logs as the CLI takes them: one that `check` finds an error in (time not in seconds,
 /// heading in radians, gyro in another unit or clockwise; core's `refusal`) is a ValueError
-/// naming it and the fix, since every figure from it would be absurd, unless `ignore_check`.
+/// naming it and the fix (its `code` "check", its `log` the name), since every figure from it
+/// would be absurd, unless `ignore_check`.
 fn checked(
     py: Python<'_>,
     named: Vec<(String, std::sync::Arc<DriveLog>)>,
     ignore_check: bool,
 ) -> PyResult<Vec<(String, std::sync::Arc<DriveLog>)>> {
     if !ignore_check {
-        let refused = py.detach(|| named.iter().find_map(|(n, l)| g::log::accept::refusal(l).map(|r| format!("{n}: {r}"))));
-        if let Some(r) = refused {
-            return Err(PyValueError::new_err(format!("{r} (refused: its results would be absurd; ignore_check=True runs it anyway)")));
+        let refused = py.detach(|| named.iter().find_map(|(n, l)| g::log::accept::refusal(l).map(|r| (n.clone(), r))));
+        if let Some((name, r)) = refused {
+            let err =
+                PyValueError::new_err(format!("{name}: {r} (refused: its results would be absurd; ignore_check=True runs it anyway)"));
+            // As the wasm tables' refusal: `code` "check" and the log's name.
+            err.value(py).setattr("code", g::log::accept::Refusal::Check.code())?;
+            err.value(py).setattr("log", name)?;
+            return Err(err);
         }
     }
     Ok(named)

@@ -225,8 +225,9 @@ def test_a_log_with_a_check_error_is_refused_by_the_tables_as_the_cli_refuses_it
     refused = r"City 1 clockwise: check: error \[gyro_sign\].*ignore_check=True runs it anyway"
     for table in (g.report, g.compare, g.battery, lambda logs, **k: g.table(logs, "compare", "csv", **k),
                   lambda logs, **k: g.tune(logs, [city], **k)):
-        with pytest.raises(ValueError, match=refused):
+        with pytest.raises(ValueError, match=refused) as e:
             table([city, cw])
+        assert (e.value.code, e.value.log) == ("check", "City 1 clockwise")
     path = tmp_path / "cw.csv"
     path.write_text(cw.to_csv())
     close(g.report([cw], ignore_check=True), cli("report", str(path), "--ignore-check", "--json"))
