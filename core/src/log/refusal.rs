@@ -5,8 +5,9 @@
 
 use crate::error::Error;
 
-/// A refusal that another way of reading mends, told by kind so each front offers its way
-/// (an option, a command, a button) without matching the message's words.
+/// A refusal that another way of reading mends (or, for a check error, an option runs
+/// anyway), told by kind so each front offers its way (an option, a command, a button)
+/// without matching the message's words.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Refusal {
     /// A time that repeats or steps back by at most 1 s:
