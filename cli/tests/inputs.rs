@@ -195,11 +195,9 @@ fn out_of_memory_exits_2_with_one_line() {
     assert!(err.starts_with("gyrodrift: out of memory (a request for ") && err.lines().count() == 1, "{err}");
 }
 
-/// A log `check` finds an error in (here a clockwise gyro) is refused by every method with
-/// the finding and its fix, exit 2, rather than given absurd figures; `--ignore-check` runs it.
-#[test]
-fn a_log_check_finds_an_error_in_is_refused_unless_ignored() {
-    let text: String = drive_csv()
+/// The test drive with a clockwise gyro: every rate negated.
+fn clockwise_csv() -> String {
+    drive_csv()
         .lines()
         .enumerate()
         .map(|(i, l)| {
@@ -209,8 +207,14 @@ fn a_log_check_finds_an_error_in_is_refused_unless_ignored() {
             }
             c.join(",") + "\n"
         })
-        .collect();
-    let p = write("cw.csv", &text);
+        .collect()
+}
+
+/// A log `check` finds an error in (here a clockwise gyro) is refused by every method with
+/// the finding and its fix, exit 2, rather than given absurd figures; `--ignore-check` runs it.
+#[test]
+fn a_log_check_finds_an_error_in_is_refused_unless_ignored() {
+    let p = write("cw.csv", &clockwise_csv());
     for cmd in [&["hdr"][..], &["pipeline"], &["report"], &["report", "--compare"]] {
         let out = run(&[cmd, &[p.to_str().unwrap()]].concat());
         let err = String::from_utf8_lossy(&out.stderr);
@@ -228,18 +232,7 @@ fn a_log_check_finds_an_error_in_is_refused_unless_ignored() {
 #[test]
 fn check_takes_several_logs_and_exits_by_the_worst() {
     let good = write("check-good.csv", &drive_csv());
-    let cw: String = drive_csv()
-        .lines()
-        .enumerate()
-        .map(|(i, l)| {
-            let mut c: Vec<String> = l.split(',').map(str::to_string).collect();
-            if i > 1 {
-                c[1] = format!("{}", -c[1].parse::<f64>().unwrap());
-            }
-            c.join(",") + "\n"
-        })
-        .collect();
-    let cw = write("check-cw.csv", &cw);
+    let cw = write("check-cw.csv", &clockwise_csv());
     let missing = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("check-missing.csv");
     let (g, c, m) = (good.to_str().unwrap(), cw.to_str().unwrap(), missing.to_str().unwrap());
     let out = run(&["check", g]);
