@@ -208,8 +208,7 @@ fn checked(
     if !ignore_check {
         let refused = py.detach(|| named.iter().find_map(|(n, l)| g::log::accept::refusal(l).map(|r| (n.clone(), r))));
         if let Some((name, r)) = refused {
-            let err =
-                PyValueError::new_err(format!("{name}: {r} (refused: its results would be absurd; ignore_check=True runs it anyway)"));
+            let err = PyValueError::new_err(format!("{name}: {}", g::log::accept::check_refused(&r, "ignore_check=True")));
             // As the wasm tables' refusal: `code` "check" and the log's name.
             err.value(py).setattr("code", g::log::accept::Refusal::Check.code())?;
             err.value(py).setattr("log", name)?;

@@ -78,7 +78,7 @@ impl Log {
             let name = name.filter(|n| !n.is_empty()).unwrap_or_else(|| format!("log {}", i + 1));
             if ignore_check != Some(true) {
                 if let Some(r) = gyrodrift::log::accept::refusal(&log) {
-                    let message = format!("{name}: {r} (refused: its results would be absurd; ignore_check = true runs it anyway)");
+                    let message = format!("{name}: {}", gyrodrift::log::accept::check_refused(&r, "ignore_check = true"));
                     return Err(check_refusal(&name, message));
                 }
             }

@@ -219,7 +219,7 @@ pub fn accept(mut log: DriveLog, name: &str, policy: InputPolicy, bias_s: Option
     for f in check(&log).findings.iter().filter(|f| f.severity != Severity::Info && f.code != "gap") {
         let line = said(f);
         if f.severity == Severity::Error && !policy.ignore_check {
-            return Err(Error::data(format!("{line} {CHECK_REFUSED} --ignore-check runs it anyway)")));
+            return Err(Error::data(check_refused(&line, "--ignore-check")));
         }
         warnings.push(line);
     }
@@ -233,9 +233,15 @@ pub fn accept(mut log: DriveLog, name: &str, policy: InputPolicy, bias_s: Option
     Ok(Accepted { parts: s.parts, warnings, split })
 }
 
-/// What `accept`'s refusal of a log with a check error says after the finding
-/// (`Refusal::of`).
+/// What a refusal of a log with a check error says after the finding (`Refusal::of`).
 pub(super) const CHECK_REFUSED: &str = "(refused: its results would be absurd;";
+
+/// The refusal of a log with a check error, `said` the finding as [`refusal`] gives it,
+/// `run_anyway` the front's words for the option that runs it anyway: one text for the CLI,
+/// the wasm tables and Python's.
+pub fn check_refused(said: &str, run_anyway: &str) -> String {
+    format!("{said} {CHECK_REFUSED} {run_anyway} runs it anyway)")
+}
 
 /// A finding as the fronts say it: "check: <severity> [<code>]: <message>; fix: <fix>".
 fn said(f: &Finding) -> String {

@@ -44,9 +44,7 @@ impl Refusal {
             }
             Error::Line { message, .. } if has(message, super::dialect::JOINED_REFUSAL) => Some(Refusal::Joined),
             Error::Line { message, .. } if message.ends_with(super::parse::CUT_ROW) => Some(Refusal::CutRow),
-            Error::Data(message) if message.starts_with("check: error [") && has(message, super::accept::CHECK_REFUSED) => {
-                Some(Refusal::Check)
-            }
+            Error::Data(message) if has(message, super::accept::CHECK_REFUSED) => Some(Refusal::Check),
             _ => None,
         }
     }
