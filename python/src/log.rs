@@ -67,19 +67,20 @@ fn columns_of(columns: &Bound<'_, PyDict>) -> PyResult<Vec<(Column, Vec<f64>)>> 
 /// Reads a log file; an unreadable file is an OSError, a bad cell a ValueError naming the
 /// file, line and column (and, for a logger's raw export a preset reads, the `import_files`
 /// call that makes a v1 log of it).
-pub(crate) fn read_path(path: &str, order: TimeOrder) -> PyResult<(DriveLog, Option<String>)> {
+pub(crate) fn read_path(path: &str, order: TimeOrder) -> Result<(DriveLog, Option<String>), Refused> {
     let dir = std::path::Path::new(path);
     if dir.is_dir() {
         let what = match gyrodrift::import::folder_hint(dir) {
             Some(h) => hint_text(&h, "a recording"),
             None => format!("to score every log in it: python -m gyrodrift.fleet {path} --out rows.parquet"),
         };
-        return Err(value_err(format!("{path}: a folder, not a log file; {what}")));
+        return Err(value_err(format!("{path}: a folder, not a log file; {what}")).into());
     }
     if path.contains("://") && !dir.exists() {
         return Err(PyOSError::new_err(format!(
             "{path}: cannot open: Log.read reads local files; gyrodrift.read_log fetches a URL (fsspec)"
-        )));
+        ))
+        .into());
     }
     // A gzip-compressed log (drive.csv.gz) reads as the plain file.
     let f = gyrodrift::log::file::open_log(dir).map_err(|e| PyOSError::new_err(format!("{path}: cannot open: {e}")))?;
@@ -98,7 +99,7 @@ pub(crate) fn read_path(path: &str, order: TimeOrder) -> PyResult<(DriveLog, Opt
         } else {
             ""
         };
-        refusal_err(&e, format!("{path}: {e}{order_hint}{joined}{hint}", order_hint = time_order_hint(&e)))
+        Refused::of(&e, format!("{path}: {e}{order_hint}{joined}{hint}", order_hint = time_order_hint(&e)))
     })
 }
 
@@ -111,16 +112,34 @@ pub(crate) fn time_order(s: &str) -> PyResult<TimeOrder> {
     }
 }
 
-/// A parser's refusal as a ValueError with `message`, its `code` the refusal's kind
-/// ("time_order", "clock_reset", "joined", "cut_row"; core's `accept::Refusal`) or None, so
-/// a fleet job tells which reading mends a log without matching the words.
-pub(crate) fn refusal_err(e: &gyrodrift::Error, message: String) -> PyErr {
-    let err = value_err(message);
-    let code = Refusal::of(e).map(Refusal::code);
-    Python::attach(|py| match err.value(py).setattr("code", code) {
-        Ok(()) => err,
-        Err(set) => set,
-    })
+/// A failure made without the GIL (inside `detach`): the error, and for a parser's refusal
+/// its kind ("time_order", "clock_reset", "joined", "cut_row"; core's `accept::Refusal`),
+/// which [`Refused::raise`] sets as the ValueError's `code` with the GIL held, so a fleet
+/// job tells which reading mends a log without matching the words.
+pub(crate) struct Refused {
+    err: PyErr,
+    code: Option<&'static str>,
+}
+
+impl From<PyErr> for Refused {
+    fn from(err: PyErr) -> Self {
+        Refused { err, code: None }
+    }
+}
+
+impl Refused {
+    /// A parser's refusal `e` as a ValueError with `message`.
+    pub(crate) fn of(e: &gyrodrift::Error, message: String) -> Self {
+        Refused { err: value_err(message), code: Refusal::of(e).map(Refusal::code) }
+    }
+
+    /// The Python error, its `code` set (None for other errors).
+    pub(crate) fn raise(self, py: Python<'_>) -> PyErr {
+        match self.err.value(py).setattr("code", self.code) {
+            Ok(()) => self.err,
+            Err(set) => set,
+        }
+    }
 }
 
 /// For a log refused for its time order: the argument that fixes it.
@@ -173,7 +192,7 @@ impl PyLog {
     #[pyo3(signature = (path, time_order="error"))]
     fn read(py: Python<'_>, path: std::path::PathBuf, time_order: &str) -> PyResult<PyLog> {
         let (p, order) = (path.display().to_string(), self::time_order(time_order)?);
-        let read = py.detach(|| read_path(&p, order))?;
+        let read = py.detach(|| read_path(&p, order)).map_err(|e| e.raise(py))?;
         warned(py, &p, read)
     }
 
@@ -184,10 +203,13 @@ impl PyLog {
     #[pyo3(signature = (path, time_order="error"))]
     fn read_joined(py: Python<'_>, path: std::path::PathBuf, time_order: &str) -> PyResult<Vec<PyLog>> {
         let (p, order) = (path.display().to_string(), self::time_order(time_order)?);
-        let logs = py.detach(|| {
-            let f = gyrodrift::log::file::open_log(&path).map_err(|e| PyOSError::new_err(format!("{p}: cannot open: {e}")))?;
-            gyrodrift::log::accept::parse_joined(f, order).map_err(|e| refusal_err(&e, format!("{p}: {e}{}", time_order_hint(&e))))
-        })?;
+        let logs = py
+            .detach(|| {
+                let f = gyrodrift::log::file::open_log(&path)
+                    .map_err(|e| Refused::from(PyOSError::new_err(format!("{p}: cannot open: {e}"))))?;
+                gyrodrift::log::accept::parse_joined(f, order).map_err(|e| Refused::of(&e, format!("{p}: {e}{}", time_order_hint(&e))))
+            })
+            .map_err(|e| e.raise(py))?;
         logs.into_iter().map(|(log, said, line)| warned(py, &format!("{p} (from line {line})"), (log, said))).collect()
     }
 
@@ -196,7 +218,7 @@ impl PyLog {
     #[staticmethod]
     fn parse(py: Python<'_>, text: &str) -> PyResult<PyLog> {
         let read = py.detach(|| gyrodrift::log::accept::parse_by(text.as_bytes(), TimeOrder::Error));
-        let read = read.map_err(|e| refusal_err(&e, e.to_string()))?;
+        let read = read.map_err(|e| Refused::of(&e, e.to_string()).raise(py))?;
         warned(py, "log", read)
     }
 
@@ -209,7 +231,7 @@ impl PyLog {
         let order = self::time_order(time_order)?;
         let parse = |r| gyrodrift::log::accept::parse_by(r, order);
         let parsed = py.detach(|| gyrodrift::log::file::decompressed(&data[..]).map_err(gyrodrift::Error::from).and_then(parse));
-        let read = parsed.map_err(|e| refusal_err(&e, format!("{e}{}", time_order_hint(&e))))?;
+        let read = parsed.map_err(|e| Refused::of(&e, format!("{e}{}", time_order_hint(&e))).raise(py))?;
         warned(py, "log", read)
     }
 

@@ -458,7 +458,7 @@ fn static_bias(log: &PyLog, bias_s: Option<f64>) -> PyResult<f64> {
 #[pyo3(signature = (path, time_order="error"))]
 fn read_log(py: Python<'_>, path: std::path::PathBuf, time_order: &str) -> PyResult<PyLog> {
     let (p, order) = (path.display().to_string(), crate::log::time_order(time_order)?);
-    let read = py.detach(|| read_path(&p, order))?;
+    let read = py.detach(|| read_path(&p, order)).map_err(|e| e.raise(py))?;
     crate::log::warned(py, &p, read)
 }
 
