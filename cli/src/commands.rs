@@ -1,6 +1,6 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
-use crate::input::{open_input, read_checked, read_log, scored_logs, stem_of, time_order, Input};
+use crate::input::{open_input, read_checked, read_log, read_named, scored_logs, stem_of, time_order, Input};
 use crate::{expand_recipes, fail, import_recipe, is_stdin, output, print_json, settings, shell_quoted, shown, write_stdout, Failure};
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
 use std::path::{Path, PathBuf};
@@ -39,11 +39,17 @@ fn per_part<T: serde::Serialize>(
     text: impl Fn(&T) -> String,
 ) -> Result<(), Failure> {
     let results = parts.iter().enumerate().map(|(i, p)| one(i, p).map_err(|e| fail(log, e))).collect::<Result<Vec<T>, _>>()?;
-    match results.as_slice() {
-        [only] => emit(json, only, || text(only)),
+    per_log(parts, &results, json, |i| text(&results[i]))
+}
+
+/// Prints the results of a file's logs: one as before; several (`--joined split`) as a JSON
+/// array, or their tables one after another under their names, as `per_part` prints parts.
+fn per_log<T: serde::Serialize>(logs: &[DriveLog], results: &[T], json: bool, text: impl Fn(usize) -> String) -> Result<(), Failure> {
+    match results {
+        [only] => emit(json, only, || text(0)),
         all => emit(json, &all, || {
             let name = |p: &DriveLog| p.meta.name.clone().unwrap_or_default();
-            parts.iter().zip(all).map(|(p, r)| format!("== {} ==\n{}", name(p), text(r))).collect::<Vec<_>>().join("\n")
+            logs.iter().enumerate().map(|(i, p)| format!("== {} ==\n{}", name(p), text(i))).collect::<Vec<_>>().join("\n")
         }),
     }
 }
@@ -142,11 +148,13 @@ pub fn gyrodometry(log: &Path, set: &[String], json: bool, input: Input) -> Resu
     per_part(log, &parts, json, |_, d| gyrodometry::run(d, &opts).and_then(|r| r.result), |r| output::gyrodometry_table(log, r))
 }
 
-pub fn calibrate(log: &Path, set: &[String], json: bool) -> Result<(), Failure> {
+/// `calibrate`: the error model of a turntable session (of each, with `--joined split`).
+pub fn calibrate(log: &Path, set: &[String], json: bool, input: Input) -> Result<(), Failure> {
     let opts: calibration::CalibrationOptions = settings(set)?;
-    let drive = read_log(log)?;
-    let run = calibration::run(&drive, &opts).map_err(|e| fail(log, e))?;
-    emit(json, &run.result, || output::calibration_table(log, &run))
+    let sessions = read_named(log, input)?;
+    let runs = sessions.iter().map(|d| calibration::run(d, &opts).map_err(|e| fail(log, e))).collect::<Result<Vec<_>, _>>()?;
+    let results: Vec<_> = runs.iter().map(|r| &r.result).collect();
+    per_log(&sessions, &results, json, |i| output::calibration_table(log, &runs[i]))
 }
 
 /// `report --compare`: every method side by side, HDR tuned on `tune_on` when given.
@@ -451,12 +459,13 @@ pub fn split(path: &Path, out_dir: Option<&Path>) -> Result<(), Failure> {
     write_stdout(&(text.join("\n") + "\n"))
 }
 
-pub fn allan(log: &Path, json: bool) -> Result<(), Failure> {
-    let drive = read_log(log)?;
-    let (result, conf) = gyrodrift::allan::run_with_confidence(&drive).map_err(|e| fail(log, e))?;
+/// `allan`: the Allan deviation of a static log (of each, with `--joined split`).
+pub fn allan(log: &Path, json: bool, input: Input) -> Result<(), Failure> {
+    let logs = read_named(log, input)?;
+    let runs = logs.iter().map(|d| gyrodrift::allan::run_with_confidence(d).map_err(|e| fail(log, e))).collect::<Result<Vec<_>, _>>()?;
     // --json as the bindings give it: the Result keys, and the band under `confidence`.
-    let with = gyrodrift::allan::AllanWithConfidence { result: &result, confidence: &conf };
-    emit(json, &with, || output::allan_table(log, &result, &conf))
+    let with: Vec<_> = runs.iter().map(|(result, confidence)| gyrodrift::allan::AllanWithConfidence { result, confidence }).collect();
+    per_log(&logs, &with, json, |i| output::allan_table(log, &runs[i].0, &runs[i].1))
 }
 
 /// `check`: each log's findings, text or JSON (one log: its report; several: a list, each

@@ -67,6 +67,18 @@ pub(crate) fn read_log(path: &Path) -> Result<DriveLog, Failure> {
     read_all(path, input)?.pop().ok_or_else(|| Failure(format!("{}: no log", shown(path))))
 }
 
+/// Every log of a file as `read_all` gives them, an unnamed one named by the file's stem (and
+/// its number, for a file of several read with `--joined split`): for the commands that take
+/// a log as it is (no check, no gap split), such as `allan` and `calibrate`.
+pub(crate) fn read_named(path: &Path, input: InputPolicy) -> Result<Vec<DriveLog>, Failure> {
+    let mut logs = read_all(path, input)?;
+    let (stem, n) = (stem_of(path), logs.len());
+    for (k, log) in logs.iter_mut().enumerate() {
+        log.meta.name.get_or_insert_with(|| stem_in_file(&stem, k, n));
+    }
+    Ok(logs)
+}
+
 /// A log file's bytes as the commands read them: standard input for `-` (once), a
 /// gzip-compressed file as the plain one; a folder is answered with what reads it.
 pub(crate) fn open_input(path: &Path) -> Result<Box<dyn std::io::Read>, Failure> {

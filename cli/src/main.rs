@@ -154,7 +154,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Cmd::Hdr { log, no_resample, set, json, trace } => c::hdr(&log, !no_resample, &set, json, trace.as_deref(), input),
         Cmd::Pipeline { log, set, json, trace, track } => c::pipeline(&log, &set, json, [trace.as_deref(), track.as_deref()], input),
         Cmd::Gyrodometry { log, set, json } => c::gyrodometry(&log, &set, json, input),
-        Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json),
+        Cmd::Calibrate { log, set, json } => c::calibrate(&log, &set, json, input),
         Cmd::Report { batch: BatchArgs { dir: Some(dir), jobs, out, import, recipe, fail_on_error }, set, json, .. }
         | Cmd::Compare { batch: BatchArgs { dir: Some(dir), jobs, out, import, recipe, fail_on_error }, set, json, .. } => {
             let opts = gyrodrift::fleet::FleetOptions { input, pipeline: settings(&set)? };
@@ -199,7 +199,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Some(recipe) => c::import(&recipe, data.as_deref(), allow_outside, out.as_deref(), json),
             None => c::import_detected(&files, print_recipe, out.as_deref(), json),
         },
-        Cmd::Allan { log, json } => c::allan(&log, json),
+        Cmd::Allan { log, json } => c::allan(&log, json, input),
         Cmd::Check { logs, json } => c::check(&logs, json, input),
         Cmd::Split { log, out_dir } => c::split(&log, out_dir.as_deref()),
         Cmd::Roads { recipes, data, json, plot } => c::roads(&recipes, data.as_deref(), json, plot.as_deref()),

@@ -520,3 +520,27 @@ fn a_log_in_windows_1252_reads_and_says_so() {
     let err = String::from_utf8(got.stderr).unwrap();
     assert!(err.starts_with(&format!("{}: its text read as Windows-1252 (it is not UTF-8)", p.display())), "{err}");
 }
+
+/// `allan` and `calibrate` take `--joined split` too: each log of a file of several gets its
+/// own result (a JSON array, or the tables under their names), each as that log alone gives
+/// it; without the option the file is refused naming the second log's first line.
+#[test]
+fn allan_and_calibrate_read_each_joined_log() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../sample-logs");
+    for (cmd, file) in [("allan", "static/static-2h.csv"), ("calibrate", "turntable/session.csv")] {
+        let text = std::fs::read_to_string(root.join(file)).unwrap();
+        let joined = write(&format!("{cmd}-joined.csv"), &format!("{text}{text}"));
+        let j = joined.to_str().unwrap();
+        let refused = run(&[cmd, j]);
+        assert_eq!(refused.status.code(), Some(2), "{cmd}");
+        assert!(String::from_utf8(refused.stderr).unwrap().contains("a second log joined on?"), "{cmd}");
+        let alone = run(&[cmd, "--json", root.join(file).to_str().unwrap()]);
+        let one: serde_json::Value = serde_json::from_slice(&alone.stdout).unwrap();
+        let both = run(&[cmd, "--json", "--joined", "split", j]);
+        assert!(both.status.success(), "{cmd}: {}", String::from_utf8_lossy(&both.stderr));
+        let got: serde_json::Value = serde_json::from_slice(&both.stdout).unwrap();
+        assert_eq!(got, serde_json::Value::from(vec![one.clone(), one]), "{cmd}");
+        let text_out = String::from_utf8(run(&[cmd, "--joined", "split", j]).stdout).unwrap();
+        assert_eq!(text_out.matches("== ").count(), 2, "{cmd}: {text_out}");
+    }
+}
