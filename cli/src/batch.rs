@@ -99,7 +99,7 @@ fn write_rows(out: &Path, rows: &[DriveRow]) -> Result<(), Failure> {
 
 /// For the error rows another reading mends (core's refusal kinds, counted by the
 /// summary), the option that reads them, once: a front's words for core's `InputPolicy`.
-fn refusal_hints(summary: &fleet::FleetSummary) -> Vec<String> {
+fn refusal_hints(summary: &fleet::FleetSummary, batch: &Batch) -> Vec<String> {
     let n = |code: &str| summary.errors_by_code.get(code).copied().unwrap_or(0);
     let mut out = Vec::new();
     if n("time_order") > 0 {
@@ -119,6 +119,17 @@ fn refusal_hints(summary: &fleet::FleetSummary) -> Vec<String> {
             "{} file(s) refused for a unit or sign mistake `check` found: `gyrodrift check FILE` names each fix (`--ignore-check` runs them anyway, with absurd figures)",
             n("check")
         ));
+    }
+    if n("foreign") > 0 {
+        let draft = "a recipe reads a logger of your own (sample-logs/recipes/README.md; `gyrodrift import FILE --print-recipe` drafts one from its column names)";
+        let (how, by) = match (batch.import, batch.recipe.is_some()) {
+            (_, true) => ("and the recipe does not read them", "another recipe"),
+            (true, false) => ("and no logger preset reads them", "`--recipe R`: a recipe"),
+            (false, false) => ("", "`--import` reads the exports of the loggers it knows (SensorLog, Sensor Logger, phyphox, comma2k19, PX4, ROS); `--recipe R`: a recipe"),
+        };
+        let how = if how.is_empty() { String::new() } else { format!(" {how}") };
+        let draft = draft.strip_prefix("a recipe").unwrap_or(draft);
+        out.push(format!("{} file(s) are not v1 logs (no time_s column){how}: {by}{draft}", n("foreign")));
     }
     out
 }
@@ -152,7 +163,7 @@ pub fn run(dir: &Path, batch: Batch, opts: &FleetOptions, json: bool) -> Result<
         eprintln!("{}: {}{or}", h.folder.display(), crate::hint_text(&h, "a recording"));
     }
     let summary = fleet::summarize(&rows);
-    for line in refusal_hints(&summary) {
+    for line in refusal_hints(&summary, &batch) {
         eprintln!("{line}");
     }
     if json {

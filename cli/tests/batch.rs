@@ -381,3 +381,39 @@ fn with_recipe_a_fleet_of_ones_own_logger_is_scored_a_drive_per_recording() {
     // Its notes.csv is part of the recording, not an error.
     assert_eq!((summary["scored"].as_u64(), summary["errors"].as_u64()), (Some(1), Some(0)), "{summary}");
 }
+
+/// Files that are not v1 logs (no time_s column) are error rows of kind "foreign", and the
+/// way that reads them is named once, by how the job read them: `--import` for the loggers
+/// it knows; with it, a recipe for the files no preset reads; with a recipe, another one.
+#[test]
+fn tables_that_are_not_logs_are_counted_and_name_the_import_once() {
+    let dir = fleet_dir("fleet-foreign");
+    let wild = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/wild/sensorlog/SensorLog.csv");
+    std::fs::create_dir_all(dir.join("phone")).unwrap();
+    std::fs::copy(wild, dir.join("phone/SensorLog.csv")).unwrap();
+    std::fs::write(dir.join("mine.csv"), "PacketCounter,SampleTimeFine,Gyr_Z\n1,1000,0.5\n2,2000,0.5\n").unwrap();
+    let json = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fleet-foreign.json");
+    let o = report_dir(&dir, &["--out", json.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let codes: Vec<(String, Option<String>)> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| r["error"].is_string())
+        .map(|r| (r["file"].as_str().unwrap().rsplit('/').next().unwrap().to_string(), r["error_code"].as_str().map(str::to_string)))
+        .collect();
+    let foreign = Some("foreign".to_string());
+    assert!(codes.contains(&("mine.csv".into(), foreign.clone())) && codes.contains(&("SensorLog.csv".into(), foreign)), "{codes:?}");
+    assert!(codes.contains(&("broken.csv".into(), None)), "{codes:?}");
+    let hint = |s: &str, extra: &[&str]| {
+        let err = String::from_utf8(report_dir(&dir, extra).stderr).unwrap();
+        assert_eq!(err.matches(s).count(), 1, "{err}");
+        assert_eq!(err.matches("are not v1 logs").count(), 1, "{err}");
+    };
+    hint("2 file(s) are not v1 logs (no time_s column): `--import` reads the exports of the loggers it knows", &[]);
+    hint("1 file(s) are not v1 logs (no time_s column) and no logger preset reads them: `--recipe R`", &["--import"]);
+    let recipe = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sample-logs/recipes/neu-vn100-circle.toml");
+    hint("and the recipe does not read them: another recipe", &["--recipe", recipe.to_str().unwrap()]);
+}

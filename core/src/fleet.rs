@@ -85,7 +85,8 @@ pub struct DriveRow {
     /// Why this file or part has no scores.
     pub error: Option<String>,
     /// Where another reading mends the file's refusal, its kind (core's
-    /// `log::accept::Refusal` code: "time_order", "clock_reset", "joined", "cut_row", or
+    /// `log::accept::Refusal` code: "time_order", "clock_reset", "joined", "cut_row",
+    /// "foreign" for a table without `time_s` (a logger's own export: an import reads it), or
     /// "check" for a unit or sign mistake), so a fleet's failures are sorted by the option
     /// that reads them; None otherwise.
     pub error_code: Option<String>,

@@ -260,9 +260,10 @@ def summary(rows: Any) -> str:
     return summary_markdown(records)
 
 
-def refusal_hints(rows: Any) -> List[str]:
+def refusal_hints(rows: Any, import_raw: bool = False, recipe: Optional[str] = None) -> List[str]:
     """For the error rows another reading mends (core's refusal kinds, ``error_code``, as the
-    summary counts them): the fleet option that reads them, once for all."""
+    summary counts them): the fleet option that reads them, once for all. ``import_raw`` and
+    ``recipe``: how the job read the files that are not v1 logs (the hint for those differs)."""
     by_code = summarize(json.loads(rows.to_json(orient="records")))["errors_by_code"]
     out = []
     if by_code.get("time_order"):
@@ -272,6 +273,15 @@ def refusal_hints(rows: Any) -> List[str]:
         out.append(f"{joined} file(s) refused for a second log joined on or a clock reset: --options '{{\"input\": {{\"joined\": \"split\"}}}}' scores each log as a drive of its own")
     if by_code.get("check"):
         out.append(f"{by_code['check']} file(s) refused for a unit or sign mistake check found: gyrodrift.check(gyrodrift.read_log(path)) names each fix (--options '{{\"input\": {{\"ignore_check\": true}}}}' runs them anyway, with absurd figures)")
+    if by_code.get("foreign"):
+        draft = " reads a logger of your own (sample-logs/recipes/README.md; gyrodrift.draft_recipe([path]) drafts one from its column names)"
+        if recipe:
+            how, by = " and the recipe does not read them", "another recipe"
+        elif import_raw:
+            how, by = " and no logger preset reads them", "--recipe R: a recipe"
+        else:
+            how, by = "", "--import reads the exports of the loggers it knows (SensorLog, Sensor Logger, phyphox, comma2k19, PX4, ROS); --recipe R: a recipe"
+        out.append(f"{by_code['foreign']} file(s) are not v1 logs (no time_s column){how}: {by}{draft}")
     return out
 
 
@@ -301,7 +311,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     # Folders of a logger's raw exports: the import that makes v1 logs of them, once each.
     for hint in folder_hints(list(failed["file"])):
         print(hint, file=sys.stderr)
-    for hint in refusal_hints(rows):
+    for hint in refusal_hints(rows, args.import_raw, args.recipe):
         print(hint, file=sys.stderr)
     print(summary(rows))
     if args.fail_on_error and len(failed):

@@ -113,7 +113,7 @@ pub(crate) fn time_order(s: &str) -> PyResult<TimeOrder> {
 }
 
 /// A failure made without the GIL (inside `detach`): the error, and for a parser's refusal
-/// its kind ("time_order", "clock_reset", "joined", "cut_row"; core's `accept::Refusal`),
+/// its kind ("time_order", "clock_reset", "joined", "cut_row", "foreign"; core's `accept::Refusal`),
 /// which [`Refused::raise`] sets as the ValueError's `code` with the GIL held, so a fleet
 /// job tells which reading mends a log without matching the words.
 pub(crate) struct Refused {

@@ -166,6 +166,13 @@ def test_a_folder_of_raw_exports_gets_one_import_hint_per_recording(samples, tmp
     assert fleet.main([str(tmp_path), "--workers", "1"]) == 0
     err = capsys.readouterr().err
     assert err.count("it looks like a recording of") == 1 and "(import preset sensorlog)" in err
+    # Files that are not v1 logs (kind "foreign"): the way that reads them, once, by how the
+    # job read them.
+    assert err.count("1 file(s) are not v1 logs (no time_s column): --import reads the exports") == 1, err
+    (tmp_path / "mine.csv").write_text("PacketCounter,SampleTimeFine,Gyr_Z\n1,1000,0.5\n2,2000,0.5\n")
+    assert fleet.main([str(tmp_path), "--workers", "1", "--import"]) == 0
+    err = capsys.readouterr().err
+    assert err.count("1 file(s) are not v1 logs (no time_s column) and no logger preset reads them: --recipe R") == 1, err
 
 
 def test_the_fleet_job_with_import_scores_a_zipped_export_as_a_drive(samples, tmp_path):
@@ -368,6 +375,7 @@ def test_a_refusal_another_reading_mends_carries_its_kind_as_code(tmp_path):
         (rows + "5,1,20\n0,1,20\n", "clock_reset"),
         (rows + "# name: b\ntime_s,gyro_dps\n0,1\n", "joined"),
         (rows + "2,1\n3,1,20\n", "cut_row"),
+        ("Time (s);Gyroscope z (rad/s)\n0;1\n1;1\n", "foreign"),
         (rows + "2,x,20\n", None),
     ]:
         (tmp_path / "a.csv").write_text(text)

@@ -82,6 +82,7 @@ test("a refusal another reading mends carries its kind as Error.code, in the ful
     [rows + "1,1,20\n", "time_order"],
     [rows + "5,1,20\n0,1,20\n", "clock_reset"],
     [rows + "2,1\n3,1,20\n", "cut_row"],
+    ["Time (s),Gyroscope z (rad/s)\n0,1\n1,1\n", "foreign"],
     [rows + "2,x,20\n", undefined],
     [rows + "2,1,20,4\n", undefined],
   ];

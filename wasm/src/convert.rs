@@ -47,7 +47,7 @@ pub(crate) fn err(msg: impl std::fmt::Display) -> JsValue {
 
 /// A parser's refusal as a JS `Error`, its `code` the refusal's kind where another way of
 /// reading mends it (core's `accept::Refusal`: "time_order", "clock_reset", "joined",
-/// "cut_row"), so the page offers that way without matching the message's words.
+/// "cut_row", "foreign"), so the page offers that way without matching the message's words.
 pub(crate) fn refusal(e: gyrodrift::Error) -> JsValue {
     let code = gyrodrift::log::accept::Refusal::of(&e).map(|r| r.code());
     let out = err(e);

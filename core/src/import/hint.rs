@@ -30,7 +30,7 @@ pub fn draft_reads_refused(path: &Path, e: &Error) -> bool {
         e => e,
     };
     match e {
-        Error::Line { message, .. } if message.starts_with("missing required column time_s") => draft_reads(path, false),
+        Error::Line { .. } if crate::log::accept::Refusal::of(e) == Some(crate::log::accept::Refusal::Foreign) => draft_reads(path, false),
         Error::Cell { column, message, .. } if column == "time_s" && message.ends_with("is not a number") => draft_reads(path, true),
         _ => false,
     }

@@ -46,6 +46,7 @@ impl Header {
             map.push(col);
         }
         let Some(time_field) = seen[Column::TimeS.index()] else {
+            // Starts with NO_TIME_COLUMN (a literal here, as time_order_message's).
             let message = format!("missing required column time_s (the header has: {})", fields.join(", "));
             return Err(Error::Line { line, message });
         };
@@ -152,6 +153,10 @@ pub(super) const TIME_ORDER_REFUSAL: &str = "time must strictly increase";
 
 /// What a clock reset's refusal says (`accept::Refusal::of`).
 pub(super) const CLOCK_RESET: &str = "a clock reset?";
+
+/// How the refusal of a header without `time_s` starts: a table that is no v1 log (a
+/// logger's own export), which a recipe reads (`accept::Refusal::of`, `import::hint`).
+pub(super) const NO_TIME_COLUMN: &str = "missing required column time_s";
 
 /// How the refusal of a row with fewer cells than the header ends (`accept::Refusal::of`).
 pub(super) const CUT_ROW: &str = " (truncated row?)";

@@ -23,6 +23,9 @@ pub enum Refusal {
     /// A row with fewer cells than the header: where it is the last line (a logger stopped
     /// mid-line), [`parse_fixing`](super::accept::parse_fixing) drops it.
     CutRow,
+    /// A table without the v1 log's `time_s` column (a logger's own export, or a v1 log whose
+    /// header is misspelt): a preset's import or a recipe reads it (`import`).
+    Foreign,
     /// A log `check` finds an error in (a unit or sign mistake; [`accept`](super::accept::accept)):
     /// the finding's fix, or `ignore_check` runs it anyway.
     Check,
@@ -44,6 +47,7 @@ impl Refusal {
             }
             Error::Line { message, .. } if has(message, super::dialect::JOINED_REFUSAL) => Some(Refusal::Joined),
             Error::Line { message, .. } if message.ends_with(super::parse::CUT_ROW) => Some(Refusal::CutRow),
+            Error::Line { message, .. } if message.starts_with(super::parse::NO_TIME_COLUMN) => Some(Refusal::Foreign),
             Error::Data(message) if has(message, super::accept::CHECK_REFUSED) => Some(Refusal::Check),
             _ => None,
         }
@@ -56,6 +60,7 @@ impl Refusal {
             Refusal::ClockReset => "clock_reset",
             Refusal::Joined => "joined",
             Refusal::CutRow => "cut_row",
+            Refusal::Foreign => "foreign",
             Refusal::Check => "check",
         }
     }
@@ -82,7 +87,10 @@ mod tests {
         assert_eq!(kind("time_s,gyro_dps,temp_c\n0,1\n1,1,20\n"), Some("cut_row"));
         assert_eq!(kind("time_s,gyro_dps\n0,1\n1,1,2\n"), None);
         assert_eq!(kind("time_s,gyro_dps\n0,x\n"), None);
-        assert_eq!(kind("gyro_dps\n1\n"), None);
+        // A table without time_s: a logger's own (a recipe reads it); any other header error is none.
+        assert_eq!(kind("gyro_dps\n1\n"), Some("foreign"));
+        assert_eq!(kind("Time (s);Gyroscope z (rad/s)\n0;1\n"), Some("foreign"));
+        assert_eq!(kind("time_s,gyro_dps,gyro_dps\n0,1,1\n"), None);
         // Only a row's time: a gyro cell that repeats is no time-order refusal.
         let e = Error::Cell { line: 3, column: "gyro_dps".into(), message: "time must strictly increase".into() };
         assert_eq!(Refusal::of(&e), None);

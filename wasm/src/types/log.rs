@@ -26,9 +26,11 @@ export interface LogColumns {
 /** The kind of a parser's refusal that another way of reading mends (core's
  * `log::accept::Refusal`): a time that repeats or steps back by at most 1 s (`logInTimeOrder`
  * puts it in order), a clock reset and a second log joined on (`logsJoined` reads each part),
- * a row cut short (`logInTimeOrder` drops a cut last line). A table's refusal of a log
- * `checkLog` finds an error in is the other kind, `CheckRefusal`. */
-export type RefusalCode = "time_order" | "clock_reset" | "joined" | "cut_row";
+ * a row cut short (`logInTimeOrder` drops a cut last line), a table without `time_s` (a
+ * logger's own export: `detectImport` finds its preset, `importLog` reads it by a recipe, which
+ * `draftRecipe` drafts). A table's refusal of a log `checkLog` finds an error in is the
+ * other kind, `CheckRefusal`. */
+export type RefusalCode = "time_order" | "clock_reset" | "joined" | "cut_row" | "foreign";
 
 /** What `Log.parse`, `Log.fromBytes`, `logInTimeOrder` and `logsJoined` throw: an Error naming
  * the line and column, with `code` where another way of reading mends it. */
