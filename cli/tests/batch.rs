@@ -380,6 +380,25 @@ fn with_recipe_a_fleet_of_ones_own_logger_is_scored_a_drive_per_recording() {
     let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     // Its notes.csv is part of the recording, not an error.
     assert_eq!((summary["scored"].as_u64(), summary["errors"].as_u64()), (Some(1), Some(0)), "{summary}");
+    // The same recipe written for one recording under its data root (its files named with
+    // their folder, as `import --recipe --data` takes them) reads every folder holding them,
+    // with the same figures.
+    let rows = |recipe: &PathBuf| {
+        let out = two.join("rows.json");
+        let o = report_dir(&two, &["--recipe", recipe.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        v.as_array().unwrap().iter().map(|r| (r["name"].clone(), r["e_psi_pipeline_deg"].clone())).collect::<Vec<_>>()
+    };
+    let rooted = two.join("rooted.json");
+    let text = std::fs::read_to_string(&recipe2)
+        .unwrap()
+        .replace("\"gyro.csv\"", "\"car-1/gyro.csv\"")
+        .replace("\"gps.csv\"", "\"car-1/gps.csv\"");
+    std::fs::write(&rooted, text).unwrap();
+    let want = rows(&recipe2);
+    assert!(want.len() == 1 && want[0].1.is_number(), "{want:?}");
+    assert_eq!(rows(&rooted), want);
 }
 
 /// Files that are not v1 logs (no time_s column) are error rows of kind "foreign", and the

@@ -187,8 +187,8 @@ pub fn recordings(failed: &[PathBuf]) -> Vec<Recording> {
 /// they first appear, of the files that end as the recipe's tables do and are not broken v1
 /// logs (a `time_s` column: their own error stands): for a recipe of one table, each such
 /// file, whatever its name, named by it; for a recipe of several, a folder holding every file
-/// the recipe names (by its name, in the folder), named by the folder, its other such files
-/// part of it (`ignored`). Other files are left out.
+/// the recipe names (by its path in the folder, or by its name alone: `in_folder`), named by
+/// the folder, its other such files part of it (`ignored`). Other files are left out.
 pub fn recipe_recordings(failed: &[PathBuf], recipe: &Recipe) -> Vec<Recording> {
     let folders = folders_of(failed);
     let endings = recipe.file_endings();
@@ -209,7 +209,7 @@ pub fn recipe_recordings(failed: &[PathBuf], recipe: &Recipe) -> Vec<Recording> 
             }));
             continue;
         }
-        let named: Vec<PathBuf> = recipe.tables.iter().map(|t| dir.join(&t.file)).collect();
+        let named: Vec<PathBuf> = recipe.tables.iter().map(|t| in_folder(dir, &t.file)).collect();
         if !named.is_empty() && named.iter().all(|f| f.is_file()) {
             let ignored = own.into_iter().filter(|p| !named.contains(p)).cloned().collect();
             out.push(Recording { preset: "recipe", label: dir.to_path_buf(), files: named, ignored });
@@ -218,17 +218,37 @@ pub fn recipe_recordings(failed: &[PathBuf], recipe: &Recipe) -> Vec<Recording> 
     out
 }
 
+/// Where a recipe's `file` is in a recording's folder: as named, or, where that is no file,
+/// by its name alone (a recipe written for one recording under its data root, `trial02/CAR.csv`,
+/// reads every folder holding a `CAR.csv`).
+fn in_folder(dir: &Path, file: &str) -> PathBuf {
+    let named = dir.join(file);
+    match Path::new(file).file_name() {
+        Some(name) if !named.is_file() => dir.join(name),
+        _ => named,
+    }
+}
+
 /// A recording read by `recipe`: its files from their folder, a recipe of one table reading
-/// the recording's one file whatever its name (`recipe_recordings`).
+/// the recording's one file whatever its name, a recipe's file named with a path read where
+/// `recipe_recordings` found it (`in_folder`).
 pub fn import_recording(recipe: &Recipe, rec: &Recording) -> Result<(DriveLog, ImportSummary)> {
     let Some(first) = rec.files.first() else {
         return Err(Error::File(format!("{}: no files in this recording", rec.label.display())));
     };
     let mut recipe = recipe.clone();
+    let dir = folder_of(first);
     if let ([table], [file]) = (recipe.tables.as_mut_slice(), rec.files.as_slice()) {
         table.file = file.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    } else {
+        for table in &mut recipe.tables {
+            let found = in_folder(dir, &table.file);
+            if let Ok(rel) = found.strip_prefix(dir) {
+                table.file = rel.to_string_lossy().into_owned();
+            }
+        }
     }
-    super::import_from_folder(&recipe, folder_of(first), false)
+    super::import_from_folder(&recipe, dir, false)
 }
 
 /// For a file without a `time_s` column: the preset that reads it, with the files beside it
