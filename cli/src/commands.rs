@@ -210,8 +210,8 @@ pub fn simulate(req: &gyrodrift::sim::SimRequest, out: Option<&Path>) -> Result<
 }
 
 /// `inject`: the log with these gyro errors added to its yaw rate, as a v1 log.
-pub fn inject(log: &Path, errors: &gyrodrift::sim::GyroErrors, out: Option<&Path>) -> Result<(), Failure> {
-    let drive = read_log(log)?;
+pub fn inject(log: &Path, errors: &gyrodrift::sim::GyroErrors, out: Option<&Path>, input: Input) -> Result<(), Failure> {
+    let drive = read_log(log, input)?;
     let with = gyrodrift::sim::inject(&drive, errors).map_err(|e| fail(log, e))?;
     write_log(&with, out)
 }
@@ -326,12 +326,12 @@ pub fn import(recipe: &Path, data: Option<&Path>, allow_outside: bool, out: Opti
 
 /// Raw logger files by the detected preset: which preset and which file plays which part
 /// on stderr, then as `import` (or the recipe as TOML with `print_recipe`).
-pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>, json: bool) -> Result<(), Failure> {
+pub fn import_detected(paths: &[PathBuf], print_recipe: bool, out: Option<&Path>, json: bool, input: Input) -> Result<(), Failure> {
     use gyrodrift::import;
     if let [one] = paths {
         // A drive log v1, unless its `time_s` holds date-times, which the draft reads.
         if is_drive_log_file(one) && !import::draft_reads(one, true) {
-            return rewrite_drive_log(one, print_recipe, out, json);
+            return rewrite_drive_log(one, print_recipe, out, json, input);
         }
     }
     let (d, log, summary) = match import::import_paths(paths) {
@@ -381,11 +381,11 @@ fn is_drive_log_file(path: &Path) -> bool {
 /// `import` given a drive log v1: no preset to detect; the log is read (with `--time-order`)
 /// and written as gyrodrift writes logs (commas, decimal points), so a log saved with `;`
 /// and decimal commas becomes the format as written.
-fn rewrite_drive_log(path: &Path, print_recipe: bool, out: Option<&Path>, json: bool) -> Result<(), Failure> {
+fn rewrite_drive_log(path: &Path, print_recipe: bool, out: Option<&Path>, json: bool, input: Input) -> Result<(), Failure> {
     if print_recipe {
         return Err(Failure(format!("{}: a drive log v1 already: it needs no recipe", path.display())));
     }
-    let log = read_log(path)?;
+    let log = read_log(path, input)?;
     if out.is_some() || !json {
         write_log(&log, out)?;
     }

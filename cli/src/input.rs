@@ -61,10 +61,20 @@ fn read_failure(path: &Path, e: Error) -> Failure {
     f
 }
 
-/// The one log of a file, by the `--time-order` policy (a file of several joined on refused).
-pub(crate) fn read_log(path: &Path) -> Result<DriveLog, Failure> {
-    let input = InputPolicy { time_order: time_order(), ..Default::default() };
-    read_all(path, input)?.pop().ok_or_else(|| Failure(format!("{}: no log", shown(path))))
+/// The one log of a file, by the `--time-order` policy, for a command that writes one log
+/// (`inject`, `import`): a file of several joined on refused, with `--joined split` too,
+/// naming the command that writes each.
+pub(crate) fn read_log(path: &Path, input: InputPolicy) -> Result<DriveLog, Failure> {
+    let mut logs = read_all(path, input)?;
+    if logs.len() > 1 {
+        let p = shell_quoted(path);
+        return Err(Failure(format!(
+            "{}: {} logs joined in the file; this command writes one log: `gyrodrift split {p}` writes each as a file of its own",
+            shown(path),
+            logs.len()
+        )));
+    }
+    logs.pop().ok_or_else(|| Failure(format!("{}: no log", shown(path))))
 }
 
 /// Every log of a file as `read_all` gives them, an unnamed one named by the file's stem (and

@@ -178,7 +178,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             c::simulate(&SimRequest { kind, scenario, minutes, seed, name, errors }, out.as_deref())
         }
         Cmd::Inject { log, errors: e, out } => match gyro_errors(e.profile.as_deref(), &e.error)? {
-            Some(errors) => c::inject(&log, &errors, out.as_deref()),
+            Some(errors) => c::inject(&log, &errors, out.as_deref(), input),
             None => Err(Failure("inject: name the errors to add (--profile NAME, --error KEY=VALUE or both)".into())),
         },
         Cmd::Samples { out, realisation } => c::samples(&out, realisation),
@@ -197,7 +197,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Cmd::Import { files, recipe, print_recipe, data, allow_outside, out, json } => match recipe {
             Some(recipe) => c::import(&recipe, data.as_deref(), allow_outside, out.as_deref(), json),
-            None => c::import_detected(&files, print_recipe, out.as_deref(), json),
+            None => c::import_detected(&files, print_recipe, out.as_deref(), json, input),
         },
         Cmd::Allan { log, json } => c::allan(&log, json, input),
         Cmd::Check { logs, json } => c::check(&logs, json, input),

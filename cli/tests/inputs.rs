@@ -544,3 +544,19 @@ fn allan_and_calibrate_read_each_joined_log() {
         assert_eq!(text_out.matches("== ").count(), 2, "{cmd}: {text_out}");
     }
 }
+
+/// `inject` and `import` write one log: a file of several joined on is refused with
+/// `--joined split` too (not read as its first log), naming the command that writes each.
+#[test]
+fn commands_that_write_one_log_refuse_joined_logs_naming_split() {
+    let joined = write("write-one-joined.csv", &format!("{}{}", drive_csv(), drive_csv()));
+    let j = joined.to_str().unwrap();
+    let out = std::env::temp_dir().join(format!("gd-write-one-{}.csv", std::process::id()));
+    for args in [&["inject", "--error", "bias_dps=1"][..], &["import"][..]] {
+        let o = run(&[args, &["--joined", "split", j, "--out", out.to_str().unwrap()]].concat());
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8(o.stderr).unwrap();
+        assert!(err.contains(&format!("{j}: 2 logs joined in the file; this command writes one log: `gyrodrift split {j}`")), "{err}");
+        assert!(!out.exists(), "{args:?}");
+    }
+}
