@@ -121,15 +121,14 @@ fn refusal_hints(summary: &fleet::FleetSummary, batch: &Batch) -> Vec<String> {
         ));
     }
     if n("foreign") > 0 {
-        let draft = "a recipe reads a logger of your own (sample-logs/recipes/README.md; `gyrodrift import FILE --print-recipe` drafts one from its column names)";
+        // What reads them, by how this job read the files that are not v1 logs.
         let (how, by) = match (batch.import, batch.recipe.is_some()) {
-            (_, true) => ("and the recipe does not read them", "another recipe"),
-            (true, false) => ("and no logger preset reads them", "`--recipe R`: a recipe"),
+            (_, true) => (" and the recipe does not read them", "another recipe"),
+            (true, false) => (" and no logger preset reads them", "`--recipe R`: a recipe"),
             (false, false) => ("", "`--import` reads the exports of the loggers it knows (SensorLog, Sensor Logger, phyphox, comma2k19, PX4, ROS); `--recipe R`: a recipe"),
         };
-        let how = if how.is_empty() { String::new() } else { format!(" {how}") };
-        let draft = draft.strip_prefix("a recipe").unwrap_or(draft);
-        out.push(format!("{} file(s) are not v1 logs (no time_s column){how}: {by}{draft}", n("foreign")));
+        let own = " reads a logger of your own (sample-logs/recipes/README.md; `gyrodrift import FILE --print-recipe` drafts one from its column names)";
+        out.push(format!("{} file(s) are not v1 logs (no time_s column){how}: {by}{own}", n("foreign")));
     }
     out
 }
