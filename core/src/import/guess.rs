@@ -113,6 +113,7 @@ pub fn rate_unit_of(name: &str) -> (&'static str, &'static str) {
     match () {
         _ if n.contains("rad") => ("rad/s", "the name says rad"),
         _ if n.contains("deg") || n.contains("dps") => ("deg/s", "the name says deg/s"),
+        _ if n.starts_with("gyr_") => ("deg/s", "named as Xsens names it, Gyr_X: Xsens exports write deg/s"),
         _ => ("rad/s", "no unit in the name: phones and ROS write rad/s"),
     }
 }
@@ -235,12 +236,13 @@ pub fn guess_columns(files: &[Sniffed], heads: &[(String, Vec<u8>)]) -> Guesses 
             s.header.iter().find(|h| h.as_str() != time && fits(&h.to_lowercase())).map(|h| ColumnRef { file: i, column: h.clone() })
         })
     };
-    let z_axis = |n: &str| then(n, "gyro", "z") || word(n, "wz") || word(n, "w_z") || then(n, "yaw", "rate") || then(n, "angular", "z");
-    let any_rate = |n: &str| n.contains("gyro") || n.contains("yaw") || n.contains("rate");
+    // "gyr" as well as "gyro": Xsens writes Gyr_X, Gyr_Y, Gyr_Z.
+    let z_axis = |n: &str| then(n, "gyr", "z") || word(n, "wz") || word(n, "w_z") || then(n, "yaw", "rate") || then(n, "angular", "z");
+    let any_rate = |n: &str| n.contains("gyr") || n.contains("yaw") || n.contains("rate");
     let yaw_rate = find(&z_axis).or_else(|| find(&any_rate));
     let gyro = yaw_rate.as_ref().map(|c| c.column.to_lowercase()).unwrap_or_default();
     let course_words = ["course", "bearing", "heading", "direction", "cog"];
-    let gyro_axes = triad(files, |n| n.contains("gyro") || n.contains("angular") || n == "wx" || n == "w_x");
+    let gyro_axes = triad(files, |n| n.contains("gyr") || n.contains("angular") || n == "wx" || n == "w_x");
     let accel_axes = triad(files, |n| (n.contains("acc") || n.contains("grav") || n == "ax" || n == "a_x") && !n.contains("accuracy"));
     let yaw_from_axes = accel_axes.is_some() && gyro_axes.as_ref().is_some_and(|g| yaw_rate.as_ref().is_some_and(|y| g.contains(y)));
     Guesses {
@@ -327,6 +329,14 @@ mod tests {
         // A heading rate is the yaw rate, not the course.
         let g = guesses(&[("a.csv", "t,heading_rate,v\n0,1,2\n")]);
         assert_eq!((g.yaw_rate, g.course, g.speed), (Some(at(0, "heading_rate")), None, Some(at(0, "v"))));
+        // Named as Xsens writes them (MT Manager, DOT): "Gyr", not "gyro".
+        let xsens = "PacketCounter,SampleTimeFine,Euler_X,Euler_Y,Euler_Z,Acc_X,Acc_Y,Acc_Z,Gyr_X,Gyr_Y,Gyr_Z\n0,1,2,3,4,5,6,7,8,9,10\n";
+        let g = guesses(&[("CAR.csv", xsens)]);
+        assert_eq!((g.yaw_rate, g.yaw_from_axes), (Some(at(0, "Gyr_Z")), true));
+        assert_eq!(g.gyro_axes, Some(vec![at(0, "Gyr_X"), at(0, "Gyr_Y"), at(0, "Gyr_Z")]));
+        assert_eq!(g.files[0].time_column, "SampleTimeFine");
+        assert_eq!(rate_unit_of("Gyr_Z").0, "deg/s");
+        assert_eq!(rate_unit_of("gyro_z").0, "rad/s");
         // Axes split over two files are not a triad; the z axis is still the yaw rate.
         let g = guesses(&[("a.csv", "t,gyro_x,gyro_y\n0,1,2\n"), ("b.csv", "t,gyro_z\n0,1\n")]);
         assert_eq!((g.yaw_rate, g.gyro_axes, g.yaw_from_axes), (Some(at(1, "gyro_z")), None, false));
