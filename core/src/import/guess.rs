@@ -5,7 +5,7 @@
 //! draft recipe (`draft.rs`) and the dashboard's column mapper both start from these, so a
 //! raw file is read one way wherever it is opened.
 
-use super::sniff::{first_row, sniff, Sniffed};
+use super::sniff::{first_rows, sniff, Sniffed};
 use super::units::{parse_iso8601, parse_time_of_day};
 use crate::error::Result;
 use serde::Serialize;
@@ -104,6 +104,42 @@ pub fn time_reading(name: &str, value: &str) -> &'static str {
         "ms"
     } else {
         "s"
+    }
+}
+
+/// Rows of the head a time column's step is read from.
+const STEP_ROWS: usize = 21;
+
+/// Column `j` of `rows` (empty where a row is short).
+fn column_of(rows: &[Vec<String>], j: usize) -> Vec<&str> {
+    rows.iter().map(|r| r.get(j).map_or("", String::as_str)).collect()
+}
+
+/// A time column's reading from its name and its first values: `time_reading` of the first,
+/// and where that finds no unit (plain numbers, seconds by default) the unit whose sample
+/// rate, at the median step between the values, is a logger's (0.5 Hz to 5 kHz: seconds,
+/// then ms, us, ns), so a clock in microseconds (Xsens' SampleTimeFine) is not read as
+/// seconds. A step of 2 to 2000 reads as ms, 2000 to 2e6 as us, beyond as ns.
+pub fn time_reading_of(name: &str, values: &[&str], decimal_comma: bool) -> &'static str {
+    let by_name = time_reading(name, values.first().copied().unwrap_or(""));
+    let n = name.to_lowercase();
+    let says_s = word(&n, "s") || n.contains("_s") || n.contains("(s)") || n.contains("sec");
+    if by_name != "s" || says_s {
+        return by_name;
+    }
+    let number = |v: &str| if decimal_comma { v.replace(',', ".").parse::<f64>() } else { v.parse::<f64>() }.ok();
+    let t: Vec<f64> = values.iter().filter_map(|v| number(v.trim())).filter(|v| v.is_finite()).collect();
+    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).filter(|d| *d > 0.0).collect();
+    if steps.len() < 2 {
+        return by_name;
+    }
+    steps.sort_by(f64::total_cmp);
+    let step = steps[steps.len() / 2];
+    match step {
+        s if s <= 2.0 => "s",
+        s if s <= 2e3 => "ms",
+        s if s <= 2e6 => "us",
+        _ => "ns",
     }
 }
 
@@ -208,8 +244,8 @@ pub fn guess_columns(files: &[Sniffed], heads: &[(String, Vec<u8>)]) -> Guesses 
     let per_file = files
         .iter()
         .zip(heads)
-        .map(|(s, (_, head))| (s, head, first_row(s, head)))
-        .map(|(s, head, row)| FileGuess {
+        .map(|(s, (_, head))| (s, head, first_rows(s, head, STEP_ROWS)))
+        .map(|(s, head, rows)| FileGuess {
             name: s.name.clone(),
             gpx: is_gpx(s),
             nmea: nmea_record(s, head),
@@ -220,7 +256,7 @@ pub fn guess_columns(files: &[Sniffed], heads: &[(String, Vec<u8>)]) -> Guesses 
                 .enumerate()
                 .map(|(j, h)| ColumnReading {
                     name: h.clone(),
-                    time: time_reading(h, row.get(j).map_or("", String::as_str)),
+                    time: time_reading_of(h, &column_of(&rows, j), s.decimal_comma),
                     rate_unit: rate_unit_of(h).0,
                     speed_unit: speed_unit_of(h),
                     angle_unit: angle_unit_of(h),
@@ -310,6 +346,30 @@ mod tests {
         ] {
             assert_eq!(time_reading(name, value), want, "{name} = {value}");
         }
+    }
+
+    /// Where the name says no unit, the step between the first values does: Xsens' clock in
+    /// microseconds at 120 Hz (8333), a phone's milliseconds at 100 Hz (10) and at 1 Hz
+    /// (1000), seconds at 100 Hz and 1 Hz; a name that says the unit, or a date, wins.
+    #[test]
+    fn time_units_by_the_step_where_the_name_says_none() {
+        let t = |start: f64, step: f64| (0..21).map(|i| format!("{}", start + step * i as f64)).collect::<Vec<_>>();
+        let of = |name: &str, v: &[String]| time_reading_of(name, &v.iter().map(String::as_str).collect::<Vec<_>>(), false);
+        assert_eq!(of("SampleTimeFine", &t(848104568.0, 8333.0)), "us");
+        assert_eq!(of("timestamp", &t(1.7e12, 10.0)), "ms");
+        assert_eq!(of("timestamp", &t(1.7e12, 1000.0)), "ms");
+        assert_eq!(of("time", &t(0.0, 0.01)), "s");
+        assert_eq!(of("time", &t(1.7e9, 1.0)), "s");
+        assert_eq!(of("stamp", &t(1.7e18, 1e7)), "ns");
+        // The name's unit wins over the step, and a time in seconds by name stays seconds.
+        assert_eq!(of("time_ms", &t(0.0, 8333.0)), "ms");
+        assert_eq!(of("Time (s)", &t(0.0, 10.0)), "s");
+        assert_eq!(of("seconds_elapsed", &t(0.0, 10.0)), "s");
+        // Decimal commas read; too few steps, or none forward, leave the name's reading.
+        let comma: Vec<String> = t(0.0, 0.01).iter().map(|v| v.replace('.', ",")).collect();
+        assert_eq!(time_reading_of("zeit", &comma.iter().map(String::as_str).collect::<Vec<_>>(), true), "s");
+        assert_eq!(of("time", &t(5000.0, 0.0)), "s");
+        assert_eq!(of("time", &t(0.0, 8333.0)[..2]), "s");
     }
 
     #[test]

@@ -128,13 +128,13 @@ pub fn is_drive_log_head(name: &str, head: &[u8]) -> bool {
     crate::log::dialect::comma_separated(head).read_to_end(&mut written).is_ok() && sniff(name, &written).is_ok_and(|s| s.is_drive_log())
 }
 
-/// The first data row of a sniffed head (after its skipped lines, its header and any blank
-/// or comment lines), split as the header was; empty when the head holds none.
-pub(super) fn first_row(s: &Sniffed, head: &[u8]) -> Vec<String> {
+/// The first `n` data rows of a sniffed head (after its skipped lines, its header and any
+/// blank or comment lines), split as the header was (the head's last may be cut short).
+pub(super) fn first_rows(s: &Sniffed, head: &[u8], n: usize) -> Vec<Vec<String>> {
     let text = String::from_utf8_lossy(&head[..head.len().min(SNIFF_BYTES)]);
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-    let mut lines = text.split('\n').map(|l| l.trim_end_matches('\r')).skip(s.skip_lines + 1);
-    lines.find(|l| !l.trim().is_empty() && !l.starts_with('#')).map_or_else(Vec::new, |l| split_line(l, s.delimiter))
+    let lines = text.split('\n').map(|l| l.trim_end_matches('\r')).skip(s.skip_lines + 1);
+    lines.filter(|l| !l.trim().is_empty() && !l.starts_with('#')).take(n).map(|l| split_line(l, s.delimiter)).collect()
 }
 
 fn count_outside_quotes(line: &str, d: char) -> usize {
