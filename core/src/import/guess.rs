@@ -127,8 +127,7 @@ pub fn time_reading_of(name: &str, values: &[&str], decimal_comma: bool) -> &'st
     if by_name != "s" || says_s {
         return by_name;
     }
-    let number = |v: &str| if decimal_comma { v.replace(',', ".").parse::<f64>() } else { v.parse::<f64>() }.ok();
-    let t: Vec<f64> = values.iter().filter_map(|v| number(v.trim())).filter(|v| v.is_finite()).collect();
+    let t: Vec<f64> = values.iter().filter_map(|v| super::table::number(v.trim(), decimal_comma)).collect();
     let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).filter(|d| *d > 0.0).collect();
     if steps.len() < 2 {
         return by_name;

@@ -26,11 +26,14 @@ fn cell(fields: &[&str], j: usize, name: &str, line: u64, comma: bool) -> Result
     if text.is_empty() || text.eq_ignore_ascii_case("nan") {
         return Ok(f64::NAN);
     }
+    number(text, comma).ok_or_else(|| Error::Cell { line, column: name.to_string(), message: format!("\"{text}\" is not a number") })
+}
+
+/// A cell's text as a finite number, read with a decimal comma where the table has one (the
+/// import's reading, which the column guesses share).
+pub(super) fn number(text: &str, comma: bool) -> Option<f64> {
     let parsed = if comma { text.replacen(',', ".", 1).parse::<f64>() } else { text.parse::<f64>() };
-    match parsed {
-        Ok(v) if v.is_finite() => Ok(v),
-        _ => Err(Error::Cell { line, column: name.to_string(), message: format!("\"{text}\" is not a number") }),
-    }
+    parsed.ok().filter(|v| v.is_finite())
 }
 
 /// A row's time, s: from the period and the row's index, or from its time cell (seconds
