@@ -123,7 +123,8 @@ fn column_of(rows: &[Vec<String>], j: usize) -> Vec<&str> {
 pub fn time_reading_of(name: &str, values: &[&str], decimal_comma: bool) -> &'static str {
     let by_name = time_reading(name, values.first().copied().unwrap_or(""));
     let n = name.to_lowercase();
-    let says_s = word(&n, "s") || n.contains("_s") || n.contains("(s)") || n.contains("sec");
+    // "s" as a word (time_s, "Time (s)"), not the s of "_stamp" or "_since".
+    let says_s = word(&n, "s") || n.contains("sec");
     if by_name != "s" || says_s {
         return by_name;
     }
@@ -364,6 +365,9 @@ mod tests {
         assert_eq!(of("time_ms", &t(0.0, 8333.0)), "ms");
         assert_eq!(of("Time (s)", &t(0.0, 10.0)), "s");
         assert_eq!(of("seconds_elapsed", &t(0.0, 10.0)), "s");
+        assert_eq!(of("time_s", &t(0.0, 10.0)), "s");
+        // ... but "_stamp" says no unit.
+        assert_eq!(of("time_stamp", &t(1.7e12, 10.0)), "ms");
         // Decimal commas read; too few steps, or none forward, leave the name's reading.
         let comma: Vec<String> = t(0.0, 0.01).iter().map(|v| v.replace('.', ",")).collect();
         assert_eq!(time_reading_of("zeit", &comma.iter().map(String::as_str).collect::<Vec<_>>(), true), "s");
