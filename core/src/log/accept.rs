@@ -95,7 +95,7 @@ fn read_restarts<R: std::io::Read>(
     reader: &mut super::dialect::V1Reader<R>,
     order: TimeOrder,
 ) -> Result<Vec<(DriveLog, String, Option<f64>)>> {
-    let mut log = super::parse::parse_log_unordered(reader)?;
+    let mut log = super::parse::parse_log_unordered(reader, order == TimeOrder::Error)?;
     let (mut latest, mut cuts) = (f64::NEG_INFINITY, Vec::new());
     for (i, &x) in log.time_s().iter().enumerate() {
         if crate::import::is_clock_reset(latest, x) {
@@ -137,7 +137,11 @@ pub fn parse_joined<'a, R: std::io::Read + 'a>(reader: R, order: TimeOrder) -> R
                 last.1 = Some(last.1.take().map_or(note.clone(), |s| format!("{s}; {note}")));
                 return Ok(out);
             }
-            (Err(e @ Error::File(_)), Some(_)) => return Err(e.within(&format!("the log from line {first_line}"))),
+            (Err(Error::File(m)), Some(_)) => {
+                // "the file has a header (line 2)": the file's line.
+                let m = lines_shifted(&m, "(line ", first_line - 1);
+                return Err(Error::File(m).within(&format!("the log from line {first_line}")));
+            }
             (Err(e), _) => return Err(shifted(e, first_line - 1)),
         };
         let read = reader.said();
@@ -194,11 +198,30 @@ pub fn stem_in_file(stem: &str, k: usize, n: usize) -> String {
 /// `e` with its line numbers `by` lines further on (a log that starts that far into its file).
 fn shifted(e: Error, by: u64) -> Error {
     match e {
+        // A time-order refusal also names the row before ("goes back from 5 on line 53").
+        Error::Cell { line, column, message } if column == "time_s" => {
+            Error::Cell { line: line + by, message: lines_shifted(&message, "on line ", by), column }
+        }
         Error::Cell { line, column, message } => Error::Cell { line: line + by, column, message },
         Error::Line { line, message } => Error::Line { line: line + by, message },
         Error::In { name, source } => Error::In { name, source: Box::new(shifted(*source, by)) },
         e => e,
     }
+}
+
+/// `message`, a parser's words on a log read alone, with the number after each `marker` moved
+/// by `by` lines, to the file's line numbers.
+fn lines_shifted(message: &str, marker: &str, by: u64) -> String {
+    let (mut out, mut rest) = (String::new(), message);
+    while let Some(i) = rest.find(marker) {
+        let (head, tail) = rest.split_at(i + marker.len());
+        let digits = tail.bytes().take_while(u8::is_ascii_digit).count();
+        let n = tail[..digits].parse::<u64>().map_or_else(|_| tail[..digits].to_string(), |n| (n + by).to_string());
+        out.push_str(head);
+        out.push_str(&n);
+        rest = &tail[digits..];
+    }
+    out + rest
 }
 
 /// A log taken: its parts (one without gaps), the check's warnings and what splitting did.
@@ -337,7 +360,12 @@ mod tests {
         let e = parse_joined(text.as_bytes(), TimeOrder::Error).unwrap_err().to_string();
         assert!(e.starts_with("line 6, column gyro_dps"), "{e}");
         let e = parse_joined(&b"time_s,gyro_dps\n0,1\n# name: b\ntime_s,gyro_dps\n"[..], TimeOrder::Error).unwrap_err().to_string();
-        assert!(e.starts_with("the log from line 3: no data rows"), "{e}");
+        assert!(e.starts_with("the log from line 3: no data rows: the file has a header (line 4)"), "{e}");
+        // A row late in the second log: its line and the line of the row before, the file's.
+        let late = "time_s,gyro_dps\n0,1\n# name: b\ntime_s,gyro_dps\n1,1\n0.5,1\n";
+        let e = parse_joined(late.as_bytes(), TimeOrder::Error).unwrap_err().to_string();
+        assert!(e.starts_with("line 6, column time_s: time 0.5 goes back from 1 on line 5:"), "{e}");
+        assert_eq!(lines_shifted("a (line 2), on line 9 and line x", "line ", 10), "a (line 12), on line 19 and line x");
         let logs = parse_joined(&b"time_s,gyro_dps\n0,1\n1,2\n# stopped by the user\n"[..], TimeOrder::Fix).unwrap();
         assert_eq!(logs.len(), 1);
         assert_eq!(logs[0].1.as_deref(), Some("the '#' lines from line 4 on, with no rows after them, ignored"));
@@ -409,6 +437,13 @@ mod tests {
         let fixed = parse_joined(late.as_bytes(), TimeOrder::Fix).unwrap();
         assert_eq!(fixed[1].0.len(), 3);
         assert!(fixed[1].1.as_deref().unwrap().contains("; time order: "), "{:?}", fixed[1].1);
+        // A bad cell after the late row: the late row, the first in the file, is named (before,
+        // the part was read whole and then put in order, so the cell was named first).
+        let late_then_bad = format!("{late}2,x\n");
+        let e = parse_joined(late_then_bad.as_bytes(), TimeOrder::Error).unwrap_err();
+        assert!(Refusal::of(&e) == Some(Refusal::TimeOrder) && e.to_string().starts_with("line 10, column time_s"), "{e}");
+        let e = parse_joined(late_then_bad.as_bytes(), TimeOrder::Fix).unwrap_err();
+        assert!(e.to_string().starts_with("line 11, column gyro_dps"), "{e}");
         // A second log joined on after a reset: three logs, lines as in the file.
         let three = format!("{text}# name: b\ntime_s,gyro_dps\n0,1\n");
         let lines: Vec<u64> = parse_joined(three.as_bytes(), TimeOrder::Error).unwrap().iter().map(|x| x.2).collect();

@@ -57,7 +57,7 @@ impl Header {
 /// As `parse_log_with`, calling `progress(bytes read so far)` every 65 536 rows (for a
 /// progress bar while a large file is parsed off the main thread).
 pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut dyn FnMut(u64)) -> Result<DriveLog> {
-    parse_rows::<true>(reader, opts, progress)
+    parse_rows::<true>(reader, opts, false, progress)
 }
 
 /// A v1 log whose time repeats or steps back a little (a logger writing a sample twice, or a
@@ -65,13 +65,15 @@ pub fn parse_log_progress<R: Read>(reader: R, opts: ParseOptions, progress: &mut
 /// time merged, each column the mean of its present values; rows up to 1 s late sorted in),
 /// with counts of what they did. A larger step back (a clock reset) is still an error.
 pub fn parse_log_in_time_order<R: Read>(reader: R, opts: ParseOptions) -> Result<(DriveLog, crate::import::TimeFixes)> {
-    in_time_order(parse_rows::<false>(reader, opts, &mut |_| {})?)
+    in_time_order(parse_rows::<false>(reader, opts, false, &mut |_| {})?)
 }
 
-/// A v1 log's rows in file order, time unchecked (for `accept`, which cuts it at clock resets
-/// before putting each part in order).
-pub(super) fn parse_log_unordered<R: Read>(reader: R) -> Result<DriveLog> {
-    parse_rows::<false>(reader, ParseOptions::default(), &mut |_| {})
+/// A v1 log's rows in file order (for `accept`, which cuts it at clock resets before putting
+/// each part in order). `parts_in_order`: a time that repeats or steps back by at most 1 s is
+/// refused where it is, as the strict parser refuses it, so a bad cell further on is not
+/// named first; a clock reset (back by more) starts a part and is not refused.
+pub(super) fn parse_log_unordered<R: Read>(reader: R, parts_in_order: bool) -> Result<DriveLog> {
+    parse_rows::<false>(reader, ParseOptions::default(), parts_in_order, &mut |_| {})
 }
 
 /// The first row whose time does not strictly increase, refused as the strict parser refuses it.
@@ -100,9 +102,15 @@ pub(super) fn in_time_order(mut log: DriveLog) -> Result<(DriveLog, crate::impor
 }
 
 /// The rows of a v1 log; with `STRICT`, time must strictly increase (each row against the one
-/// before), otherwise the rows are left in file order.
+/// before), otherwise the rows are left in file order (with `parts_in_order`, only a clock
+/// reset may step back).
 #[inline(always)]
-fn parse_rows<const STRICT: bool>(reader: impl Read, opts: ParseOptions, progress: &mut dyn FnMut(u64)) -> Result<DriveLog> {
+fn parse_rows<const STRICT: bool>(
+    reader: impl Read,
+    opts: ParseOptions,
+    parts_in_order: bool,
+    progress: &mut dyn FnMut(u64),
+) -> Result<DriveLog> {
     let mut meta = LogMeta::default();
     let mut preamble = |line: u64, text: &str| -> Result<bool> {
         let t = text.trim();
@@ -135,7 +143,7 @@ fn parse_rows<const STRICT: bool>(reader: impl Read, opts: ParseOptions, progres
                 opts.max_rows, r.line
             )));
         }
-        data_row::<STRICT>(h, &r, &mut prev_time, &mut log)
+        data_row::<STRICT>(h, &r, &mut prev_time, parts_in_order, &mut log)
     })?;
     let Some(h) = header else {
         return Err(Error::File("empty file: no header row".into()));
@@ -171,9 +179,16 @@ fn time_order_message(v: f64, pt: f64, pl: u64) -> String {
     format!("time {v} {what} {pt} on line {pl}:{reset} time must strictly increase")
 }
 
-/// One data row into the columns; time must be present and, with `STRICT`, strictly increase.
+/// One data row into the columns; time must be present and, with `STRICT`, strictly increase
+/// (with `parts_in_order`, unless it steps back as a clock reset does).
 #[inline(always)]
-fn data_row<const STRICT: bool>(h: &Header, r: &Row, prev_time: &mut Option<(f64, u64)>, log: &mut DriveLog) -> Result<()> {
+fn data_row<const STRICT: bool>(
+    h: &Header,
+    r: &Row,
+    prev_time: &mut Option<(f64, u64)>,
+    parts_in_order: bool,
+    log: &mut DriveLog,
+) -> Result<()> {
     let line = r.line;
     if r.fields.len() != h.map.len() {
         let hint = if r.fields.len() < h.map.len() { " (truncated row?)" } else { "" };
@@ -188,7 +203,7 @@ fn data_row<const STRICT: bool>(h: &Header, r: &Row, prev_time: &mut Option<(f64
                 return Err(Error::Cell { line, column: c.name().into(), message: "empty, but every row needs a time".into() });
             }
             if let Some((pt, pl)) = *prev_time {
-                if STRICT && v <= pt {
+                if v <= pt && (STRICT || parts_in_order && !crate::import::is_clock_reset(pt, v)) {
                     return Err(Error::Cell { line, column: c.name().into(), message: time_order_message(v, pt, pl) });
                 }
             }
