@@ -100,37 +100,27 @@ fn write_rows(out: &Path, rows: &[DriveRow]) -> Result<(), Failure> {
 /// For the error rows another reading mends (core's refusal kinds, counted by the
 /// summary), the option that reads them, once: a front's words for core's `InputPolicy`.
 fn refusal_hints(summary: &fleet::FleetSummary, batch: &Batch) -> Vec<String> {
-    let n = |code: &str| summary.errors_by_code.get(code).copied().unwrap_or(0);
-    let mut out = Vec::new();
-    if n("time_order") > 0 {
-        out.push(format!(
-            "{} file(s) refused for a time that repeats or steps back by at most 1 s: `--time-order fix` puts it in order",
-            n("time_order")
-        ));
+    use fleet::{ForeignReading, Remedy};
+    let reading = ForeignReading::of(batch.import, batch.recipe.is_some());
+    let own = " reads a logger of your own (sample-logs/recipes/README.md; `gyrodrift import FILE --print-recipe` drafts one from its column names)";
+    let by = |remedy: Remedy| {
+        match remedy {
+        Remedy::TimeOrderFix => "`--time-order fix` puts it in order".to_string(),
+        Remedy::JoinedSplit => "`--joined split` scores each log as a drive of its own".to_string(),
+        Remedy::CheckEach => {
+            "`gyrodrift check FILE` names each fix (`--ignore-check` runs them anyway, with absurd figures)".to_string()
+        }
+        Remedy::ImportOrRecipe => format!(
+            "`--import` reads the exports of the loggers it knows (SensorLog, Sensor Logger, phyphox, comma2k19, PX4, ROS); `--recipe R`: a recipe{own}"
+        ),
+        Remedy::Recipe => format!("`--recipe R`: a recipe{own}"),
+        Remedy::OtherRecipe => format!("another recipe{own}"),
     }
-    if n("joined") + n("clock_reset") > 0 {
-        out.push(format!(
-            "{} file(s) refused for a second log joined on or a clock reset: `--joined split` scores each log as a drive of its own",
-            n("joined") + n("clock_reset")
-        ));
-    }
-    if n("check") > 0 {
-        out.push(format!(
-            "{} file(s) refused for a unit or sign mistake `check` found: `gyrodrift check FILE` names each fix (`--ignore-check` runs them anyway, with absurd figures)",
-            n("check")
-        ));
-    }
-    if n("foreign") > 0 {
-        // What reads them, by how this job read the files that are not v1 logs.
-        let (how, by) = match (batch.import, batch.recipe.is_some()) {
-            (_, true) => (" and the recipe does not read them", "another recipe"),
-            (true, false) => (" and no logger preset reads them", "`--recipe R`: a recipe"),
-            (false, false) => ("", "`--import` reads the exports of the loggers it knows (SensorLog, Sensor Logger, phyphox, comma2k19, PX4, ROS); `--recipe R`: a recipe"),
-        };
-        let own = " reads a logger of your own (sample-logs/recipes/README.md; `gyrodrift import FILE --print-recipe` drafts one from its column names)";
-        out.push(format!("{} file(s) are not v1 logs (no time_s column){how}: {by}{own}", n("foreign")));
-    }
-    out
+    };
+    fleet::refusal_hints(&summary.errors_by_code, reading)
+        .into_iter()
+        .map(|h| format!("{} file(s) {}: {}", h.files, h.why, by(h.remedy)))
+        .collect()
 }
 
 /// `report --dir`: scores every log under `dir`; prints the summary (Markdown or JSON) and

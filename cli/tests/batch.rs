@@ -90,7 +90,7 @@ fn refusals_an_option_reads_are_counted_by_kind_and_name_the_option_once() {
         "{stderr}"
     );
     assert_eq!(hint("2 file(s) refused for a second log joined on or a clock reset: `--joined split`"), 1, "{stderr}");
-    assert_eq!(hint("1 file(s) refused for a unit or sign mistake `check` found: `gyrodrift check FILE` names each fix"), 1, "{stderr}");
+    assert_eq!(hint("1 file(s) refused for a unit or sign mistake check found: `gyrodrift check FILE` names each fix"), 1, "{stderr}");
     let o = report_dir(&dir, &["--time-order", "fix", "--joined", "split", "--ignore-check"]);
     let (stdout, stderr) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert!(stdout.starts_with("7 files, 8 drives scored") && !stderr.contains("file(s) refused"), "{stdout}{stderr}");

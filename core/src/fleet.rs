@@ -13,6 +13,9 @@ use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 use std::io::Read;
 
+mod hints;
+pub use hints::{refusal_hints, ForeignReading, RefusalHint, Remedy};
+
 /// What a batch does with each log: the input policy (gaps, check errors) and the pipeline's
 /// settings (the other methods run with their defaults: Table-III HDR, Fusion's offset, ZARU).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]

@@ -31,7 +31,8 @@ import posixpath
 import sys
 from typing import Any, Dict, List, Mapping, Optional, Sequence
 
-from ._core import error_row, folder_hints, recipe_endings, score_bytes, score_files, score_log, summarize, summary_markdown
+from ._core import error_row, folder_hints, recipe_endings, score_bytes, score_files, score_log, summary_markdown
+from ._core import refusal_hints as _refusal_hints
 from .frames import from_pandas, rows_to_pandas
 from .remote import fetch, is_url
 
@@ -263,26 +264,19 @@ def summary(rows: Any) -> str:
 def refusal_hints(rows: Any, import_raw: bool = False, recipe: Optional[str] = None) -> List[str]:
     """For the error rows another reading mends (core's refusal kinds, ``error_code``, as the
     summary counts them): the fleet option that reads them, once for all. ``import_raw`` and
-    ``recipe``: how the job read the files that are not v1 logs (the hint for those differs)."""
-    by_code = summarize(json.loads(rows.to_json(orient="records")))["errors_by_code"]
-    out = []
-    if by_code.get("time_order"):
-        out.append(f"{by_code['time_order']} file(s) refused for a time that repeats or steps back by at most 1 s: --options '{{\"input\": {{\"time_order\": \"fix\"}}}}' puts it in order")
-    joined = by_code.get("joined", 0) + by_code.get("clock_reset", 0)
-    if joined:
-        out.append(f"{joined} file(s) refused for a second log joined on or a clock reset: --options '{{\"input\": {{\"joined\": \"split\"}}}}' scores each log as a drive of its own")
-    if by_code.get("check"):
-        out.append(f"{by_code['check']} file(s) refused for a unit or sign mistake check found: gyrodrift.check(gyrodrift.read_log(path)) names each fix (--options '{{\"input\": {{\"ignore_check\": true}}}}' runs them anyway, with absurd figures)")
-    if by_code.get("foreign"):
-        draft = " reads a logger of your own (sample-logs/recipes/README.md; gyrodrift.draft_recipe([path]) drafts one from its column names)"
-        if recipe:
-            how, by = " and the recipe does not read them", "another recipe"
-        elif import_raw:
-            how, by = " and no logger preset reads them", "--recipe R: a recipe"
-        else:
-            how, by = "", "--import reads the exports of the loggers it knows (SensorLog, Sensor Logger, phyphox, comma2k19, PX4, ROS); --recipe R: a recipe"
-        out.append(f"{by_code['foreign']} file(s) are not v1 logs (no time_s column){how}: {by}{draft}")
-    return out
+    ``recipe``: how the job read the files that are not v1 logs (the hint for those differs).
+    Core says which kinds, how many and why; this names each remedy in this job's options."""
+    own = " reads a logger of your own (sample-logs/recipes/README.md; gyrodrift.draft_recipe([path]) drafts one from its column names)"
+    by = {
+        "time_order_fix": """--options '{"input": {"time_order": "fix"}}' puts it in order""",
+        "joined_split": """--options '{"input": {"joined": "split"}}' scores each log as a drive of its own""",
+        "check_each": """gyrodrift.check(gyrodrift.read_log(path)) names each fix (--options '{"input": {"ignore_check": true}}' runs them anyway, with absurd figures)""",
+        "import_or_recipe": "--import reads the exports of the loggers it knows (SensorLog, Sensor Logger, phyphox, comma2k19, PX4, ROS); --recipe R: a recipe" + own,
+        "recipe": "--recipe R: a recipe" + own,
+        "other_recipe": "another recipe" + own,
+    }
+    records = json.loads(rows.to_json(orient="records"))
+    return [f"{h['files']} file(s) {h['why']}: {by[h['remedy']]}" for h in _refusal_hints(records, import_raw, recipe is not None)]
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

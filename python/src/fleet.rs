@@ -106,6 +106,18 @@ fn summarize<'py>(py: Python<'py>, rows: &Bound<'py, PyAny>) -> PyResult<Bound<'
     result_dict(py, &fleet::summarize(&rows_from(rows)?))
 }
 
+/// The error rows another reading mends, a dict per kind (core's `fleet::refusal_hints`):
+/// `files`, `why` (words after "N file(s) ") and `remedy` (time_order_fix, joined_split,
+/// check_each, import_or_recipe, recipe, other_recipe), for the fleet job to name in its
+/// options. `import_raw`, `recipe`: how the job read the files that are not v1 logs.
+#[pyfunction]
+#[pyo3(signature = (rows, import_raw=false, recipe=false))]
+fn refusal_hints<'py>(py: Python<'py>, rows: &Bound<'py, PyAny>, import_raw: bool, recipe: bool) -> PyResult<Bound<'py, PyList>> {
+    let reading = fleet::ForeignReading::of(import_raw, recipe);
+    let hints = fleet::refusal_hints(&fleet::summarize(&rows_from(rows)?).errors_by_code, reading);
+    PyList::new(py, hints.iter().map(|h| result_dict(py, h)).collect::<PyResult<Vec<_>>>()?)
+}
+
 /// The summary as a Markdown table.
 #[pyfunction]
 fn summary_markdown(rows: &Bound<'_, PyAny>) -> PyResult<String> {
@@ -133,6 +145,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(score_log, m)?)?;
     m.add_function(wrap_pyfunction!(summarize, m)?)?;
     m.add_function(wrap_pyfunction!(summary_markdown, m)?)?;
+    m.add_function(wrap_pyfunction!(refusal_hints, m)?)?;
     m.add_function(wrap_pyfunction!(error_row, m)?)?;
     m.add_function(wrap_pyfunction!(row_columns, m)?)
 }

@@ -139,6 +139,10 @@ def test_the_command_line_names_the_option_for_refusals_by_kind(samples, tmp_pat
     codes = {Path(f).name: (None if pd.isna(c) else c) for f, c in out["error_code"].items()}
     assert err.count("""1 file(s) refused for a unit or sign mistake check found: gyrodrift.check(gyrodrift.read_log(path)) names each fix""") == 1, err
     assert codes == {"city.csv": None, "joined.csv": "joined", "repeat.csv": "time_order", "reset.csv": "clock_reset", "cw.csv": "check"}
+    # Core's hints as data, for a job of one's own: kinds counted, why, and the remedy's kind.
+    records = json.loads(out.reset_index().to_json(orient="records"))
+    hints = [(h["files"], h["remedy"]) for h in g.refusal_hints(records)]
+    assert hints == [(1, "time_order_fix"), (2, "joined_split"), (1, "check_each")], hints
     options = '{"input": {"joined": "split", "time_order": "fix", "ignore_check": true}}'
     assert fleet.main([str(logs), "--workers", "1", "--options", options]) == 0
     captured = capsys.readouterr()
