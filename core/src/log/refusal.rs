@@ -39,7 +39,10 @@ impl Refusal {
         // size-capped browser module (BENCHMARKS.md).
         let has = |message: &str, text: &str| message.as_bytes().windows(text.len()).any(|w| w == text.as_bytes());
         match e {
-            Error::Cell { column, message, .. } if column == "time_s" && has(message, super::parse::CLOCK_RESET) => {
+            // A time-order refusal that names a reset (not a bad cell whose text says so).
+            Error::Cell { column, message, .. }
+                if column == "time_s" && message.ends_with(super::parse::TIME_ORDER_REFUSAL) && has(message, super::parse::CLOCK_RESET) =>
+            {
                 Some(Refusal::ClockReset)
             }
             Error::Cell { column, message, .. } if column == "time_s" && message.ends_with(super::parse::TIME_ORDER_REFUSAL) => {
@@ -87,6 +90,9 @@ mod tests {
         assert_eq!(kind("time_s,gyro_dps,temp_c\n0,1\n1,1,20\n"), Some("cut_row"));
         assert_eq!(kind("time_s,gyro_dps\n0,1\n1,1,2\n"), None);
         assert_eq!(kind("time_s,gyro_dps\n0,x\n"), None);
+        // A time cell whose text reads as a reset or a time-order refusal is a bad cell.
+        assert_eq!(kind("time_s,gyro_dps\n0,1\na clock reset?,1\n"), None);
+        assert_eq!(kind("time_s,gyro_dps\n0,1\ntime must strictly increase,1\n"), None);
         // A table without time_s: a logger's own (a recipe reads it); any other header error is none.
         assert_eq!(kind("gyro_dps\n1\n"), Some("foreign"));
         assert_eq!(kind("Time (s);Gyroscope z (rad/s)\n0;1\n"), Some("foreign"));
