@@ -443,7 +443,9 @@ pub fn split(path: &Path, out_dir: Option<&Path>) -> Result<(), Failure> {
         None if is_stdin(path) => return Err(Failure("split -: name the folder to write the logs to (--out-dir DIR)".into())),
         None => path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new(".")).to_path_buf(),
     };
-    let logs = gyrodrift::log::accept::parse_joined(open_input(path)?, time_order()).map_err(|e| fail(path, e))?;
+    // Refused as the other commands refuse it, with the option that mends it (`--time-order
+    // fix`, or the import's draft for a logger's own table).
+    let logs = gyrodrift::log::accept::parse_joined(open_input(path)?, time_order()).map_err(|e| crate::input::read_failure(path, e))?;
     if let [(_, None, _)] = logs.as_slice() {
         return write_stdout(&format!("{}: one log, nothing joined on: nothing written\n", shown(path)));
     }

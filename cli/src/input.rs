@@ -39,7 +39,7 @@ pub(crate) fn read_all(path: &Path, input: InputPolicy) -> Result<Vec<DriveLog>,
 /// A log's refusal with the option or command that reads it: `--time-order fix` for a time
 /// that repeats, `split` for logs joined on or a clock reset, the import's draft for a
 /// logger's own table.
-fn read_failure(path: &Path, e: Error) -> Failure {
+pub(crate) fn read_failure(path: &Path, e: Error) -> Failure {
     let refusal = Refusal::of(&e);
     let out_of_order = refusal == Some(Refusal::TimeOrder);
     let reset = refusal == Some(Refusal::ClockReset);

@@ -433,6 +433,15 @@ fn two_logs_joined_are_refused_naming_the_seconds_first_line() {
     assert_eq!(serde_json::from_slice::<serde_json::Value>(&both.stdout).unwrap(), serde_json::Value::from(each));
     let err = String::from_utf8(both.stderr).unwrap();
     assert!(err.contains(&format!("log 2 of 2 joined in the file, from line {}", first_lines + 1)), "{err}");
+    // A row late in the second log: refused naming the option that sorts it in, as the
+    // scoring commands refuse it; given, each log written.
+    let late = text.replace("test drive", "second drive").replacen("\n0.5,", "\n0.35,", 1);
+    let late = write("late.csv", &format!("{text}{late}"));
+    let out = run(&["split", late.to_str().unwrap(), "--out-dir", dir.to_str().unwrap()]);
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(out.status.code() == Some(2) && err.contains("`--time-order fix` merges repeated times"), "{err}");
+    let out = run(&["split", late.to_str().unwrap(), "--out-dir", dir.to_str().unwrap(), "--time-order", "fix"]);
+    assert!(out.status.success() && dir.join("late.2.csv").exists(), "{}", String::from_utf8_lossy(&out.stderr));
     // A file of one log: nothing written.
     let out = run(&["split", alone.to_str().unwrap(), "--out-dir", dir.to_str().unwrap()]);
     assert!(String::from_utf8(out.stdout).unwrap().ends_with("one log, nothing joined on: nothing written\n"));
