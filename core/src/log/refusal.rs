@@ -39,9 +39,10 @@ impl Refusal {
         // size-capped browser module (BENCHMARKS.md).
         let has = |message: &str, text: &str| message.as_bytes().windows(text.len()).any(|w| w == text.as_bytes());
         match e {
-            // A time-order refusal that names a reset (not a bad cell whose text says so).
+            // A time-order refusal that names a reset, the parser's or the fix's ("time 0 goes
+            // back ..."), not a bad cell whose text says so ("\"...\" is not a number").
             Error::Cell { column, message, .. }
-                if column == "time_s" && message.ends_with(super::parse::TIME_ORDER_REFUSAL) && has(message, super::parse::CLOCK_RESET) =>
+                if column == "time_s" && message.starts_with("time ") && has(message, super::parse::CLOCK_RESET) =>
             {
                 Some(Refusal::ClockReset)
             }
@@ -92,6 +93,10 @@ mod tests {
         assert_eq!(kind("time_s,gyro_dps\n0,x\n"), None);
         // A time cell whose text reads as a reset or a time-order refusal is a bad cell.
         assert_eq!(kind("time_s,gyro_dps\n0,1\na clock reset?,1\n"), None);
+        assert_eq!(kind("time_s,gyro_dps\n0,1\ntime a clock reset?,1\n"), None);
+        // The fix's refusal of a reset is one too.
+        let fixing = parse_by(&b"time_s,gyro_dps\n0,1\n5,1\n1,1\n"[..], TimeOrder::Fix).unwrap_err();
+        assert_eq!(Refusal::of(&fixing), Some(Refusal::ClockReset), "{fixing}");
         assert_eq!(kind("time_s,gyro_dps\n0,1\ntime must strictly increase,1\n"), None);
         // A table without time_s: a logger's own (a recipe reads it); any other header error is none.
         assert_eq!(kind("gyro_dps\n1\n"), Some("foreign"));
