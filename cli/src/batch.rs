@@ -102,20 +102,16 @@ fn write_rows(out: &Path, rows: &[DriveRow]) -> Result<(), Failure> {
 fn refusal_hints(summary: &fleet::FleetSummary, batch: &Batch) -> Vec<String> {
     use fleet::{ForeignReading, Remedy};
     let reading = ForeignReading::of(batch.import, batch.recipe.is_some());
+    const PRESETS: &str = "`--import` reads the exports of the loggers it knows (SensorLog, Sensor Logger, phyphox, comma2k19, PX4, ROS)";
+    const CHECK: &str = "`gyrodrift check FILE` names each fix (`--ignore-check` runs them anyway, with absurd figures)";
     let own = " reads a logger of your own (sample-logs/recipes/README.md; `gyrodrift import FILE --print-recipe` drafts one from its column names)";
-    let by = |remedy: Remedy| {
-        match remedy {
+    let by = |remedy: Remedy| match remedy {
         Remedy::TimeOrderFix => "`--time-order fix` puts it in order".to_string(),
         Remedy::JoinedSplit => "`--joined split` scores each log as a drive of its own".to_string(),
-        Remedy::CheckEach => {
-            "`gyrodrift check FILE` names each fix (`--ignore-check` runs them anyway, with absurd figures)".to_string()
-        }
-        Remedy::ImportOrRecipe => format!(
-            "`--import` reads the exports of the loggers it knows (SensorLog, Sensor Logger, phyphox, comma2k19, PX4, ROS); `--recipe R`: a recipe{own}"
-        ),
+        Remedy::CheckEach => CHECK.to_string(),
+        Remedy::ImportOrRecipe => format!("{PRESETS}; `--recipe R`: a recipe{own}"),
         Remedy::Recipe => format!("`--recipe R`: a recipe{own}"),
         Remedy::OtherRecipe => format!("another recipe{own}"),
-    }
     };
     fleet::refusal_hints(&summary.errors_by_code, reading)
         .into_iter()

@@ -198,8 +198,9 @@ pub fn stem_in_file(stem: &str, k: usize, n: usize) -> String {
 /// `e` with its line numbers `by` lines further on (a log that starts that far into its file).
 fn shifted(e: Error, by: u64) -> Error {
     match e {
-        // A time-order refusal also names the row before ("goes back from 5 on line 53").
-        Error::Cell { line, column, message } if column == "time_s" => {
+        // A time-order refusal also names the row before ("time 4.9 goes back from 5 on line
+        // 53"); a bad cell's message, which quotes the cell, is left as it is.
+        Error::Cell { line, column, message } if column == "time_s" && message.starts_with("time ") => {
             Error::Cell { line: line + by, message: lines_shifted(&message, "on line ", by), column }
         }
         Error::Cell { line, column, message } => Error::Cell { line: line + by, column, message },
@@ -366,6 +367,10 @@ mod tests {
         let e = parse_joined(late.as_bytes(), TimeOrder::Error).unwrap_err().to_string();
         assert!(e.starts_with("line 6, column time_s: time 0.5 goes back from 1 on line 5:"), "{e}");
         assert_eq!(lines_shifted("a (line 2), on line 9 and line x", "line ", 10), "a (line 12), on line 19 and line x");
+        // A bad time cell quoting "on line 2" is quoted as it is.
+        let quoted = "time_s,gyro_dps\n0,1\n# name: b\ntime_s,gyro_dps\non line 2,1\n";
+        let e = parse_joined(quoted.as_bytes(), TimeOrder::Error).unwrap_err().to_string();
+        assert!(e.starts_with("line 5, column time_s: \"on line 2\""), "{e}");
         let logs = parse_joined(&b"time_s,gyro_dps\n0,1\n1,2\n# stopped by the user\n"[..], TimeOrder::Fix).unwrap();
         assert_eq!(logs.len(), 1);
         assert_eq!(logs[0].1.as_deref(), Some("the '#' lines from line 4 on, with no rows after them, ignored"));
