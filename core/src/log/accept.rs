@@ -200,7 +200,7 @@ fn shifted(e: Error, by: u64) -> Error {
     match e {
         // A time-order refusal also names the row before ("time 4.9 goes back from 5 on line
         // 53"); a bad cell's message, which quotes the cell, is left as it is.
-        Error::Cell { line, column, message } if column == "time_s" && message.starts_with("time ") => {
+        Error::Cell { line, column, message } if super::parse::is_time_order(&column, &message) => {
             Error::Cell { line: line + by, message: lines_shifted(&message, "on line ", by), column }
         }
         Error::Cell { line, column, message } => Error::Cell { line: line + by, column, message },

@@ -162,6 +162,14 @@ pub(super) const TIME_ORDER_REFUSAL: &str = "time must strictly increase";
 /// What a clock reset's refusal says (`accept::Refusal::of`).
 pub(super) const CLOCK_RESET: &str = "a clock reset?";
 
+/// Whether a cell error is a refusal of a row's time order, the parser's or the time-order
+/// fix's ("time 4.9 goes back from 5 ...", which may name a reset and the row before): both
+/// start with "time ", where a bad cell's message quotes the cell (`accept::Refusal::of`,
+/// `accept::shifted`).
+pub(super) fn is_time_order(column: &str, message: &str) -> bool {
+    column == "time_s" && message.starts_with("time ")
+}
+
 /// How the refusal of a header without `time_s` starts: a table that is no v1 log (a
 /// logger's own export), which a recipe reads (`accept::Refusal::of`, `import::hint`).
 pub(super) const NO_TIME_COLUMN: &str = "missing required column time_s";

@@ -42,7 +42,7 @@ impl Refusal {
             // A time-order refusal that names a reset, the parser's or the fix's ("time 0 goes
             // back ..."), not a bad cell whose text says so ("\"...\" is not a number").
             Error::Cell { column, message, .. }
-                if column == "time_s" && message.starts_with("time ") && has(message, super::parse::CLOCK_RESET) =>
+                if super::parse::is_time_order(column, message) && has(message, super::parse::CLOCK_RESET) =>
             {
                 Some(Refusal::ClockReset)
             }
