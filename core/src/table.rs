@@ -73,9 +73,11 @@ pub struct Row<'a> {
 /// Reads `reader` row by row. The first `skip_lines` lines are skipped unread; then each
 /// line goes to `preamble` (as text) until it returns false: that line and every later one
 /// are rows (`preamble` takes comment or metadata lines before a header). Errors name the
-/// line; `row` may return its own.
+/// line, counted from `lines_before` (the file's lines before the reader's first, as for a
+/// log joined on after another); `row` may return its own.
 pub fn read_rows(
     reader: impl Read,
+    lines_before: u64,
     split: Split,
     skip_lines: usize,
     limits: Limits,
@@ -84,7 +86,7 @@ pub fn read_rows(
 ) -> Result<()> {
     let mut reader = BufReader::with_capacity(1 << 16, Capped { inner: reader, limits, total: 0, line: 0 });
     let mut raw = Vec::new();
-    let mut line_no: u64 = 0;
+    let mut line_no: u64 = lines_before;
     let mut byte: u64 = 0;
     for _ in 0..skip_lines {
         raw.clear();
@@ -103,11 +105,12 @@ pub fn read_rows(
             return Ok(());
         }
         line_no += 1;
-        if line_no == 1 && raw.starts_with(b"\xEF\xBB\xBF") {
+        let at_start = line_no == lines_before + 1;
+        if at_start && raw.starts_with(b"\xEF\xBB\xBF") {
             raw.drain(..3);
         }
-        if let Some(message) = archive_message(&raw).filter(|_| line_no == 1) {
-            return Err(Error::Line { line: 1, message: message.into() });
+        if let Some(message) = archive_message(&raw).filter(|_| at_start) {
+            return Err(Error::Line { line: line_no, message: message.into() });
         }
         let text = std::str::from_utf8(&raw).map_err(|_| Error::Line { line: line_no, message: "not valid UTF-8 text".into() })?;
         if !preamble(line_no, text)? {
@@ -214,7 +217,7 @@ mod tests {
     fn rows(text: &[u8], split: Split, skip: usize) -> Result<Vec<(u64, Vec<String>)>> {
         let mut out = Vec::new();
         let mut pre = |_: u64, t: &str| Ok(t.trim().is_empty() || t.starts_with('#'));
-        read_rows(text, split, skip, Limits::default(), &mut pre, &mut |r| {
+        read_rows(text, 0, split, skip, Limits::default(), &mut pre, &mut |r| {
             out.push((r.line, r.fields.iter().map(|s| s.to_string()).collect()));
             Ok(())
         })?;
@@ -253,11 +256,11 @@ mod tests {
     fn caps_stop_endless_or_huge_input() {
         let none = &mut |_: Row| Ok(());
         let zeros = std::io::repeat(0).take(10 << 20);
-        let e = read_rows(zeros, Split::Csv, 0, Limits::default(), &mut |_, _| Ok(false), none).unwrap_err();
+        let e = read_rows(zeros, 0, Split::Csv, 0, Limits::default(), &mut |_, _| Ok(false), none).unwrap_err();
         assert!(matches!(&e, Error::Io(m) if m.contains("a line is longer than 1048576 bytes")), "{e}");
         let small = Limits { max_bytes: 100, max_line_bytes: 1000 };
         let text = "a,b\n".repeat(100);
-        let e = read_rows(text.as_bytes(), Split::Whitespace, 0, small, &mut |_, _| Ok(false), none).unwrap_err();
+        let e = read_rows(text.as_bytes(), 0, Split::Whitespace, 0, small, &mut |_, _| Ok(false), none).unwrap_err();
         assert!(matches!(&e, Error::Io(m) if m.contains("larger than 100 bytes")), "{e}");
     }
 }

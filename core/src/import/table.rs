@@ -165,7 +165,7 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
             on_row(r.line, r.fields)
         }
     };
-    read_rows(reader, split, spec.skip_lines, Default::default(), &mut |_, _| Ok(false), &mut each).map_err(at)?;
+    read_rows(reader, 0, split, spec.skip_lines, Default::default(), &mut |_, _| Ok(false), &mut each).map_err(at)?;
     if header.is_none() {
         return Err(at(Error::File("empty file: no header row".into())));
     }

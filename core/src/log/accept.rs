@@ -94,8 +94,9 @@ fn read_one<R: std::io::Read>(reader: &mut super::dialect::V1Reader<R>, order: T
 fn read_restarts<R: std::io::Read>(
     reader: &mut super::dialect::V1Reader<R>,
     order: TimeOrder,
+    lines_before: u64,
 ) -> Result<Vec<(DriveLog, String, Option<f64>)>> {
-    let mut log = super::parse::parse_log_unordered(reader, order == TimeOrder::Error)?;
+    let mut log = super::parse::parse_log_unordered(reader, order == TimeOrder::Error, lines_before)?;
     let (mut latest, mut cuts) = (f64::NEG_INFINITY, Vec::new());
     for (i, &x) in log.time_s().iter().enumerate() {
         if crate::import::is_clock_reset(latest, x) {
@@ -128,8 +129,8 @@ pub fn parse_joined<'a, R: std::io::Read + 'a>(reader: R, order: TimeOrder) -> R
     let mut out: Vec<(DriveLog, Option<String>, u64)> = Vec::new();
     let (mut rest, mut first_line): (Box<dyn std::io::Read + 'a>, u64) = (Box::new(reader), 1);
     loop {
-        let mut reader = super::dialect::v1_reader(rest, true);
-        let parts = match (read_restarts(&mut reader, order), out.last_mut()) {
+        let mut reader = super::dialect::v1_reader(rest, true).after_lines(first_line - 1);
+        let parts = match (read_restarts(&mut reader, order, first_line - 1), out.last_mut()) {
             (Ok(read), _) => read,
             // Comments alone after the last log's rows: not a log.
             (Err(Error::File(m)), Some(last)) if m.starts_with("empty file") => {
@@ -137,17 +138,11 @@ pub fn parse_joined<'a, R: std::io::Read + 'a>(reader: R, order: TimeOrder) -> R
                 last.1 = Some(last.1.take().map_or(note.clone(), |s| format!("{s}; {note}")));
                 return Ok(out);
             }
-            (Err(Error::File(m)), Some(_)) => {
-                // "the file has a header (line 2)": the file's line.
-                let m = lines_shifted(&m, "(line ", first_line - 1);
-                return Err(Error::File(m).within(&format!("the log from line {first_line}")));
-            }
-            (Err(e), _) => return Err(shifted(e, first_line - 1)),
+            (Err(Error::File(m)), Some(_)) => return Err(Error::File(m).within(&format!("the log from line {first_line}"))),
+            (Err(e), _) => return Err(e),
         };
         let read = reader.said();
-        for (mut log, fixes, reset_after) in parts {
-            // Lines of the file, not of the log joined on.
-            log.line.iter_mut().for_each(|l| *l += first_line - 1);
+        for (log, fixes, reset_after) in parts {
             let (line, reset) = match (reset_after, log.line.first(), log.time_s().first()) {
                 (Some(after), Some(&l), Some(t)) => {
                     (l, Some(format!("its clock reset on this line (time {t} after {after}): read on as a log of its own")))
@@ -159,7 +154,7 @@ pub fn parse_joined<'a, R: std::io::Read + 'a>(reader: R, order: TimeOrder) -> R
             out.push((log, (!said.is_empty()).then(|| said.join("; ")), line));
         }
         match reader.into_rest() {
-            Some((joined, r)) => (rest, first_line) = (Box::new(r), first_line + joined.line - 1),
+            Some((joined, r)) => (rest, first_line) = (Box::new(r), joined.line),
             None => return Ok(out),
         }
     }
@@ -193,36 +188,6 @@ pub fn stem_in_file(stem: &str, k: usize, n: usize) -> String {
     } else {
         stem.to_string()
     }
-}
-
-/// `e` with its line numbers `by` lines further on (a log that starts that far into its file).
-fn shifted(e: Error, by: u64) -> Error {
-    match e {
-        // A time-order refusal also names the row before ("time 4.9 goes back from 5 on line
-        // 53"); a bad cell's message, which quotes the cell, is left as it is.
-        Error::Cell { line, column, message } if super::parse::is_time_order(&column, &message) => {
-            Error::Cell { line: line + by, message: lines_shifted(&message, "on line ", by), column }
-        }
-        Error::Cell { line, column, message } => Error::Cell { line: line + by, column, message },
-        Error::Line { line, message } => Error::Line { line: line + by, message },
-        Error::In { name, source } => Error::In { name, source: Box::new(shifted(*source, by)) },
-        e => e,
-    }
-}
-
-/// `message`, a parser's words on a log read alone, with the number after each `marker` moved
-/// by `by` lines, to the file's line numbers.
-fn lines_shifted(message: &str, marker: &str, by: u64) -> String {
-    let (mut out, mut rest) = (String::new(), message);
-    while let Some(i) = rest.find(marker) {
-        let (head, tail) = rest.split_at(i + marker.len());
-        let digits = tail.bytes().take_while(u8::is_ascii_digit).count();
-        let n = tail[..digits].parse::<u64>().map_or_else(|_| tail[..digits].to_string(), |n| (n + by).to_string());
-        out.push_str(head);
-        out.push_str(&n);
-        rest = &tail[digits..];
-    }
-    out + rest
 }
 
 /// A log taken: its parts (one without gaps), the check's warnings and what splitting did.
@@ -366,7 +331,15 @@ mod tests {
         let late = "time_s,gyro_dps\n0,1\n# name: b\ntime_s,gyro_dps\n1,1\n0.5,1\n";
         let e = parse_joined(late.as_bytes(), TimeOrder::Error).unwrap_err().to_string();
         assert!(e.starts_with("line 6, column time_s: time 0.5 goes back from 1 on line 5:"), "{e}");
-        assert_eq!(lines_shifted("a (line 2), on line 9 and line x", "line ", 10), "a (line 12), on line 19 and line x");
+        // A third log: its start and a late row in it, counted on from the second's.
+        let third = format!("{late}\n# name: c\ntime_s,gyro_dps\n0,1\n2,1\n1.5,1\n");
+        let logs = parse_joined(third.as_bytes(), TimeOrder::Fix).unwrap();
+        assert_eq!(logs.iter().map(|l| l.2).collect::<Vec<_>>(), [1, 3, 8]);
+        assert_eq!(logs[2].0.line, [10, 12, 11]);
+        let e = parse_joined(third.as_bytes(), TimeOrder::Error).unwrap_err().to_string();
+        assert!(e.starts_with("line 6,"), "{e}");
+        let e = parse_joined(third.replace("1,1\n0.5", "0.5,1\n1").as_bytes(), TimeOrder::Error).unwrap_err().to_string();
+        assert!(e.starts_with("line 12, column time_s: time 1.5 goes back from 2 on line 11:"), "{e}");
         // A bad time cell quoting "on line 2" is quoted as it is.
         let quoted = "time_s,gyro_dps\n0,1\n# name: b\ntime_s,gyro_dps\non line 2,1\n";
         let e = parse_joined(quoted.as_bytes(), TimeOrder::Error).unwrap_err().to_string();

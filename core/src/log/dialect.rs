@@ -224,6 +224,13 @@ fn fields(line: &[u8], sep: u8) -> usize {
 }
 
 impl<R: Read> V1Reader<R> {
+    /// The reader of a log that starts after `lines_before` lines of its file (one joined on
+    /// after another), so the second log it finds is named by the file's line.
+    pub fn after_lines(mut self, lines_before: u64) -> Self {
+        self.lines_before = lines_before;
+        self
+    }
+
     /// The last line dropped for being cut short, once the reader has reached the end.
     pub fn cut_last_line(&self) -> Option<CutLine> {
         self.cut

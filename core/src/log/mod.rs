@@ -119,12 +119,15 @@ pub struct ParseOptions {
     pub max_rows: usize,
     /// Caps on the file's bytes and one line's.
     pub limits: crate::table::Limits,
+    /// The file's lines before the log's first (0; more for a log joined on after another),
+    /// so errors and `DriveLog::line` name the file's lines.
+    pub lines_before: u64,
 }
 
 impl Default for ParseOptions {
     fn default() -> Self {
         // 30 M rows ~ 830 h at 10 Hz, ~2 GB of columns: beyond that a log is a mistake.
-        ParseOptions { max_rows: 30_000_000, limits: Default::default() }
+        ParseOptions { max_rows: 30_000_000, limits: Default::default(), lines_before: 0 }
     }
 }
 

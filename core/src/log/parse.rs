@@ -71,9 +71,10 @@ pub fn parse_log_in_time_order<R: Read>(reader: R, opts: ParseOptions) -> Result
 /// A v1 log's rows in file order (for `accept`, which cuts it at clock resets before putting
 /// each part in order). `parts_in_order`: a time that repeats or steps back by at most 1 s is
 /// refused where it is, as the strict parser refuses it, so a bad cell further on is not
-/// named first; a clock reset (back by more) starts a part and is not refused.
-pub(super) fn parse_log_unordered<R: Read>(reader: R, parts_in_order: bool) -> Result<DriveLog> {
-    parse_rows::<false>(reader, ParseOptions::default(), parts_in_order, &mut |_| {})
+/// named first; a clock reset (back by more) starts a part and is not refused. `lines_before`:
+/// the file's lines before the log's first.
+pub(super) fn parse_log_unordered<R: Read>(reader: R, parts_in_order: bool, lines_before: u64) -> Result<DriveLog> {
+    parse_rows::<false>(reader, ParseOptions { lines_before, ..Default::default() }, parts_in_order, &mut |_| {})
 }
 
 /// The first row whose time does not strictly increase, refused as the strict parser refuses it.
@@ -124,7 +125,7 @@ fn parse_rows<const STRICT: bool>(
     let mut log = DriveLog::default();
     let mut prev_time: Option<(f64, u64)> = None;
     let mut rows = 0usize;
-    read_rows(reader, Split::Csv, 0, opts.limits, &mut preamble, &mut |r: Row| {
+    read_rows(reader, opts.lines_before, Split::Csv, 0, opts.limits, &mut preamble, &mut |r: Row| {
         let Some(h) = &header else {
             let h = Header::new(r.fields, r.line)?;
             for c in h.map.iter().flatten() {
