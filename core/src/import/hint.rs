@@ -31,7 +31,7 @@ pub fn draft_reads_refused(path: &Path, e: &Error) -> bool {
     };
     match e {
         Error::Line { .. } if crate::log::accept::Refusal::of(e) == Some(crate::log::accept::Refusal::Foreign) => draft_reads(path, false),
-        Error::Cell { column, message, .. } if column == "time_s" && message.ends_with("is not a number") => draft_reads(path, true),
+        Error::Cell { .. } if crate::log::is_bad_time_cell(e) => draft_reads(path, true),
         _ => false,
     }
 }

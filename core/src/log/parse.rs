@@ -165,10 +165,15 @@ pub(super) const CLOCK_RESET: &str = "a clock reset?";
 
 /// Whether a cell error is a refusal of a row's time order, the parser's or the time-order
 /// fix's ("time 4.9 goes back from 5 ...", which may name a reset and the row before): both
-/// start with "time ", where a bad cell's message quotes the cell (`accept::Refusal::of`,
-/// `accept::shifted`).
+/// start with "time ", where a bad cell's message quotes the cell (`accept::Refusal::of`).
 pub(super) fn is_time_order(column: &str, message: &str) -> bool {
     column == "time_s" && message.starts_with("time ")
+}
+
+/// Whether a cell error is a `time_s` cell that is not a number (`parse_cell`'s words): a
+/// logger's own time (date-times) perhaps, which the import's draft may read (`import::hint`).
+pub(crate) fn is_bad_time_cell(e: &Error) -> bool {
+    matches!(e, Error::Cell { column, message, .. } if column == "time_s" && message.ends_with("is not a number"))
 }
 
 /// How the refusal of a header without `time_s` starts: a table that is no v1 log (a
