@@ -23,6 +23,12 @@ use crate::error::Result;
 use crate::hdr::{Hdr, HdrParams};
 use crate::peers::FusionOffset;
 
+/// Whether a bias known to `sigma_dps` is within Table-III HDR's reach: three sigma within
+/// its straight threshold theta_w, so its heuristic could acquire what is left.
+pub(super) fn within_hdr_reach(sigma_dps: f64) -> bool {
+    3.0 * sigma_dps < HdrParams::table_iii().theta_w_dps
+}
+
 /// The experts on the blocks once started, and their headings at the last block.
 #[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone)]
@@ -71,7 +77,7 @@ impl Blend {
         let table_iii = HdrParams::table_iii();
         self.seen_stop |= bank.stop;
         let sigma = bank.bias_sigma_dps;
-        let known = sigma < table_iii.i_c_dps || (!self.seen_stop && 3.0 * sigma < table_iii.theta_w_dps);
+        let known = sigma < table_iii.i_c_dps || (!self.seen_stop && within_hdr_reach(sigma));
         if self.experts.is_none() && !known {
             return Ok(bank);
         }

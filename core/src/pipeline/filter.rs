@@ -84,6 +84,10 @@ pub struct Pipeline {
     last_stop_s: Option<f64>,
     /// The declared lead-in gave stop evidence, and the warm-up prior has been sized by it.
     lead_in_seen: bool,
+    /// The bank has known its bias once: a stop (the lead-in's included), or three sigma
+    /// within Table-III HDR's straight threshold. Until then it is acquiring a bias it had no
+    /// evidence of, and straight-road evidence also corrects the heading (`update`).
+    acquired: bool,
     warm_up_sized: bool,
     /// The still flags come from the gyro alone (`Blocks::source`; the stream sets it per
     /// block): see [`Pipeline::update`].
@@ -147,6 +151,7 @@ impl Pipeline {
             dating_t0_s: None,
             last_stop_s: None,
             lead_in_seen: false,
+            acquired: false,
             warm_up_sized: false,
             gyro_stills: false,
         })
@@ -281,10 +286,19 @@ impl Pipeline {
         for &z in &stops {
             self.stop_update(z, !lead_in, self.gyro_stills && !lead_in);
         }
+        // While the bank acquires a bias it had no evidence of (no lead-in, no stop yet), the
+        // road that shows the bias also shows what it cost the heading, through the same
+        // covariance a stop corrects it by; once known, road evidence no longer rewrites the
+        // past (a curve read as straight would: docs/pipeline.md).
+        self.acquired |= !stops.is_empty() || super::blend::within_hdr_reach(p_before.sqrt());
+        let h_road: Vec<f64> = if straight && !self.acquired { self.models.iter().map(|m| m.h).collect() } else { Vec::new() };
         if straight {
-            self.road_update(rate_dps);
+            self.road_update(rate_dps, !self.acquired);
         }
         let w = self.weights();
+        if !h_road.is_empty() {
+            self.heading_deg -= self.models.iter().zip(&h_road).zip(&w).map(|((m, hb), wi)| wi * (m.h - hb)).sum::<f64>();
+        }
         for (s, wi) in self.weight_sum.iter_mut().zip(&w) {
             *s += wi;
         }
@@ -410,10 +424,11 @@ impl Pipeline {
     }
 
     /// Straight-road evidence (rate = b + c, block noise on top); weighs the hypotheses.
-    fn road_update(&mut self, rate_dps: f64) {
+    /// `correct_integral`: it also corrects the bias integrals (while acquiring, `update`).
+    fn road_update(&mut self, rate_dps: f64, correct_integral: bool) {
         let r = self.p.block_sigma_dps * self.p.block_sigma_dps;
         for m in &mut self.models {
-            let (nu, s) = m.update(H_ROAD, rate_dps, r, false);
+            let (nu, s) = m.update(H_ROAD, rate_dps, r, correct_integral);
             m.logw += log_likelihood(nu, s, self.p.huber_k);
         }
     }
@@ -436,6 +451,27 @@ mod tests {
             assert!((m.bias().0 - 3.0 * 0.25 / 0.2525).abs() < 1e-12, "{}", m.bias().0);
             assert!((m.bias().1 - 0.25 * 0.0025 / 0.2525).abs() < 1e-12);
         }
+    }
+
+    /// No lead-in, a gyro reading a constant 2 deg/s on a straight road: a bias the bank had
+    /// no evidence of (prior 0 +- 2.5). Until it knows the bias (three sigma within Table
+    /// III's theta_w), straight blocks also correct the heading for what the bias cost it,
+    /// so the heading ends near the truth (0: 1.04 deg) instead of keeping most of what the
+    /// first blocks took off (8.29 deg without the correction); once known, a straight block
+    /// moves the heading by its rate less the bias only.
+    #[test]
+    fn while_acquiring_the_road_corrects_the_heading_then_no_longer() {
+        let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 0.0).unwrap();
+        let mut out = None;
+        for t in 1..=60 {
+            out = Some(f.update(t as f64, 2.0, false).unwrap());
+        }
+        let out = out.unwrap();
+        assert!(f.acquired && (out.bias_dps - 2.0).abs() < 0.01, "{out:?}");
+        assert!(out.heading_deg.abs() < 2.0, "{}", out.heading_deg);
+        let (b, _) = f.bias();
+        let h = f.update(61.0, 2.1, false).unwrap().heading_deg;
+        assert!((h - (out.heading_deg + 2.1 - b)).abs() < 1e-9, "{h}");
     }
 
     /// A lead-in of nine 1 s blocks at 0.05 deg/s (noise 0.05) leaves the bias at 0.05 +-
