@@ -297,7 +297,7 @@ impl Pipeline {
         }
         let w = self.weights();
         if !h_road.is_empty() {
-            self.heading_deg -= self.models.iter().zip(&h_road).zip(&w).map(|((m, hb), wi)| wi * (m.h - hb)).sum::<f64>();
+            self.heading_deg -= self.integral_change(&h_road, &w);
         }
         for (s, wi) in self.weight_sum.iter_mut().zip(&w) {
             *s += wi;
@@ -332,7 +332,7 @@ impl Pipeline {
     /// before: a first block's small change is not dated alone with the age of a walk.
     /// `h_before`: each hypothesis' integral before the stop's updates; `w`: the weights after.
     fn correct_heading_at_stop(&mut self, h_before: &[f64], w: &[f64], b_before: f64, time_s: f64) {
-        let dh: f64 = self.models.iter().zip(h_before).zip(w).map(|((m, hb), wi)| wi * (m.h - hb)).sum();
+        let dh = self.integral_change(h_before, w);
         let delta = self.bias().0 - b_before;
         self.stop_change.0 += delta;
         self.stop_change.1 += dh;
@@ -350,6 +350,12 @@ impl Pipeline {
         self.heading_deg -= correction - self.stop_change.2;
         self.stop_change.2 = correction;
         self.last_stop_s = Some(time_s);
+    }
+
+    /// The bias integrals' change since `h_before` (each hypothesis' before an update), mixed
+    /// with the weights `w`: what the update says the heading took off wrongly.
+    fn integral_change(&self, h_before: &[f64], w: &[f64]) -> f64 {
+        self.models.iter().zip(h_before).zip(w).map(|((m, hb), wi)| wi * (m.h - hb)).sum()
     }
 
     /// Sizes the warm-up prior by the turn-on bias the lead-in showed: a warm-up is part of
