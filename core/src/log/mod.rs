@@ -357,6 +357,7 @@ pub mod file;
 pub mod gaps;
 mod parse;
 mod refusal;
+#[cfg(feature = "fs")]
 pub(crate) use parse::is_bad_time_cell;
 pub use parse::{parse_log, parse_log_in_time_order, parse_log_progress, parse_log_str, parse_log_with};
 

@@ -172,6 +172,7 @@ pub(super) fn is_time_order(column: &str, message: &str) -> bool {
 
 /// Whether a cell error is a `time_s` cell that is not a number (`parse_cell`'s words): a
 /// logger's own time (date-times) perhaps, which the import's draft may read (`import::hint`).
+#[cfg(feature = "fs")]
 pub(crate) fn is_bad_time_cell(e: &Error) -> bool {
     matches!(e, Error::Cell { column, message, .. } if column == "time_s" && message.ends_with("is not a number"))
 }
