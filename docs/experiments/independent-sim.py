@@ -21,6 +21,9 @@ Its own models, none shared with the project's simulator:
   bias walk of 5e-4 deg/s per sqrt(s), scale +-0.5 %, white noise 0.08 deg/s per row;
   the wheel speed with 0.05 m/s noise on every row, `temp_c` as the gyro's temperature.
 
+ROAD_STATS=1 also prints the roads' statistics as `gyrodrift roads` measures them on the
+recorded drives (docs/simulator.md), DETAIL=1 every drive's figures.
+
 Sets: "as described" (12 drives, 20 s lead-in), "no lead-in" (the same drives from the end
 of their lead-in), "gyro only" (no speed column), "calibrated" (the same roads with a gyro
 of +-0.05 deg/s bias and no temperature term). Seeds 9100-9111 (roads) and 9200-9311 (gyros);
@@ -47,7 +50,7 @@ LEAD_S = 20.0
 # the yaw rate's sigma at the cruise speed (deg/s: a curvature sigma over distance) and its
 # correlation length (m). ROADS=rough: the sway of this script's first run (0.30 / 0.61 /
 # 0.53 / 0.30 deg/s), rougher than the recorded drives' (Table-III HDR costs a calibrated
-# gyro 1-7 deg/min there); the default 0.15 deg/s is a driver keeping a lane (0.3 m at a
+# gyro up to 7 deg/min there); the default 0.15 deg/s is a driver keeping a lane (0.3 m at a
 # 10 s period on a highway is 0.22 deg/s).
 ROUGH = os.environ.get("ROADS") == "rough"
 CLASSES = {
@@ -157,6 +160,28 @@ def course(w_true, v, town, rng):
     return ref
 
 
+def road_stats(by_class):
+    """The road statistics `gyrodrift roads` compares (docs/simulator.md), from the true yaw
+    rate's 1 s blocks while moving (over 1 m/s), per road class of this generator."""
+    def q(x, f):
+        x = sorted(x)
+        return x[min(len(x) - 1, int(f * len(x)))] if x else float("nan")
+
+    print(f"{'class':<8} {'moving min':>10} {'abs p50':>8} {'abs p90':>8} {'below theta_w':>13} {'30 s p50':>9} {'30 s p90':>9}")
+    for cls, drives in by_class.items():
+        absr, r30 = [], []
+        for w, v in drives:
+            per = int(1 / DT)
+            blocks = [(sum(w[k : k + per]) / per, sum(v[k : k + per]) / per) for k in range(0, len(w) - per + 1, per)]
+            absr += [abs(r) for r, s in blocks if s > 1.0]
+            for k in range(0, len(blocks) - 29, 30):
+                win = blocks[k : k + 30]
+                if all(s > 1.0 and abs(r) < 3.0 for r, s in win):
+                    r30.append(abs(sum(r for r, _ in win) / 30))
+        below = sum(a < 0.564 for a in absr) / len(absr)
+        print(f"{cls:<8} {len(absr) / 60:>10.1f} {q(absr, 0.5):>8.2f} {q(absr, 0.9):>8.2f} {below:>13.2f} {q(r30, 0.5):>9.3f} {q(r30, 0.9):>9.3f}")
+
+
 def write(path, name, rows, cols, lead_in):
     lines = [f"# description: independent check {name}"]
     if lead_in:
@@ -172,10 +197,12 @@ def main():
         old.unlink()
     plan = [(cls, m) for cls in CLASSES for m in (10, 20, 26)]
     draw = 1000 * int(os.environ.get("INDEPENDENT_DRAW", "0"))
+    by_class = {}
     for i, (cls, minutes) in enumerate(plan):
         rng = random.Random(9100 + draw + i)
         w, v = road(cls, minutes, rng)
         ref = course(w, v, cls in ("city", "suburbs"), rng)
+        by_class.setdefault(cls, []).append((w, v))
         for calibrated in (False, True):
             g, temps = gyro(w, calibrated, random.Random(9200 + draw + i + 100 * calibrated))
             rows = []
@@ -214,6 +241,8 @@ def main():
         raw = sum(p > 1.1 * r for p, _, r, _ in ok)
         worst = max(p / b for p, b, _, _ in ok)
         print(f"{variant:<11} {n:>6} {mean(0):>8.3f} {mean(3):>7.3f} {mean(1):>9.3f} {within:>12} {over:>9} {raw:>10} {worst:>6.2f}x {len(runs) - n:>6}")
+    if os.environ.get("ROAD_STATS"):
+        road_stats(by_class)
     if os.environ.get("DETAIL"):
         for variant, name, ne, best in sorted(detail):
             print(f"{variant:<11} {name:<18} " + " ".join(f"{k} {ne[k]:.3f}" for k in PEERS + ["pipeline"]) + f"  best {best}")
