@@ -51,13 +51,14 @@ LEAD_S = 20.0
 # correlation length (m). ROADS=rough: the sway of this script's first run (0.30 / 0.61 /
 # 0.53 / 0.30 deg/s), rougher than the recorded drives' (Table-III HDR costs a calibrated
 # gyro up to 7 deg/min there); the default 0.15 deg/s is a driver keeping a lane (0.3 m at a
-# 10 s period on a highway is 0.22 deg/s).
+# 10 s period on a highway is 0.22 deg/s); SWAY_DPS=X sets it.
 ROUGH = os.environ.get("ROADS") == "rough"
+SWAY = float(os.environ.get("SWAY_DPS", "0.15"))
 CLASSES = {
-    "city": dict(cruise=13, straight=(120, 400), turn=0.45, bend=0.05, lane=0.1, stop=0.4, sway=0.30 if ROUGH else 0.15, k_corr=80),
-    "suburbs": dict(cruise=16, straight=(250, 800), turn=0.3, bend=0.2, lane=0.1, stop=0.25, sway=0.61 if ROUGH else 0.15, k_corr=150),
-    "rural": dict(cruise=23, straight=(600, 2500), turn=0.05, bend=0.6, lane=0.1, stop=0.05, sway=0.53 if ROUGH else 0.15, k_corr=300),
-    "highway": dict(cruise=31, straight=(800, 3000), turn=0.0, bend=0.5, lane=0.45, stop=0.0, sway=0.30 if ROUGH else 0.15, k_corr=600),
+    "city": dict(cruise=13, straight=(120, 400), turn=0.45, bend=0.05, lane=0.1, stop=0.4, sway=0.30 if ROUGH else SWAY, k_corr=80),
+    "suburbs": dict(cruise=16, straight=(250, 800), turn=0.3, bend=0.2, lane=0.1, stop=0.25, sway=0.61 if ROUGH else SWAY, k_corr=150),
+    "rural": dict(cruise=23, straight=(600, 2500), turn=0.05, bend=0.6, lane=0.1, stop=0.05, sway=0.53 if ROUGH else SWAY, k_corr=300),
+    "highway": dict(cruise=31, straight=(800, 3000), turn=0.0, bend=0.5, lane=0.45, stop=0.0, sway=0.30 if ROUGH else SWAY, k_corr=600),
 }
 
 
