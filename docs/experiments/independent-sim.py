@@ -46,29 +46,31 @@ DT = 0.1
 LEAD_S = 20.0
 
 # Per road class: cruise speed (m/s), straight length (m), what ends a straight
-# (turn, bend, or lane change) with their odds, stop odds at a turn, the straights' sway as
-# the yaw rate's sigma at the cruise speed (deg/s: a curvature sigma over distance) and its
-# correlation length (m). The default 0.08 deg/s gives the recorded highways' slow
+# (turn, bend, or lane change) with their odds, stop odds at a turn, and the correlation
+# length of the straights' curvature (m). Their sway, the yaw rate's sigma at the cruise
+# speed (deg/s: a curvature sigma over distance), is one for every class: the default 0.08 deg/s gives the recorded highways' slow
 # curvature (the |mean rate| over 30 s windows: median 0.078 against 0.076 recorded,
 # docs/simulator.md) but less quick sway (|rate| median 0.09 against 0.19); SWAY_DPS=0.15
 # (this script's first default, a driver keeping a lane: 0.3 m at a 10 s period on a
 # highway is 0.22 deg/s) matches the quick sway and doubles the slow curvature.
 # ROADS=rough: the first run's 0.30 / 0.61 / 0.53 / 0.30 deg/s, rougher than any recorded
 # road (Table-III HDR costs a calibrated gyro up to 7 deg/min there).
-ROUGH = os.environ.get("ROADS") == "rough"
 SWAY = float(os.environ.get("SWAY_DPS", "0.08"))
+ROUGH = os.environ.get("ROADS") == "rough"
+ROUGH_SWAY = {"city": 0.30, "suburbs": 0.61, "rural": 0.53, "highway": 0.30}
 CLASSES = {
-    "city": dict(cruise=13, straight=(120, 400), turn=0.45, bend=0.05, lane=0.1, stop=0.4, sway=0.30 if ROUGH else SWAY, k_corr=80),
-    "suburbs": dict(cruise=16, straight=(250, 800), turn=0.3, bend=0.2, lane=0.1, stop=0.25, sway=0.61 if ROUGH else SWAY, k_corr=150),
-    "rural": dict(cruise=23, straight=(600, 2500), turn=0.05, bend=0.6, lane=0.1, stop=0.05, sway=0.53 if ROUGH else SWAY, k_corr=300),
-    "highway": dict(cruise=31, straight=(800, 3000), turn=0.0, bend=0.5, lane=0.45, stop=0.0, sway=0.30 if ROUGH else SWAY, k_corr=600),
+    "city": dict(cruise=13, straight=(120, 400), turn=0.45, bend=0.05, lane=0.1, stop=0.4, k_corr=80),
+    "suburbs": dict(cruise=16, straight=(250, 800), turn=0.3, bend=0.2, lane=0.1, stop=0.25, k_corr=150),
+    "rural": dict(cruise=23, straight=(600, 2500), turn=0.05, bend=0.6, lane=0.1, stop=0.05, k_corr=300),
+    "highway": dict(cruise=31, straight=(800, 3000), turn=0.0, bend=0.5, lane=0.45, stop=0.0, k_corr=600),
 }
 
 
 def road(cls, minutes, rng):
     """True yaw rate (deg/s) and speed (m/s) at 10 Hz: a lead-in, then manoeuvres."""
     c = CLASSES[cls]
-    k_sigma = c["sway"] * math.pi / 180 / c["cruise"]
+    sway_dps = ROUGH_SWAY[cls] if ROUGH else SWAY
+    k_sigma = sway_dps * math.pi / 180 / c["cruise"]
     n_total = int(minutes * 60 / DT)
     w, v = [0.0] * int(LEAD_S / DT), [0.0] * int(LEAD_S / DT)
     speed, kappa = 0.0, 0.0
