@@ -26,6 +26,7 @@ export const PIPE_PARAMS = [
   { key: "max_bias_dps", label: "max bias", unit: "deg/s", min: 0.5, max: 20, step: 0.5, help: "The widest bias accepted: a standing whose rate is further than this from the lead-in's bias (0 without a lead-in) is taken as a slow turn; without a lead-in, a steady standing of 10 s is taken whatever its rate." },
   { key: "road_gate_dps", label: "straight gate", unit: "deg/s", min: 0.05, max: 2, step: 0.01, help: "A moving block within this of the last 60 s's dominant rate counts as straight road, HDR's heuristic: wider finds more straights on a noisy gyro, and takes gentle curves for straight." },
   { key: "blend_sigmas", label: "blend guard", unit: "sigma", min: 0, max: 5, step: 0.1, help: "The heading moves with Table-III HDR's and Fusion's offset where the bias they imply is within this many sigmas of the bank's; 0 = the bank's heading alone." },
+  { key: "blend_move_dps", label: "bend fallback", unit: "deg/s", min: 0, max: 2, step: 0.05, help: "After a stationary lead-in, while the bank's settled bias moves further than this from its last minute's average (a long bend taken for straight road), the heading moves with Table-III HDR's; 0 = never." },
 ];
 export const GYRO_PARAMS = [{ key: "thres_rate_dps", label: "threshold", unit: "deg/s", min: 0, max: 10, step: 0.05, help: "Gyrodometry's threshold: where gyro and odometry disagree by more than this rate, the gyro's increment is used (Borenstein & Feng)." }];
 export const SAMPLES = [

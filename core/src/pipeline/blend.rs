@@ -15,6 +15,12 @@
 //! Until the first stop, where the road alone may never take the bank there (no lead-in, no
 //! speed), they start once HDR could acquire what is left: three sigma within its straight
 //! threshold theta_w (0.188 deg/s).
+//! After a stationary lead-in the bank's settled bias (the bias less its warm-up term) has
+//! no cause to move fast: while it is more than `blend_move_dps` from its own average over
+//! `blend_move_s`, the bank is reading a long bend as straight road (its 60 s window filled
+//! by the bend), and the heading moves by HDR's move alone, whose threshold about its own
+//! estimate calls the bend a turn. HDR's bias is then held within the guard of the span
+//! between the bank's bias and that average, so the blend stays as bounded as the bank.
 //! The stream and the batch path blend alike, block for block. Beyond the paper, like the
 //! bank.
 
@@ -54,6 +60,36 @@ pub struct Blend {
     offset_deg: f64,
     /// The bank has had stop evidence since the lead-in (the experts then wait for i_c).
     seen_stop: bool,
+    fallback: Fallback,
+}
+
+/// Watches the bank's settled bias after a lead-in: `blend_move_dps` (0: never),
+/// `blend_move_s`, whether the lead-in gave stop evidence, and the averages since the
+/// experts began of the settled bias and of the bank's bias.
+#[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
+#[derive(Debug, Clone, Default)]
+struct Fallback {
+    move_dps: f64,
+    move_s: f64,
+    lead_in_seen: bool,
+    avg_dps: Option<(f64, f64)>,
+}
+
+impl Fallback {
+    /// Where the settled bias is further than `move_dps` from its average (after a lead-in;
+    /// a non-finite settled bias is none), the bank's bias averaged before this block; the
+    /// averages then move on by `dt_s`.
+    fn moved(&mut self, dt_s: f64, bank: &PipelineOutput) -> Option<f64> {
+        let settled = bank.settled_bias_dps;
+        if !(self.lead_in_seen && self.move_dps > 0.0 && settled.is_finite()) {
+            return None;
+        }
+        let (s_avg, b_avg) = self.avg_dps.get_or_insert((settled, bank.bias_dps));
+        let was = ((settled - *s_avg).abs() > self.move_dps).then_some(*b_avg);
+        let k = 1.0 - libm::exp(-dt_s / self.move_s);
+        (*s_avg, *b_avg) = (*s_avg + (settled - *s_avg) * k, *b_avg + (bank.bias_dps - *b_avg) * k);
+        was
+    }
 }
 
 impl Blend {
@@ -65,12 +101,14 @@ impl Blend {
 
     /// The blend the pipeline's settings ask for (causal, smoothed and streamed alike).
     pub fn of(p: &super::PipelineParams) -> Self {
-        Self::new(p.blend_sigmas, p.blend_walk_dps_per_sqrt_s)
+        let fallback = Fallback { move_dps: p.blend_move_dps, move_s: p.blend_move_s, ..Default::default() };
+        Self { fallback, ..Self::new(p.blend_sigmas, p.blend_walk_dps_per_sqrt_s) }
     }
 
     /// One block (end time, mean raw rate) and the bank's output on it: the output with the
     /// blended heading and the bias it integrated. `after_lead_in`: the block is past the lead-in.
     pub fn update(&mut self, after_lead_in: bool, time_s: f64, rate_dps: f64, bank: PipelineOutput) -> Result<PipelineOutput> {
+        self.fallback.lead_in_seen |= !after_lead_in && bank.stop;
         if !(self.sigmas > 0.0 && after_lead_in) {
             return Ok(bank);
         }
@@ -96,19 +134,30 @@ impl Blend {
         }
         let since_stop_s = time_s - self.last_stop_s;
         let guard_dps = self.sigmas * libm::sqrt(bank.bias_sigma_dps.powi(2) + self.walk_dps_per_sqrt_s.powi(2) * since_stop_s);
+        let moved_from = self.fallback.moved(self.last.map_or(1.0, |(t, _)| time_s - t), &bank);
         let mut out = bank;
         if let Some((t, bank_deg)) = self.last {
             let dt = time_s - t;
             let bank_move_deg = bank.heading_deg - bank_deg;
+            let hdr_move_deg = hdr_deg - e.hdr_deg;
             let (mut sum_deg, mut n) = (bank_move_deg, 1.0);
-            for move_deg in [hdr_deg - e.hdr_deg, fusion_rate_dps * dt] {
+            for move_deg in [hdr_move_deg, fusion_rate_dps * dt] {
                 // How far the two moved apart over the block: (the bank's bias less the
                 // expert's, as each integrated it) x dt.
                 if dt > 0.0 && ((move_deg - bank_move_deg) / dt).abs() < guard_dps {
                     (sum_deg, n) = (sum_deg + move_deg, n + 1.0);
                 }
             }
-            let gain_deg = sum_deg / n - bank_move_deg;
+            // After a lead-in, a settled bias on the move is a bend read as road: HDR's move
+            // alone, held (module doc).
+            let gain_deg = match moved_from.filter(|_| dt > 0.0) {
+                Some(avg) => {
+                    let b = bank.bias_dps;
+                    let (lo, hi) = (b.min(avg) - guard_dps, b.max(avg) + guard_dps);
+                    ((hdr_move_deg - bank_move_deg) / dt).max(b - hi).min(b - lo) * dt
+                }
+                None => sum_deg / n - bank_move_deg,
+            };
             if gain_deg != 0.0 {
                 self.offset_deg += gain_deg;
                 out.bias_dps -= gain_deg / dt;
@@ -126,7 +175,16 @@ mod tests {
     use super::*;
 
     fn bank(heading_deg: f64, bias_sigma_dps: f64) -> PipelineOutput {
-        PipelineOutput { heading_deg, bias_dps: 0.0, bias_sigma_dps, heading_sigma_deg: 0.0, stop: false, straight: false, reopened: false }
+        PipelineOutput {
+            heading_deg,
+            bias_dps: 0.0,
+            bias_sigma_dps,
+            heading_sigma_deg: 0.0,
+            stop: false,
+            straight: false,
+            reopened: false,
+            settled_bias_dps: 0.0,
+        }
     }
 
     /// HDR's move over the next block, from a copy of the blend's HDR.
@@ -218,5 +276,39 @@ mod tests {
         let m = hdr_move(&grown, 2503.0, 0.0);
         let o = grown.update(true, 2503.0, 0.0, bank(0.0, 0.04)).unwrap();
         assert!((o.heading_deg - before - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg - before, m / 2.0);
+    }
+
+    /// After a stop in the lead-in, the bank's settled bias 0.5 deg/s from its average (0,
+    /// beyond 0.3): the heading moves by HDR's move alone, its bias held within the guard
+    /// (2 x 0.04, no walk) of the span between the bank's bias (0.5) and its average (0).
+    /// Without a lead-in stop, or with the fallback off, the bank moves alone.
+    #[test]
+    fn after_a_lead_in_a_settled_bias_on_the_move_takes_hdrs_move_held_near_the_bank() {
+        let started = |move_dps: f64, lead_in_stop: bool| {
+            let mut b = Blend { fallback: Fallback { move_dps, move_s: 60.0, ..Default::default() }, ..Blend::new(2.0, 0.0) };
+            b.update(false, 0.0, 0.0, PipelineOutput { stop: lead_in_stop, ..bank(0.0, 0.04) }).unwrap();
+            b.update(true, 1.0, 0.0, bank(0.0, 0.04)).unwrap();
+            b
+        };
+        // The bank took 0.5 deg/s as bias over the block: it moved -0.5 deg.
+        let dragged = PipelineOutput { bias_dps: 0.5, settled_bias_dps: 0.5, ..bank(-0.5, 0.04) };
+        let mut b = started(0.3, true);
+        let m = hdr_move(&b, 2.0, 0.0);
+        assert!(m.abs() <= 0.0422 + 1e-12, "{m}");
+        let o = b.update(true, 2.0, 0.0, dragged).unwrap();
+        assert!((o.heading_deg - m).abs() < 1e-12 && (o.bias_dps + m).abs() < 1e-12, "{o:?} against HDR's {m}");
+        // HDR at -2 deg/s: its bias is held at the span's edge, 0 - 0.08.
+        let mut b = started(0.3, true);
+        let e = b.experts.as_mut().unwrap();
+        e.hdr = Hdr::new(HdrParams::table_iii(), -2.0).unwrap();
+        e.hdr_deg = e.hdr.update(1.0, 0.0).unwrap().heading_deg;
+        assert!(hdr_move(&b, 2.0, 0.0) > 1.9);
+        let o = b.update(true, 2.0, 0.0, dragged).unwrap();
+        assert!((o.bias_dps + 0.08).abs() < 1e-12 && (o.heading_deg - 0.08).abs() < 1e-12, "{o:?}");
+        // HDR and Fusion (0 deg/s) both beyond the guard: the bank's move alone.
+        for (move_dps, lead_in_stop) in [(0.0, true), (0.3, false)] {
+            let o = started(move_dps, lead_in_stop).update(true, 2.0, 0.0, dragged).unwrap();
+            assert_eq!(o, dragged, "move_dps {move_dps}, lead-in stop {lead_in_stop}");
+        }
     }
 }

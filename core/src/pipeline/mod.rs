@@ -164,6 +164,8 @@ fn blend_smoothed(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64, t
             stop: tr.stop[i],
             straight: false,
             reopened: false,
+            // The fallback is the causal bank's guard; the smoothed bias sees the whole log.
+            settled_bias_dps: f64::NAN,
         };
         let o = blend.update(t >= lead_in_end_s, t, rate, smoothed)?;
         tr.heading_smoothed_deg.push(o.heading_deg);

@@ -79,6 +79,14 @@ pub struct PipelineParams {
     /// sqrt(s); 0 = the bank's sigma alone. Chosen on the training cases among the bank's
     /// three fastest walks (0.001, 0.003, 0.01; docs/pipeline.md).
     pub blend_walk_dps_per_sqrt_s: f64,
+    /// After a stationary lead-in, while the bank's settled bias (the bias less its warm-up
+    /// term) is further than this from its own average over `blend_move_s`, the heading
+    /// moves by Table-III HDR's move alone: a settled bias that moves that fast after a
+    /// lead-in is a long bend read as straight road (`blend.rs`), deg/s; 0 = never. Chosen
+    /// on the training cases and the independent generator's draw 0 (docs/pipeline.md).
+    pub blend_move_dps: f64,
+    /// The time constant of that average, s.
+    pub blend_move_s: f64,
     /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
     pub bias_s: Option<f64>,
 }
@@ -107,6 +115,8 @@ impl Default for PipelineParams {
             forget_s: 600.0,
             blend_sigmas: 2.0,
             blend_walk_dps_per_sqrt_s: 0.003,
+            blend_move_dps: 0.3,
+            blend_move_s: 60.0,
             bias_s: None,
         }
     }
@@ -179,6 +189,7 @@ impl PipelineParams {
             ("warm_tau_short_s", self.warm_tau_short_s),
             ("warm_tau_long_s", self.warm_tau_long_s),
             ("forget_s", self.forget_s),
+            ("blend_move_s", self.blend_move_s),
         ];
         for (name, v) in pos {
             if !(v.is_finite() && v > 0.0 && v < 1e6) {
@@ -191,6 +202,9 @@ impl PipelineParams {
         if !(self.blend_walk_dps_per_sqrt_s >= 0.0 && self.blend_walk_dps_per_sqrt_s < 1e6) {
             let w = self.blend_walk_dps_per_sqrt_s;
             return Err(Error::param("blend_walk_dps_per_sqrt_s", format!("{w} is not a walk in [0, 1e6) deg/s per sqrt(s)")));
+        }
+        if !(self.blend_move_dps >= 0.0 && self.blend_move_dps < 1e6) {
+            return Err(Error::param("blend_move_dps", format!("{} is not a rate in [0, 1e6) deg/s", self.blend_move_dps)));
         }
         if !(self.huber_k > 0.0) {
             return Err(Error::param("huber_k", format!("{} is not a positive number of sigma", self.huber_k)));

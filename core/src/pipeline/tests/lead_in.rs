@@ -207,3 +207,35 @@ fn a_noisy_gyros_stops_do_not_hand_the_bank_to_fast_walks() {
     let (pipeline, best) = noisy_drive_pipeline_and_best_peer("suburbs", 0.3);
     assert!(pipeline <= 1.25 * best + 0.05, "pipeline {pipeline}, best peer {best}");
 }
+
+/// Blocks of a drive with known truth: a 20 s lead-in standing at a -1.4 deg/s turn-on bias,
+/// 5 min of straight road wobbling +-0.05 deg/s, a long bend at 0.7 deg/s for 80 s (longer
+/// than the 60 s road window) and 5 min of straight road; the true heading change is the
+/// bend's 56 deg.
+fn long_bend_blocks() -> crate::still::Blocks {
+    let wobble = |i: usize| 0.05 * [1.0, -1.0, 0.5, -0.5][i % 4];
+    let items: Vec<(f64, f64, bool)> = (0..700)
+        .map(|i| match i {
+            0..20 => (1.0, -1.4, true),
+            20..320 | 400.. => (1.0, -1.4 + wobble(i), false),
+            _ => (1.0, -1.4 + 0.7, false),
+        })
+        .collect();
+    blocks_of(&items)
+}
+
+/// On the long bend the bank's road window fills with the bend and its bias is dragged
+/// toward the bend's rate (to -0.95 deg/s); while its settled bias is on the move the bend
+/// fallback moves the heading by HDR's, which calls the bend a turn: the final heading error
+/// -47.6 deg without it, -25.4 with it (the fallback lets go once the 60 s average has
+/// caught up, before the bias is back).
+#[test]
+fn after_a_lead_in_a_long_bend_is_not_taken_as_bias() {
+    let error_deg = |move_dps: f64| {
+        let tr = run_blocks(&long_bend_blocks(), PipelineParams { blend_move_dps: move_dps, ..PipelineParams::default() }, 20.0).unwrap();
+        let (first, last) = (tr.heading_deg[20], *tr.heading_deg.last().unwrap());
+        last - first - 56.0
+    };
+    let (with, without) = (error_deg(0.3), error_deg(0.0));
+    assert!(without < -40.0 && with > -30.0 && with < 0.0, "with {with}, without {without}");
+}
