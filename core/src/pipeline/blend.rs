@@ -17,8 +17,8 @@
 //! threshold theta_w (0.188 deg/s).
 //! After a stationary lead-in the bank's settled bias (the bias less its warm-up term) has
 //! no cause to move fast: while it is more than `blend_move_dps` from its own average over
-//! `blend_move_s`, the bank is reading a long bend as straight road (its 60 s window filled
-//! by the bend), and the heading moves by HDR's move alone, whose threshold about its own
+//! the road window (`road_window_s`, 60 s), the bank is reading a long bend that filled that
+//! window as straight road, and the heading moves by HDR's move alone, whose threshold about its own
 //! estimate calls the bend a turn. HDR's bias is then held within the guard of the span
 //! between the bank's bias and that average, so the blend stays as bounded as the bank.
 //! The stream and the batch path blend alike, block for block. Beyond the paper, like the
@@ -63,8 +63,8 @@ pub struct Blend {
     fallback: Fallback,
 }
 
-/// Watches the bank's settled bias after a lead-in: `blend_move_dps` (0: never),
-/// `blend_move_s`, whether the lead-in gave stop evidence, and the averages since the
+/// Watches the bank's settled bias after a lead-in: `blend_move_dps` (0: never), the
+/// averages' time constant (`road_window_s`), whether the lead-in gave stop evidence, and the averages since the
 /// experts began of the settled bias and of the bank's bias.
 #[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Default)]
@@ -79,15 +79,14 @@ impl Fallback {
     /// Where the settled bias is further than `move_dps` from its average (after a lead-in;
     /// a non-finite settled bias is none), the bank's bias averaged before this block; the
     /// averages then move on by `dt_s`.
-    fn moved(&mut self, dt_s: f64, bank: &PipelineOutput) -> Option<f64> {
-        let settled = bank.settled_bias_dps;
+    fn moved(&mut self, dt_s: f64, settled: f64, bias_dps: f64) -> Option<f64> {
         if !(self.lead_in_seen && self.move_dps > 0.0 && settled.is_finite()) {
             return None;
         }
-        let (s_avg, b_avg) = self.avg_dps.get_or_insert((settled, bank.bias_dps));
+        let (s_avg, b_avg) = self.avg_dps.get_or_insert((settled, bias_dps));
         let was = ((settled - *s_avg).abs() > self.move_dps).then_some(*b_avg);
         let k = 1.0 - libm::exp(-dt_s / self.move_s);
-        (*s_avg, *b_avg) = (*s_avg + (settled - *s_avg) * k, *b_avg + (bank.bias_dps - *b_avg) * k);
+        (*s_avg, *b_avg) = (*s_avg + (settled - *s_avg) * k, *b_avg + (bias_dps - *b_avg) * k);
         was
     }
 }
@@ -101,13 +100,21 @@ impl Blend {
 
     /// The blend the pipeline's settings ask for (causal, smoothed and streamed alike).
     pub fn of(p: &super::PipelineParams) -> Self {
-        let fallback = Fallback { move_dps: p.blend_move_dps, move_s: p.blend_move_s, ..Default::default() };
+        let fallback = Fallback { move_dps: p.blend_move_dps, move_s: p.road_window_s, ..Default::default() };
         Self { fallback, ..Self::new(p.blend_sigmas, p.blend_walk_dps_per_sqrt_s) }
     }
 
     /// One block (end time, mean raw rate) and the bank's output on it: the output with the
-    /// blended heading and the bias it integrated. `after_lead_in`: the block is past the lead-in.
-    pub fn update(&mut self, after_lead_in: bool, time_s: f64, rate_dps: f64, bank: PipelineOutput) -> Result<PipelineOutput> {
+    /// blended heading and the bias it integrated. `after_lead_in`: the block is past the lead-in;
+    /// `settled_dps`: the bank's settled bias before the block (not finite: no fallback).
+    pub fn update(
+        &mut self,
+        after_lead_in: bool,
+        time_s: f64,
+        rate_dps: f64,
+        bank: PipelineOutput,
+        settled_dps: f64,
+    ) -> Result<PipelineOutput> {
         self.fallback.lead_in_seen |= !after_lead_in && bank.stop;
         if !(self.sigmas > 0.0 && after_lead_in) {
             return Ok(bank);
@@ -134,7 +141,7 @@ impl Blend {
         }
         let since_stop_s = time_s - self.last_stop_s;
         let guard_dps = self.sigmas * libm::sqrt(bank.bias_sigma_dps.powi(2) + self.walk_dps_per_sqrt_s.powi(2) * since_stop_s);
-        let moved_from = self.fallback.moved(self.last.map_or(1.0, |(t, _)| time_s - t), &bank);
+        let moved_from = self.fallback.moved(self.last.map_or(1.0, |(t, _)| time_s - t), settled_dps, bank.bias_dps);
         let mut out = bank;
         if let Some((t, bank_deg)) = self.last {
             let dt = time_s - t;
@@ -150,7 +157,7 @@ impl Blend {
             }
             // After a lead-in, a settled bias on the move is a bend read as road: HDR's move
             // alone, held (module doc).
-            let gain_deg = match moved_from.filter(|_| dt > 0.0) {
+            let gain_deg = match moved_from {
                 Some(avg) => {
                     let b = bank.bias_dps;
                     let (lo, hi) = (b.min(avg) - guard_dps, b.max(avg) + guard_dps);
@@ -175,16 +182,7 @@ mod tests {
     use super::*;
 
     fn bank(heading_deg: f64, bias_sigma_dps: f64) -> PipelineOutput {
-        PipelineOutput {
-            heading_deg,
-            bias_dps: 0.0,
-            bias_sigma_dps,
-            heading_sigma_deg: 0.0,
-            stop: false,
-            straight: false,
-            reopened: false,
-            settled_bias_dps: 0.0,
-        }
+        PipelineOutput { heading_deg, bias_dps: 0.0, bias_sigma_dps, heading_sigma_deg: 0.0, stop: false, straight: false, reopened: false }
     }
 
     /// HDR's move over the next block, from a copy of the blend's HDR.
@@ -200,13 +198,13 @@ mod tests {
         // In the lead-in, with the blend off, or after a stop while the bank's bias is less
         // sure than one of HDR's steps (0.0422 deg/s): the bank's output as it is, and no
         // expert started.
-        assert_eq!(b.update(false, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
-        assert_eq!(Blend::new(0.0, 0.0).update(true, 0.0, 0.0, bank(0.3, 0.03)).unwrap(), bank(0.3, 0.03));
+        assert_eq!(b.update(false, 0.0, 0.0, bank(0.3, 0.03), 0.0).unwrap(), bank(0.3, 0.03));
+        assert_eq!(Blend::new(0.0, 0.0).update(true, 0.0, 0.0, bank(0.3, 0.03), 0.0).unwrap(), bank(0.3, 0.03));
         let stop = PipelineOutput { stop: true, ..bank(0.3, 0.05) };
-        assert_eq!(b.update(true, 0.0, 0.0, stop).unwrap(), stop);
+        assert_eq!(b.update(true, 0.0, 0.0, stop, 0.0).unwrap(), stop);
         assert!(b.experts.is_none());
         // The experts start from the bank's bias (0); their first block moves nothing.
-        assert_eq!(b.update(true, 1.0, 0.0, bank(0.0, 0.04)).unwrap(), bank(0.0, 0.04));
+        assert_eq!(b.update(true, 1.0, 0.0, bank(0.0, 0.04), 0.0).unwrap(), bank(0.0, 0.04));
         // On a rate of 0, Fusion's move is 0 (offset 0, and it adapts only after 5 blocks
         // within 3 deg/s); HDR's moves only by its controller, at most i_c per block.
         let m = hdr_move(&b, 2.0, 0.0);
@@ -214,7 +212,7 @@ mod tests {
         // The bank moves 0.03 deg: Fusion 0.03 deg/s apart, HDR at most 0.0722, both within
         // 2 x 0.04: the heading moves by the mean of the three moves, the bias is the bank's
         // less what that adds per second.
-        let o = b.update(true, 2.0, 0.0, bank(0.03, 0.04)).unwrap();
+        let o = b.update(true, 2.0, 0.0, bank(0.03, 0.04), 0.0).unwrap();
         let gain = (0.03 + m + 0.0) / 3.0 - 0.03;
         assert!((o.heading_deg - (0.03 + gain)).abs() < 1e-12, "{} against {}", o.heading_deg, 0.03 + gain);
         assert!((o.bias_dps + gain).abs() < 1e-12, "{}", o.bias_dps);
@@ -223,14 +221,14 @@ mod tests {
         b.experts.as_mut().unwrap().fusion = FusionOffset::starting_at(1, 0.5);
         let m = hdr_move(&b, 3.0, 0.0);
         let bank_deg = 0.03 + m + 0.07;
-        let o = b.update(true, 3.0, 0.0, bank(bank_deg, 0.04)).unwrap();
+        let o = b.update(true, 3.0, 0.0, bank(bank_deg, 0.04), 0.0).unwrap();
         let gain2 = (m + 0.07 + m) / 2.0 - (m + 0.07);
         assert!((o.heading_deg - (bank_deg + gain + gain2)).abs() < 1e-12, "{} against {}", o.heading_deg, bank_deg + gain + gain2);
         // The bank moves 0.3 deg, 0.17 deg/s or more from HDR (at most 3 i_c) and 0.8 from
         // Fusion: the bank's move alone, the offset kept, the bias the bank's.
         let m = hdr_move(&b, 4.0, 0.0);
         assert!(m.abs() <= 3.0 * 0.0422 + 1e-12, "{m}");
-        let o = b.update(true, 4.0, 0.0, bank(bank_deg + 0.3, 0.04)).unwrap();
+        let o = b.update(true, 4.0, 0.0, bank(bank_deg + 0.3, 0.04), 0.0).unwrap();
         assert!((o.heading_deg - (bank_deg + 0.3 + gain + gain2)).abs() < 1e-12 && o.bias_dps == 0.0);
     }
 
@@ -240,13 +238,13 @@ mod tests {
     #[test]
     fn before_a_stop_the_experts_start_once_hdr_could_acquire_the_rest() {
         let mut b = Blend::new(2.0, 0.0);
-        b.update(true, 1.0, 0.0, bank(0.0, 0.19)).unwrap();
+        b.update(true, 1.0, 0.0, bank(0.0, 0.19), 0.0).unwrap();
         assert!(b.experts.is_none());
-        b.update(true, 2.0, 0.0, bank(0.0, 0.18)).unwrap();
+        b.update(true, 2.0, 0.0, bank(0.0, 0.18), 0.0).unwrap();
         assert!(b.experts.is_some());
         let mut s = Blend::new(2.0, 0.0);
-        s.update(true, 1.0, 0.0, PipelineOutput { stop: true, ..bank(0.0, 0.05) }).unwrap();
-        s.update(true, 2.0, 0.0, bank(0.0, 0.05)).unwrap();
+        s.update(true, 1.0, 0.0, PipelineOutput { stop: true, ..bank(0.0, 0.05) }, 0.0).unwrap();
+        s.update(true, 2.0, 0.0, bank(0.0, 0.05), 0.0).unwrap();
         assert!(s.experts.is_none());
     }
 
@@ -257,7 +255,7 @@ mod tests {
     fn the_guard_grows_between_stops_and_closes_at_one() {
         let started = |walk: f64| {
             let mut b = Blend::new(2.0, walk);
-            b.update(true, 1.0, 0.0, bank(0.0, 0.04)).unwrap();
+            b.update(true, 1.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
             b.experts.as_mut().unwrap().fusion = FusionOffset::starting_at(1, 0.5);
             b
         };
@@ -265,16 +263,16 @@ mod tests {
         let (mut narrow, mut grown) = (started(0.0), started(0.01));
         let m = hdr_move(&grown, 2501.0, 0.0);
         assert!(m.abs() <= 0.0422 * 2500.0 + 1e-9, "{m}");
-        let o = narrow.update(true, 2501.0, 0.0, bank(0.0, 0.04)).unwrap();
+        let o = narrow.update(true, 2501.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
         assert!((o.heading_deg - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg, m / 2.0);
-        let o = grown.update(true, 2501.0, 0.0, bank(0.0, 0.04)).unwrap();
+        let o = grown.update(true, 2501.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
         assert!((o.heading_deg - (m - 1250.0) / 3.0).abs() < 1e-9, "{} against {}", o.heading_deg, (m - 1250.0) / 3.0);
         // A stop block at 2502 s closes it: at 2503 s Fusion (still -0.5 deg/s: within 3 deg/s
         // for 3 blocks, short of its 5 s timeout) is out, HDR in.
         let stop = PipelineOutput { stop: true, ..bank(0.0, 0.04) };
-        let before = grown.update(true, 2502.0, 0.0, stop).unwrap().heading_deg;
+        let before = grown.update(true, 2502.0, 0.0, stop, 0.0).unwrap().heading_deg;
         let m = hdr_move(&grown, 2503.0, 0.0);
-        let o = grown.update(true, 2503.0, 0.0, bank(0.0, 0.04)).unwrap();
+        let o = grown.update(true, 2503.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
         assert!((o.heading_deg - before - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg - before, m / 2.0);
     }
 
@@ -286,16 +284,16 @@ mod tests {
     fn after_a_lead_in_a_settled_bias_on_the_move_takes_hdrs_move_held_near_the_bank() {
         let started = |move_dps: f64, lead_in_stop: bool| {
             let mut b = Blend { fallback: Fallback { move_dps, move_s: 60.0, ..Default::default() }, ..Blend::new(2.0, 0.0) };
-            b.update(false, 0.0, 0.0, PipelineOutput { stop: lead_in_stop, ..bank(0.0, 0.04) }).unwrap();
-            b.update(true, 1.0, 0.0, bank(0.0, 0.04)).unwrap();
+            b.update(false, 0.0, 0.0, PipelineOutput { stop: lead_in_stop, ..bank(0.0, 0.04) }, 0.0).unwrap();
+            b.update(true, 1.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
             b
         };
         // The bank took 0.5 deg/s as bias over the block: it moved -0.5 deg.
-        let dragged = PipelineOutput { bias_dps: 0.5, settled_bias_dps: 0.5, ..bank(-0.5, 0.04) };
+        let dragged = PipelineOutput { bias_dps: 0.5, ..bank(-0.5, 0.04) };
         let mut b = started(0.3, true);
         let m = hdr_move(&b, 2.0, 0.0);
         assert!(m.abs() <= 0.0422 + 1e-12, "{m}");
-        let o = b.update(true, 2.0, 0.0, dragged).unwrap();
+        let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
         assert!((o.heading_deg - m).abs() < 1e-12 && (o.bias_dps + m).abs() < 1e-12, "{o:?} against HDR's {m}");
         // HDR at -2 deg/s: its bias is held at the span's edge, 0 - 0.08.
         let mut b = started(0.3, true);
@@ -303,11 +301,11 @@ mod tests {
         e.hdr = Hdr::new(HdrParams::table_iii(), -2.0).unwrap();
         e.hdr_deg = e.hdr.update(1.0, 0.0).unwrap().heading_deg;
         assert!(hdr_move(&b, 2.0, 0.0) > 1.9);
-        let o = b.update(true, 2.0, 0.0, dragged).unwrap();
+        let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
         assert!((o.bias_dps + 0.08).abs() < 1e-12 && (o.heading_deg - 0.08).abs() < 1e-12, "{o:?}");
         // HDR and Fusion (0 deg/s) both beyond the guard: the bank's move alone.
         for (move_dps, lead_in_stop) in [(0.0, true), (0.3, false)] {
-            let o = started(move_dps, lead_in_stop).update(true, 2.0, 0.0, dragged).unwrap();
+            let o = started(move_dps, lead_in_stop).update(true, 2.0, 0.0, dragged, 0.5).unwrap();
             assert_eq!(o, dragged, "move_dps {move_dps}, lead-in stop {lead_in_stop}");
         }
     }

@@ -53,9 +53,6 @@ pub struct PipelineOutput {
     pub straight: bool,
     /// A guard re-opened the bias uncertainty at this block.
     pub reopened: bool,
-    /// The bank's settled bias before this block, its hypotheses' `b_inf` mixed (the bias
-    /// less the warm-up term), deg/s: what the blend's fallback watches (`blend.rs`).
-    pub settled_bias_dps: f64,
 }
 
 /// The streaming drift reducer on 1 Hz blocks.
@@ -230,8 +227,9 @@ impl Pipeline {
     }
 
     /// The settled bias, `b_inf` mixed with the weights: the bias less its warm-up term, so
-    /// a warm-up the bank models does not move it (deg/s).
-    fn settled_bias_dps(&self) -> f64 {
+    /// a warm-up the bank models does not move it (deg/s). The blend's fallback watches it
+    /// before each block (`blend.rs`).
+    pub fn settled_bias_dps(&self) -> f64 {
         self.models.iter().zip(self.weights()).map(|(m, wi)| wi * m.x[0]).sum()
     }
 
@@ -262,7 +260,6 @@ impl Pipeline {
             self.size_warm_up();
         }
         let (b_before, p_before) = self.bias();
-        let settled_before = self.settled_bias_dps();
         self.heading_deg += (rate_dps - b_before) * dt;
         self.rate_integral_deg += rate_dps * dt;
         // Predict: each hypothesis' random walk and the road rate; weights forget toward equal.
@@ -331,7 +328,6 @@ impl Pipeline {
             stop: !stops.is_empty(),
             straight,
             reopened,
-            settled_bias_dps: settled_before,
         };
         Ok(out)
     }

@@ -124,6 +124,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     let (mut blend, mut blended) = (blend::Blend::of(&params), Vec::with_capacity(n));
     for i in 0..n {
         let (t, rate) = (tr.time_s[i], blocks.rate_dps[i]);
+        let settled_dps = f.settled_bias_dps();
         let o = f.update(t, rate, blocks.still[i])?;
         tr.heading_deg.push(o.heading_deg);
         tr.heading_sigma_deg.push(o.heading_sigma_deg);
@@ -131,7 +132,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
         tr.bias_sigma_dps.push(o.bias_sigma_dps);
         tr.stop.push(o.stop);
         (tr.final_bias_dps, tr.final_bias_sigma_dps) = (o.bias_dps, o.bias_sigma_dps);
-        blended.push(blend.update(t >= f.lead_in_end_s(), t, rate, o)?);
+        blended.push(blend.update(t >= f.lead_in_end_s(), t, rate, o, settled_dps)?);
     }
     // The smoothed mode is held to the bank's causal heading at stops; the trace then takes
     // the blended heading and bias (`blend.rs`), and the smoothed mode is blended alike.
@@ -164,10 +165,9 @@ fn blend_smoothed(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64, t
             stop: tr.stop[i],
             straight: false,
             reopened: false,
-            // The fallback is the causal bank's guard; the smoothed bias sees the whole log.
-            settled_bias_dps: f64::NAN,
         };
-        let o = blend.update(t >= lead_in_end_s, t, rate, smoothed)?;
+        // The fallback is the causal bank's guard; the smoothed bias sees the whole log.
+        let o = blend.update(t >= lead_in_end_s, t, rate, smoothed, f64::NAN)?;
         tr.heading_smoothed_deg.push(o.heading_deg);
         tr.bias_smoothed_dps[i] = o.bias_dps;
     }

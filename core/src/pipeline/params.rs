@@ -80,13 +80,11 @@ pub struct PipelineParams {
     /// three fastest walks (0.001, 0.003, 0.01; docs/pipeline.md).
     pub blend_walk_dps_per_sqrt_s: f64,
     /// After a stationary lead-in, while the bank's settled bias (the bias less its warm-up
-    /// term) is further than this from its own average over `blend_move_s`, the heading
+    /// term) is further than this from its own average over `road_window_s`, the heading
     /// moves by Table-III HDR's move alone: a settled bias that moves that fast after a
     /// lead-in is a long bend read as straight road (`blend.rs`), deg/s; 0 = never. Chosen
     /// on the training cases and the independent generator's draw 0 (docs/pipeline.md).
     pub blend_move_dps: f64,
-    /// The time constant of that average, s.
-    pub blend_move_s: f64,
     /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
     pub bias_s: Option<f64>,
 }
@@ -116,7 +114,6 @@ impl Default for PipelineParams {
             blend_sigmas: 2.0,
             blend_walk_dps_per_sqrt_s: 0.003,
             blend_move_dps: 0.3,
-            blend_move_s: 60.0,
             bias_s: None,
         }
     }
@@ -189,29 +186,25 @@ impl PipelineParams {
             ("warm_tau_short_s", self.warm_tau_short_s),
             ("warm_tau_long_s", self.warm_tau_long_s),
             ("forget_s", self.forget_s),
-            ("blend_move_s", self.blend_move_s),
         ];
         for (name, v) in pos {
             if !(v.is_finite() && v > 0.0 && v < 1e6) {
                 return Err(Error::param(name, format!("{v} is not a number in (0, 1e6)")));
             }
         }
-        if !(self.blend_sigmas >= 0.0 && self.blend_sigmas < 1e6) {
-            return Err(Error::param("blend_sigmas", format!("{} is not a number of sigma in [0, 1e6)", self.blend_sigmas)));
-        }
-        if !(self.blend_walk_dps_per_sqrt_s >= 0.0 && self.blend_walk_dps_per_sqrt_s < 1e6) {
-            let w = self.blend_walk_dps_per_sqrt_s;
-            return Err(Error::param("blend_walk_dps_per_sqrt_s", format!("{w} is not a walk in [0, 1e6) deg/s per sqrt(s)")));
-        }
-        if !(self.blend_move_dps >= 0.0 && self.blend_move_dps < 1e6) {
-            return Err(Error::param("blend_move_dps", format!("{} is not a rate in [0, 1e6) deg/s", self.blend_move_dps)));
-        }
         if !(self.huber_k > 0.0) {
             return Err(Error::param("huber_k", format!("{} is not a positive number of sigma", self.huber_k)));
         }
-        for (name, v) in [("min_still_s", self.min_still_s), ("jump_min_s", self.jump_min_s)] {
-            if !(v.is_finite() && (0.0..1e6).contains(&v)) {
-                return Err(Error::param(name, format!("{v} is not a time in [0, 1e6) s")));
+        let non_negative = [
+            ("min_still_s", self.min_still_s),
+            ("jump_min_s", self.jump_min_s),
+            ("blend_sigmas", self.blend_sigmas),
+            ("blend_walk_dps_per_sqrt_s", self.blend_walk_dps_per_sqrt_s),
+            ("blend_move_dps", self.blend_move_dps),
+        ];
+        for (name, v) in non_negative {
+            if !(0.0..1e6).contains(&v) {
+                return Err(Error::param(name, format!("{v} is not a number in [0, 1e6)")));
             }
         }
         if !(self.road_sigma_spread >= 1.0 && self.road_sigma_spread <= 100.0) {

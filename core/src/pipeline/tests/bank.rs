@@ -266,7 +266,7 @@ fn bad_updates_and_params_are_errors() {
     assert!(crate::options::from_pairs::<PipelineParams>(&[("blend_sigmas".into(), -1.0)]).is_err());
     assert!(crate::options::from_pairs::<PipelineParams>(&[("blend_walk_dps_per_sqrt_s".into(), -0.001)]).is_err());
     assert!(crate::options::from_pairs::<PipelineParams>(&[("blend_walk_dps_per_sqrt_s".into(), f64::NAN)]).is_err());
-    for (key, v) in [("blend_move_dps", -0.1), ("blend_move_dps", f64::NAN), ("blend_move_s", 0.0)] {
+    for (key, v) in [("blend_move_dps", -0.1), ("blend_move_dps", f64::NAN), ("blend_move_dps", 1e6)] {
         assert!(crate::options::from_pairs::<PipelineParams>(&[(key.into(), v)]).is_err(), "{key} {v}");
     }
 }
