@@ -68,6 +68,7 @@ test("PipelineEstimator, fed the rows one by one, gives runPipeline's block head
   const stops = streamEqualsBatch(log, t, w, v);
   assert.ok(stops > 30, `${stops} stop blocks by speed`);
   assert.throws(() => new gd.PipelineEstimator({ no_such_setting: 1 }), /no_such_setting/);
+  assert.throws(() => new gd.PipelineEstimator({ blend_move_dps: -0.1 }), /blend_move_dps: -0.1 is not a number in \[0, 1e6\)/);
   log.free();
   // The same drive with its gyro alone: stops are judged by the gyro against the lead-in.
   const lines = text.split("\n");
