@@ -20,7 +20,9 @@
 //! the road window (`road_window_s`, 60 s), the bank is reading a long bend that filled that
 //! window as straight road, and the heading moves by HDR's move alone, whose threshold about its own
 //! estimate calls the bend a turn. HDR's bias is then held within the guard of the span
-//! between the bank's bias and that average, so the blend stays as bounded as the bank.
+//! between the bank's bias and that average, so the blend stays as bounded as the bank. The
+//! average is held while the fallback acts (a bend longer than the window would otherwise
+//! become the average) and restarts after a stop.
 //! The stream and the batch path blend alike, block for block. Beyond the paper, like the
 //! bank.
 
@@ -77,16 +79,23 @@ struct Fallback {
 
 impl Fallback {
     /// Where the settled bias is further than `move_dps` from its average (after a lead-in;
-    /// a non-finite settled bias is none), the bank's bias averaged before this block; the
-    /// averages then move on by `dt_s`.
-    fn moved(&mut self, dt_s: f64, settled: f64, bias_dps: f64) -> Option<f64> {
+    /// a non-finite settled bias is none), the bank's bias averaged before this block. The
+    /// averages follow the bank over `move_s` while it is not so moved, are held while it
+    /// is (a bend longer than `move_s` would otherwise become the average and end the
+    /// fallback before the bias is back), and restart after a stop, the bias's own evidence.
+    fn moved(&mut self, dt_s: f64, settled: f64, bias_dps: f64, stop: bool) -> Option<f64> {
         if !(self.lead_in_seen && self.move_dps > 0.0 && settled.is_finite()) {
             return None;
         }
         let (s_avg, b_avg) = self.avg_dps.get_or_insert((settled, bias_dps));
         let was = ((settled - *s_avg).abs() > self.move_dps).then_some(*b_avg);
-        let k = 1.0 - libm::exp(-dt_s / self.move_s);
-        (*s_avg, *b_avg) = (*s_avg + (settled - *s_avg) * k, *b_avg + (bias_dps - *b_avg) * k);
+        if was.is_none() {
+            let k = 1.0 - libm::exp(-dt_s / self.move_s);
+            (*s_avg, *b_avg) = (*s_avg + (settled - *s_avg) * k, *b_avg + (bias_dps - *b_avg) * k);
+        }
+        if stop {
+            self.avg_dps = None;
+        }
         was
     }
 }
@@ -141,7 +150,7 @@ impl Blend {
         }
         let since_stop_s = time_s - self.last_stop_s;
         let guard_dps = self.sigmas * libm::sqrt(bank.bias_sigma_dps.powi(2) + self.walk_dps_per_sqrt_s.powi(2) * since_stop_s);
-        let moved_from = self.fallback.moved(self.last.map_or(1.0, |(t, _)| time_s - t), settled_dps, bank.bias_dps);
+        let moved_from = self.fallback.moved(self.last.map_or(1.0, |(t, _)| time_s - t), settled_dps, bank.bias_dps, bank.stop);
         let mut out = bank;
         if let Some((t, bank_deg)) = self.last {
             let dt = time_s - t;
@@ -295,6 +304,12 @@ mod tests {
         assert!(m.abs() <= 0.0422 + 1e-12, "{m}");
         let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
         assert!((o.heading_deg - m).abs() < 1e-12 && (o.bias_dps + m).abs() < 1e-12, "{o:?} against HDR's {m}");
+        // The averages are held while the fallback acts, and restart after a stop.
+        assert_eq!(b.fallback.avg_dps, Some((0.0, 0.0)));
+        b.update(true, 3.0, 0.0, PipelineOutput { stop: true, ..dragged }, 0.5).unwrap();
+        assert_eq!(b.fallback.avg_dps, None);
+        b.update(true, 4.0, 0.0, dragged, 0.5).unwrap();
+        assert_eq!(b.fallback.avg_dps, Some((0.5, 0.5)));
         // HDR at -2 deg/s: its bias is held at the span's edge, 0 - 0.08.
         let mut b = started(0.3, true);
         let e = b.experts.as_mut().unwrap();

@@ -227,8 +227,8 @@ fn long_bend_blocks() -> crate::still::Blocks {
 /// On the long bend the bank's road window fills with the bend and its bias is dragged
 /// toward the bend's rate (to -0.95 deg/s); while its settled bias is on the move the bend
 /// fallback moves the heading by HDR's, which calls the bend a turn: the final heading error
-/// -47.6 deg without it, -25.4 with it (the fallback lets go once the 60 s average has
-/// caught up, before the bias is back).
+/// -47.6 deg without it, -11.9 with it (-25.4 when the average the move is judged against
+/// followed the bank through the bend and let the fallback go before the bias was back).
 #[test]
 fn after_a_lead_in_a_long_bend_is_not_taken_as_bias() {
     let error_deg = |move_dps: f64| {
@@ -237,5 +237,5 @@ fn after_a_lead_in_a_long_bend_is_not_taken_as_bias() {
         last - first - 56.0
     };
     let (with, without) = (error_deg(0.3), error_deg(0.0));
-    assert!(without < -40.0 && with > -30.0 && with < 0.0, "with {with}, without {without}");
+    assert!(without < -40.0 && with > -15.0 && with < 0.0, "with {with}, without {without}");
 }
