@@ -17,12 +17,12 @@
 //! threshold theta_w (0.188 deg/s).
 //! After a stationary lead-in the bank's settled bias (the bias less its warm-up term) has
 //! no cause to move fast: while it is more than `blend_move_dps` from its own average over
-//! the road window (`road_window_s`, 60 s), the bank is reading a long bend that filled that
-//! window as straight road, and the heading moves by HDR's move alone, whose threshold about its own
-//! estimate calls the bend a turn. HDR's bias is then held within the guard of the span
-//! between the bank's bias and that average, so the blend stays as bounded as the bank. The
-//! average is held while the fallback acts (a bend longer than the window would otherwise
-//! become the average) and restarts after a stop.
+//! the road window (`road_window_s`, 60 s), the bank is reading a long bend that filled
+//! that window as straight road, and the heading moves by HDR's move alone, whose threshold
+//! about its own estimate calls the bend a turn. HDR's bias is then held within the guard
+//! of the span between the bank's bias and that average, so the blend stays as bounded as
+//! the bank. The average is held while the fallback acts (a bend longer than the window
+//! would otherwise become the average) and restarts after a stop.
 //! The stream and the batch path blend alike, block for block. Beyond the paper, like the
 //! bank.
 
@@ -66,8 +66,9 @@ pub struct Blend {
 }
 
 /// Watches the bank's settled bias after a lead-in: `blend_move_dps` (0: never), the
-/// averages' time constant (`road_window_s`), whether the lead-in gave stop evidence, and the averages since the
-/// experts began of the settled bias and of the bank's bias.
+/// averages' time constant (`road_window_s`), whether the lead-in gave stop evidence, and
+/// the averages of the settled bias and of the bank's bias (none before the experts' first
+/// block or after a stop: the next block starts them).
 #[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Default)]
 struct Fallback {
