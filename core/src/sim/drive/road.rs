@@ -121,8 +121,12 @@ pub(super) fn style(s: Scenario) -> Style {
             p_lane: 0.05,
             p_ramp: 0.0,
             p_roundabout: 0.02,
-            curve_deg: (10.0, 60.0),
-            curve_radius_m: (200.0, 600.0),
+            // Sweeping bends as the recorded rural roads have them, up to 120 deg on radii
+            // up to 1.5 km (a minute or two at 0.8-1 deg/s; 10-60 deg on 200-600 m before,
+            // when the simulated rural roads had a fifth of the recorded slow curvature:
+            // docs/simulator.md, issue 13).
+            curve_deg: (10.0, 120.0),
+            curve_radius_m: (200.0, 1500.0),
             sway_dps: 0.37,
             meander_deg_per_m: 0.0025,
             meander_len_m: 200.0,
