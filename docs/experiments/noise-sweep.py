@@ -28,10 +28,11 @@ def main():
     for level in os.environ.get("NOISE", "0 0.2 0.3 0.5 1").split():
         rows = []
         for scenario, seed in itertools.product(["city", "suburbs", "rural", "highway", "mixed"], ["7", "8"]):
+            # Written afresh every run: logs left by another build's simulator would be
+            # scored as if they were this one's.
             log = OUT / f"{scenario}-{seed}-noise-{level}.csv"
-            if not log.exists():
-                subprocess.run([CLI, "simulate", "drive", "--scenario", scenario, "--seed", seed,
-                                "--error", f"noise_dps={level}", "--out", str(log)], check=True)
+            subprocess.run([CLI, "simulate", "drive", "--scenario", scenario, "--seed", seed,
+                            "--error", f"noise_dps={level}", "--out", str(log)], check=True)
             out = subprocess.run([CLI, "pipeline", str(log), "--json", *sets], check=True, capture_output=True, text=True)
             r = json.loads(out.stdout)
             best = min(r[f"NE_psi_{p}_deg_per_min"] for p in PEERS)
