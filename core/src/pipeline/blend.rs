@@ -16,13 +16,14 @@
 //! speed), they start once HDR could acquire what is left: three sigma within its straight
 //! threshold theta_w (0.188 deg/s).
 //! After a stationary lead-in the bank's settled bias (the bias less its warm-up term) has
-//! no cause to move fast: while it is more than `blend_move_dps` from its own average over
-//! the road window (`road_window_s`, 60 s), the bank is reading a long bend that filled
-//! that window as straight road, and the heading moves by HDR's move alone, whose threshold
-//! about its own estimate calls the bend a turn. HDR's bias is then held within the guard
-//! of the span between the bank's bias and that average, so the blend stays as bounded as
-//! the bank. The average is held while the fallback acts (a bend longer than the window
-//! would otherwise become the average) and restarts after a stop.
+//! no cause to move far between stops, the bias's own evidence: while it is more than
+//! `blend_move_dps` from where the last stop (or the experts' start) left it, the bank is
+//! reading long bends that filled its road window as straight road, and the heading moves
+//! by HDR's move alone, whose threshold about its own estimate calls a bend a turn. HDR's
+//! bias is then held within the guard of the span between the bank's bias and the bank's
+//! bias at that anchor, so the blend stays as bounded as the bank. The anchor restarts after
+//! a stop (until the forty-ninth session it was an average over the road window, which a
+//! slow run of bends dragged along with the bias: docs/pipeline.md).
 //! The stream and the batch path blend alike, block for block. Beyond the paper, like the
 //! bank.
 
@@ -65,39 +66,30 @@ pub struct Blend {
     fallback: Fallback,
 }
 
-/// Watches the bank's settled bias after a lead-in: `blend_move_dps` (0: never), the
-/// averages' time constant (`road_window_s`), whether the lead-in gave stop evidence, and
-/// the averages of the settled bias and of the bank's bias (none before the experts' first
-/// block or after a stop: the next block starts them).
+/// Watches the bank's settled bias after a lead-in: `blend_move_dps` (0: never), whether
+/// the lead-in gave stop evidence, and the anchor: the settled bias and the bank's bias at
+/// the experts' first block or the first block after a stop (none until then).
 #[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Default)]
 struct Fallback {
     move_dps: f64,
-    move_s: f64,
     lead_in_seen: bool,
-    avg_dps: Option<(f64, f64)>,
+    anchor_dps: Option<(f64, f64)>,
 }
 
 impl Fallback {
-    /// Where the settled bias is further than `move_dps` from its average (after a lead-in;
-    /// a non-finite settled bias is none), the bank's bias averaged before this block. The
-    /// averages follow the bank over `move_s` while it is not so moved, are held while it
-    /// is (a bend longer than `move_s` would otherwise become the average and end the
-    /// fallback before the bias is back), and restart after a stop, the bias's own evidence.
-    fn moved(&mut self, dt_s: f64, settled: f64, bias_dps: f64, stop: bool) -> Option<f64> {
+    /// Where the settled bias is further than `move_dps` from the anchor's (after a lead-in;
+    /// a non-finite settled bias is none), the bank's bias at the anchor. A stop block
+    /// restarts the anchor at the next block.
+    fn moved(&mut self, settled: f64, bias_dps: f64, stop: bool) -> Option<f64> {
         if !(self.lead_in_seen && self.move_dps > 0.0 && settled.is_finite()) {
             return None;
         }
-        let (s_avg, b_avg) = self.avg_dps.get_or_insert((settled, bias_dps));
-        let was = ((settled - *s_avg).abs() > self.move_dps).then_some(*b_avg);
-        if was.is_none() {
-            let k = 1.0 - libm::exp(-dt_s / self.move_s);
-            (*s_avg, *b_avg) = (*s_avg + (settled - *s_avg) * k, *b_avg + (bias_dps - *b_avg) * k);
-        }
+        let (s_anchor, b_anchor) = *self.anchor_dps.get_or_insert((settled, bias_dps));
         if stop {
-            self.avg_dps = None;
+            self.anchor_dps = None;
         }
-        was
+        ((settled - s_anchor).abs() > self.move_dps).then_some(b_anchor)
     }
 }
 
@@ -110,7 +102,7 @@ impl Blend {
 
     /// The blend the pipeline's settings ask for (causal, smoothed and streamed alike).
     pub fn of(p: &super::PipelineParams) -> Self {
-        let fallback = Fallback { move_dps: p.blend_move_dps, move_s: p.road_window_s, ..Default::default() };
+        let fallback = Fallback { move_dps: p.blend_move_dps, ..Default::default() };
         Self { fallback, ..Self::new(p.blend_sigmas, p.blend_walk_dps_per_sqrt_s) }
     }
 
@@ -151,7 +143,7 @@ impl Blend {
         }
         let since_stop_s = time_s - self.last_stop_s;
         let guard_dps = self.sigmas * libm::sqrt(bank.bias_sigma_dps.powi(2) + self.walk_dps_per_sqrt_s.powi(2) * since_stop_s);
-        let moved_from = self.fallback.moved(self.last.map_or(1.0, |(t, _)| time_s - t), settled_dps, bank.bias_dps, bank.stop);
+        let moved_from = self.fallback.moved(settled_dps, bank.bias_dps, bank.stop);
         let mut out = bank;
         if let Some((t, bank_deg)) = self.last {
             let dt = time_s - t;
@@ -168,9 +160,9 @@ impl Blend {
             // After a lead-in, a settled bias on the move is a bend read as road: HDR's move
             // alone, held (module doc).
             let gain_deg = match moved_from {
-                Some(avg) => {
+                Some(anchor) => {
                     let b = bank.bias_dps;
-                    let (lo, hi) = (b.min(avg) - guard_dps, b.max(avg) + guard_dps);
+                    let (lo, hi) = (b.min(anchor) - guard_dps, b.max(anchor) + guard_dps);
                     ((hdr_move_deg - bank_move_deg) / dt).max(b - hi).min(b - lo) * dt
                 }
                 None => sum_deg / n - bank_move_deg,
@@ -286,14 +278,14 @@ mod tests {
         assert!((o.heading_deg - before - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg - before, m / 2.0);
     }
 
-    /// After a stop in the lead-in, the bank's settled bias 0.5 deg/s from its average (0,
+    /// After a stop in the lead-in, the bank's settled bias 0.5 deg/s from its anchor (0,
     /// beyond 0.3): the heading moves by HDR's move alone, its bias held within the guard
-    /// (2 x 0.04, no walk) of the span between the bank's bias (0.5) and its average (0).
+    /// (2 x 0.04, no walk) of the span between the bank's bias (0.5) and its anchor's (0).
     /// Without a lead-in stop, or with the fallback off, the bank moves alone.
     #[test]
     fn after_a_lead_in_a_settled_bias_on_the_move_takes_hdrs_move_held_near_the_bank() {
         let started = |move_dps: f64, lead_in_stop: bool| {
-            let mut b = Blend { fallback: Fallback { move_dps, move_s: 60.0, ..Default::default() }, ..Blend::new(2.0, 0.0) };
+            let mut b = Blend { fallback: Fallback { move_dps, ..Default::default() }, ..Blend::new(2.0, 0.0) };
             b.update(false, 0.0, 0.0, PipelineOutput { stop: lead_in_stop, ..bank(0.0, 0.04) }, 0.0).unwrap();
             b.update(true, 1.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
             b
@@ -305,12 +297,12 @@ mod tests {
         assert!(m.abs() <= 0.0422 + 1e-12, "{m}");
         let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
         assert!((o.heading_deg - m).abs() < 1e-12 && (o.bias_dps + m).abs() < 1e-12, "{o:?} against HDR's {m}");
-        // The averages are held while the fallback acts, and restart after a stop.
-        assert_eq!(b.fallback.avg_dps, Some((0.0, 0.0)));
+        // The anchor stays while the fallback acts, and restarts after a stop.
+        assert_eq!(b.fallback.anchor_dps, Some((0.0, 0.0)));
         b.update(true, 3.0, 0.0, PipelineOutput { stop: true, ..dragged }, 0.5).unwrap();
-        assert_eq!(b.fallback.avg_dps, None);
+        assert_eq!(b.fallback.anchor_dps, None);
         b.update(true, 4.0, 0.0, dragged, 0.5).unwrap();
-        assert_eq!(b.fallback.avg_dps, Some((0.5, 0.5)));
+        assert_eq!(b.fallback.anchor_dps, Some((0.5, 0.5)));
         // HDR at -2 deg/s: its bias is held at the span's edge, 0 - 0.08.
         let mut b = started(0.3, true);
         let e = b.experts.as_mut().unwrap();
@@ -324,5 +316,25 @@ mod tests {
             let o = started(move_dps, lead_in_stop).update(true, 2.0, 0.0, dragged, 0.5).unwrap();
             assert_eq!(o, dragged, "move_dps {move_dps}, lead-in stop {lead_in_stop}");
         }
+    }
+
+    /// A slow run of bends: the settled bias creeps 0.002 deg/s per block from 0 (the bank's
+    /// bias 0.1 above it). It is moved once more than 0.3 from the anchor (block 151:
+    /// 0.302), not before (block 150: 0.3, not beyond), and stays moved, the anchor's bias
+    /// (0.1) the hold's other end. An average over 60 s would trail such a creep by 0.12
+    /// and never act. A stop restarts the anchor where the bias then is.
+    #[test]
+    fn a_slow_creep_of_the_settled_bias_is_moved_once_beyond_the_anchor() {
+        let mut f = Fallback { move_dps: 0.3, lead_in_seen: true, ..Default::default() };
+        for i in 0..=200 {
+            let settled = 0.002 * f64::from(i);
+            let moved = f.moved(settled, settled + 0.1, false);
+            assert_eq!(moved, (i > 150).then_some(0.1), "block {i}");
+        }
+        assert_eq!(f.moved(0.402, 0.502, true), Some(0.1));
+        assert_eq!(f.moved(0.404, 0.504, false), None);
+        assert_eq!(f.anchor_dps, Some((0.404, 0.504)));
+        let mut before_lead_in = Fallback { move_dps: 0.3, ..Default::default() };
+        assert_eq!(before_lead_in.moved(0.0, 0.0, false).or(before_lead_in.moved(1.0, 1.0, false)), None);
     }
 }

@@ -80,9 +80,9 @@ pub struct PipelineParams {
     /// three fastest walks (0.001, 0.003, 0.01; docs/pipeline.md).
     pub blend_walk_dps_per_sqrt_s: f64,
     /// After a stationary lead-in, while the bank's settled bias (the bias less its warm-up
-    /// term) is further than this from its own average over `road_window_s`, the heading
-    /// moves by Table-III HDR's move alone: a settled bias that moves that fast after a
-    /// lead-in is a long bend read as straight road (`blend.rs`), deg/s; 0 = never. Chosen
+    /// term) is further than this from where the last stop left it, the heading moves by
+    /// Table-III HDR's move alone: a settled bias that the road alone moves that far after a
+    /// lead-in is long bends read as straight road (`blend.rs`), deg/s; 0 = never. Chosen
     /// on the training cases and the independent generator's draw 0 (docs/pipeline.md).
     pub blend_move_dps: f64,
     /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
