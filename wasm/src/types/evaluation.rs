@@ -87,9 +87,9 @@ export interface PipelineOptions {
    * deg/s per sqrt(s) (0.003); 0 = the bank's sigma alone. */
   blend_walk_dps_per_sqrt_s?: number;
   /** After a stationary lead-in, while the bank's settled bias (less its warm-up term) is
-   * further than this from its own average over `road_window_s`, the heading moves by
-   * Table-III HDR's move (its bias held near the bank's): a long bend read as straight road,
-   * deg/s (0.3); 0 = never. */
+   * further than this from where the last stop left it, the heading moves by Table-III
+   * HDR's move (its bias held near the bank's): long bends read as straight road, deg/s
+   * (0.3); 0 = never. */
   blend_move_dps?: number;
   /** @deprecated The name of `blend_sigmas` while it blended HDR alone. */
   hdr_blend_sigmas?: number;
