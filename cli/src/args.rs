@@ -345,9 +345,16 @@ pub(crate) enum Cmd {
     /// drives, per road class: yaw rate while moving, straight runs, slow curvature, curves,
     /// the yaw-rate spectrum, lane-change-like manoeuvres and loops, and their distances.
     Roads {
-        /// Recipes of the recorded drives (a folder's *.toml or files).
-        #[arg(long, num_args = 1.., default_value = "sample-logs/recipes")]
+        /// Recipes of the recorded drives (a folder's *.toml or files); with neither this
+        /// nor --logs, the shipped ones in sample-logs/recipes.
+        #[arg(long, num_args = 1..)]
         recipes: Vec<PathBuf>,
+        /// Your own drives as v1 logs (each with a speed column; read, checked and split at
+        /// gaps as every command reads a log): their roads against the simulator's. The
+        /// yaw rate is the gyro's less the median rate of its still seconds (10 or more), else
+        /// as it is.
+        #[arg(long, num_args = 1..)]
+        logs: Vec<PathBuf>,
         /// Folder the recipes' files are in (default: each recipe's folder).
         #[arg(long)]
         data: Option<PathBuf>,

@@ -230,15 +230,33 @@ pub fn samples(out: &Path, realisation: u64) -> Result<(), Failure> {
     Ok(())
 }
 
-/// The robustness battery on the recipes' drives and the simulated ones.
-/// `roads`: road statistics of the recorded drives against the simulator's (issue 13).
-pub fn roads(recipes: &[PathBuf], data: Option<&Path>, json: bool, plot: Option<&Path>) -> Result<(), Failure> {
+/// The recorded drives `roads` measures: recipes, the user's own v1 logs, the input policy.
+pub struct RoadsInput<'a> {
+    pub recipes: &'a [PathBuf],
+    pub logs: &'a [PathBuf],
+    pub data: Option<&'a Path>,
+    pub input: Input,
+}
+
+/// `roads`: road statistics of recorded drives (the shipped recipes' when none is given)
+/// against the simulator's (issue 13); drives without a speed column are named and left out.
+pub fn roads(given: RoadsInput, json: bool, plot: Option<&Path>) -> Result<(), Failure> {
+    let shipped = [PathBuf::from("sample-logs/recipes")];
+    let recipes = if given.recipes.is_empty() && given.logs.is_empty() { &shipped[..] } else { given.recipes };
     let mut logs = Vec::new();
     for r in expand_recipes(recipes)? {
-        let (log, _) = import_recipe(&r, data, false)?;
+        let (log, _) = import_recipe(&r, given.data, false)?;
         logs.push((r.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(), log));
     }
+    for path in given.logs {
+        for part in read_checked(path, given.input, None)? {
+            logs.push((part.meta.name.clone().unwrap_or_default(), part));
+        }
+    }
     let c = gyrodrift::sim::roads::compare(&named(&logs)).map_err(|e| Failure(e.to_string()))?;
+    for name in &c.skipped {
+        eprintln!("{name}: left out: no speed column, so no block is known to be moving");
+    }
     if let Some(p) = plot {
         crate::roads_plot::draw(&c, p).map_err(Failure)?;
     }

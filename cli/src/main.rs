@@ -202,7 +202,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Cmd::Allan { log, json } => c::allan(&log, json, input),
         Cmd::Check { logs, json } => c::check(&logs, json, input),
         Cmd::Split { log, out_dir } => c::split(&log, out_dir.as_deref()),
-        Cmd::Roads { recipes, data, json, plot } => c::roads(&recipes, data.as_deref(), json, plot.as_deref()),
+        Cmd::Roads { recipes, logs, data, json, plot } => {
+            c::roads(c::RoadsInput { recipes: &recipes, logs: &logs, data: data.as_deref(), input }, json, plot.as_deref())
+        }
     }
 }
 

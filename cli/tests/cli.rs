@@ -425,3 +425,23 @@ fn a_drive_without_a_reference_runs_unscored() {
         assert!(String::from_utf8_lossy(&out.stderr).contains("no drive has a reference heading to score against"));
     }
 }
+
+#[test]
+fn roads_measures_your_own_logs_and_names_those_without_speed() {
+    let p = write("roads-drive.csv", &drive_csv());
+    let rows: String = drive_csv().lines().skip(2).map(|l| l.rsplit_once(',').unwrap().0.to_string() + "\n").collect();
+    let q = write("roads-no-speed.csv", &format!("# name: no speed\ntime_s,gyro_dps,ref_heading_deg\n{rows}"));
+    let out = run(&["roads", "--logs", p.to_str().unwrap(), q.to_str().unwrap(), "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let recorded: Vec<&str> = v["recorded"].as_array().unwrap().iter().map(|r| r[0].as_str().unwrap()).collect();
+    assert_eq!(recorded, ["test drive"], "only the given log, not the shipped recipes");
+    assert_eq!(v["skipped"], serde_json::json!(["no speed"]));
+    // 10 min at 10 m/s (the drive's speed column has no stop): every 1 s block moves.
+    let moving_min = v["recorded_pool"]["moving_min"].as_f64().unwrap();
+    assert!((moving_min - 10.0).abs() < 0.05, "{moving_min}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no speed: left out: no speed column"));
+    let out = run(&["roads", "--logs", q.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no recorded drive has a speed column (1 given)"));
+}

@@ -3,7 +3,7 @@
 
 use super::samples::{road_samples, ClassedSamples, RoadClass, RoadSamples, RoadSummary};
 use super::spectrum::BAND_NAMES;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::log::{Column, DriveLog};
 use serde::Serialize;
 
@@ -75,6 +75,8 @@ pub struct ClassComparison {
 #[derive(Debug, Clone, Serialize)]
 pub struct RoadComparison {
     pub recorded: Vec<(String, RoadSummary)>,
+    /// Recorded drives left out: no speed column, so no block is known to be moving.
+    pub skipped: Vec<String>,
     pub simulated: Vec<(String, RoadSummary)>,
     pub recorded_pool: RoadSummary,
     pub simulated_pool: RoadSummary,
@@ -100,14 +102,22 @@ pub fn simulated_samples() -> Result<Vec<(String, ClassedSamples)>> {
     Ok(out)
 }
 
-/// Compares recorded drives (each with a speed column; ones without are skipped) with the
-/// simulated sample drives.
+/// Compares recorded drives (each with a speed column; ones without are skipped and named)
+/// with the simulated sample drives. None with a speed column is an error.
 pub fn compare(recorded: &[(String, &DriveLog)]) -> Result<RoadComparison> {
-    let mut rec = Vec::new();
+    let (mut rec, mut skipped) = (Vec::new(), Vec::new());
     for (name, log) in recorded {
         if log.has(Column::SpeedMps) {
             rec.push((name.clone(), road_samples(log, 0.0).map_err(|e| e.within(name))?));
+        } else {
+            skipped.push(name.clone());
         }
+    }
+    if rec.is_empty() {
+        return Err(Error::data(format!(
+            "road statistics: no recorded drive has a speed column ({} given), so none shows when it moves",
+            recorded.len()
+        )));
     }
     let sim = simulated_samples()?;
     let pool = |v: &[(String, ClassedSamples)]| {
@@ -129,6 +139,7 @@ pub fn compare(recorded: &[(String, &DriveLog)]) -> Result<RoadComparison> {
         .collect();
     Ok(RoadComparison {
         recorded: rows(&rec),
+        skipped,
         simulated: rows(&sim),
         recorded_pool: rp.all.summary(),
         simulated_pool: sp.all.summary(),
@@ -180,6 +191,9 @@ impl RoadComparison {
             out += &row(&format!("recorded: {n}"), s);
         }
         out += &row("**recorded, pooled**", &self.recorded_pool);
+        if !self.skipped.is_empty() {
+            out += &format!("| (left out, no speed column: {}) |\n", self.skipped.join(", "));
+        }
         for (n, s) in &self.simulated {
             out += &row(&format!("simulated: {n}"), s);
         }
@@ -328,5 +342,19 @@ mod tests {
         let d = RoadDistance::between(&s, &s);
         assert_eq!(d.values()[..2], [0.0, 0.0]);
         assert!(d.slow_rate.is_nan(), "no samples: no distance");
+    }
+
+    #[test]
+    fn drives_without_speed_are_named_and_none_with_speed_is_an_error() {
+        let cfg = crate::sim::drive::DriveConfig { scenario: "city".parse().unwrap(), minutes: 3.0, seed: 5 };
+        let with = crate::sim::drive::simulate_drive_with(&cfg, &crate::sim::GyroSpec::ideal());
+        let mut without = with.clone();
+        without.drop_column(Column::SpeedMps);
+        let c = compare(&[("mine".into(), &with), ("no-speed".into(), &without)]).unwrap();
+        assert_eq!(c.recorded.iter().map(|r| r.0.as_str()).collect::<Vec<_>>(), ["mine"]);
+        assert_eq!(c.skipped, ["no-speed"]);
+        assert!(c.to_markdown().contains("left out, no speed column: no-speed"));
+        let e = compare(&[("no-speed".into(), &without)]).unwrap_err().to_string();
+        assert!(e.contains("no recorded drive has a speed column (1 given)"), "{e}");
     }
 }
