@@ -15,6 +15,8 @@ target/probeK (run docs/experiments/probe-formats.py first), against its four pe
 import bisect, csv, glob, json, os, subprocess, sys
 from concurrent.futures import ThreadPoolExecutor
 
+from goals import counts
+
 CLI = os.path.abspath("target/release/gyrodrift")
 K = float(sys.argv[1]) if len(sys.argv) > 1 else 2.0
 WHAT = sys.argv[2] if len(sys.argv) > 2 else "battery"
@@ -103,8 +105,5 @@ if __name__ == "__main__":
         es = list(ex.map(lambda c: blended(c[0]), cs))
     for name, k in (("bank alone", 0), (f"blend at {K} sigma", 1)):
         ne = [e[k] / c[1] for e, c in zip(es, cs)]
-        within = sum(x <= 1.25 * c[2] + 0.05 for x, c in zip(ne, cs))
-        over = sum(x > 2 * c[2] + 0.05 for x, c in zip(ne, cs))
-        raw = sum(x > 1.1 * c[3] for x, c in zip(ne, cs))
-        worst = max(x / c[2] for x, c in zip(ne, cs))
+        within, over, raw, worst = counts([(x, c[2], c[3]) for x, c in zip(ne, cs)])
         print(f"{WHAT} {name}: {len(cs)} cases, within 1.25x + 0.05 {within}, worse than 2x + 0.05 {over}, worse than raw {raw}, worst {worst:.2f}x, mean {sum(ne) / len(ne):.3f}")

@@ -39,6 +39,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from goals import counts
+
 CLI = sys.argv[1] if len(sys.argv) > 1 else "target/release/gyrodrift"
 OUT = Path(sys.argv[2] if len(sys.argv) > 2 else "target/independent-sim")
 PEERS = ["raw", "hdr", "fusion_offset", "zaru"]
@@ -242,10 +244,7 @@ def main():
         ok = [x for x in runs if x]
         n = len(ok)
         mean = lambda j: sum(x[j] for x in ok) / n
-        within = sum(p <= 1.25 * b + 0.05 for p, b, _, _ in ok)
-        over = sum(p > 2 * b + 0.05 for p, b, _, _ in ok)
-        raw = sum(p > 1.1 * r for p, _, r, _ in ok)
-        worst = max(p / b for p, b, _, _ in ok)
+        within, over, raw, worst = counts([x[:3] for x in ok])
         print(f"{variant:<11} {n:>6} {mean(0):>8.3f} {mean(3):>7.3f} {mean(1):>9.3f} {within:>12} {over:>9} {raw:>10} {worst:>6.2f}x {len(runs) - n:>6}")
     if os.environ.get("ROAD_STATS"):
         road_stats(by_class)

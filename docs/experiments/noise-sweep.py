@@ -16,6 +16,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from goals import counts
+
 CLI = sys.argv[1] if len(sys.argv) > 1 else "target/release/gyrodrift"
 OUT = Path(sys.argv[2] if len(sys.argv) > 2 else "target/noise-sweep")
 PEERS = ["raw", "hdr", "fusion_offset", "zaru"]
@@ -38,10 +40,7 @@ def main():
             best = min(r[f"NE_psi_{p}_deg_per_min"] for p in PEERS)
             rows.append((r["NE_psi_pipeline_deg_per_min"], best, r["NE_psi_raw_deg_per_min"], f"{scenario} {seed}"))
         n = len(rows)
-        within = sum(p <= 1.25 * b + 0.05 for p, b, _, _ in rows)
-        over = sum(p > 2 * b + 0.05 for p, b, _, _ in rows)
-        raw = sum(p > 1.1 * w for p, _, w, _ in rows)
-        worst = max(p / b for p, b, _, _ in rows)
+        within, over, raw, worst = counts([r[:3] for r in rows])
         print(f"{level} | {n} | {sum(r[0] for r in rows) / n:.3f} | {sum(r[1] for r in rows) / n:.3f} | {within} | {over} | {raw} | {worst:.2f}x")
         if os.environ.get("VERBOSE"):
             for p, b, _, name in rows:
