@@ -308,6 +308,7 @@ pub fn battery_case(given: BatteryInput, sim: SimDraw, case: &str, out: Option<&
     write_log(&log, out)
 }
 
+/// The robustness battery on the recipes' drives, the logs given and the simulated ones.
 pub fn battery(given: BatteryInput, split: battery::Split, sim: SimDraw, cases: bool, set: &[String], json: bool) -> Result<(), Failure> {
     if !given.logs.is_empty() && split == battery::Split::Training {
         return Err(Failure("--logs with --split training: the drives you add are scoring bases, so none of their cases would run".into()));
