@@ -113,10 +113,7 @@ fn refusal_hints(summary: &fleet::FleetSummary, batch: &Batch) -> Vec<String> {
         Remedy::Recipe => format!("`--recipe R`: a recipe{own}"),
         Remedy::OtherRecipe => format!("another recipe{own}"),
     };
-    fleet::refusal_hints(&summary.errors_by_code, reading)
-        .into_iter()
-        .map(|h| format!("{} file(s) {}: {}", h.files, h.why, by(h.remedy)))
-        .collect()
+    fleet::refusal_hints(&summary.errors_by_code, reading).into_iter().map(|h| format!("{}: {}", h.said, by(h.remedy))).collect()
 }
 
 /// `report --dir`: scores every log under `dir`; prints the summary (Markdown or JSON) and

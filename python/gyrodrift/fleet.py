@@ -276,7 +276,7 @@ def refusal_hints(rows: Any, import_raw: bool = False, recipe: Optional[str] = N
         "other_recipe": "another recipe" + own,
     }
     records = json.loads(rows.to_json(orient="records"))
-    return [f"{h['files']} file(s) {h['why']}: {by.get(h['remedy'], h['remedy'])}" for h in _refusal_hints(records, import_raw, recipe is not None)]
+    return [f"{h['said']}: {by.get(h['remedy'], h['remedy'])}" for h in _refusal_hints(records, import_raw, recipe is not None)]
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

@@ -107,7 +107,7 @@ fn summarize<'py>(py: Python<'py>, rows: &Bound<'py, PyAny>) -> PyResult<Bound<'
 }
 
 /// The error rows another reading mends, a dict per kind (core's `fleet::refusal_hints`):
-/// `files`, `why` (words after "N file(s) ") and `remedy` (time_order_fix, joined_split,
+/// `files`, `why` (words after "1 file " or "N files "), `said` (the two together) and `remedy` (time_order_fix, joined_split,
 /// check_each, import_or_recipe, recipe, other_recipe), for the fleet job to name in its
 /// options. `import_raw`, `recipe`: how the job read the files that are not v1 logs.
 #[pyfunction]

@@ -133,11 +133,11 @@ def test_the_command_line_names_the_option_for_refusals_by_kind(samples, tmp_pat
     (logs / "cw.csv").write_text("\n".join(cw) + "\n")
     assert fleet.main([str(logs), "--out", str(tmp_path / "r.parquet"), "--workers", "1"]) == 0
     err = capsys.readouterr().err
-    assert err.count("""1 file(s) refused for a time that repeats or steps back by at most 1 s: --options '{"input": {"time_order": "fix"}}'""") == 1, err
-    assert err.count("""2 file(s) refused for a second log joined on or a clock reset: --options '{"input": {"joined": "split"}}'""") == 1, err
+    assert err.count("""1 file refused for a time that repeats or steps back by at most 1 s: --options '{"input": {"time_order": "fix"}}'""") == 1, err
+    assert err.count("""2 files refused for a second log joined on or a clock reset: --options '{"input": {"joined": "split"}}'""") == 1, err
     out = pd.read_parquet(tmp_path / "r.parquet").set_index("file")
     codes = {Path(f).name: (None if pd.isna(c) else c) for f, c in out["error_code"].items()}
-    assert err.count("""1 file(s) refused for a unit or sign mistake check found: gyrodrift.check(gyrodrift.read_log(path)) names each fix""") == 1, err
+    assert err.count("""1 file refused for a unit or sign mistake check found: gyrodrift.check(gyrodrift.read_log(path)) names each fix""") == 1, err
     assert codes == {"city.csv": None, "joined.csv": "joined", "repeat.csv": "time_order", "reset.csv": "clock_reset", "cw.csv": "check"}
     # Core's hints as data, for a job of one's own: kinds counted, why, and the remedy's kind.
     records = json.loads(out.reset_index().to_json(orient="records"))
@@ -146,7 +146,7 @@ def test_the_command_line_names_the_option_for_refusals_by_kind(samples, tmp_pat
     options = '{"input": {"joined": "split", "time_order": "fix", "ignore_check": true}}'
     assert fleet.main([str(logs), "--workers", "1", "--options", options]) == 0
     captured = capsys.readouterr()
-    assert captured.out.startswith("5 files, 7 drives scored") and "file(s) refused" not in captured.err, captured
+    assert captured.out.startswith("5 files, 7 drives scored") and "refused for" not in captured.err, captured
 
 
 def test_options_as_the_command_line_documents_them(folder):
@@ -172,11 +172,11 @@ def test_a_folder_of_raw_exports_gets_one_import_hint_per_recording(samples, tmp
     assert err.count("it looks like a recording of") == 1 and "(import preset sensorlog)" in err
     # Files that are not v1 logs (kind "foreign"): the way that reads them, once, by how the
     # job read them.
-    assert err.count("1 file(s) are not v1 logs (no time_s column): --import reads the exports") == 1, err
+    assert err.count("1 file is not a v1 log (no time_s column): --import reads the exports") == 1, err
     (tmp_path / "mine.csv").write_text("PacketCounter,SampleTimeFine,Gyr_Z\n1,1000,0.5\n2,2000,0.5\n")
     assert fleet.main([str(tmp_path), "--workers", "1", "--import"]) == 0
     err = capsys.readouterr().err
-    assert err.count("1 file(s) are not v1 logs (no time_s column) and no logger preset reads them: --recipe R") == 1, err
+    assert err.count("1 file is not a v1 log (no time_s column) and no logger preset reads it: --recipe R") == 1, err
 
 
 def test_the_fleet_job_with_import_scores_a_zipped_export_as_a_drive(samples, tmp_path):
