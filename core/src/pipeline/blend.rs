@@ -15,17 +15,15 @@
 //! Until the first stop, where the road alone may never take the bank there (no lead-in, no
 //! speed), they start once HDR could acquire what is left: three sigma within its straight
 //! threshold theta_w (0.188 deg/s).
-//! Once the experts have started the bank's settled bias (the bias less its warm-up term)
-//! has no cause to move far between stops, the bias's own evidence: while it is more than
+//! After a stationary lead-in the bank's settled bias (the bias less its warm-up term) has
+//! no cause to move far between stops, the bias's own evidence: while it is more than
 //! `blend_move_dps` from where the last stop (or the experts' start) left it, the bank is
 //! reading long bends that filled its road window as straight road, and the heading moves
 //! by HDR's move alone, whose threshold about its own estimate calls a bend a turn. HDR's
 //! bias is then held within the guard of the span between the bank's bias and the bank's
 //! bias at that anchor, so the blend stays as bounded as the bank. The anchor restarts after
 //! a stop (until the forty-ninth session it was an average over the road window, which a
-//! slow run of bends dragged along with the bias; until the fiftieth the fallback waited for
-//! a stationary lead-in, so a drive cut from its lead-in read its bends as bias:
-//! docs/pipeline.md).
+//! slow run of bends dragged along with the bias: docs/pipeline.md).
 //! The stream and the batch path blend alike, block for block. Beyond the paper, like the
 //! bank.
 
@@ -68,22 +66,23 @@ pub struct Blend {
     fallback: Fallback,
 }
 
-/// Watches the bank's settled bias once the experts have started: `blend_move_dps` (0:
-/// never) and the anchor: the settled bias and the bank's bias at the experts' first block
-/// or the first block after a stop (none until then).
+/// Watches the bank's settled bias after a lead-in: `blend_move_dps` (0: never), whether
+/// the lead-in gave stop evidence, and the anchor: the settled bias and the bank's bias at
+/// the experts' first block or the first block after a stop (none until then).
 #[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Default)]
 struct Fallback {
     move_dps: f64,
+    lead_in_seen: bool,
     anchor_dps: Option<(f64, f64)>,
 }
 
 impl Fallback {
-    /// Where the settled bias is further than `move_dps` from the anchor's (a non-finite
-    /// settled bias is none), the bank's bias at the anchor. A stop block restarts the anchor
-    /// at the next block.
+    /// Where the settled bias is further than `move_dps` from the anchor's (after a lead-in;
+    /// a non-finite settled bias is none), the bank's bias at the anchor. A stop block
+    /// restarts the anchor at the next block.
     fn moved(&mut self, settled: f64, bias_dps: f64, stop: bool) -> Option<f64> {
-        if !(self.move_dps > 0.0 && settled.is_finite()) {
+        if !(self.lead_in_seen && self.move_dps > 0.0 && settled.is_finite()) {
             return None;
         }
         let (s_anchor, b_anchor) = *self.anchor_dps.get_or_insert((settled, bias_dps));
@@ -118,6 +117,7 @@ impl Blend {
         bank: PipelineOutput,
         settled_dps: f64,
     ) -> Result<PipelineOutput> {
+        self.fallback.lead_in_seen |= !after_lead_in && bank.stop;
         if !(self.sigmas > 0.0 && after_lead_in) {
             return Ok(bank);
         }
@@ -157,7 +157,7 @@ impl Blend {
                     (sum_deg, n) = (sum_deg + move_deg, n + 1.0);
                 }
             }
-            // A settled bias on the move is a bend read as road: HDR's move
+            // After a lead-in, a settled bias on the move is a bend read as road: HDR's move
             // alone, held (module doc).
             let gain_deg = match moved_from {
                 Some(anchor) => {
@@ -278,12 +278,12 @@ mod tests {
         assert!((o.heading_deg - before - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg - before, m / 2.0);
     }
 
-    /// Once the experts have started, the bank's settled bias 0.5 deg/s from its anchor (0,
+    /// After a stop in the lead-in, the bank's settled bias 0.5 deg/s from its anchor (0,
     /// beyond 0.3): the heading moves by HDR's move alone, its bias held within the guard
-    /// (2 x 0.04, no walk) of the span between the bank's bias (0.5) and its anchor's (0),
-    /// with or without a stop in the lead-in. With the fallback off the bank moves alone.
+    /// (2 x 0.04, no walk) of the span between the bank's bias (0.5) and its anchor's (0).
+    /// Without a lead-in stop, or with the fallback off, the bank moves alone.
     #[test]
-    fn a_settled_bias_on_the_move_takes_hdrs_move_held_near_the_bank() {
+    fn after_a_lead_in_a_settled_bias_on_the_move_takes_hdrs_move_held_near_the_bank() {
         let started = |move_dps: f64, lead_in_stop: bool| {
             let mut b = Blend { fallback: Fallback { move_dps, ..Default::default() }, ..Blend::new(2.0, 0.0) };
             b.update(false, 0.0, 0.0, PipelineOutput { stop: lead_in_stop, ..bank(0.0, 0.04) }, 0.0).unwrap();
@@ -292,15 +292,11 @@ mod tests {
         };
         // The bank took 0.5 deg/s as bias over the block: it moved -0.5 deg.
         let dragged = PipelineOutput { bias_dps: 0.5, ..bank(-0.5, 0.04) };
-        for lead_in_stop in [true, false] {
-            let mut b = started(0.3, lead_in_stop);
-            let m = hdr_move(&b, 2.0, 0.0);
-            assert!(m.abs() <= 0.0422 + 1e-12, "{m}");
-            let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
-            assert!((o.heading_deg - m).abs() < 1e-12 && (o.bias_dps + m).abs() < 1e-12, "{o:?} against HDR's {m}");
-        }
         let mut b = started(0.3, true);
-        b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
+        let m = hdr_move(&b, 2.0, 0.0);
+        assert!(m.abs() <= 0.0422 + 1e-12, "{m}");
+        let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
+        assert!((o.heading_deg - m).abs() < 1e-12 && (o.bias_dps + m).abs() < 1e-12, "{o:?} against HDR's {m}");
         // The anchor stays while the fallback acts, and restarts after a stop.
         assert_eq!(b.fallback.anchor_dps, Some((0.0, 0.0)));
         b.update(true, 3.0, 0.0, PipelineOutput { stop: true, ..dragged }, 0.5).unwrap();
@@ -316,8 +312,10 @@ mod tests {
         let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
         assert!((o.bias_dps + 0.08).abs() < 1e-12 && (o.heading_deg - 0.08).abs() < 1e-12, "{o:?}");
         // HDR and Fusion (0 deg/s) both beyond the guard: the bank's move alone.
-        let o = started(0.0, true).update(true, 2.0, 0.0, dragged, 0.5).unwrap();
-        assert_eq!(o, dragged, "the fallback off");
+        for (move_dps, lead_in_stop) in [(0.0, true), (0.3, false)] {
+            let o = started(move_dps, lead_in_stop).update(true, 2.0, 0.0, dragged, 0.5).unwrap();
+            assert_eq!(o, dragged, "move_dps {move_dps}, lead-in stop {lead_in_stop}");
+        }
     }
 
     /// A slow run of bends: the settled bias creeps 0.002 deg/s per block from 0 (the bank's
@@ -327,7 +325,7 @@ mod tests {
     /// and never act. A stop restarts the anchor where the bias then is.
     #[test]
     fn a_slow_creep_of_the_settled_bias_is_moved_once_beyond_the_anchor() {
-        let mut f = Fallback { move_dps: 0.3, ..Default::default() };
+        let mut f = Fallback { move_dps: 0.3, lead_in_seen: true, ..Default::default() };
         for i in 0..=200 {
             let settled = 0.002 * f64::from(i);
             let moved = f.moved(settled, settled + 0.1, false);
@@ -336,7 +334,7 @@ mod tests {
         assert_eq!(f.moved(0.402, 0.502, true), Some(0.1));
         assert_eq!(f.moved(0.404, 0.504, false), None);
         assert_eq!(f.anchor_dps, Some((0.404, 0.504)));
-        let mut off = Fallback { move_dps: 0.0, ..Default::default() };
-        assert_eq!(off.moved(0.0, 0.0, false).or(off.moved(1.0, 1.0, false)), None);
+        let mut before_lead_in = Fallback { move_dps: 0.3, ..Default::default() };
+        assert_eq!(before_lead_in.moved(0.0, 0.0, false).or(before_lead_in.moved(1.0, 1.0, false)), None);
     }
 }

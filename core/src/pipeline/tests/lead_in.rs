@@ -242,21 +242,3 @@ fn after_a_lead_in_a_long_bend_is_not_taken_as_bias() {
     let (with, without) = (error_deg(0.3), error_deg(0.0));
     assert!(without < -40.0 && with > -15.0 && with < 0.0, "with {with}, without {without}");
 }
-
-/// The long bend on a drive cut from its lead-in (its first 20 s moving on the straight, no
-/// stop anywhere): the bank acquires the -1.4 deg/s bias from the road, the experts start,
-/// and the bend fallback judges the bend from that anchor as it would from a lead-in's: the
-/// final heading error -52.5 deg without it, -17.3 with it (until the fiftieth session the
-/// fallback waited for a lead-in, and this drive had the -52.5).
-#[test]
-fn without_a_lead_in_a_long_bend_is_not_taken_as_bias() {
-    let mut blocks = long_bend_blocks();
-    blocks.still.iter_mut().for_each(|s| *s = false);
-    let error_deg = |move_dps: f64| {
-        let tr = run_blocks(&blocks, PipelineParams { blend_move_dps: move_dps, ..PipelineParams::default() }, 0.0).unwrap();
-        let (first, last) = (tr.heading_deg[20], *tr.heading_deg.last().unwrap());
-        last - first - 56.0
-    };
-    let (with, without) = (error_deg(0.3), error_deg(0.0));
-    assert!(without < -40.0 && with > -20.0 && with < 0.0, "with {with}, without {without}");
-}
