@@ -70,40 +70,20 @@ pub struct Row<'a> {
     pub fields: &'a [&'a str],
 }
 
-/// Where a table's rows start and how they split: the file's lines before the reader's
-/// first (as for a log joined on after another; errors count lines from there), the lines to
-/// skip unread, the field split and the size caps.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Layout {
-    pub lines_before: u64,
-    pub skip_lines: usize,
-    pub split: Split,
-    pub limits: Limits,
-}
-
-impl Layout {
-    /// Comma-separated from the first line, with the default caps.
-    pub fn csv() -> Self {
-        Self::split(Split::Csv)
-    }
-
-    /// Split so from the first line, with the default caps.
-    pub fn split(split: Split) -> Self {
-        Layout { lines_before: 0, skip_lines: 0, split, limits: Limits::default() }
-    }
-}
-
-/// Reads `reader` row by row. The first `layout.skip_lines` lines are skipped unread; then
-/// each line goes to `preamble` (as text) until it returns false: that line and every later
-/// one are rows (`preamble` takes comment or metadata lines before a header). Errors name the
-/// line, counted from `layout.lines_before`; `row` may return its own.
+/// Reads `reader` row by row. The first `skip_lines` lines are skipped unread; then each
+/// line goes to `preamble` (as text) until it returns false: that line and every later one
+/// are rows (`preamble` takes comment or metadata lines before a header). Errors name the
+/// line, counted from `lines_before` (the file's lines before the reader's first, as for a
+/// log joined on after another); `row` may return its own.
 pub fn read_rows(
     reader: impl Read,
-    layout: Layout,
+    lines_before: u64,
+    split: Split,
+    skip_lines: usize,
+    limits: Limits,
     preamble: &mut dyn FnMut(u64, &str) -> Result<bool>,
     row: &mut dyn FnMut(Row) -> Result<()>,
 ) -> Result<()> {
-    let Layout { lines_before, skip_lines, split, limits } = layout;
     let mut reader = BufReader::with_capacity(1 << 16, Capped { inner: reader, limits, total: 0, line: 0 });
     let mut raw = Vec::new();
     let mut line_no: u64 = lines_before;
@@ -237,7 +217,7 @@ mod tests {
     fn rows(text: &[u8], split: Split, skip: usize) -> Result<Vec<(u64, Vec<String>)>> {
         let mut out = Vec::new();
         let mut pre = |_: u64, t: &str| Ok(t.trim().is_empty() || t.starts_with('#'));
-        read_rows(text, Layout { skip_lines: skip, ..Layout::split(split) }, &mut pre, &mut |r| {
+        read_rows(text, 0, split, skip, Limits::default(), &mut pre, &mut |r| {
             out.push((r.line, r.fields.iter().map(|s| s.to_string()).collect()));
             Ok(())
         })?;
@@ -276,12 +256,11 @@ mod tests {
     fn caps_stop_endless_or_huge_input() {
         let none = &mut |_: Row| Ok(());
         let zeros = std::io::repeat(0).take(10 << 20);
-        let e = read_rows(zeros, Layout::csv(), &mut |_, _| Ok(false), none).unwrap_err();
+        let e = read_rows(zeros, 0, Split::Csv, 0, Limits::default(), &mut |_, _| Ok(false), none).unwrap_err();
         assert!(matches!(&e, Error::Io(m) if m.contains("a line is longer than 1048576 bytes")), "{e}");
         let small = Limits { max_bytes: 100, max_line_bytes: 1000 };
         let text = "a,b\n".repeat(100);
-        let e = read_rows(text.as_bytes(), Layout { limits: small, ..Layout::split(Split::Whitespace) }, &mut |_, _| Ok(false), none)
-            .unwrap_err();
+        let e = read_rows(text.as_bytes(), 0, Split::Whitespace, 0, small, &mut |_, _| Ok(false), none).unwrap_err();
         assert!(matches!(&e, Error::Io(m) if m.contains("larger than 100 bytes")), "{e}");
     }
 }

@@ -2,7 +2,7 @@
 //! rate taken from it.
 
 use super::*;
-use crate::table::{read_rows, Layout, Row, Split};
+use crate::table::{read_rows, Row, Split};
 
 /// A table read from a file: the time of each row and the columns the recipe uses.
 pub(super) struct Table {
@@ -165,7 +165,7 @@ pub(super) fn read_table(spec: &TableSpec, wanted: &BTreeSet<String>, files: &mu
             on_row(r.line, r.fields)
         }
     };
-    read_rows(reader, Layout { skip_lines: spec.skip_lines, ..Layout::split(split) }, &mut |_, _| Ok(false), &mut each).map_err(at)?;
+    read_rows(reader, 0, split, spec.skip_lines, Default::default(), &mut |_, _| Ok(false), &mut each).map_err(at)?;
     if header.is_none() {
         return Err(at(Error::File("empty file: no header row".into())));
     }

@@ -4,7 +4,7 @@
 
 use super::{Column, DriveLog, LogMeta, ParseOptions};
 use crate::error::{Error, Result};
-use crate::table::{read_rows, Layout, Row};
+use crate::table::{read_rows, Row, Split};
 use std::io::Read;
 
 /// Parses a CSV v1 log with the default limits.
@@ -125,7 +125,7 @@ fn parse_rows<const STRICT: bool>(
     let mut log = DriveLog::default();
     let mut prev_time: Option<(f64, u64)> = None;
     let mut rows = 0usize;
-    read_rows(reader, Layout { lines_before: opts.lines_before, limits: opts.limits, ..Layout::csv() }, &mut preamble, &mut |r: Row| {
+    read_rows(reader, opts.lines_before, Split::Csv, 0, opts.limits, &mut preamble, &mut |r: Row| {
         let Some(h) = &header else {
             let h = Header::new(r.fields, r.line)?;
             for c in h.map.iter().flatten() {
