@@ -361,6 +361,7 @@ impl Pipeline {
 
     /// The bias integrals' change since `h_before` (each hypothesis' before an update), mixed
     /// with the weights `w`: what the update says the heading took off wrongly.
+    #[inline]
     fn integral_change(&self, h_before: &[f64], w: &[f64]) -> f64 {
         self.models.iter().zip(h_before).zip(w).map(|((m, hb), wi)| wi * (m.h - hb)).sum()
     }
