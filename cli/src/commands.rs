@@ -1,6 +1,6 @@
 //! One function per command: read the files, call core, print (text or `--json`).
 
-use crate::input::{open_input, read_checked, read_log, read_named, scored_logs, stem_of, time_order, Input};
+use crate::input::{open_input, read_checked, read_log, read_logs, read_named, scored_logs, stem_of, time_order, Input};
 use crate::{expand_recipes, fail, import_recipe, is_stdin, output, print_json, settings, shell_quoted, shown, write_stdout, Failure};
 use gyrodrift::{battery, calibration, gyrodometry, hdr, tune, DriveLog};
 use std::path::{Path, PathBuf};
@@ -248,11 +248,7 @@ pub fn roads(given: RoadsInput, json: bool, plot: Option<&Path>) -> Result<(), F
         let (log, _) = import_recipe(&r, given.data, false)?;
         logs.push((r.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(), log));
     }
-    for path in given.logs {
-        for part in read_checked(path, given.input, None)? {
-            logs.push((part.meta.name.clone().unwrap_or_default(), part));
-        }
-    }
+    logs.extend(read_logs(given.logs, given.input, None)?);
     let c = gyrodrift::sim::roads::compare(&named(&logs)).map_err(|e| Failure(e.to_string()))?;
     for name in &c.skipped {
         eprintln!("{name}: left out: no speed column, so no block is known to be moving");

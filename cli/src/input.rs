@@ -147,7 +147,7 @@ pub(crate) fn read_checked(path: &Path, input: Input, bias_s: Option<f64>) -> Re
 }
 
 /// Reads many logs (checked and split as `read_checked`), with their names.
-fn read_logs(paths: &[PathBuf], input: Input, bias_s: Option<f64>) -> Result<Vec<(String, DriveLog)>, Failure> {
+pub(crate) fn read_logs(paths: &[PathBuf], input: Input, bias_s: Option<f64>) -> Result<Vec<(String, DriveLog)>, Failure> {
     let mut out = Vec::new();
     for p in paths {
         for part in read_checked(p, input, bias_s)? {
