@@ -100,7 +100,7 @@ pub fn check(log: &DriveLog) -> CheckReport {
     });
     let log = in_seconds.as_ref().unwrap_or(log);
     gaps(&mut r, log);
-    let standing_s = lead_in(&mut r, log);
+    let (standing_s, shown_by) = lead_in(&mut r, log);
     let limit_dps = units_and_sign(&mut r, log, standing_s);
     speed::speed_unit(&mut r, log);
     wheels::wheel_units(&mut r, log);
@@ -109,14 +109,20 @@ pub fn check(log: &DriveLog) -> CheckReport {
         r.findings.push(finding(Severity::Info, "no_reference", message.into(), Some("add a ref_heading_deg column (the GPS course)")));
     }
     // (A lead-in the speed shows running into the drive is reported as that, with its fix.)
+    // Where the speed or the wheels show the standing, the bias is the gyro's and changes
+    // after the lead-in (a part warming up); where nothing shows it, the lead-in may be a turn.
     if let Some(b) = r.eps0_dps.filter(|b| b.abs() > limit_dps && standing_s.is_none()) {
-        let message = format!("static bias {b:.2} deg/s over the lead-in: the vehicle may not stand still then");
-        r.findings.push(finding(
-            Severity::Warning,
-            "bias",
-            message,
-            Some("bias_s = 0 when the log starts moving (# bias_s: 0, or --set bias_s=0)"),
-        ));
+        let (message, fix) = match shown_by {
+            Some(by) => (
+                format!("static bias {b:.2} deg/s over the lead-in, where the {by} shows a standing: the gyro's bias changes after it (warming up?)"),
+                "a longer standing, once the gyro has warmed up",
+            ),
+            None => (
+                format!("static bias {b:.2} deg/s over the lead-in: the vehicle may not stand still then"),
+                "bias_s = 0 when the log starts moving (# bias_s: 0, or --set bias_s=0)",
+            ),
+        };
+        r.findings.push(finding(Severity::Warning, "bias", message, Some(fix)));
     }
     r
 }
@@ -159,10 +165,13 @@ fn lead_in_by_gyro(r: &mut CheckReport, bias_s: f64, wander: f64) {
 
 /// A stationary lead-in the speed (or the wheels) says is not: the first 1 s block they
 /// show moving in starts within it (`still::blocks`, as the pipeline ends its lead-in),
-/// and the standing before it (s, returned) is the lead-in to declare instead.
-fn lead_in(r: &mut CheckReport, log: &DriveLog) -> Option<f64> {
+/// and the standing before it (s, returned) is the lead-in to declare instead. Also
+/// returned: what showed a lead-in standing throughout ("speed", "wheel travel"), if any.
+fn lead_in(r: &mut CheckReport, log: &DriveLog) -> (Option<f64>, Option<&'static str>) {
     let bias_s = log.bias_s(None);
-    let blocks = crate::still::blocks(log, bias_s, &Default::default()).ok()?;
+    let Ok(blocks) = crate::still::blocks(log, bias_s, &Default::default()) else {
+        return (None, None);
+    };
     if blocks.source == crate::still::StillSource::None {
         let message =
             "no speed, wheel travel or stationary lead-in (3 s at 5 Hz or more), and no 10 s standing the gyro shows alone (at 5 Hz or more): no stops for ZARU and the pipeline (which learns the bias from the road alone)";
@@ -171,15 +180,23 @@ fn lead_in(r: &mut CheckReport, log: &DriveLog) -> Option<f64> {
     if let Some(wander) = blocks.lead_in_wander {
         lead_in_by_gyro(r, bias_s, wander);
     }
-    let m = (blocks.first_moving_s? - log.time_s().first()?).floor();
-    let k = (m - 1.0).max(0.0);
     let by = if blocks.source == crate::still::StillSource::Odometry { "wheel travel" } else { "speed" };
-    (m < bias_s).then(|| {
-        let message = format!("the stationary lead-in (bias_s = {bias_s} s) is not: the {by} shows the vehicle moving {m} s in; its static bias is taken over driving");
-        let fix = format!("bias_s = {k}, the standing before it (# bias_s: {k} in the log, or --set bias_s={k})");
-        r.findings.push(finding(Severity::Warning, "lead_in", message, Some(&fix)));
-        k
-    })
+    let Some(&t0) = log.time_s().first() else {
+        return (None, None);
+    };
+    // Every lead-in block still by the speed or the wheels.
+    let mut lead = blocks.time_s.iter().zip(&blocks.still).take_while(|(&t, _)| t - t0 <= bias_s).peekable();
+    let shown = matches!(blocks.source, crate::still::StillSource::Speed | crate::still::StillSource::Odometry)
+        && lead.peek().is_some()
+        && lead.all(|(_, &s)| s);
+    let Some(m) = blocks.first_moving_s.map(|t| (t - t0).floor()).filter(|&m| m < bias_s) else {
+        return (None, shown.then_some(by));
+    };
+    let k = (m - 1.0).max(0.0);
+    let message = format!("the stationary lead-in (bias_s = {bias_s} s) is not: the {by} shows the vehicle moving {m} s in; its static bias is taken over driving");
+    let fix = format!("bias_s = {k}, the standing before it (# bias_s: {k} in the log, or --set bias_s={k})");
+    r.findings.push(finding(Severity::Warning, "lead_in", message, Some(&fix)));
+    (Some(k), None)
 }
 
 /// Time in milliseconds, microseconds or nanoseconds: a median step of 2 s or more on a log

@@ -385,3 +385,27 @@ fn the_wheels_unit_and_sides_are_judged_on_the_gyros_turns() {
     let f = wheels(&wide).unwrap();
     assert!(f.severity == Severity::Warning && f.message.contains(&format!("{:.2} times", k * 0.34 / 0.6)), "{}", f.message);
 }
+
+/// A gyro warming up by 2.2 deg/s (300 s) on a simulated 20 min highway drive whose speed
+/// shows its lead-in standing (the warm-up probe's `warm-lead_53`, docs/battery.md): the
+/// bias warning says the bias changes after the lead-in, not that the vehicle may not stand
+/// still; without the speed column nothing shows the standing, and it says that.
+#[test]
+fn a_warming_gyro_over_a_standing_the_speed_shows_is_told_as_a_changing_bias() {
+    let errors = crate::sim::errors::GyroErrors { bias_dps: 0.502, warmup_dps: 2.202, warmup_tau_s: 300.0, ..Default::default() };
+    let req = crate::sim::SimRequest {
+        scenario: Some("highway".into()),
+        minutes: Some(20.0),
+        seed: 8053,
+        errors: Some(errors),
+        ..Default::default()
+    };
+    let warm = crate::sim::simulate(&req).unwrap();
+    let r = check(&warm);
+    let f = r.findings.iter().find(|f| f.code == "bias").unwrap_or_else(|| panic!("{}", r.to_text()));
+    assert!(f.message.contains("where the speed shows a standing") && f.message.contains("changes after it"), "{}", f.message);
+    assert!(f.fix.as_deref().unwrap().starts_with("a longer standing"), "{:?}", f.fix);
+    let r = check(&without(&warm, Column::SpeedMps));
+    let f = r.findings.iter().find(|f| f.code == "bias").unwrap_or_else(|| panic!("{}", r.to_text()));
+    assert!(f.message.ends_with("may not stand still then"), "{}", f.message);
+}
