@@ -409,3 +409,28 @@ fn a_warming_gyro_over_a_standing_the_speed_shows_is_told_as_a_changing_bias() {
     let f = r.findings.iter().find(|f| f.code == "bias").unwrap_or_else(|| panic!("{}", r.to_text()));
     assert!(f.message.ends_with("may not stand still then"), "{}", f.message);
 }
+
+/// Simulated 10 min highway drives with large warm-ups (the warm-up probe's draw 1, cases 42
+/// and 29: +1.85 deg/s over 1200 s cut from its lead-in, and -2.66 deg/s over 300 s after a
+/// lead-in): the bias at each turn is the straight windows' line in time, not their median
+/// over +-300 s, which took these drives' gyros for 0.70 and 0.61 of the reference's and
+/// refused them as a unit or scale mistake.
+#[test]
+fn a_large_warm_up_on_a_highway_is_not_a_scale_mistake() {
+    use crate::sim::errors::GyroErrors;
+    let cut = GyroErrors { bias_dps: -0.031, warmup_dps: 1.853, warmup_tau_s: 1200.0, cut_lead_in: true, ..Default::default() };
+    let lead = GyroErrors { bias_dps: 0.288, warmup_dps: -2.657, warmup_tau_s: 300.0, ..Default::default() };
+    for (seed, errors) in [(8142, cut), (8129, lead)] {
+        let req = crate::sim::SimRequest {
+            scenario: Some("highway".into()),
+            minutes: Some(10.0),
+            seed,
+            errors: Some(errors),
+            ..Default::default()
+        };
+        let r = check(&crate::sim::simulate(&req).unwrap());
+        let k = r.gyro_over_reference.unwrap();
+        assert!((k - 1.0).abs() < 0.2, "seed {seed}: {}", r.to_text());
+        assert!(r.findings.iter().all(|f| f.severity != Severity::Error), "seed {seed}: {}", r.to_text());
+    }
+}

@@ -149,24 +149,37 @@ fn windows(log: &DriveLog, (gt, psi): &(Vec<f64>, Vec<f64>), in_radians: bool, s
 
 /// The ratio of the integrated gyro's heading change to the reference's over the largest
 /// turns (median) and its standard error (from the interquartile range; infinite under 3
-/// turns), or None with fewer than `min_turns`. With `road`, each turn first loses the bias the windows the reference says are
-/// straight (2 deg) show within 300 s of it (their median rate, if 3 or more: a turn-on
-/// bias without a lead-in, a warm-up after one); without, the gyro less the lead-in's bias
-/// alone.
+/// turns), or None with fewer than `min_turns`. With `road`, each turn first loses the bias
+/// the windows the reference says are straight (2 deg) show within 300 s of it, if 3 or
+/// more (a turn-on bias without a lead-in, a warm-up after one): their rates' least-squares
+/// line in time, taken at the turn's middle (held within their span), so a bias warming by
+/// degrees per second over those minutes is taken where the turn is (their median, until
+/// the fifty-first session, refused such drives as a scale mistake); without `road`, the
+/// gyro less the lead-in's bias alone.
 fn turn_ratio(windows: &[Window], road: bool, min_turns: usize) -> Option<(f64, f64)> {
     let big = windows.iter().map(|w| w.ref_deg.abs()).fold(0.0, f64::max);
     // Only clear turns (20 deg or more in a window) say anything about scale and sign.
     let min_turn = (0.3 * big).max(20.0);
     // (Loops, not collects: each collect is code of its own in the size-capped wasm module.)
-    let (mut ratios, mut near) = (Vec::new(), Vec::new());
+    let mut ratios = Vec::new();
     for turn in windows.iter().filter(|w| w.ref_deg.abs() >= min_turn) {
-        near.clear();
+        // Sums over the straight windows near the turn of 1, t, r, t^2, t r and t's span
+        // (t from the turn's middle, r the window's rate).
+        let (mut n, mut st, mut sr, mut stt, mut str, mut lo, mut hi) = (0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY, f64::NEG_INFINITY);
         for w in windows {
-            if road && w.ref_deg.abs() < 2.0 && (w.mid_s - turn.mid_s).abs() <= 300.0 {
-                near.push(w.gyro_deg / w.dt_s);
+            let t = w.mid_s - turn.mid_s;
+            if road && w.ref_deg.abs() < 2.0 && t.abs() <= 300.0 {
+                let r = w.gyro_deg / w.dt_s;
+                (n, st, sr, stt, str, lo, hi) = (n + 1.0, st + t, sr + r, stt + t * t, str + t * r, lo.min(t), hi.max(t));
             }
         }
-        let bias = if near.len() >= 3 { crate::metrics::quantile_mut(&mut near, 0.5) } else { 0.0 };
+        let bias = if n >= 3.0 {
+            let var = stt - st * st / n;
+            let slope = if var > 0.0 { (str - st * sr / n) / var } else { 0.0 };
+            sr / n + slope * (0.0_f64.max(lo).min(hi) - st / n)
+        } else {
+            0.0
+        };
         ratios.push((turn.gyro_deg - bias * turn.dt_s) / turn.ref_deg);
     }
     let n = ratios.len();
