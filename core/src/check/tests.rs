@@ -1,6 +1,7 @@
 use super::units::gyro_over_reference;
 use super::*;
 use crate::log::{parse_log, Column};
+use crate::sim::errors::GyroErrors;
 
 fn city() -> DriveLog {
     let p = concat!(env!("CARGO_MANIFEST_DIR"), "/../sample-logs/train/city-1.csv");
@@ -386,21 +387,25 @@ fn the_wheels_unit_and_sides_are_judged_on_the_gyros_turns() {
     assert!(f.severity == Severity::Warning && f.message.contains(&format!("{:.2} times", k * 0.34 / 0.6)), "{}", f.message);
 }
 
+/// A simulated highway drive of `minutes` (seed `seed`) with the gyro errors `errors`.
+fn highway(minutes: f64, seed: u64, errors: GyroErrors) -> DriveLog {
+    let req = crate::sim::SimRequest {
+        scenario: Some("highway".into()),
+        minutes: Some(minutes),
+        seed,
+        errors: Some(errors),
+        ..Default::default()
+    };
+    crate::sim::simulate(&req).unwrap()
+}
+
 /// A gyro warming up by 2.2 deg/s (300 s) on a simulated 20 min highway drive whose speed
 /// shows its lead-in standing (the warm-up probe's `warm-lead_53`, docs/battery.md): the
 /// bias warning says the bias changes after the lead-in, not that the vehicle may not stand
 /// still; without the speed column nothing shows the standing, and it says that.
 #[test]
 fn a_warming_gyro_over_a_standing_the_speed_shows_is_told_as_a_changing_bias() {
-    let errors = crate::sim::errors::GyroErrors { bias_dps: 0.502, warmup_dps: 2.202, warmup_tau_s: 300.0, ..Default::default() };
-    let req = crate::sim::SimRequest {
-        scenario: Some("highway".into()),
-        minutes: Some(20.0),
-        seed: 8053,
-        errors: Some(errors),
-        ..Default::default()
-    };
-    let warm = crate::sim::simulate(&req).unwrap();
+    let warm = highway(20.0, 8053, GyroErrors { bias_dps: 0.502, warmup_dps: 2.202, warmup_tau_s: 300.0, ..Default::default() });
     let r = check(&warm);
     let f = r.findings.iter().find(|f| f.code == "bias").unwrap_or_else(|| panic!("{}", r.to_text()));
     assert!(f.message.contains("where the speed shows a standing") && f.message.contains("changes after it"), "{}", f.message);
@@ -417,18 +422,10 @@ fn a_warming_gyro_over_a_standing_the_speed_shows_is_told_as_a_changing_bias() {
 /// refused them as a unit or scale mistake.
 #[test]
 fn a_large_warm_up_on_a_highway_is_not_a_scale_mistake() {
-    use crate::sim::errors::GyroErrors;
     let cut = GyroErrors { bias_dps: -0.031, warmup_dps: 1.853, warmup_tau_s: 1200.0, cut_lead_in: true, ..Default::default() };
     let lead = GyroErrors { bias_dps: 0.288, warmup_dps: -2.657, warmup_tau_s: 300.0, ..Default::default() };
     for (seed, errors) in [(8142, cut), (8129, lead)] {
-        let req = crate::sim::SimRequest {
-            scenario: Some("highway".into()),
-            minutes: Some(10.0),
-            seed,
-            errors: Some(errors),
-            ..Default::default()
-        };
-        let r = check(&crate::sim::simulate(&req).unwrap());
+        let r = check(&highway(10.0, seed, errors));
         let k = r.gyro_over_reference.unwrap();
         assert!((k - 1.0).abs() < 0.2, "seed {seed}: {}", r.to_text());
         assert!(r.findings.iter().all(|f| f.severity != Severity::Error), "seed {seed}: {}", r.to_text());
