@@ -35,6 +35,7 @@ pub mod fleet;
 pub mod gyrodometry;
 pub mod hdr;
 pub mod import;
+pub mod line;
 pub mod log;
 pub mod metrics;
 pub mod options;

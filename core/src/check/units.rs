@@ -3,6 +3,7 @@
 //! radians, and the gyro's scale error.
 
 use super::{finding, outliers, CheckReport, Severity};
+use crate::line::LineSums;
 use crate::log::{Column, DriveLog};
 use crate::metrics::{value_at, Reference};
 use crate::preprocess;
@@ -163,20 +164,20 @@ fn turn_ratio(windows: &[Window], road: bool, min_turns: usize) -> Option<(f64, 
     // (Loops, not collects: each collect is code of its own in the size-capped wasm module.)
     let mut ratios = Vec::new();
     for turn in windows.iter().filter(|w| w.ref_deg.abs() >= min_turn) {
-        // Sums over the straight windows near the turn of 1, t, r, t^2, t r and t's span
-        // (t from the turn's middle, r the window's rate).
-        let (mut n, mut st, mut sr, mut stt, mut str, mut lo, mut hi) = (0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY, f64::NEG_INFINITY);
+        // The straight windows near the turn: their rates' line in time (t from the turn's
+        // middle) and t's span.
+        let (mut line, mut lo, mut hi) = (LineSums::default(), f64::INFINITY, f64::NEG_INFINITY);
         for w in windows {
             let t = w.mid_s - turn.mid_s;
             if road && w.ref_deg.abs() < 2.0 && t.abs() <= 300.0 {
-                let r = w.gyro_deg / w.dt_s;
-                (n, st, sr, stt, str, lo, hi) = (n + 1.0, st + t, sr + r, stt + t * t, str + t * r, lo.min(t), hi.max(t));
+                line.add(t, w.gyro_deg / w.dt_s);
+                (lo, hi) = (lo.min(t), hi.max(t));
             }
         }
-        let bias = if n >= 3.0 {
-            let var = stt - st * st / n;
-            let slope = if var > 0.0 { (str - st * sr / n) / var } else { 0.0 };
-            sr / n + slope * (0.0_f64.max(lo).min(hi) - st / n)
+        let bias = if line.count() >= 3.0 {
+            let ((slope, _, sxx), (mean_t, mean_r)) = (line.slope(), line.means());
+            let slope = if sxx > 0.0 { slope } else { 0.0 };
+            mean_r + slope * (0.0_f64.max(lo).min(hi) - mean_t)
         } else {
             0.0
         };

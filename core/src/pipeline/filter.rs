@@ -29,6 +29,7 @@ use super::params::{PipelineParams, N_MODELS};
 use super::records::Records;
 use super::smoother;
 use crate::error::{Error, Result};
+use crate::line::LineSums;
 use nalgebra::{Matrix3, Vector3};
 
 /// What one block did.
@@ -89,6 +90,11 @@ pub struct Pipeline {
     /// evidence of, and straight-road evidence also corrects the heading (`update`).
     acquired: bool,
     warm_up_sized: bool,
+    /// The lead-in's blocks for the least-squares trend of its rate in time (t from the
+    /// declared end), and whether that trend was a warm-up the warm-up prior cannot hold
+    /// (`size_warm_up`).
+    lead_trend: LineSums,
+    warming: bool,
     /// The still flags come from the gyro alone (`Blocks::source`; the stream sets it per
     /// block): see [`Pipeline::update`].
     pub gyro_stills: bool,
@@ -153,6 +159,8 @@ impl Pipeline {
             lead_in_seen: false,
             acquired: false,
             warm_up_sized: false,
+            lead_trend: LineSums::default(),
+            warming: false,
             gyro_stills: false,
         })
     }
@@ -229,7 +237,11 @@ impl Pipeline {
     /// The settled bias, `b_inf` mixed with the weights: the bias less its warm-up term, so
     /// a warm-up the bank models does not move it (deg/s). The blend's fallback watches it
     /// before each block (`blend.rs`).
+    /// Not a number (no fallback) after a lead-in that showed a warm-up beyond the prior.
     pub fn settled_bias_dps(&self) -> f64 {
+        if self.warming {
+            return f64::NAN;
+        }
         self.models.iter().zip(self.weights()).map(|(m, wi)| wi * m.x[0]).sum()
     }
 
@@ -275,6 +287,9 @@ impl Pipeline {
         let lead_in = time_s < self.lead_in_end_s;
         let stops = self.evidence.stops(&self.p, time_s, rate_dps, still, lead_in);
         self.lead_in_seen |= lead_in && !stops.is_empty();
+        if lead_in {
+            self.lead_trend.add(time_s - self.lead_in_end_s, rate_dps);
+        }
         let reopened = !stops.is_empty() && !self.evidence.stop.reopened && !lead_in && !self.gyro_stills && self.stop_guard();
         let straight = !still && !lead_in && self.evidence.is_straight(&self.p, time_s, rate_dps);
         self.dating_t0_s.get_or_insert(time_s);
@@ -289,7 +304,7 @@ impl Pipeline {
             self.residuals.push((time_s, rate_dps - b_before));
         }
         let priors: Vec<State> = self.recorded.iter().map(|&i| (self.models[i].x, self.models[i].p)).collect();
-        let h_before: Vec<f64> = if stops.is_empty() { Vec::new() } else { self.models.iter().map(|m| m.h).collect() };
+        let h_before = if stops.is_empty() { Vec::new() } else { self.integrals() };
         for &z in &stops {
             self.stop_update(z, !lead_in, self.gyro_stills && !lead_in);
         }
@@ -298,7 +313,7 @@ impl Pipeline {
         // covariance a stop corrects it by; once known, road evidence no longer rewrites the
         // past (a curve read as straight would: docs/pipeline.md).
         self.acquired |= !stops.is_empty() || super::blend::within_hdr_reach(p_before.sqrt());
-        let h_road: Vec<f64> = if straight && !self.acquired { self.models.iter().map(|m| m.h).collect() } else { Vec::new() };
+        let h_road = if straight && !self.acquired { self.integrals() } else { Vec::new() };
         if straight {
             self.road_update(rate_dps, !self.acquired);
         }
@@ -330,6 +345,11 @@ impl Pipeline {
             reopened,
         };
         Ok(out)
+    }
+
+    /// Each hypothesis' bias integral (deg), before an update that may correct it.
+    fn integrals(&self) -> Vec<f64> {
+        self.models.iter().map(|m| m.h).collect()
     }
 
     /// A stop corrected each hypothesis' bias integral (road evidence does not): the
@@ -374,10 +394,19 @@ impl Pipeline {
     /// d is scaled by rho (x' = A x, P' = A P A^T, A = [[1, 1 - rho, 0], [0, rho, 0],
     /// [0, 0, 1]]), which after a short lead-in that told nothing of d is the prior's
     /// rescaling. Logs without a lead-in keep the default (docs/pipeline.md).
+    /// A lead-in of three blocks or more whose rate trends beyond three of its standard
+    /// errors, faster than even the fastest modelled warm-up could with the prior's
+    /// `warm_sigma_dps` (|slope| x tau > it), shows a warm-up the bank cannot hold: its
+    /// settled bias will move, and the blend's fallback, whose premise is that it should
+    /// not, is off (`warming`).
     fn size_warm_up(&mut self) {
         self.warm_up_sized = true;
+        let (slope, var, _) = self.lead_trend.slope();
+        let sigma = self.p.warm_sigma_dps;
+        let fastest_s = self.p.warm_tau_short_s.min(self.p.warm_tau_long_s);
+        self.warming = self.lead_trend.count() > 2.0 && slope * slope > 9.0 * var && slope.abs() * fastest_s > sigma;
         let (b, p) = self.bias();
-        let rho = b.abs().max(p.sqrt()).min(self.p.warm_sigma_dps) / self.p.warm_sigma_dps;
+        let rho = b.abs().max(p.sqrt()).min(sigma) / sigma;
         for m in self.models.iter_mut().filter(|m| m.warm_tau_s.is_finite()) {
             m.x[0] += (1.0 - rho) * m.x[1];
             m.x[1] *= rho;
@@ -523,6 +552,26 @@ mod tests {
             }
             g.update(10.0, z, false).unwrap();
             assert!(g.warm_up_sized);
+        }
+    }
+
+    /// A 20 s lead-in falling by 0.0065 deg/s per s (a 2.2 deg/s warm-up, 300 s), block noise
+    /// +-0.01: the fastest modelled warm-up (200 s) would need 1.3 deg/s, beyond the 0.3 deg/s
+    /// prior, so the settled bias is not a number after it (the fallback off). A lead-in as
+    /// noisy but flat, or falling by 0.001 deg/s per s (0.2 deg/s at 200 s, within the prior),
+    /// keeps it.
+    #[test]
+    fn a_lead_in_trending_beyond_the_warm_up_prior_leaves_no_settled_bias() {
+        for (slope, warming) in [(-0.0065, true), (0.0, false), (-0.001, false)] {
+            let mut f = Pipeline::new(PipelineParams::default(), 0.0, 2.5, 20.5).unwrap();
+            for t in 1..=20 {
+                let noise = if t % 2 == 0 { 0.01 } else { -0.01 };
+                f.update(t as f64, 2.0 + slope * t as f64 + noise, true).unwrap();
+                assert!(f.settled_bias_dps().is_finite());
+            }
+            f.update(21.0, 1.87, false).unwrap();
+            assert_eq!(f.warming, warming, "slope {slope}");
+            assert_eq!(f.settled_bias_dps().is_nan(), warming);
         }
     }
 }
