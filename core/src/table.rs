@@ -138,12 +138,18 @@ pub fn is_gzip(head: &[u8]) -> bool {
 }
 
 /// What a file that starts with an archive's magic bytes is, for the error (a logger's
-/// export often comes zipped): None for anything else.
+/// export often comes zipped), UTF-16 text (by its byte-order mark), or that it is binary
+/// (NUL bytes in its first 4 KiB: Parquet, a PX4 ULog, a ROS bag), rather than a header of
+/// garbage: None for anything else.
 pub fn archive_message(head: &[u8]) -> Option<&'static str> {
     if is_zip(head) {
         Some("a ZIP archive, not a text table (import reads a logger's zipped export as it is)")
     } else if is_gzip(head) {
         Some("gzip-compressed, not a text table: decompress it first")
+    } else if head.starts_with(b"\xFF\xFE") || head.starts_with(b"\xFE\xFF") {
+        Some("UTF-16 text (a spreadsheet's \"Unicode text\"): save it as UTF-8")
+    } else if head.iter().take(4096).any(|&b| b == 0) {
+        Some("a binary file (NUL bytes), not a text table")
     } else {
         None
     }
@@ -249,6 +255,12 @@ mod tests {
         assert!(matches!(e, Error::Line { line: 1, ref message } if message.starts_with("a ZIP archive, not a text table")), "{e:?}");
         let e = rows(b"\x1f\x8b\x08\x00\xFF", Split::Csv, 0).unwrap_err();
         assert!(matches!(e, Error::Line { line: 1, ref message } if message.starts_with("gzip-compressed")), "{e:?}");
+        // Any other binary file (here a Parquet file's first bytes) says so, not "missing
+        // column" with its bytes as the header.
+        let e = rows(b"PAR1\x15\x04\x15\x10\x00\x00abc\n", Split::Csv, 0).unwrap_err();
+        assert_eq!(e, Error::Line { line: 1, message: "a binary file (NUL bytes), not a text table".into() });
+        let e = rows(b"\xFF\xFEt\x00,\x00g\x00\n\x00", Split::Csv, 0).unwrap_err();
+        assert!(matches!(e, Error::Line { line: 1, ref message } if message.starts_with("UTF-16 text")), "{e:?}");
         assert!(rows(b"", Split::Csv, 0).unwrap().is_empty());
     }
 

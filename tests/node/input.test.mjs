@@ -50,6 +50,13 @@ test("a last line cut short: Log.fromBytes refuses it naming the line, logInTime
   assert.deepEqual(Array.from(log.column("gyro_dps")), Array.from(want.column("gyro_dps")));
 });
 
+test("a UTF-16 or binary file: Log.fromBytes says what it is, not a header of garbage", () => {
+  const utf16 = Uint8Array.from([0xff, 0xfe, ...Array.from(new TextEncoder().encode("time_s,gyro_dps\n0,1\n")).flatMap((b) => [b, 0])]);
+  assert.throws(() => gd.Log.fromBytes(utf16), /line 1: UTF-16 text/);
+  const parquet = Uint8Array.from([0x50, 0x41, 0x52, 0x31, 0x15, 0x04, 0x00, 0x00, 0x81, 0x0a]);
+  assert.throws(() => gd.Log.fromBytes(parquet), /line 1: a binary file \(NUL bytes\), not a text table$/);
+});
+
 test("two logs joined into one file: every parse names the second log's first line; logsJoined reads each", () => {
   const a = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8");
   const b = readFileSync(join(SAMPLES, "train", "city-2.csv"), "utf8");

@@ -66,9 +66,6 @@ pub fn sniff(name: &str, head: &[u8]) -> Result<Sniffed> {
     if let Some(m) = crate::table::archive_message(head) {
         return Err(at(m));
     }
-    if head.iter().take(4096).any(|&b| b == 0) {
-        return Err(at("a binary file (NUL bytes), not a text table"));
-    }
     let text = match std::str::from_utf8(head) {
         Ok(t) => t,
         // The head may end inside a character; anything earlier is an encoding error.

@@ -334,8 +334,11 @@ impl<R: Read> V1Reader<R> {
             self.end_at_joined(from);
         }
         self.map(unmapped, self.ready);
-        // Not UTF-8 (a character cut at the end of a long line's part aside): Windows-1252.
-        if std::str::from_utf8(&self.buf[..self.ready]).is_err_and(|e| e.error_len().is_some()) {
+        // Not UTF-8 (a character cut at the end of a long line's part aside): Windows-1252;
+        // but text has no NUL bytes, so UTF-16 or a binary file reaches the parser as it is,
+        // which says what it is.
+        let chunk = &self.buf[..self.ready];
+        if std::str::from_utf8(chunk).is_err_and(|e| e.error_len().is_some()) && !chunk.contains(&0) {
             let text = from_windows_1252(&self.buf[..self.ready]);
             let was = std::mem::replace(&mut self.ready, text.len());
             self.buf.splice(..was, text);

@@ -171,3 +171,14 @@ fn text_that_is_not_utf8_is_read_as_windows_1252_and_said() {
     let chars: Vec<char> = String::from_utf8(from_windows_1252(&all)).unwrap().chars().collect();
     assert_eq!((chars.len(), chars[0], chars[0x1F], chars[0x20], chars[0x7F]), (128, '€', 'Ÿ', '\u{A0}', 'ÿ'));
 }
+
+#[test]
+fn utf16_text_and_binary_files_are_not_read_as_windows_1252_but_said() {
+    // A spreadsheet's "Unicode text" (UTF-16 with its byte-order mark) and a Parquet file:
+    // NUL bytes, which no Windows-1252 text has; the parser names what they are.
+    let utf16: Vec<u8> = [0xFF, 0xFE].into_iter().chain("time_s,gyro_dps\n0,1\n".bytes().flat_map(|b| [b, 0])).collect();
+    let e = crate::parse_log(comma_separated(&utf16[..])).unwrap_err().to_string();
+    assert!(e.starts_with("line 1: UTF-16 text"), "{e}");
+    let e = crate::parse_log(comma_separated(&b"PAR1\x15\x04\x15\x10\x00\x00\x81\n"[..])).unwrap_err().to_string();
+    assert_eq!(e, "line 1: a binary file (NUL bytes), not a text table");
+}
