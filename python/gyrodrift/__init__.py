@@ -7,6 +7,8 @@ Results are dicts with the CLI's ``--json`` keys; series are float64 numpy array
 and column. ``gyrodrift.fleet`` runs a folder of drives on Dask.
 """
 
+import os
+
 from ._core import (
     COLUMNS,
     GyrodometryEstimator,
@@ -57,21 +59,72 @@ from .remote import fetch, is_url
 
 
 def read_log(path: "_core.StrPath", time_order: str = "error") -> Log:
-    """Reads a CSV v1 log file (gzip-compressed too, ``drive.csv.gz``), from a path or an
-    fsspec URL (``s3://bucket/drive.csv``: fetched, then parsed by core). Bad input raises
-    ValueError naming the file, line and column; a file that cannot be opened, OSError.
+    """Reads a CSV v1 log file (gzip-compressed too, ``drive.csv.gz``), or one drive's
+    Parquet file (``drive.parquet``, CSV v1's columns, as the fleet job reads a dataset with a
+    drive per file; needs pyarrow), from a path or an fsspec URL (``s3://bucket/drive.csv``:
+    fetched, then parsed by core). Bad input raises ValueError naming the file, line and
+    column (a Parquet file's row); a file that cannot be opened, OSError.
     ``time_order="fix"``: a time that repeats or steps back by at most 1 s is put in order
     (rows of one time merged by their mean, late rows sorted in; a UserWarning says so)."""
-    import os
-
     spec = os.fspath(path)
-    if isinstance(spec, str) and is_url(spec):
+    url = isinstance(spec, str) and is_url(spec)
+    if _is_parquet(spec, url):
+        return _read_parquet(spec, url)
+    if url:
         data = fetch(spec)
         try:
             return Log.from_bytes(data, time_order)
         except ValueError as e:
             raise ValueError(f"{spec}: {e}") from None
     return _core.read_log(path, time_order)
+
+
+def _is_parquet(spec: "str | bytes", url: bool) -> bool:
+    """A Parquet file: by its name, or (a local file) by its first bytes, ``PAR1``."""
+    name = os.fsdecode(spec) if not isinstance(spec, str) else spec
+    if name.lower().endswith((".parquet", ".pq")):
+        return True
+    if url:
+        return False
+    try:
+        with open(spec, "rb") as f:
+            return f.read(4) == b"PAR1"
+    except OSError:
+        return False
+
+
+def _read_parquet(spec: "str | bytes", url: bool) -> Log:
+    """One drive's Parquet file as a Log named by its file (``drive.parquet`` -> "drive"):
+    a table holding several drives (a ``drive`` column with more than one value) is refused,
+    naming the fleet job that scores it."""
+    name = os.fsdecode(spec) if not isinstance(spec, str) else spec
+    try:
+        import pyarrow.parquet as pq
+    except ImportError:
+        raise ValueError(f"{name}: a Parquet file; reading it needs pyarrow (pip install 'gyrodrift[fleet]')") from None
+    try:
+        if url:
+            import fsspec
+
+            fs, inner = fsspec.core.url_to_fs(name)
+            df = pq.read_table(inner, filesystem=fs).to_pandas()
+        else:
+            df = pq.read_table(name).to_pandas()
+    except OSError:
+        raise
+    except Exception as e:
+        raise ValueError(f"{name}: {e}") from None
+    if "drive" in df.columns and df["drive"].nunique() > 1:
+        raise ValueError(
+            f"{name}: a Parquet table of {df['drive'].nunique()} drives (column 'drive'): score them with "
+            "python -m gyrodrift.fleet, or give one drive's rows to gyrodrift.from_pandas"
+        )
+    stem = os.path.basename(name.rstrip("/"))
+    stem = stem[: stem.rfind(".")] if "." in stem else stem
+    try:
+        return from_pandas(df, {"name": stem})
+    except ValueError as e:
+        raise ValueError(f"{name}: {e}") from None
 
 
 __version__ = version()

@@ -517,3 +517,27 @@ def test_a_log_out_of_time_order_is_refused_or_put_in_order(samples, tmp_path):
     rows = g.score_files([str(dup)], options={"input": {"time_order": "fix"}})
     assert rows[0]["warnings"].startswith("time order: 1 rows of a repeated time merged") and rows[0]["error"] is None
     assert g.score_files([str(dup)])[0]["error"].endswith("time must strictly increase")
+
+
+def test_read_log_reads_one_drives_parquet_file_and_refuses_a_table_of_drives(samples, tmp_path):
+    """A drive stored as Parquet (CSV v1's columns, as the fleet job reads a dataset with a
+    drive per file): read_log reads it as the CSV, named by its file, by its name or by its
+    first bytes; a table of several drives, or a bad column, is a ValueError naming the file."""
+    csv = g.read_log(str(samples / "train" / "city-1.csv"))
+    df = g.to_pandas(csv)
+    df.to_parquet(tmp_path / "city-1.parquet", index=False)
+    df.to_parquet(tmp_path / "no-suffix", index=False)
+    for path in [tmp_path / "city-1.parquet", str(tmp_path / "no-suffix")]:
+        log = g.read_log(path)
+        for c in csv.column_names():
+            assert np.array_equal(log.column(c), csv.column(c), equal_nan=True), c
+    assert g.read_log(tmp_path / "city-1.parquet").name == "city-1"
+    two = pd.concat([df.assign(drive="a"), df.assign(drive="b")])
+    two.to_parquet(tmp_path / "fleet.parquet", index=False)
+    with pytest.raises(ValueError, match=r"fleet\.parquet: a Parquet table of 2 drives \(column 'drive'\): score them with python -m gyrodrift\.fleet"):
+        g.read_log(tmp_path / "fleet.parquet")
+    df.assign(time_s=df["time_s"][::-1].to_numpy()).to_parquet(tmp_path / "backward.parquet", index=False)
+    with pytest.raises(ValueError, match=r"^.*backward\.parquet: "):
+        g.read_log(tmp_path / "backward.parquet")
+    # A CSV is still read by core, whatever its name says.
+    assert len(g.read_log(samples / "train" / "city-1.csv")) == len(csv)
