@@ -54,7 +54,7 @@ from ._core import (
     version,
 )
 from . import _core
-from .frames import from_pandas, rows_to_pandas, to_pandas
+from .frames import from_pandas, read_parquet_frame, rows_to_pandas, to_pandas
 from .remote import fetch, is_url
 
 
@@ -69,7 +69,7 @@ def read_log(path: "_core.StrPath", time_order: str = "error") -> Log:
     spec = os.fspath(path)
     url = isinstance(spec, str) and is_url(spec)
     if _is_parquet(spec, url):
-        return _read_parquet(spec, url)
+        return _read_parquet(spec)
     if url:
         data = fetch(spec)
         try:
@@ -93,23 +93,17 @@ def _is_parquet(spec: "str | bytes", url: bool) -> bool:
         return False
 
 
-def _read_parquet(spec: "str | bytes", url: bool) -> Log:
+def _read_parquet(spec: "str | bytes") -> Log:
     """One drive's Parquet file as a Log named by its file (``drive.parquet`` -> "drive"):
     a table holding several drives (a ``drive`` column with more than one value) is refused,
     naming the fleet job that scores it."""
     name = os.fsdecode(spec) if not isinstance(spec, str) else spec
     try:
-        import pyarrow.parquet as pq
+        import pyarrow.parquet  # noqa: F401
     except ImportError:
         raise ValueError(f"{name}: a Parquet file; reading it needs pyarrow (pip install 'gyrodrift[fleet]')") from None
     try:
-        if url:
-            import fsspec
-
-            fs, inner = fsspec.core.url_to_fs(name)
-            df = pq.read_table(inner, filesystem=fs).to_pandas()
-        else:
-            df = pq.read_table(name).to_pandas()
+        df = read_parquet_frame(name)
     except OSError:
         raise
     except Exception as e:

@@ -33,7 +33,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence
 
 from ._core import error_row, folder_hints, recipe_endings, score_bytes, score_files, score_log, summary_markdown
 from ._core import refusal_hints as _refusal_hints
-from .frames import from_pandas, rows_to_pandas
+from .frames import from_pandas, read_parquet_frame, rows_to_pandas
 from .remote import fetch, is_url
 
 #: Small CSV drives are grouped so that a task reads about this many bytes (fewer when the
@@ -79,16 +79,8 @@ def score_urls(urls: Sequence[str], options: Optional[Mapping[str, Any]] = None)
 
 
 def _score_parquet(path: str, key: str, options: Optional[Mapping[str, Any]]) -> List[dict]:
-    import pyarrow.parquet as pq
-
     try:
-        if is_url(path):
-            import fsspec
-
-            fs, inner = fsspec.core.url_to_fs(path)
-            df = pq.read_table(inner, filesystem=fs).to_pandas()
-        else:
-            df = pq.read_table(path).to_pandas()
+        df = read_parquet_frame(path)
     except Exception as e:
         return [error_row(key, f"{path}: {e}")]
     return _frame_rows(df, key, options)

@@ -37,6 +37,20 @@ def from_pandas(df: Any, meta: Optional[Mapping[str, Any]] = None) -> Log:
     return Log.from_columns(columns, dict(meta) if meta else None)
 
 
+def read_parquet_frame(path: str) -> Any:
+    """A Parquet file (local, or an fsspec URL) as a DataFrame, through pyarrow."""
+    import pyarrow.parquet as pq
+
+    from .remote import is_url
+
+    if is_url(path):
+        import fsspec
+
+        fs, inner = fsspec.core.url_to_fs(path)
+        return pq.read_table(inner, filesystem=fs).to_pandas()
+    return pq.read_table(path).to_pandas()
+
+
 def _seconds(time: Any) -> Any:
     """A time column as float64 seconds: date-times since the first row, time spans as they
     are, numbers as they are."""
