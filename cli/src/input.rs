@@ -108,9 +108,21 @@ pub(crate) fn open_input(path: &Path) -> Result<Box<dyn std::io::Read>, Failure>
         };
         return Err(Failure(format!("{}: a folder, not a log file; {what}", path.display())));
     }
+    if is_parquet(path) {
+        return Err(Failure(format!(
+            "{}: a Parquet file, not a CSV log: Python's `gyrodrift.read_log` reads one drive's Parquet file, `python -m gyrodrift.fleet` a dataset of them",
+            path.display()
+        )));
+    }
     // A gzip-compressed log (drive.csv.gz) reads as the plain file.
     let file = gyrodrift::log::file::open_log(path).map_err(|e| Failure(format!("{}: cannot open: {}", path.display(), e)))?;
     Ok(Box::new(file))
+}
+
+/// Whether the file starts as a Parquet file does (`PAR1`), which core names only as binary.
+fn is_parquet(path: &Path) -> bool {
+    let mut head = [0u8; 4];
+    std::fs::File::open(path).and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head)).is_ok() && &head == b"PAR1"
 }
 
 /// What names a log read from `path` that has no `# name:`: the file's stem ("stdin" for `-`).

@@ -27,6 +27,9 @@ fn bad_inputs_exit_2_never_panic() {
         ("nan.csv", "time_s,gyro_dps\n0,nan\n", "line 2, column gyro_dps"),
         ("back.csv", "time_s,gyro_dps\n0,1\n1,1\n1,1\n", "line 4, column time_s: time 1 repeats 1 on line 3"),
         ("trunc.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,0\n1,1\n2,1,0\n", "line 3: row has 2 fields"),
+        // Binary files say what they are, not "missing column" with their bytes as a header.
+        ("blob.csv", "\u{1}x\u{0}\u{2}\n", "line 1: a binary file (NUL bytes), not a text table"),
+        ("drive.parquet", "PAR1\u{15}\u{4}\u{0}\u{0}x\n", "a Parquet file, not a CSV log: Python's `gyrodrift.read_log` reads"),
     ];
     for (name, text, want) in cases {
         let p = write(name, text);
@@ -36,6 +39,14 @@ fn bad_inputs_exit_2_never_panic() {
         assert!(err.contains(want) && err.starts_with(&p.display().to_string()), "{name}: {err}");
         assert_eq!(err.lines().count(), 1, "{name}: {err}");
     }
+    // A spreadsheet's "Unicode text" (UTF-16 with its byte-order mark).
+    let p = write("utf16.csv", "");
+    let utf16: Vec<u8> = [0xFF, 0xFE].into_iter().chain("time_s,gyro_dps\n0,1\n".bytes().flat_map(|b| [b, 0])).collect();
+    std::fs::write(&p, utf16).unwrap();
+    let out = run(&["hdr", p.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(err.starts_with(&format!("{}: line 1: UTF-16 text", p.display())), "{err}");
     // An empty reference column is a drive without a reference: run, not scored, exit 0.
     let p = write("noref.csv", "time_s,gyro_dps,ref_heading_deg\n0,1,\n1,1,\n");
     let out = run(&["hdr", p.to_str().unwrap()]);
