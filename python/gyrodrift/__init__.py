@@ -65,7 +65,8 @@ def read_log(path: "_core.StrPath", time_order: str = "error") -> Log:
     fetched, then parsed by core). Bad input raises ValueError naming the file, line and
     column (a Parquet file's row); a file that cannot be opened, OSError.
     ``time_order="fix"``: a time that repeats or steps back by at most 1 s is put in order
-    (rows of one time merged by their mean, late rows sorted in; a UserWarning says so)."""
+    (rows of one time merged by their mean, late rows sorted in; a UserWarning says so); a
+    CSV's policy: a Parquet file's time must strictly increase."""
     spec = os.fspath(path)
     url = isinstance(spec, str) and is_url(spec)
     if _is_parquet(spec, url):
