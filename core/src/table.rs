@@ -109,7 +109,7 @@ pub fn read_rows(
         if at_start && raw.starts_with(b"\xEF\xBB\xBF") {
             raw.drain(..3);
         }
-        if let Some(message) = archive_message(&raw).filter(|_| at_start) {
+        if let Some(message) = not_text_message(&raw).filter(|_| at_start) {
             return Err(Error::Line { line: line_no, message: message.into() });
         }
         let text = std::str::from_utf8(&raw).map_err(|_| Error::Line { line: line_no, message: "not valid UTF-8 text".into() })?;
@@ -137,11 +137,11 @@ pub fn is_gzip(head: &[u8]) -> bool {
     head.starts_with(&[0x1f, 0x8b])
 }
 
-/// What a file that starts with an archive's magic bytes is, for the error (a logger's
-/// export often comes zipped), UTF-16 text (by its byte-order mark), or that it is binary
-/// (NUL bytes in its first 4 KiB: Parquet, a PX4 ULog, a ROS bag), rather than a header of
-/// garbage: None for anything else.
-pub fn archive_message(head: &[u8]) -> Option<&'static str> {
+/// What a file whose head is not a text table is, for the error, rather than a header of
+/// garbage: a ZIP archive or gzip (a logger's export often comes compressed), UTF-16 text (by
+/// its byte-order mark), or binary (NUL bytes in its first 4 KiB: Parquet, a PX4 ULog, a ROS
+/// bag). None for anything else.
+pub fn not_text_message(head: &[u8]) -> Option<&'static str> {
     if is_zip(head) {
         Some("a ZIP archive, not a text table (import reads a logger's zipped export as it is)")
     } else if is_gzip(head) {

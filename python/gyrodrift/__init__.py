@@ -8,6 +8,7 @@ and column. ``gyrodrift.fleet`` runs a folder of drives on Dask.
 """
 
 import os
+from pathlib import PurePosixPath
 
 from ._core import (
     COLUMNS,
@@ -82,8 +83,7 @@ def read_log(path: "_core.StrPath", time_order: str = "error") -> Log:
 
 def _is_parquet(spec: "str | bytes", url: bool) -> bool:
     """A Parquet file: by its name, or (a local file) by its first bytes, ``PAR1``."""
-    name = os.fsdecode(spec) if not isinstance(spec, str) else spec
-    if name.lower().endswith((".parquet", ".pq")):
+    if os.fsdecode(spec).lower().endswith((".parquet", ".pq")):
         return True
     if url:
         return False
@@ -98,7 +98,7 @@ def _read_parquet(spec: "str | bytes") -> Log:
     """One drive's Parquet file as a Log named by its file (``drive.parquet`` -> "drive"):
     a table holding several drives (a ``drive`` column with more than one value) is refused,
     naming the fleet job that scores it."""
-    name = os.fsdecode(spec) if not isinstance(spec, str) else spec
+    name = os.fsdecode(spec)
     try:
         import pyarrow.parquet  # noqa: F401
     except ImportError:
@@ -114,10 +114,8 @@ def _read_parquet(spec: "str | bytes") -> Log:
             f"{name}: a Parquet table of {df['drive'].nunique()} drives (column 'drive'): score them with "
             "python -m gyrodrift.fleet, or give one drive's rows to gyrodrift.from_pandas"
         )
-    stem = os.path.basename(name.rstrip("/"))
-    stem = stem[: stem.rfind(".")] if "." in stem else stem
     try:
-        return from_pandas(df, {"name": stem})
+        return from_pandas(df, {"name": PurePosixPath(name).stem})
     except ValueError as e:
         raise ValueError(f"{name}: {e}") from None
 

@@ -63,7 +63,7 @@ impl Sniffed {
 pub fn sniff(name: &str, head: &[u8]) -> Result<Sniffed> {
     let head = &head[..head.len().min(SNIFF_BYTES)];
     let at = |m: &str| Error::File(format!("{name}: {m}"));
-    if let Some(m) = crate::table::archive_message(head) {
+    if let Some(m) = crate::table::not_text_message(head) {
         return Err(at(m));
     }
     let text = match std::str::from_utf8(head) {
