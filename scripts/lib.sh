@@ -104,8 +104,18 @@ wasm_part() {
   # The browser modules' glue without its JSDoc (the .d.ts keeps it): 3.5 KB gzipped.
   if [ "$2" = web ]; then node scripts/strip-jsdoc.mjs "$3/$4.js"; fi
   # shellcheck disable=SC2086
-  wasm-opt ${5:--Oz --converge} --strip-debug --strip-producers --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
-    --enable-mutable-globals --enable-multivalue --enable-reference-types "$3/$4_bg.wasm" -o "$3/$4_bg.wasm"
+  local features="--enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext --enable-mutable-globals --enable-multivalue --enable-reference-types"
+  # shellcheck disable=SC2086
+  wasm-opt ${5:--Oz --converge} --strip-debug --strip-producers $features "$3/$4_bg.wasm" -o "$3/$4_bg.wasm"
+  # "minify": the wasm's import and export names shortened, and the glue and types renamed
+  # to match (scripts/minify-names.mjs); once, after the passes above (--converge would
+  # rename again). -Oz again here: without it wasm-opt writes the module 0.7 KB larger.
+  if [ "${6:-}" = minify ]; then
+    # shellcheck disable=SC2086
+    wasm-opt -Oz --minify-imports-and-exports-and-modules --strip-debug --strip-producers $features "$3/$4_bg.wasm" -o "$3/$4_bg.wasm" > "$3/names.json"
+    node scripts/minify-names.mjs "$3/names.json" "$3/$4"
+    rm "$3/names.json"
+  fi
 }
 
 # The npm package in web/pkg: ES modules for browsers, CommonJS build for Node, types.
@@ -123,7 +133,7 @@ build_wasm() {
   # The same speed within this machine's noise (BENCHMARKS.md). Functions that differ only
   # in constants are merged first (--merge-similar-functions): 0.2 KB, the same speed.
   wasm_part "--no-default-features --features core --config profile.wasm-release.package.gyrodrift-wasm.opt-level='z' --config profile.wasm-release.package.csv.opt-level='z' --config profile.wasm-release.package.csv-core.opt-level='s'" web web/pkg gyrodrift \
-    "--merge-similar-functions -Oz --flatten --rereloop -Oz --flatten --rereloop -Oz -Oz --converge"
+    "--merge-similar-functions -Oz --flatten --rereloop -Oz --flatten --rereloop -Oz -Oz --converge" minify
   wasm_part "--no-default-features --features plot" web web/pkg/plot gyrodrift_plot
   # Everything: the Web Worker's module (import, tuning, parsing with progress) and Node's;
   # saving a live estimator's state (`snapshot`, 20.5 KB gzipped of serde code) in Node only.

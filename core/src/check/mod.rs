@@ -7,6 +7,7 @@ use crate::log::DriveLog;
 use serde::{Deserialize, Serialize};
 use units::units_and_sign;
 
+mod drift;
 mod speed;
 #[cfg(test)]
 mod tests;
@@ -39,7 +40,7 @@ impl Severity {
 pub struct Finding {
     pub severity: Severity,
     /// A stable name: time_unit, gap, heading_unit, gyro_unit, gyro_sign, gyro_scale, bias,
-    /// lead_in, no_stops, no_reference, outlier, reference_turn, speed_unit, wheel_units.
+    /// lead_in, no_stops, bias_drift, no_reference, outlier, reference_turn, speed_unit, wheel_units.
     pub code: String,
     pub message: String,
     /// The recipe field or setting that fixes it.
@@ -65,6 +66,10 @@ pub struct CheckReport {
     pub eps0_dps: Option<f64>,
     /// Integrated gyro over reference heading change on the largest turns (1 = as expected).
     pub gyro_over_reference: Option<f64>,
+    /// Each standing of 7 s or more the speed or the wheels show: its start (s, the log's
+    /// time) and the gyro's median rate there, deg/s: the bias as it moves (`drift.rs`).
+    #[serde(default)]
+    pub stop_bias_dps: Vec<(f64, f64)>,
     pub findings: Vec<Finding>,
 }
 
@@ -87,6 +92,7 @@ pub fn check(log: &DriveLog) -> CheckReport {
         gaps_s: Vec::new(),
         eps0_dps: None,
         gyro_over_reference: None,
+        stop_bias_dps: Vec::new(),
         findings: Vec::new(),
     };
     // Time in another unit: the other checks read it as that unit, so they say what they
@@ -100,7 +106,11 @@ pub fn check(log: &DriveLog) -> CheckReport {
     });
     let log = in_seconds.as_ref().unwrap_or(log);
     gaps(&mut r, log);
-    let (standing_s, shown_by) = lead_in(&mut r, log);
+    let blocks = crate::still::blocks(log, log.bias_s(None), &Default::default()).ok();
+    let (standing_s, shown_by) = blocks.as_ref().map_or((None, None), |b| lead_in(&mut r, log, b));
+    if let Some(b) = &blocks {
+        drift::bias_drift(&mut r, b);
+    }
     let limit_dps = units_and_sign(&mut r, log, standing_s);
     speed::speed_unit(&mut r, log);
     wheels::wheel_units(&mut r, log);
@@ -167,11 +177,8 @@ fn lead_in_by_gyro(r: &mut CheckReport, bias_s: f64, wander: f64) {
 /// show moving in starts within it (`still::blocks`, as the pipeline ends its lead-in),
 /// and the standing before it (s, returned) is the lead-in to declare instead. Also
 /// returned: what showed a lead-in standing throughout ("speed", "wheel travel"), if any.
-fn lead_in(r: &mut CheckReport, log: &DriveLog) -> (Option<f64>, Option<&'static str>) {
+fn lead_in(r: &mut CheckReport, log: &DriveLog, blocks: &crate::still::Blocks) -> (Option<f64>, Option<&'static str>) {
     let bias_s = log.bias_s(None);
-    let Ok(blocks) = crate::still::blocks(log, bias_s, &Default::default()) else {
-        return (None, None);
-    };
     if blocks.source == crate::still::StillSource::None {
         let message =
             "no speed, wheel travel or stationary lead-in (3 s at 5 Hz or more), and no 10 s standing the gyro shows alone (at 5 Hz or more): no stops for ZARU and the pipeline (which learns the bias from the road alone)";

@@ -431,3 +431,37 @@ fn a_large_warm_up_on_a_highway_is_not_a_scale_mistake() {
         assert!(r.findings.iter().all(|f| f.severity != Severity::Error), "seed {seed}: {}", r.to_text());
     }
 }
+
+/// Standings the speed shows read the bias as it is then: a calibrated MEMS gyro (the
+/// battery's) on a simulated 20 min town drive gets no finding; warming up by 1 deg/s (300 s)
+/// after its lead-in, its later stops read the warm-up's decay, and the finding names the
+/// first reading and the furthest. Without the speed nothing judges standings (a steady
+/// turn could read as a moved bias).
+#[test]
+fn standings_that_disagree_tell_a_drifting_bias() {
+    use crate::sim::{drive::simulate_drive_with, DriveConfig, GyroSpec, Scenario};
+    let cfg = DriveConfig { scenario: Scenario::Suburbs, minutes: 20.0, seed: 2 };
+    let calm_log = simulate_drive_with(&cfg, &GyroSpec::consumer_mems());
+    let calm = check(&calm_log);
+    assert!(calm.stop_bias_dps.len() >= 5, "{:?}", calm.stop_bias_dps);
+    assert!(calm.findings.iter().all(|f| f.code != "bias_drift"), "{}", calm.to_text());
+    let warm = crate::sim::inject(&calm_log, &GyroErrors { warmup_dps: 1.0, warmup_tau_s: 300.0, seed: 1, ..Default::default() }).unwrap();
+    let r = check(&warm);
+    assert_eq!(r.stop_bias_dps.len(), calm.stop_bias_dps.len());
+    // Each stop reads the calm gyro's rate plus what is left of the warm-up, e^(-t/300) deg/s
+    // at its start t (5 % less by its middle, for a standing of 15 s).
+    let t0 = warm.time_s()[0];
+    for (&(t, b), &(_, b_calm)) in r.stop_bias_dps.iter().zip(&calm.stop_bias_dps) {
+        let left = (-(t - t0) / 300.0).exp();
+        assert!((b - b_calm - left).abs() < 0.01 + 0.05 * left, "at {t} s: {b} against {b_calm} + {left}");
+    }
+    let f = r.findings.iter().find(|f| f.code == "bias_drift").unwrap_or_else(|| panic!("{}", r.to_text()));
+    assert_eq!(f.severity, Severity::Info);
+    let (first, far) = (
+        r.stop_bias_dps[0],
+        r.stop_bias_dps.iter().max_by(|a, b| (a.1 - r.stop_bias_dps[0].1).abs().total_cmp(&(b.1 - r.stop_bias_dps[0].1).abs())).unwrap(),
+    );
+    let said = format!("it reads {:.2} deg/s standing at {:.0} s and {:.2} at {:.0} s", first.1, first.0, far.1, far.0);
+    assert!(f.message.starts_with("the gyro's bias moves while driving") && f.message.contains(&said), "{}", f.message);
+    assert!(check(&without(&warm, Column::SpeedMps)).stop_bias_dps.is_empty());
+}

@@ -50,7 +50,7 @@ export interface CheckRefusal extends Error {
 export interface CheckFinding {
   severity: "error" | "warning" | "info";
   code:
-    | "time_unit" | "gap" | "heading_unit" | "gyro_unit" | "gyro_sign" | "gyro_scale" | "bias" | "lead_in" | "no_stops"
+    | "time_unit" | "gap" | "heading_unit" | "gyro_unit" | "gyro_sign" | "gyro_scale" | "bias" | "lead_in" | "no_stops" | "bias_drift"
     | "no_reference" | "outlier" | "reference_turn" | "speed_unit" | "wheel_units";
   message: string;
   fix: string | null;
@@ -79,6 +79,9 @@ export interface CheckReport {
   gaps_s: [number, number][];
   eps0_dps: number | null;
   gyro_over_reference: number | null;
+  /** [start time, median gyro rate (deg/s)] of each standing of 7 s or more the speed or the
+   * wheels show: the bias as it moves (a `bias_drift` finding where they disagree). */
+  stop_bias_dps: [number, number][];
   findings: CheckFinding[];
 }
 "#;
