@@ -59,6 +59,11 @@ pub struct DriveRow {
     pub still_source: Option<String>,
     /// Static bias over the lead-in, deg/s.
     pub static_bias_dps: Option<f64>,
+    /// How far the gyro's bias moved between the standings the speed or the wheels show:
+    /// the rate of the standing furthest from the first, less the first's (medians, as
+    /// `check`'s `stop_bias_dps` and its `bias_drift` finding), deg/s; None with fewer than
+    /// two standings.
+    pub stop_bias_drift_dps: Option<f64>,
     pub e_psi_raw_deg: Option<f64>,
     pub ne_psi_raw_deg_per_min: Option<f64>,
     pub e_psi_hdr_deg: Option<f64>,
@@ -118,6 +123,7 @@ impl DriveRow {
             duration_min: None,
             still_source: None,
             static_bias_dps: None,
+            stop_bias_drift_dps: None,
             e_psi_raw_deg: None,
             ne_psi_raw_deg_per_min: None,
             e_psi_hdr_deg: None,
@@ -195,6 +201,8 @@ fn score_part(row: &mut DriveRow, part: &DriveLog, params: &PipelineParams) -> R
     row.duration_min = Some(prep.duration_min);
     row.static_bias_dps = Some(prep.eps0_dps);
     row.still_source = Some(prep.blocks.source.name().to_string());
+    let stops = crate::check::drift::standings(&prep.blocks);
+    row.stop_bias_drift_dps = crate::check::drift::furthest(&stops).filter(|_| stops.len() > 1).map(|(a, b)| b.1 - a.1);
     let trace = prep.pipeline_trace(params)?;
     row.set_summary(&trace.summary(prep.blocks.source, trace.stop_s(), prep.duration_min));
     // The pipeline's two columns from the run just made, not a second one.
@@ -438,6 +446,7 @@ pub fn rows_to_csv(rows: &[DriveRow]) -> String {
         cells.push(num(r.duration_min));
         cells.push(r.still_source.clone().unwrap_or_default());
         cells.push(num(r.static_bias_dps));
+        cells.push(num(r.stop_bias_drift_dps));
         for i in 0..METHODS.len() {
             let (e, ne) = r.score(i);
             cells.push(num(e));
@@ -454,7 +463,7 @@ pub fn rows_to_csv(rows: &[DriveRow]) -> String {
 }
 
 /// The header of [`rows_to_csv`]: the field names of [`DriveRow`] in order.
-pub const CSV_HEADER: &str = "file,part,parts,name,rows,duration_min,still_source,static_bias_dps,\
+pub const CSV_HEADER: &str = "file,part,parts,name,rows,duration_min,still_source,static_bias_dps,stop_bias_drift_dps,\
 e_psi_raw_deg,ne_psi_raw_deg_per_min,e_psi_hdr_deg,ne_psi_hdr_deg_per_min,\
 e_psi_fusion_offset_deg,ne_psi_fusion_offset_deg_per_min,e_psi_zaru_deg,ne_psi_zaru_deg_per_min,\
 e_psi_pipeline_deg,ne_psi_pipeline_deg_per_min,e_psi_pipeline_smoothed_deg,ne_psi_pipeline_smoothed_deg_per_min,\

@@ -19,7 +19,7 @@ pub const BIAS_DRIFT_DPS: f64 = 0.1;
 /// Each standing the speed or the wheels show (at least `STANDING_MIN_BLOCKS` s): the stamp
 /// of its first kept block, s, and the median of its kept blocks' rates, deg/s. None where
 /// only the gyro judges standing: a steady turn would read as a moved bias.
-pub(super) fn standings(blocks: &Blocks) -> Vec<(f64, f64)> {
+pub fn standings(blocks: &Blocks) -> Vec<(f64, f64)> {
     if !matches!(blocks.source, StillSource::Speed | StillSource::Odometry) {
         return Vec::new();
     }
@@ -37,12 +37,19 @@ pub(super) fn standings(blocks: &Blocks) -> Vec<(f64, f64)> {
     out
 }
 
+/// The first standing and the one whose rate is furthest from it (the first itself when
+/// alone), in `standings`' form; None without standings.
+pub fn furthest(standings: &[(f64, f64)]) -> Option<((f64, f64), (f64, f64))> {
+    let &first = standings.first()?;
+    let far = standings.iter().copied().max_by(|a, b| (a.1 - first.1).abs().total_cmp(&(b.1 - first.1).abs()))?;
+    Some((first, far))
+}
+
 /// The standings' rates (`r.stop_bias_dps`) and, where a later one is more than
-/// `BIAS_DRIFT_DPS` from the first, a finding naming the two furthest apart in time order.
+/// `BIAS_DRIFT_DPS` from the first, a finding naming the first and the furthest.
 pub(super) fn bias_drift(r: &mut CheckReport, blocks: &Blocks) {
     r.stop_bias_dps = standings(blocks);
-    let Some(&(t0, b0)) = r.stop_bias_dps.first() else { return };
-    let Some(&(t1, b1)) = r.stop_bias_dps.iter().max_by(|a, b| (a.1 - b0).abs().total_cmp(&(b.1 - b0).abs())) else { return };
+    let Some(((t0, b0), (t1, b1))) = furthest(&r.stop_bias_dps) else { return };
     let d = b1 - b0;
     if d.abs() > BIAS_DRIFT_DPS {
         let message = format!(

@@ -7,7 +7,7 @@ use crate::log::DriveLog;
 use serde::{Deserialize, Serialize};
 use units::units_and_sign;
 
-mod drift;
+pub mod drift;
 mod speed;
 #[cfg(test)]
 mod tests;

@@ -24,6 +24,11 @@ fn a_drive_row_holds_the_comparisons_scores() {
     assert_eq!(r.ne_psi_fusion_offset_deg_per_min, Some(want.fusion_offset));
     assert_eq!(r.ne_psi_zaru_deg_per_min, Some(want.zaru));
     assert_eq!(r.still_source.as_deref(), Some("speed"));
+    // The bias's move between standings is check's: City 1's CRS03-like gyro warms 0.16 deg/s.
+    let check = crate::check::check(&city().1);
+    let (first, far) = crate::check::drift::furthest(&check.stop_bias_dps).unwrap();
+    assert!(check.stop_bias_dps.len() > 1 && (far.1 - first.1 - 0.16).abs() < 0.01, "{:?}", check.stop_bias_dps);
+    assert_eq!(r.stop_bias_drift_dps, Some(far.1 - first.1));
     // NE_psi is E_psi per minute of the drive.
     let (e, ne) = r.score(1);
     assert!((e.unwrap() / r.duration_min.unwrap() - ne.unwrap()).abs() < 1e-9);
@@ -178,7 +183,7 @@ fn csv_rows_have_the_header_and_quote_messages() {
     let line = lines.next().unwrap();
     assert!(line.starts_with("\"a,b.csv\",1,1,\"a,b.csv\",0,,,"), "{line}");
     assert!(line.ends_with(",\"line 3, column gyro_dps: \"\"x\"\" is not a number\","), "{line}");
-    assert_eq!(CSV_HEADER.split(',').count(), 30);
+    assert_eq!(CSV_HEADER.split(',').count(), 31);
     // The header names are the JSON keys, in the struct's order.
     let json = serde_json::to_value(&rows[0]).unwrap();
     let keys: Vec<&str> = json.as_object().unwrap().keys().map(|k| k.as_str()).collect();
