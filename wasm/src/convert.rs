@@ -112,10 +112,9 @@ pub(crate) fn js_message(e: serde_wasm_bindgen::Error) -> String {
     v.dyn_ref::<js_sys::Error>().map(|e| String::from(e.message())).unwrap_or_else(|| format!("{v:?}"))
 }
 
-/// A plain JS object (structs as objects, not Maps; None as null, as the types declare
-/// `T | null`, not serde-wasm-bindgen's default undefined).
+/// A plain JS object (structs as objects, not Maps).
 pub(crate) fn to_js<T: Serialize>(value: &T) -> JsResult<JsValue> {
-    let ser = serde_wasm_bindgen::Serializer::new().serialize_maps_as_objects(true).serialize_missing_as_null(true);
+    let ser = serde_wasm_bindgen::Serializer::new().serialize_maps_as_objects(true);
     value.serialize(&ser).map_err(err)
 }
 
