@@ -163,7 +163,7 @@ export interface CompareRow {
   duration_min: number;
   raw: number;
   hdr_table_iii: number;
-  hdr_tuned: number | null;
+  hdr_tuned?: number;
   pipeline: number;
   /** Offline smoothed mode (non-causal). */
   pipeline_smoothed: number;
@@ -173,7 +173,7 @@ export interface CompareRow {
 export interface Compare {
   rows: CompareRow[];
   mean: CompareRow;
-  tuned_params: HdrParams | null;
+  tuned_params?: HdrParams;
 }
 /** One battery case: a drive with one error profile; NE_psi (deg/min) per method in the
  * order of `Battery.methods`. */

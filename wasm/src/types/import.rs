@@ -109,8 +109,8 @@ export interface ImportSummary {
   n_gyro: number;
   n_reference: number;
   duration_min: number;
-  up: [number, number, number] | null;
-  align_offset_s: number | null;
+  up?: [number, number, number];
+  align_offset_s?: number;
   start_time_s: number;
   /** What the time policies did, over all tables. */
   time_fixes: { merged_duplicates: number; dropped_duplicates: number; sorted_backward: number; dropped_backward: number };

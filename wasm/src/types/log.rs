@@ -53,10 +53,10 @@ export interface CheckFinding {
     | "time_unit" | "gap" | "heading_unit" | "gyro_unit" | "gyro_sign" | "gyro_scale" | "bias" | "lead_in" | "no_stops" | "bias_drift"
     | "no_reference" | "outlier" | "reference_turn" | "speed_unit" | "wheel_units";
   message: string;
-  fix: string | null;
+  fix?: string;
   /** The value the fix sets where a front can fill it in (time_unit: "ms", "us" or "ns";
    * gyro_unit: "rad/s", "mrad/s" or "deg/h"). */
-  fix_value: string | null;
+  fix_value?: string;
 }
 
 /** `Log.splitAtGaps`: the drives between a log's gaps in time. */
@@ -77,8 +77,8 @@ export interface CheckReport {
   jitter_p95: number;
   /** [start time, length] of each gap, s. */
   gaps_s: [number, number][];
-  eps0_dps: number | null;
-  gyro_over_reference: number | null;
+  eps0_dps?: number;
+  gyro_over_reference?: number;
   /** [start time, median gyro rate (deg/s)] of each standing of 7 s or more the speed or the
    * wheels show: the bias as it moves (a `bias_drift` finding where they disagree). */
   stop_bias_dps: [number, number][];

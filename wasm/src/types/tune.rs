@@ -35,7 +35,7 @@ export interface TuneResult {
   objective_start_deg_per_min: number;
   objective_tuned_deg_per_min: number;
   n_evaluations: number;
-  cv: CrossValidation | null;
+  cv?: CrossValidation;
   /** Tuned only if cross-validation says they beat Table III on held-out drives. */
   recommended: Required<HdrParams>;
   recommended_is_tuned: boolean;
@@ -49,6 +49,6 @@ export interface Comparison {
 export interface TuneReport {
   result: TuneResult;
   train: Comparison;
-  test: Comparison | null;
+  test?: Comparison;
 }
 "#;
