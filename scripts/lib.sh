@@ -132,12 +132,14 @@ build_wasm() {
   # first round took 0.6 KB gzipped off this module, the second 0.35 KB; a third adds bytes.
   # The same speed within this machine's noise (BENCHMARKS.md). Functions that differ only
   # in constants are merged first (--merge-similar-functions): 0.2 KB, the same speed.
+  # Each browser module's wasm names are minified, its glue and types renamed to match
+  # ("minify": 2.8 KB off this one; BENCHMARKS.md).
   wasm_part "--no-default-features --features core --config profile.wasm-release.package.gyrodrift-wasm.opt-level='z' --config profile.wasm-release.package.csv.opt-level='z' --config profile.wasm-release.package.csv-core.opt-level='s'" web web/pkg gyrodrift \
     "--merge-similar-functions -Oz --flatten --rereloop -Oz --flatten --rereloop -Oz -Oz --converge" minify
-  wasm_part "--no-default-features --features plot" web web/pkg/plot gyrodrift_plot
+  wasm_part "--no-default-features --features plot" web web/pkg/plot gyrodrift_plot "-Oz --converge" minify
   # Everything: the Web Worker's module (import, tuning, parsing with progress) and Node's;
   # saving a live estimator's state (`snapshot`, 20.5 KB gzipped of serde code) in Node only.
-  wasm_part "--no-default-features --features core,import,plot,tune,sim,live" web web/pkg/full gyrodrift
+  wasm_part "--no-default-features --features core,import,plot,tune,sim,live" web web/pkg/full gyrodrift "-Oz --converge" minify
   wasm_part "" nodejs web/pkg/node gyrodrift
   cp wasm/npm/package.json wasm/npm/README.md web/pkg/
   printf '{ "type": "commonjs" }\n' > web/pkg/node/package.json
