@@ -211,7 +211,11 @@ test("a log a spreadsheet opened and saved (padded, quoted, Windows-1252) opens 
 });
 
 test("a log with a clockwise gyro gets a check badge naming the fix; the shipped ones none", async () => {
-  assert.equal(await page.locator("#logs li .check").count(), 0);
+  assert.equal(await page.locator("#logs li .check.error, #logs li .check.warning").count(), 0);
+  // Information is no badge: City 1's CRS03-like gyro warms between its standings, told muted.
+  const drift = page.locator("#logs li", { hasText: "City 1" }).locator(".check.info");
+  assert.match(await drift.innerText(), /bias drift/);
+  assert.match(await drift.getAttribute("title"), /the gyro's bias moves while driving: it reads 1\.95 deg\/s standing at 2 s/);
   const dir = mkdtempSync(join(tmpdir(), "gd-cw-"));
   const cw = join(dir, "city-cw.csv");
   const lines = readFileSync(join(SAMPLES, "train", "city-1.csv"), "utf8").split("\n");
