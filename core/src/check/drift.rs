@@ -17,7 +17,7 @@ const STANDING_MIN_BLOCKS: usize = 7;
 pub const BIAS_DRIFT_DPS: f64 = 0.1;
 
 /// Each standing the speed or the wheels show (at least `STANDING_MIN_BLOCKS` s): the stamp
-/// of its first kept block, s, and the median of its kept blocks' rates, deg/s. None where
+/// of its first kept block, s, and the median of its kept blocks' rates, deg/s. Empty where
 /// only the gyro judges standing: a steady turn would read as a moved bias.
 pub fn standings(blocks: &Blocks) -> Vec<(f64, f64)> {
     if !matches!(blocks.source, StillSource::Speed | StillSource::Odometry) {

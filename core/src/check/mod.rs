@@ -1,7 +1,8 @@
 //! `gyrodrift check`: what a log looks like before any method runs on it. Sample rate and
 //! jitter, gaps, the unit the numbers seem to be in (time in milliseconds, heading in
 //! radians, gyro in rad/s or clockwise, found by comparing the integrated gyro with the
-//! reference heading's change), the static bias, outliers. Each finding says how to fix it.
+//! reference heading's change), the static bias, outliers, and whether the bias moves
+//! between standings (`drift.rs`). Each finding says how to fix it.
 
 use crate::log::DriveLog;
 use serde::{Deserialize, Serialize};
