@@ -17,8 +17,7 @@ if (modules.size !== 1 || shortModules.size !== 1) throw new Error(`${base}_bg.w
 const [module] = modules;
 const [shortModule] = shortModules;
 
-const rename = (file, pattern, names, what) => {
-  const src = readFileSync(file, "utf8");
+const rename = (src, pattern, names, what) => {
   const seen = new Set();
   const out = src.replace(pattern, (whole, head, name, tail) => {
     if (!names.has(name)) return whole;
@@ -34,11 +33,10 @@ const mustHave = ({ seen, what }, names) => {
 
 // The glue: exports as `wasm.NAME` (some exports it never calls), imports as the keys of
 // its import object (each one the wasm imports must be there).
-let js = rename(`${base}.js`, /(\bwasm\.)([\w$]+)()/g, exports, "exports the glue calls");
+let js = rename(readFileSync(`${base}.js`, "utf8"), /(\bwasm\.)([\w$]+)()/g, exports, "exports the glue calls");
 const unknown = [...js.out.matchAll(/\bwasm\.([\w$]+)/g)].map((m) => m[1]).filter((n) => ![...exports.values()].includes(n));
 if (unknown.length) throw new Error(`${base}.js: calls exports the wasm does not have: ${unknown.join(", ")}`);
-writeFileSync(`${base}.js`, js.out);
-js = rename(`${base}.js`, /^(\s+)([\w$]+)(: function\b)/gm, imports, "imports the glue provides");
+js = rename(js.out, /^(\s+)([\w$]+)(: function\b)/gm, imports, "imports the glue provides");
 mustHave(js, imports);
 const keyed = JSON.stringify(module) + ": import0";
 if (!js.out.includes(keyed)) throw new Error(`${base}.js: no ${keyed}`);
@@ -50,6 +48,7 @@ const dts = readFileSync(`${base}.d.ts`, "utf8");
 const start = dts.indexOf("export interface InitOutput {");
 const end = dts.indexOf("\n}", start);
 if (start < 0 || end < 0) throw new Error(`${base}.d.ts: no InitOutput`);
-const init = dts.slice(start, end).replace(/^(\s+readonly )([\w$]+)(:)/gm, (w, h, n, t) => (exports.has(n) ? h + exports.get(n) + t : w));
+const init = rename(dts.slice(start, end), /^(\s+readonly )([\w$]+)(:)/gm, exports, "exports typed").out;
 writeFileSync(`${base}.d.ts`, dts.slice(0, start) + init + dts.slice(end));
-writeFileSync(`${base}_bg.wasm.d.ts`, rename(`${base}_bg.wasm.d.ts`, /^(export const )([\w$]+)(:)/gm, exports, "exports typed").out);
+const raw = readFileSync(`${base}_bg.wasm.d.ts`, "utf8");
+writeFileSync(`${base}_bg.wasm.d.ts`, rename(raw, /^(export const )([\w$]+)(:)/gm, exports, "exports typed").out);
