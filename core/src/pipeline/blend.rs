@@ -15,7 +15,7 @@
 //! Until the first stop, where the road alone may never take the bank there (no lead-in, no
 //! speed), they start once HDR could acquire what is left: three sigma within its straight
 //! threshold theta_w (0.188 deg/s).
-//! After a stationary lead-in the bank's settled bias (the bias less its warm-up term) has
+//! Once the experts have started the bank's settled bias (the bias less its warm-up term) has
 //! no cause to move far between stops, the bias's own evidence: while it is more than
 //! `blend_move_dps` from where the last stop (or the experts' start) left it, the bank is
 //! reading long bends that filled its road window as straight road, and the heading moves
@@ -24,6 +24,11 @@
 //! bias at that anchor, so the blend stays as bounded as the bank. The anchor restarts after
 //! a stop (until the forty-ninth session it was an average over the road window, which a
 //! slow run of bends dragged along with the bias: docs/pipeline.md).
+//! Without a stationary lead-in nothing has measured the gyro's warm-up, so a move that
+//! outlasts the road window (a bend read as road leaves the bank's evidence one window
+//! after it fills it) is taken as the gyro's, a warm-up the prior could not size, and the
+//! fallback waits for the next stop (fifty-fifth session; until then it waited for a
+//! lead-in, and such drives read their bends as bias).
 //! The stream and the batch path blend alike, block for block. Beyond the paper, like the
 //! bank.
 
@@ -66,30 +71,42 @@ pub struct Blend {
     fallback: Fallback,
 }
 
-/// Watches the bank's settled bias after a lead-in: `blend_move_dps` (0: never), whether
-/// the lead-in gave stop evidence, and the anchor: the settled bias and the bank's bias at
-/// the experts' first block or the first block after a stop (none until then).
+/// Watches the bank's settled bias once the experts have started: `blend_move_dps` (0:
+/// never), the release without a lead-in (`road_window_s`), whether the lead-in gave stop
+/// evidence, and the anchor: the settled bias and the bank's bias at the experts' first
+/// block or the first block after a stop (none until then).
 #[cfg_attr(feature = "snapshot", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Debug, Clone, Default)]
 struct Fallback {
     move_dps: f64,
+    /// How long a move may last without a lead-in before it is taken as the gyro's, s.
+    release_s: f64,
     lead_in_seen: bool,
     anchor_dps: Option<(f64, f64)>,
+    /// Since when the settled bias has been beyond `move_dps` from the anchor, s.
+    beyond_since_s: Option<f64>,
+    /// A move outlasted `release_s` without a lead-in: no fallback until the next stop.
+    released: bool,
 }
 
 impl Fallback {
-    /// Where the settled bias is further than `move_dps` from the anchor's (after a lead-in;
-    /// a non-finite settled bias is none), the bank's bias at the anchor. A stop block
-    /// restarts the anchor at the next block.
-    fn moved(&mut self, settled: f64, bias_dps: f64, stop: bool) -> Option<f64> {
-        if !(self.lead_in_seen && self.move_dps > 0.0 && settled.is_finite()) {
+    /// Where the settled bias is further than `move_dps` from the anchor's (a non-finite
+    /// settled bias is none) and the move has not been released, the bank's bias at the
+    /// anchor. A stop block restarts the anchor (and ends a release) at the next block.
+    fn moved(&mut self, time_s: f64, settled: f64, bias_dps: f64, stop: bool) -> Option<f64> {
+        if !(self.move_dps > 0.0 && settled.is_finite()) {
             return None;
         }
         let (s_anchor, b_anchor) = *self.anchor_dps.get_or_insert((settled, bias_dps));
+        let beyond = (settled - s_anchor).abs() > self.move_dps;
+        self.beyond_since_s = if beyond { Some(self.beyond_since_s.unwrap_or(time_s)) } else { None };
+        let lasted_s = self.beyond_since_s.map_or(0.0, |since| time_s - since);
+        self.released |= !self.lead_in_seen && lasted_s > self.release_s;
+        let out = (beyond && !self.released).then_some(b_anchor);
         if stop {
-            self.anchor_dps = None;
+            (self.anchor_dps, self.beyond_since_s, self.released) = (None, None, false);
         }
-        ((settled - s_anchor).abs() > self.move_dps).then_some(b_anchor)
+        out
     }
 }
 
@@ -102,7 +119,7 @@ impl Blend {
 
     /// The blend the pipeline's settings ask for (causal, smoothed and streamed alike).
     pub fn of(p: &super::PipelineParams) -> Self {
-        let fallback = Fallback { move_dps: p.blend_move_dps, ..Default::default() };
+        let fallback = Fallback { move_dps: p.blend_move_dps, release_s: p.road_window_s, ..Default::default() };
         Self { fallback, ..Self::new(p.blend_sigmas, p.blend_walk_dps_per_sqrt_s) }
     }
 
@@ -143,7 +160,7 @@ impl Blend {
         }
         let since_stop_s = time_s - self.last_stop_s;
         let guard_dps = self.sigmas * libm::sqrt(bank.bias_sigma_dps.powi(2) + self.walk_dps_per_sqrt_s.powi(2) * since_stop_s);
-        let moved_from = self.fallback.moved(settled_dps, bank.bias_dps, bank.stop);
+        let moved_from = self.fallback.moved(time_s, settled_dps, bank.bias_dps, bank.stop);
         let mut out = bank;
         if let Some((t, bank_deg)) = self.last {
             let dt = time_s - t;
@@ -157,8 +174,8 @@ impl Blend {
                     (sum_deg, n) = (sum_deg + move_deg, n + 1.0);
                 }
             }
-            // After a lead-in, a settled bias on the move is a bend read as road: HDR's move
-            // alone, held (module doc).
+            // A settled bias on the move is a bend read as road: HDR's move alone, held
+            // (module doc).
             let gain_deg = match moved_from {
                 Some(anchor) => {
                     let b = bank.bias_dps;
@@ -278,25 +295,30 @@ mod tests {
         assert!((o.heading_deg - before - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg - before, m / 2.0);
     }
 
-    /// After a stop in the lead-in, the bank's settled bias 0.5 deg/s from its anchor (0,
+    /// Once the experts have started, the bank's settled bias 0.5 deg/s from its anchor (0,
     /// beyond 0.3): the heading moves by HDR's move alone, its bias held within the guard
-    /// (2 x 0.04, no walk) of the span between the bank's bias (0.5) and its anchor's (0).
-    /// Without a lead-in stop, or with the fallback off, the bank moves alone.
+    /// (2 x 0.04, no walk) of the span between the bank's bias (0.5) and its anchor's (0),
+    /// with or without a stop in the lead-in. With the fallback off the bank moves alone.
     #[test]
-    fn after_a_lead_in_a_settled_bias_on_the_move_takes_hdrs_move_held_near_the_bank() {
+    fn a_settled_bias_on_the_move_takes_hdrs_move_held_near_the_bank() {
         let started = |move_dps: f64, lead_in_stop: bool| {
-            let mut b = Blend { fallback: Fallback { move_dps, ..Default::default() }, ..Blend::new(2.0, 0.0) };
+            let fallback = Fallback { move_dps, release_s: 60.0, ..Default::default() };
+            let mut b = Blend { fallback, ..Blend::new(2.0, 0.0) };
             b.update(false, 0.0, 0.0, PipelineOutput { stop: lead_in_stop, ..bank(0.0, 0.04) }, 0.0).unwrap();
             b.update(true, 1.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
             b
         };
         // The bank took 0.5 deg/s as bias over the block: it moved -0.5 deg.
         let dragged = PipelineOutput { bias_dps: 0.5, ..bank(-0.5, 0.04) };
+        for lead_in_stop in [true, false] {
+            let mut b = started(0.3, lead_in_stop);
+            let m = hdr_move(&b, 2.0, 0.0);
+            assert!(m.abs() <= 0.0422 + 1e-12, "{m}");
+            let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
+            assert!((o.heading_deg - m).abs() < 1e-12 && (o.bias_dps + m).abs() < 1e-12, "{o:?} against HDR's {m}");
+        }
         let mut b = started(0.3, true);
-        let m = hdr_move(&b, 2.0, 0.0);
-        assert!(m.abs() <= 0.0422 + 1e-12, "{m}");
-        let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
-        assert!((o.heading_deg - m).abs() < 1e-12 && (o.bias_dps + m).abs() < 1e-12, "{o:?} against HDR's {m}");
+        b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
         // The anchor stays while the fallback acts, and restarts after a stop.
         assert_eq!(b.fallback.anchor_dps, Some((0.0, 0.0)));
         b.update(true, 3.0, 0.0, PipelineOutput { stop: true, ..dragged }, 0.5).unwrap();
@@ -312,10 +334,8 @@ mod tests {
         let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
         assert!((o.bias_dps + 0.08).abs() < 1e-12 && (o.heading_deg - 0.08).abs() < 1e-12, "{o:?}");
         // HDR and Fusion (0 deg/s) both beyond the guard: the bank's move alone.
-        for (move_dps, lead_in_stop) in [(0.0, true), (0.3, false)] {
-            let o = started(move_dps, lead_in_stop).update(true, 2.0, 0.0, dragged, 0.5).unwrap();
-            assert_eq!(o, dragged, "move_dps {move_dps}, lead-in stop {lead_in_stop}");
-        }
+        let o = started(0.0, true).update(true, 2.0, 0.0, dragged, 0.5).unwrap();
+        assert_eq!(o, dragged, "the fallback off");
     }
 
     /// A slow run of bends: the settled bias creeps 0.002 deg/s per block from 0 (the bank's
@@ -325,16 +345,41 @@ mod tests {
     /// and never act. A stop restarts the anchor where the bias then is.
     #[test]
     fn a_slow_creep_of_the_settled_bias_is_moved_once_beyond_the_anchor() {
-        let mut f = Fallback { move_dps: 0.3, lead_in_seen: true, ..Default::default() };
+        let mut f = Fallback { move_dps: 0.3, release_s: 60.0, lead_in_seen: true, ..Default::default() };
         for i in 0..=200 {
             let settled = 0.002 * f64::from(i);
-            let moved = f.moved(settled, settled + 0.1, false);
+            let moved = f.moved(f64::from(i), settled, settled + 0.1, false);
             assert_eq!(moved, (i > 150).then_some(0.1), "block {i}");
         }
-        assert_eq!(f.moved(0.402, 0.502, true), Some(0.1));
-        assert_eq!(f.moved(0.404, 0.504, false), None);
+        assert_eq!(f.moved(201.0, 0.402, 0.502, true), Some(0.1));
+        assert_eq!(f.moved(202.0, 0.404, 0.504, false), None);
         assert_eq!(f.anchor_dps, Some((0.404, 0.504)));
-        let mut before_lead_in = Fallback { move_dps: 0.3, ..Default::default() };
-        assert_eq!(before_lead_in.moved(0.0, 0.0, false).or(before_lead_in.moved(1.0, 1.0, false)), None);
+        let mut off = Fallback { move_dps: 0.0, ..Default::default() };
+        assert_eq!(off.moved(0.0, 0.0, 0.0, false).or(off.moved(1.0, 1.0, 1.0, false)), None);
+    }
+
+    /// Without a lead-in, a move 0.5 deg/s from the anchor from block 10 on is held for one
+    /// road window (60 s: blocks 10-70), then taken as the gyro's (a warm-up nothing
+    /// measured) until a stop restarts the anchor; a move back within 0.3 before then
+    /// restarts the count. After a lead-in the same move is held as long as it lasts.
+    #[test]
+    fn without_a_lead_in_a_move_that_outlasts_the_road_window_is_released() {
+        for lead_in_seen in [false, true] {
+            let mut f = Fallback { move_dps: 0.3, release_s: 60.0, lead_in_seen, ..Default::default() };
+            for i in 0..=150 {
+                let settled = if i >= 10 { 0.5 } else { 0.0 };
+                let held = (10..=70).contains(&i) || (lead_in_seen && i >= 10);
+                assert_eq!(f.moved(f64::from(i), settled, settled, false), held.then_some(0.0), "block {i}, lead-in {lead_in_seen}");
+            }
+            f.moved(151.0, 0.5, 0.5, true);
+            assert!(!f.released && f.anchor_dps.is_none());
+            assert_eq!(f.moved(152.0, 1.0, 1.0, false), None, "the anchor restarted at the stop's next block");
+            assert_eq!(f.moved(153.0, 1.5, 1.5, false), Some(1.0), "a new move after the stop is held");
+        }
+        let mut f = Fallback { move_dps: 0.3, release_s: 60.0, ..Default::default() };
+        for i in 0..=100 {
+            let settled = if (10..50).contains(&i) || i >= 55 { 0.5 } else { 0.0 };
+            assert_eq!(f.moved(f64::from(i), settled, settled, false).is_some(), settled > 0.0, "block {i}: the count restarted at 55");
+        }
     }
 }

@@ -79,11 +79,13 @@ pub struct PipelineParams {
     /// sqrt(s); 0 = the bank's sigma alone. Chosen on the training cases among the bank's
     /// three fastest walks (0.001, 0.003, 0.01; docs/pipeline.md).
     pub blend_walk_dps_per_sqrt_s: f64,
-    /// After a stationary lead-in, while the bank's settled bias (the bias less its warm-up
-    /// term) is further than this from where the last stop left it, the heading moves by
-    /// Table-III HDR's move alone: a settled bias that the road alone moves that far after a
-    /// lead-in is long bends read as straight road (`blend.rs`), deg/s; 0 = never. Chosen
-    /// on the training cases and the independent generator's draw 0 (docs/pipeline.md).
+    /// Once the experts have started, while the bank's settled bias (the bias less its
+    /// warm-up term) is further than this from where the last stop (or the experts' start)
+    /// left it, the heading moves by Table-III HDR's move alone: a settled bias that the road
+    /// alone moves that far is long bends read as straight road (`blend.rs`), deg/s; 0 =
+    /// never. Without a stationary lead-in a move that outlasts `road_window_s` is taken as
+    /// the gyro's until the next stop. Chosen on the training cases and the independent
+    /// generator's draw 0 (docs/pipeline.md).
     pub blend_move_dps: f64,
     /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
     pub bias_s: Option<f64>,

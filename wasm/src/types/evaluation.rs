@@ -86,10 +86,10 @@ export interface PipelineOptions {
   /** Between stops that guard's sigma grows as a bias walk of this since the last stop,
    * deg/s per sqrt(s) (0.003); 0 = the bank's sigma alone. */
   blend_walk_dps_per_sqrt_s?: number;
-  /** After a stationary lead-in, while the bank's settled bias (less its warm-up term) is
-   * further than this from where the last stop left it, the heading moves by Table-III
-   * HDR's move (its bias held near the bank's): long bends read as straight road, deg/s
-   * (0.3); 0 = never. */
+  /** While the bank's settled bias (less its warm-up term) is further than this from where
+   * the last stop left it, the heading moves by Table-III HDR's move (its bias held near the
+   * bank's): long bends read as straight road, deg/s (0.3); 0 = never. Without a stationary
+   * lead-in a move that outlasts `road_window_s` is taken as the gyro's. */
   blend_move_dps?: number;
   /** @deprecated The name of `blend_sigmas` while it blended HDR alone. */
   hdr_blend_sigmas?: number;

@@ -263,3 +263,48 @@ fn a_warm_up_the_lead_in_shows_beyond_the_prior_turns_the_bend_fallback_off() {
     let (pipeline, raw) = (r.NE_psi_pipeline_deg_per_min, r.NE_psi_raw_deg_per_min);
     assert!(pipeline < 0.3 * raw, "pipeline {pipeline}, raw {raw}");
 }
+
+/// The long bend on a drive cut from its lead-in (its first 20 s moving on the straight, no
+/// stop anywhere): the bank acquires the -1.4 deg/s bias from the road, the experts start,
+/// and the bend fallback judges the bend from that anchor as it would from a lead-in's
+/// until the move outlasts the road window (60 s), then releases it as a warm-up's: final
+/// heading error -52.5 deg without the fallback, -35.2 with it (-17.3 were the move never
+/// released: the release's price on a bend longer than the window). Until the fifty-fifth
+/// session the fallback waited for a lead-in and this drive had the -52.5.
+#[test]
+fn without_a_lead_in_a_long_bend_is_not_taken_as_bias() {
+    let mut blocks = long_bend_blocks();
+    blocks.still.iter_mut().for_each(|s| *s = false);
+    let error_deg = |move_dps: f64| {
+        let tr = run_blocks(&blocks, PipelineParams { blend_move_dps: move_dps, ..PipelineParams::default() }, 0.0).unwrap();
+        let (first, last) = (tr.heading_deg[20], *tr.heading_deg.last().unwrap());
+        last - first - 56.0
+    };
+    let (with, without) = (error_deg(0.3), error_deg(0.0));
+    assert!(without < -45.0 && with - without > 15.0 && with < 0.0, "with {with}, without {without}");
+}
+
+/// A gyro warming up by 2.0 deg/s with a 120 s time constant on a simulated 45 min highway
+/// drive cut from its lead-in (the warm-up probe's draw 1 `warm-cut_54`, a training drive,
+/// docs/battery.md): the settled bias follows the warm-up away from where the experts
+/// started, and a fallback that held it (as one without a release did) followed HDR, locked
+/// out, to 47.8 deg/min against raw's 17.6. Released after one road window: 3.14.
+#[test]
+fn without_a_lead_in_a_warm_up_is_released_to_the_bank() {
+    let req = crate::sim::SimRequest {
+        scenario: Some("highway".into()),
+        minutes: Some(45.0),
+        seed: 8154,
+        errors: Some(crate::sim::errors::GyroErrors {
+            bias_dps: -0.534,
+            warmup_dps: 2.009,
+            warmup_tau_s: 120.0,
+            cut_lead_in: true,
+            ..Default::default()
+        }),
+        ..Default::default()
+    };
+    let r = run(&crate::sim::simulate(&req).unwrap(), &PipelineParams::default()).unwrap().result.unwrap();
+    let (pipeline, raw) = (r.NE_psi_pipeline_deg_per_min, r.NE_psi_raw_deg_per_min);
+    assert!(pipeline < 0.3 * raw, "pipeline {pipeline}, raw {raw}");
+}
