@@ -18,7 +18,7 @@ const MAGIC: &[u8; 16] = b"gyrodrift state\n";
 /// changes, so a state saved by a build whose estimators differ is refused rather than
 /// misread (every commit of a release line shares its version number). The test
 /// `the_saved_layout_is_the_recorded_one` trips on a change until this and its digest move.
-const LAYOUT: u32 = 7;
+const LAYOUT: u32 = 8;
 
 /// An estimator whose state can be saved and resumed.
 pub trait Resumable: Serialize + DeserializeOwned {
