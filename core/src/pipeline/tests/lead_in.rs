@@ -227,6 +227,14 @@ fn long_bend_blocks() -> crate::still::Blocks {
     blocks_of(&items)
 }
 
+/// The long bend's heading error at the end, from block 20 (the bend turns 56 deg), with
+/// the fallback at `move_dps` after a lead-in of `lead_in_s`.
+fn bend_error_deg(blocks: &crate::still::Blocks, move_dps: f64, lead_in_s: f64) -> f64 {
+    let tr = run_blocks(blocks, PipelineParams { blend_move_dps: move_dps, ..PipelineParams::default() }, lead_in_s).unwrap();
+    let (first, last) = (tr.heading_deg[20], *tr.heading_deg.last().unwrap());
+    last - first - 56.0
+}
+
 /// On the long bend the bank's road window fills with the bend and its bias is dragged
 /// toward the bend's rate (to -0.95 deg/s); while its settled bias is on the move the bend
 /// fallback moves the heading by HDR's, which calls the bend a turn: the final heading error
@@ -234,12 +242,8 @@ fn long_bend_blocks() -> crate::still::Blocks {
 /// followed the bank through the bend and let the fallback go before the bias was back).
 #[test]
 fn after_a_lead_in_a_long_bend_is_not_taken_as_bias() {
-    let error_deg = |move_dps: f64| {
-        let tr = run_blocks(&long_bend_blocks(), PipelineParams { blend_move_dps: move_dps, ..PipelineParams::default() }, 20.0).unwrap();
-        let (first, last) = (tr.heading_deg[20], *tr.heading_deg.last().unwrap());
-        last - first - 56.0
-    };
-    let (with, without) = (error_deg(0.3), error_deg(0.0));
+    let blocks = long_bend_blocks();
+    let (with, without) = (bend_error_deg(&blocks, 0.3, 20.0), bend_error_deg(&blocks, 0.0, 20.0));
     assert!(without < -40.0 && with > -15.0 && with < 0.0, "with {with}, without {without}");
 }
 
@@ -252,15 +256,8 @@ fn after_a_lead_in_a_long_bend_is_not_taken_as_bias() {
 /// s, is off: 8.47 deg/min against raw's 41.33 (39.28 with it).
 #[test]
 fn a_warm_up_the_lead_in_shows_beyond_the_prior_turns_the_bend_fallback_off() {
-    let req = crate::sim::SimRequest {
-        scenario: Some("highway".into()),
-        minutes: Some(20.0),
-        seed: 8053,
-        errors: Some(crate::sim::errors::GyroErrors { bias_dps: 0.502, warmup_dps: 2.202, warmup_tau_s: 300.0, ..Default::default() }),
-        ..Default::default()
-    };
-    let r = run(&crate::sim::simulate(&req).unwrap(), &PipelineParams::default()).unwrap().result.unwrap();
-    let (pipeline, raw) = (r.NE_psi_pipeline_deg_per_min, r.NE_psi_raw_deg_per_min);
+    let errors = crate::sim::errors::GyroErrors { bias_dps: 0.502, warmup_dps: 2.202, warmup_tau_s: 300.0, ..Default::default() };
+    let (pipeline, raw) = highway_pipeline_and_raw(20.0, 8053, errors);
     assert!(pipeline < 0.3 * raw, "pipeline {pipeline}, raw {raw}");
 }
 
@@ -275,12 +272,7 @@ fn a_warm_up_the_lead_in_shows_beyond_the_prior_turns_the_bend_fallback_off() {
 fn without_a_lead_in_a_long_bend_is_not_taken_as_bias() {
     let mut blocks = long_bend_blocks();
     blocks.still.iter_mut().for_each(|s| *s = false);
-    let error_deg = |move_dps: f64| {
-        let tr = run_blocks(&blocks, PipelineParams { blend_move_dps: move_dps, ..PipelineParams::default() }, 0.0).unwrap();
-        let (first, last) = (tr.heading_deg[20], *tr.heading_deg.last().unwrap());
-        last - first - 56.0
-    };
-    let (with, without) = (error_deg(0.3), error_deg(0.0));
+    let (with, without) = (bend_error_deg(&blocks, 0.3, 0.0), bend_error_deg(&blocks, 0.0, 0.0));
     assert!(without < -45.0 && with - without > 15.0 && with < 0.0, "with {with}, without {without}");
 }
 
@@ -291,20 +283,27 @@ fn without_a_lead_in_a_long_bend_is_not_taken_as_bias() {
 /// out, to 47.8 deg/min against raw's 17.6. Released after one road window: 3.14.
 #[test]
 fn without_a_lead_in_a_warm_up_is_released_to_the_bank() {
+    let errors = crate::sim::errors::GyroErrors {
+        bias_dps: -0.534,
+        warmup_dps: 2.009,
+        warmup_tau_s: 120.0,
+        cut_lead_in: true,
+        ..Default::default()
+    };
+    let (pipeline, raw) = highway_pipeline_and_raw(45.0, 8154, errors);
+    assert!(pipeline < 0.3 * raw, "pipeline {pipeline}, raw {raw}");
+}
+
+/// A simulated highway drive of `minutes` (seed `seed`) with `errors` in its gyro: the
+/// pipeline's and raw integration's NE_psi, deg/min.
+fn highway_pipeline_and_raw(minutes: f64, seed: u64, errors: crate::sim::errors::GyroErrors) -> (f64, f64) {
     let req = crate::sim::SimRequest {
         scenario: Some("highway".into()),
-        minutes: Some(45.0),
-        seed: 8154,
-        errors: Some(crate::sim::errors::GyroErrors {
-            bias_dps: -0.534,
-            warmup_dps: 2.009,
-            warmup_tau_s: 120.0,
-            cut_lead_in: true,
-            ..Default::default()
-        }),
+        minutes: Some(minutes),
+        seed,
+        errors: Some(errors),
         ..Default::default()
     };
     let r = run(&crate::sim::simulate(&req).unwrap(), &PipelineParams::default()).unwrap().result.unwrap();
-    let (pipeline, raw) = (r.NE_psi_pipeline_deg_per_min, r.NE_psi_raw_deg_per_min);
-    assert!(pipeline < 0.3 * raw, "pipeline {pipeline}, raw {raw}");
+    (r.NE_psi_pipeline_deg_per_min, r.NE_psi_raw_deg_per_min)
 }
