@@ -28,7 +28,9 @@
 //! outlasts the road window (a bend read as road leaves the bank's evidence one window
 //! after it fills it) is taken as the gyro's, a warm-up the prior could not size, and the
 //! fallback waits for the next stop (fifty-fifth session; until then it waited for a
-//! lead-in, and such drives read their bends as bias).
+//! lead-in, and such drives read their bends as bias). Unless the move is coming back: a
+//! settled bias back by more than the bank's fastest walk could bring it over half a
+//! window is a bend leaving the window, and stays held (fifty-sixth session).
 //! The stream and the batch path blend alike, block for block. Beyond the paper, like the
 //! bank.
 
@@ -36,6 +38,7 @@ use super::filter::PipelineOutput;
 use crate::error::Result;
 use crate::hdr::{Hdr, HdrParams};
 use crate::peers::FusionOffset;
+use std::collections::VecDeque;
 
 /// Whether a bias known to `sigma_dps` is within Table-III HDR's reach: three sigma within
 /// its straight threshold theta_w, so its heuristic could acquire what is left.
@@ -87,6 +90,11 @@ struct Fallback {
     beyond_since_s: Option<f64>,
     /// A move outlasted `release_s` without a lead-in: no fallback until the next stop.
     released: bool,
+    /// How far a move may recede over half a road window and still be released: the bank's
+    /// fastest walk over that time, deg/s.
+    recede_dps: f64,
+    /// The current move's distance from the anchor over the last half window: (time s, deg/s).
+    recent: VecDeque<(f64, f64)>,
 }
 
 impl Fallback {
@@ -98,15 +106,34 @@ impl Fallback {
             return None;
         }
         let (s_anchor, b_anchor) = *self.anchor_dps.get_or_insert((settled, bias_dps));
-        let beyond = (settled - s_anchor).abs() > self.move_dps;
+        let dist_dps = (settled - s_anchor).abs();
+        let beyond = dist_dps > self.move_dps;
         self.beyond_since_s = if beyond { Some(self.beyond_since_s.unwrap_or(time_s)) } else { None };
         let lasted_s = self.beyond_since_s.map_or(0.0, |since| time_s - since);
-        self.released |= !self.lead_in_seen && lasted_s > self.release_s;
+        let receding = self.receding(time_s, dist_dps, beyond);
+        self.released |= !self.lead_in_seen && lasted_s > self.release_s && !receding;
         let out = (beyond && !self.released).then_some(b_anchor);
         if stop {
             (self.anchor_dps, self.beyond_since_s, self.released) = (None, None, false);
+            self.recent.clear();
         }
         out
+    }
+
+    /// Whether the move has come back by more than `recede_dps` over the last half road
+    /// window: a bend leaving the window the bank read it in, not a warm-up, which does not
+    /// turn back. Keeps the move's recent distances (none while not beyond).
+    fn receding(&mut self, time_s: f64, dist_dps: f64, beyond: bool) -> bool {
+        if !beyond {
+            self.recent.clear();
+            return false;
+        }
+        self.recent.push_back((time_s, dist_dps));
+        let half_s = self.release_s / 2.0;
+        while self.recent.get(1).is_some_and(|&(t, _)| t <= time_s - half_s) {
+            self.recent.pop_front();
+        }
+        self.recent.front().is_some_and(|&(t, d)| time_s - t >= half_s && d - dist_dps > self.recede_dps)
     }
 }
 
@@ -119,7 +146,8 @@ impl Blend {
 
     /// The blend the pipeline's settings ask for (causal, smoothed and streamed alike).
     pub fn of(p: &super::PipelineParams) -> Self {
-        let fallback = Fallback { move_dps: p.blend_move_dps, release_s: p.road_window_s, ..Default::default() };
+        let recede_dps = p.bias_walk_max_dps_per_sqrt_s * libm::sqrt(p.road_window_s / 2.0);
+        let fallback = Fallback { move_dps: p.blend_move_dps, release_s: p.road_window_s, recede_dps, ..Default::default() };
         Self { fallback, ..Self::new(p.blend_sigmas, p.blend_walk_dps_per_sqrt_s) }
     }
 
@@ -380,6 +408,24 @@ mod tests {
         for i in 0..=100 {
             let settled = if (10..50).contains(&i) || i >= 55 { 0.5 } else { 0.0 };
             assert_eq!(f.moved(f64::from(i), settled, settled, false).is_some(), settled > 0.0, "block {i}: the count restarted at 55");
+        }
+    }
+
+    /// Without a lead-in, a move that comes back by more than `recede_dps` (0.05) over half
+    /// a road window is a bend leaving the window, not a warm-up: held past the window. A
+    /// move 0.6 from block 10 on that comes back 0.002 deg/s per block from block 40 has come
+    /// back 0.06 over the 30 blocks before block 71 (its first past the window) and is held
+    /// until it is back within 0.3 (block 190); at 0.001 per block (0.03) it is released
+    /// at block 71.
+    #[test]
+    fn without_a_lead_in_a_move_coming_back_is_held_past_the_road_window() {
+        for (per_block, held_until) in [(0.002, 189), (0.001, 70)] {
+            let mut f = Fallback { move_dps: 0.3, release_s: 60.0, recede_dps: 0.05, ..Default::default() };
+            for i in 0..=200 {
+                let settled = if i < 10 { 0.0 } else { 0.6 - per_block * f64::from((i - 40).max(0)) };
+                let held = (10..=held_until).contains(&i);
+                assert_eq!(f.moved(f64::from(i), settled, settled, false), held.then_some(0.0), "block {i}, {per_block} per block");
+            }
         }
     }
 }

@@ -84,7 +84,8 @@ pub struct PipelineParams {
     /// left it, the heading moves by Table-III HDR's move alone: a settled bias that the road
     /// alone moves that far is long bends read as straight road (`blend.rs`), deg/s; 0 =
     /// never. Without a stationary lead-in a move that outlasts `road_window_s` is taken as
-    /// the gyro's until the next stop. Chosen on the training cases and the independent
+    /// the gyro's until the next stop, unless it is coming back faster than the bank's
+    /// fastest walk over half that window (a bend leaving it). Chosen on the training cases and the independent
     /// generator's draw 0 (docs/pipeline.md).
     pub blend_move_dps: f64,
     /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
