@@ -8,6 +8,7 @@
 mod blend;
 mod dating;
 mod evidence;
+mod fallback;
 pub mod filter;
 mod model;
 mod noise;
