@@ -82,11 +82,11 @@ pub struct PipelineParams {
     /// Once the experts have started, while the bank's settled bias (the bias less its
     /// warm-up term) is further than this from where the last stop (or the experts' start)
     /// left it, the heading moves by Table-III HDR's move alone: a settled bias that the road
-    /// alone moves that far is long bends read as straight road (`blend.rs`, `fallback.rs`), deg/s; 0 =
-    /// never. Without a stationary lead-in a move that outlasts `road_window_s` is taken as
-    /// the gyro's until the next stop, unless it is coming back faster than the bank's
-    /// fastest walk over half that window (a bend leaving it). Chosen on the training cases and the independent
-    /// generator's draw 0 (docs/pipeline.md).
+    /// alone moves that far is long bends read as straight road (`blend.rs`, `fallback.rs`),
+    /// deg/s; 0 = never. Without a stationary lead-in a move that outlasts `road_window_s` is
+    /// taken as the gyro's until the next stop, unless it is coming back faster than the
+    /// bank's fastest walk over half that window (a bend leaving it). Chosen on the training
+    /// cases and the independent generator's draw 0 (docs/pipeline.md).
     pub blend_move_dps: f64,
     /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
     pub bias_s: Option<f64>,

@@ -303,9 +303,8 @@ fn without_a_lead_in_a_warm_up_is_released_to_the_bank() {
 /// 1.68.
 #[test]
 fn without_a_lead_in_a_move_coming_back_is_held_as_a_bend() {
-    let base = crate::battery::simulated_bases(20.0).into_iter().find(|b| b.name == "sim-rural-crs03-3").unwrap();
-    let profile = crate::battery::profiles().into_iter().find(|p| p.name == "bias -1.5 cut").unwrap();
-    let log = crate::sim::inject(&base.log, &profile.errors).unwrap();
+    let (bases, profiles) = (crate::battery::simulated_bases(20.0), crate::battery::profiles());
+    let log = crate::battery::case_log(&bases, &profiles, "sim-rural-crs03-3 / bias -1.5 cut").unwrap();
     let r = run(&log, &PipelineParams::default()).unwrap().result.unwrap();
     let (pipeline, raw) = (r.NE_psi_pipeline_deg_per_min, r.NE_psi_raw_deg_per_min);
     assert!(pipeline < 1.0 && raw > 50.0, "pipeline {pipeline}, raw {raw}");
