@@ -318,17 +318,7 @@ impl Pipeline {
         if !h_road.is_empty() {
             self.heading_deg -= self.integral_change(&h_road, &w);
         }
-        for (s, wi) in self.weight_sum.iter_mut().zip(&w) {
-            *s += wi;
-        }
-        if !self.recorded.is_empty() {
-            // The priors are the posteriors before predicted, but where this block sized the
-            // warm-up or re-opened the bias (`records.rs`).
-            self.records.start_block(dt, sized || reopened);
-            for (j, &i) in self.recorded.iter().enumerate() {
-                self.records.push(j, priors[j], (self.models[i].x, self.models[i].p), w[i]);
-            }
-        }
+        self.keep_records(dt, sized || reopened, &priors, &w);
         if !stops.is_empty() {
             self.correct_heading_at_stop(&h_before, &w, b_before, time_s);
         }
@@ -365,6 +355,22 @@ impl Pipeline {
         }
         self.evidence.stop.reopened = reopened;
         reopened
+    }
+
+    /// The block's weights added to each hypothesis' sum, and the recorded hypotheses'
+    /// prior and posterior kept for the smoother (`records.rs`): the priors are the
+    /// posteriors before predicted, but where the block sized the warm-up or re-opened the
+    /// bias (`restarted`).
+    fn keep_records(&mut self, dt: f64, restarted: bool, priors: &[State], w: &[f64]) {
+        for (s, wi) in self.weight_sum.iter_mut().zip(w) {
+            *s += wi;
+        }
+        if !self.recorded.is_empty() {
+            self.records.start_block(dt, restarted);
+            for (j, &i) in self.recorded.iter().enumerate() {
+                self.records.push(j, priors[j], (self.models[i].x, self.models[i].p), w[i]);
+            }
+        }
     }
 
     /// Stop evidence (rate = b). Its likelihood weighs the hypotheses; `weigh` = false for
