@@ -27,6 +27,7 @@ export const PIPE_PARAMS = [
   { key: "road_gate_dps", label: "straight gate", unit: "deg/s", min: 0.05, max: 2, step: 0.01, help: "A moving block within this of the last 60 s's dominant rate counts as straight road, HDR's heuristic: wider finds more straights on a noisy gyro, and takes gentle curves for straight." },
   { key: "blend_sigmas", label: "blend guard", unit: "sigma", min: 0, max: 5, step: 0.1, help: "The heading moves with Table-III HDR's and Fusion's offset where the bias they imply is within this many sigmas of the bank's; 0 = the bank's heading alone." },
   { key: "blend_move_dps", label: "bend fallback", unit: "deg/s", min: 0, max: 2, step: 0.05, help: "While the bank's settled bias is further than this from where the last stop left it (long bends taken for straight road), the heading moves with Table-III HDR's; without a lead-in, a move longer than the road window is taken as the gyro's unless it is coming back; 0 = never." },
+  { key: "blend_move_quiet_dps", label: "bend fallback, quiet gyro", unit: "deg/s", min: 0, max: 2, step: 0.05, help: "The bend fallback's threshold after a stationary lead-in on a quiet gyro (its standstill noise within the stop's 0.05 deg/s), where the lead-in has shown a steady bias; 0 = the bend fallback's own." },
 ];
 export const GYRO_PARAMS = [{ key: "thres_rate_dps", label: "threshold", unit: "deg/s", min: 0, max: 10, step: 0.05, help: "Gyrodometry's threshold: where gyro and odometry disagree by more than this rate, the gyro's increment is used (Borenstein & Feng)." }];
 export const SAMPLES = [

@@ -80,7 +80,8 @@ impl Blend {
 
     /// One block (end time, mean raw rate) and the bank's output on it: the output with the
     /// blended heading and the bias it integrated. `after_lead_in`: the block is past the lead-in;
-    /// `settled_dps`: the bank's settled bias before the block (not finite: no fallback).
+    /// `settled_dps`: the bank's settled bias before the block (not finite: no fallback);
+    /// `quiet`: the gyro's standstill noise is within the stop's setting (`Pipeline::quiet`).
     pub fn update(
         &mut self,
         after_lead_in: bool,
@@ -88,6 +89,7 @@ impl Blend {
         rate_dps: f64,
         bank: PipelineOutput,
         settled_dps: f64,
+        quiet: bool,
     ) -> Result<PipelineOutput> {
         self.fallback.lead_in_seen |= !after_lead_in && bank.stop;
         if !(self.sigmas > 0.0 && after_lead_in) {
@@ -115,7 +117,7 @@ impl Blend {
         }
         let since_stop_s = time_s - self.last_stop_s;
         let guard_dps = self.sigmas * libm::sqrt(bank.bias_sigma_dps.powi(2) + self.walk_dps_per_sqrt_s.powi(2) * since_stop_s);
-        let moved_from = self.fallback.moved(time_s, settled_dps, bank.bias_dps, bank.stop);
+        let moved_from = self.fallback.moved(time_s, settled_dps, bank.bias_dps, bank.stop, quiet);
         let mut out = bank;
         if let Some((t, bank_deg)) = self.last {
             let dt = time_s - t;
@@ -172,13 +174,13 @@ mod tests {
         // In the lead-in, with the blend off, or after a stop while the bank's bias is less
         // sure than one of HDR's steps (0.0422 deg/s): the bank's output as it is, and no
         // expert started.
-        assert_eq!(b.update(false, 0.0, 0.0, bank(0.3, 0.03), 0.0).unwrap(), bank(0.3, 0.03));
-        assert_eq!(Blend::new(0.0, 0.0).update(true, 0.0, 0.0, bank(0.3, 0.03), 0.0).unwrap(), bank(0.3, 0.03));
+        assert_eq!(b.update(false, 0.0, 0.0, bank(0.3, 0.03), 0.0, false).unwrap(), bank(0.3, 0.03));
+        assert_eq!(Blend::new(0.0, 0.0).update(true, 0.0, 0.0, bank(0.3, 0.03), 0.0, false).unwrap(), bank(0.3, 0.03));
         let stop = PipelineOutput { stop: true, ..bank(0.3, 0.05) };
-        assert_eq!(b.update(true, 0.0, 0.0, stop, 0.0).unwrap(), stop);
+        assert_eq!(b.update(true, 0.0, 0.0, stop, 0.0, false).unwrap(), stop);
         assert!(b.experts.is_none());
         // The experts start from the bank's bias (0); their first block moves nothing.
-        assert_eq!(b.update(true, 1.0, 0.0, bank(0.0, 0.04), 0.0).unwrap(), bank(0.0, 0.04));
+        assert_eq!(b.update(true, 1.0, 0.0, bank(0.0, 0.04), 0.0, false).unwrap(), bank(0.0, 0.04));
         // On a rate of 0, Fusion's move is 0 (offset 0, and it adapts only after 5 blocks
         // within 3 deg/s); HDR's moves only by its controller, at most i_c per block.
         let m = hdr_move(&b, 2.0, 0.0);
@@ -186,7 +188,7 @@ mod tests {
         // The bank moves 0.03 deg: Fusion 0.03 deg/s apart, HDR at most 0.0722, both within
         // 2 x 0.04: the heading moves by the mean of the three moves, the bias is the bank's
         // less what that adds per second.
-        let o = b.update(true, 2.0, 0.0, bank(0.03, 0.04), 0.0).unwrap();
+        let o = b.update(true, 2.0, 0.0, bank(0.03, 0.04), 0.0, false).unwrap();
         let gain = (0.03 + m + 0.0) / 3.0 - 0.03;
         assert!((o.heading_deg - (0.03 + gain)).abs() < 1e-12, "{} against {}", o.heading_deg, 0.03 + gain);
         assert!((o.bias_dps + gain).abs() < 1e-12, "{}", o.bias_dps);
@@ -195,14 +197,14 @@ mod tests {
         b.experts.as_mut().unwrap().fusion = FusionOffset::starting_at(1, 0.5);
         let m = hdr_move(&b, 3.0, 0.0);
         let bank_deg = 0.03 + m + 0.07;
-        let o = b.update(true, 3.0, 0.0, bank(bank_deg, 0.04), 0.0).unwrap();
+        let o = b.update(true, 3.0, 0.0, bank(bank_deg, 0.04), 0.0, false).unwrap();
         let gain2 = (m + 0.07 + m) / 2.0 - (m + 0.07);
         assert!((o.heading_deg - (bank_deg + gain + gain2)).abs() < 1e-12, "{} against {}", o.heading_deg, bank_deg + gain + gain2);
         // The bank moves 0.3 deg, 0.17 deg/s or more from HDR (at most 3 i_c) and 0.8 from
         // Fusion: the bank's move alone, the offset kept, the bias the bank's.
         let m = hdr_move(&b, 4.0, 0.0);
         assert!(m.abs() <= 3.0 * 0.0422 + 1e-12, "{m}");
-        let o = b.update(true, 4.0, 0.0, bank(bank_deg + 0.3, 0.04), 0.0).unwrap();
+        let o = b.update(true, 4.0, 0.0, bank(bank_deg + 0.3, 0.04), 0.0, false).unwrap();
         assert!((o.heading_deg - (bank_deg + 0.3 + gain + gain2)).abs() < 1e-12 && o.bias_dps == 0.0);
     }
 
@@ -212,13 +214,13 @@ mod tests {
     #[test]
     fn before_a_stop_the_experts_start_once_hdr_could_acquire_the_rest() {
         let mut b = Blend::new(2.0, 0.0);
-        b.update(true, 1.0, 0.0, bank(0.0, 0.19), 0.0).unwrap();
+        b.update(true, 1.0, 0.0, bank(0.0, 0.19), 0.0, false).unwrap();
         assert!(b.experts.is_none());
-        b.update(true, 2.0, 0.0, bank(0.0, 0.18), 0.0).unwrap();
+        b.update(true, 2.0, 0.0, bank(0.0, 0.18), 0.0, false).unwrap();
         assert!(b.experts.is_some());
         let mut s = Blend::new(2.0, 0.0);
-        s.update(true, 1.0, 0.0, PipelineOutput { stop: true, ..bank(0.0, 0.05) }, 0.0).unwrap();
-        s.update(true, 2.0, 0.0, bank(0.0, 0.05), 0.0).unwrap();
+        s.update(true, 1.0, 0.0, PipelineOutput { stop: true, ..bank(0.0, 0.05) }, 0.0, false).unwrap();
+        s.update(true, 2.0, 0.0, bank(0.0, 0.05), 0.0, false).unwrap();
         assert!(s.experts.is_none());
     }
 
@@ -229,7 +231,7 @@ mod tests {
     fn the_guard_grows_between_stops_and_closes_at_one() {
         let started = |walk: f64| {
             let mut b = Blend::new(2.0, walk);
-            b.update(true, 1.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
+            b.update(true, 1.0, 0.0, bank(0.0, 0.04), 0.0, false).unwrap();
             b.experts.as_mut().unwrap().fusion = FusionOffset::starting_at(1, 0.5);
             b
         };
@@ -237,16 +239,16 @@ mod tests {
         let (mut narrow, mut grown) = (started(0.0), started(0.01));
         let m = hdr_move(&grown, 2501.0, 0.0);
         assert!(m.abs() <= 0.0422 * 2500.0 + 1e-9, "{m}");
-        let o = narrow.update(true, 2501.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
+        let o = narrow.update(true, 2501.0, 0.0, bank(0.0, 0.04), 0.0, false).unwrap();
         assert!((o.heading_deg - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg, m / 2.0);
-        let o = grown.update(true, 2501.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
+        let o = grown.update(true, 2501.0, 0.0, bank(0.0, 0.04), 0.0, false).unwrap();
         assert!((o.heading_deg - (m - 1250.0) / 3.0).abs() < 1e-9, "{} against {}", o.heading_deg, (m - 1250.0) / 3.0);
         // A stop block at 2502 s closes it: at 2503 s Fusion (still -0.5 deg/s: within 3 deg/s
         // for 3 blocks, short of its 5 s timeout) is out, HDR in.
         let stop = PipelineOutput { stop: true, ..bank(0.0, 0.04) };
-        let before = grown.update(true, 2502.0, 0.0, stop, 0.0).unwrap().heading_deg;
+        let before = grown.update(true, 2502.0, 0.0, stop, 0.0, false).unwrap().heading_deg;
         let m = hdr_move(&grown, 2503.0, 0.0);
-        let o = grown.update(true, 2503.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
+        let o = grown.update(true, 2503.0, 0.0, bank(0.0, 0.04), 0.0, false).unwrap();
         assert!((o.heading_deg - before - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg - before, m / 2.0);
     }
 
@@ -259,8 +261,8 @@ mod tests {
         let started = |move_dps: f64, lead_in_stop: bool| {
             let fallback = Fallback { move_dps, release_s: 60.0, ..Default::default() };
             let mut b = Blend { fallback, ..Blend::new(2.0, 0.0) };
-            b.update(false, 0.0, 0.0, PipelineOutput { stop: lead_in_stop, ..bank(0.0, 0.04) }, 0.0).unwrap();
-            b.update(true, 1.0, 0.0, bank(0.0, 0.04), 0.0).unwrap();
+            b.update(false, 0.0, 0.0, PipelineOutput { stop: lead_in_stop, ..bank(0.0, 0.04) }, 0.0, false).unwrap();
+            b.update(true, 1.0, 0.0, bank(0.0, 0.04), 0.0, false).unwrap();
             b
         };
         // The bank took 0.5 deg/s as bias over the block: it moved -0.5 deg.
@@ -269,16 +271,16 @@ mod tests {
             let mut b = started(0.3, lead_in_stop);
             let m = hdr_move(&b, 2.0, 0.0);
             assert!(m.abs() <= 0.0422 + 1e-12, "{m}");
-            let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
+            let o = b.update(true, 2.0, 0.0, dragged, 0.5, false).unwrap();
             assert!((o.heading_deg - m).abs() < 1e-12 && (o.bias_dps + m).abs() < 1e-12, "{o:?} against HDR's {m}");
         }
         let mut b = started(0.3, true);
-        b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
+        b.update(true, 2.0, 0.0, dragged, 0.5, false).unwrap();
         // The anchor stays while the fallback acts, and restarts after a stop.
         assert_eq!(b.fallback.anchor_dps, Some((0.0, 0.0)));
-        b.update(true, 3.0, 0.0, PipelineOutput { stop: true, ..dragged }, 0.5).unwrap();
+        b.update(true, 3.0, 0.0, PipelineOutput { stop: true, ..dragged }, 0.5, false).unwrap();
         assert_eq!(b.fallback.anchor_dps, None);
-        b.update(true, 4.0, 0.0, dragged, 0.5).unwrap();
+        b.update(true, 4.0, 0.0, dragged, 0.5, false).unwrap();
         assert_eq!(b.fallback.anchor_dps, Some((0.5, 0.5)));
         // HDR at -2 deg/s: its bias is held at the span's edge, 0 - 0.08.
         let mut b = started(0.3, true);
@@ -286,10 +288,10 @@ mod tests {
         e.hdr = Hdr::new(HdrParams::table_iii(), -2.0).unwrap();
         e.hdr_deg = e.hdr.update(1.0, 0.0).unwrap().heading_deg;
         assert!(hdr_move(&b, 2.0, 0.0) > 1.9);
-        let o = b.update(true, 2.0, 0.0, dragged, 0.5).unwrap();
+        let o = b.update(true, 2.0, 0.0, dragged, 0.5, false).unwrap();
         assert!((o.bias_dps + 0.08).abs() < 1e-12 && (o.heading_deg - 0.08).abs() < 1e-12, "{o:?}");
         // HDR and Fusion (0 deg/s) both beyond the guard: the bank's move alone.
-        let o = started(0.0, true).update(true, 2.0, 0.0, dragged, 0.5).unwrap();
+        let o = started(0.0, true).update(true, 2.0, 0.0, dragged, 0.5, false).unwrap();
         assert_eq!(o, dragged, "the fallback off");
     }
 }

@@ -11,8 +11,9 @@
 //! fallback waits for the next stop (fifty-fifth session; until then it waited for a
 //! lead-in, and such drives read their bends as bias). Unless the move is coming back: a
 //! settled bias back by more than the bank's fastest walk could bring it over half a
-//! window is a bend leaving the window, and stays held (fifty-sixth session). Beyond the
-//! paper.
+//! window is a bend leaving the window, and stays held (fifty-sixth session). After a
+//! lead-in, on a quiet gyro, the threshold is `blend_move_quiet_dps` (fifty-seventh
+//! session). Beyond the paper.
 
 use std::collections::VecDeque;
 
@@ -24,6 +25,8 @@ use std::collections::VecDeque;
 #[derive(Debug, Clone, Default)]
 pub(super) struct Fallback {
     pub(super) move_dps: f64,
+    /// The threshold after a lead-in on a quiet gyro (0: `move_dps`), deg/s.
+    pub(super) quiet_dps: f64,
     /// How long a move may last without a lead-in before it is taken as the gyro's, s.
     pub(super) release_s: f64,
     pub(super) lead_in_seen: bool,
@@ -45,19 +48,36 @@ impl Fallback {
     /// window held.
     pub(super) fn of(p: &super::PipelineParams) -> Self {
         let recede_dps = p.bias_walk_max_dps_per_sqrt_s * libm::sqrt(p.road_window_s / 2.0);
-        Fallback { move_dps: p.blend_move_dps, release_s: p.road_window_s, recede_dps, ..Default::default() }
+        Fallback {
+            move_dps: p.blend_move_dps,
+            quiet_dps: p.blend_move_quiet_dps,
+            release_s: p.road_window_s,
+            recede_dps,
+            ..Default::default()
+        }
     }
 
-    /// Where the settled bias is further than `move_dps` from the anchor's (a non-finite
+    /// How far the settled bias may move from the anchor: `quiet_dps` after a lead-in on a
+    /// quiet gyro (`quiet`: its standstill noise within the stop's setting), else `move_dps`.
+    fn threshold_dps(&self, quiet: bool) -> f64 {
+        if self.lead_in_seen && quiet && self.quiet_dps > 0.0 {
+            self.quiet_dps
+        } else {
+            self.move_dps
+        }
+    }
+
+    /// Where the settled bias is further than the threshold from the anchor's (a non-finite
     /// settled bias is none) and the move has not been released, the bank's bias at the
     /// anchor. A stop block restarts the anchor (and ends a release) at the next block.
-    pub(super) fn moved(&mut self, time_s: f64, settled: f64, bias_dps: f64, stop: bool) -> Option<f64> {
+    /// `quiet`: the gyro's standstill noise is within the stop's setting (`threshold_dps`).
+    pub(super) fn moved(&mut self, time_s: f64, settled: f64, bias_dps: f64, stop: bool, quiet: bool) -> Option<f64> {
         if !(self.move_dps > 0.0 && settled.is_finite()) {
             return None;
         }
         let (s_anchor, b_anchor) = *self.anchor_dps.get_or_insert((settled, bias_dps));
         let dist_dps = (settled - s_anchor).abs();
-        let beyond = dist_dps > self.move_dps;
+        let beyond = dist_dps > self.threshold_dps(quiet);
         self.beyond_since_s = if beyond { Some(self.beyond_since_s.unwrap_or(time_s)) } else { None };
         let lasted_s = self.beyond_since_s.map_or(0.0, |since| time_s - since);
         let receding = self.receding(time_s, dist_dps, beyond);
@@ -101,14 +121,14 @@ mod tests {
         let mut f = Fallback { move_dps: 0.3, release_s: 60.0, lead_in_seen: true, ..Default::default() };
         for i in 0..=200 {
             let settled = 0.002 * f64::from(i);
-            let moved = f.moved(f64::from(i), settled, settled + 0.1, false);
+            let moved = f.moved(f64::from(i), settled, settled + 0.1, false, false);
             assert_eq!(moved, (i > 150).then_some(0.1), "block {i}");
         }
-        assert_eq!(f.moved(201.0, 0.402, 0.502, true), Some(0.1));
-        assert_eq!(f.moved(202.0, 0.404, 0.504, false), None);
+        assert_eq!(f.moved(201.0, 0.402, 0.502, true, false), Some(0.1));
+        assert_eq!(f.moved(202.0, 0.404, 0.504, false, false), None);
         assert_eq!(f.anchor_dps, Some((0.404, 0.504)));
         let mut off = Fallback { move_dps: 0.0, ..Default::default() };
-        assert_eq!(off.moved(0.0, 0.0, 0.0, false).or(off.moved(1.0, 1.0, 1.0, false)), None);
+        assert_eq!(off.moved(0.0, 0.0, 0.0, false, false).or(off.moved(1.0, 1.0, 1.0, false, false)), None);
     }
 
     /// Without a lead-in, a move 0.5 deg/s from the anchor from block 10 on is held for one
@@ -122,17 +142,21 @@ mod tests {
             for i in 0..=150 {
                 let settled = if i >= 10 { 0.5 } else { 0.0 };
                 let held = (10..=70).contains(&i) || (lead_in_seen && i >= 10);
-                assert_eq!(f.moved(f64::from(i), settled, settled, false), held.then_some(0.0), "block {i}, lead-in {lead_in_seen}");
+                assert_eq!(f.moved(f64::from(i), settled, settled, false, false), held.then_some(0.0), "block {i}, lead-in {lead_in_seen}");
             }
-            f.moved(151.0, 0.5, 0.5, true);
+            f.moved(151.0, 0.5, 0.5, true, false);
             assert!(!f.released && f.anchor_dps.is_none());
-            assert_eq!(f.moved(152.0, 1.0, 1.0, false), None, "the anchor restarted at the stop's next block");
-            assert_eq!(f.moved(153.0, 1.5, 1.5, false), Some(1.0), "a new move after the stop is held");
+            assert_eq!(f.moved(152.0, 1.0, 1.0, false, false), None, "the anchor restarted at the stop's next block");
+            assert_eq!(f.moved(153.0, 1.5, 1.5, false, false), Some(1.0), "a new move after the stop is held");
         }
         let mut f = Fallback { move_dps: 0.3, release_s: 60.0, ..Default::default() };
         for i in 0..=100 {
             let settled = if (10..50).contains(&i) || i >= 55 { 0.5 } else { 0.0 };
-            assert_eq!(f.moved(f64::from(i), settled, settled, false).is_some(), settled > 0.0, "block {i}: the count restarted at 55");
+            assert_eq!(
+                f.moved(f64::from(i), settled, settled, false, false).is_some(),
+                settled > 0.0,
+                "block {i}: the count restarted at 55"
+            );
         }
     }
 
@@ -149,8 +173,26 @@ mod tests {
             for i in 0..=200 {
                 let settled = if i < 10 { 0.0 } else { 0.6 - per_block * f64::from((i - 40).max(0)) };
                 let held = (10..=held_until).contains(&i);
-                assert_eq!(f.moved(f64::from(i), settled, settled, false), held.then_some(0.0), "block {i}, {per_block} per block");
+                assert_eq!(f.moved(f64::from(i), settled, settled, false, false), held.then_some(0.0), "block {i}, {per_block} per block");
             }
+        }
+    }
+
+    /// After a lead-in the threshold is 0.15 on a quiet gyro: a settled bias 0.2 from the
+    /// anchor is held, the anchor's bias (0.05) the hold's end; on a noisy gyro, or without
+    /// a lead-in, 0.2 is within 0.3 and not held; with the quiet setting 0 the quiet gyro
+    /// keeps 0.3 too.
+    #[test]
+    fn after_a_lead_in_a_quiet_gyros_threshold_is_the_quiet_one() {
+        let p = super::super::PipelineParams::default();
+        for (lead_in_seen, quiet, quiet_dps, held) in
+            [(true, true, 0.15, true), (true, false, 0.15, false), (false, true, 0.15, false), (true, true, 0.0, false)]
+        {
+            let mut f = Fallback { lead_in_seen, quiet_dps, ..Fallback::of(&p) };
+            assert_eq!(f.moved(0.0, 0.0, 0.05, false, quiet), None);
+            assert_eq!(f.moved(1.0, 0.14, 0.19, false, quiet), None, "0.14 is within either threshold");
+            let expect = held.then_some(0.05);
+            assert_eq!(f.moved(2.0, 0.2, 0.25, false, quiet), expect, "lead-in {lead_in_seen}, quiet {quiet}, {quiet_dps}");
         }
     }
 }

@@ -220,6 +220,12 @@ impl Pipeline {
         smoother::rts_mixed(&self.records, &self.p, self.evidence.centre_dps)
     }
 
+    /// Whether the gyro is quiet: its standstill noise as measured so far (`noise.rs`) within
+    /// the stop's setting `stop_sigma_dps` (the blend's fallback threshold, `fallback.rs`).
+    pub fn quiet(&self) -> bool {
+        self.evidence.stop_sigma_dps(&self.p) <= self.p.stop_sigma_dps
+    }
+
     /// Normalised hypothesis weights.
     pub fn weights(&self) -> Vec<f64> {
         let m = self.models.iter().map(|m| m.logw).fold(f64::NEG_INFINITY, f64::max);

@@ -133,7 +133,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
         tr.bias_sigma_dps.push(o.bias_sigma_dps);
         tr.stop.push(o.stop);
         (tr.final_bias_dps, tr.final_bias_sigma_dps) = (o.bias_dps, o.bias_sigma_dps);
-        blended.push(blend.update(t >= f.lead_in_end_s(), t, rate, o, settled_dps)?);
+        blended.push(blend.update(t >= f.lead_in_end_s(), t, rate, o, settled_dps, f.quiet())?);
     }
     // The smoothed mode is held to the bank's causal heading at stops; the trace then takes
     // the blended heading and bias (`blend.rs`), and the smoothed mode is blended alike.
@@ -168,7 +168,7 @@ fn blend_smoothed(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64, t
             reopened: false,
         };
         // The fallback is the causal bank's guard; the smoothed bias sees the whole log.
-        let o = blend.update(t >= lead_in_end_s, t, rate, smoothed, f64::NAN)?;
+        let o = blend.update(t >= lead_in_end_s, t, rate, smoothed, f64::NAN, false)?;
         tr.heading_smoothed_deg.push(o.heading_deg);
         tr.bias_smoothed_dps[i] = o.bias_dps;
     }

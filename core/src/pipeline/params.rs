@@ -88,6 +88,14 @@ pub struct PipelineParams {
     /// bank's fastest walk over half that window (a bend leaving it). Chosen on the training
     /// cases and the independent generator's draw 0 (docs/pipeline.md).
     pub blend_move_dps: f64,
+    /// The same threshold after a stationary lead-in on a quiet gyro (its standstill noise,
+    /// as `noise.rs` measures it, within `stop_sigma_dps`): there the settled bias is known
+    /// from the lead-in and steady, and a move of one straight-road gate (`road_gate_dps`'s
+    /// 0.15) is already a bend read as road; a noisy gyro keeps `blend_move_dps`, its settled
+    /// bias jittering and HDR, which the fallback follows, spoiled by its noise. deg/s; 0 =
+    /// `blend_move_dps` here too. Chosen on the training populations (fifty-seventh
+    /// session, docs/pipeline.md).
+    pub blend_move_quiet_dps: f64,
     /// Static-bias window (stationary lead-in), s; None = the log's `# bias_s:` or 20 s.
     pub bias_s: Option<f64>,
 }
@@ -117,6 +125,7 @@ impl Default for PipelineParams {
             blend_sigmas: 2.0,
             blend_walk_dps_per_sqrt_s: 0.003,
             blend_move_dps: 0.3,
+            blend_move_quiet_dps: 0.15,
             bias_s: None,
         }
     }
@@ -204,6 +213,7 @@ impl PipelineParams {
             ("blend_sigmas", self.blend_sigmas),
             ("blend_walk_dps_per_sqrt_s", self.blend_walk_dps_per_sqrt_s),
             ("blend_move_dps", self.blend_move_dps),
+            ("blend_move_quiet_dps", self.blend_move_quiet_dps),
         ];
         for (name, v) in non_negative {
             if !(0.0..1e6).contains(&v) {

@@ -130,7 +130,7 @@ impl PipelineStream {
             let rate_dps = o.sum_dps / o.n as f64;
             let settled_dps = filter.settled_bias_dps();
             let bank = filter.update(at_s, rate_dps, still)?;
-            let out = self.blend.update(at_s >= filter.lead_in_end_s(), at_s, rate_dps, bank, settled_dps)?;
+            let out = self.blend.update(at_s >= filter.lead_in_end_s(), at_s, rate_dps, bank, settled_dps, filter.quiet())?;
             self.last = Some((out, o.last_s));
             self.bias_dps = filter.bias().0;
         }

@@ -92,6 +92,9 @@ export interface PipelineOptions {
    * lead-in a move that outlasts `road_window_s` is taken as the gyro's, unless it is
    * coming back (a bend leaving the window). */
   blend_move_dps?: number;
+  /** The same threshold after a stationary lead-in on a quiet gyro (its standstill noise
+   * within `stop_sigma_dps`), deg/s (0.15); 0 = `blend_move_dps` there too. */
+  blend_move_quiet_dps?: number;
   /** @deprecated The name of `blend_sigmas` while it blended HDR alone. */
   hdr_blend_sigmas?: number;
   bias_s?: number | null;

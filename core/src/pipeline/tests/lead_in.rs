@@ -310,6 +310,25 @@ fn without_a_lead_in_a_move_coming_back_is_held_as_a_bend() {
     assert!(pipeline < 1.0 && raw > 50.0, "pipeline {pipeline}, raw {raw}");
 }
 
+/// Known truth: the battery's calibrated highway MEMS gyro (quiet at standstill) with a
+/// constant +0.5 deg/s that its lead-in shows. Its sized warm-up prior reads the highway's
+/// long bends as a warm-up, and with the fallback at 0.3 deg/s the pipeline had 0.650
+/// deg/min against raw integration's 0.346; held at the quiet threshold after the lead-in
+/// it is 0.343, no worse than raw.
+#[test]
+fn after_a_lead_in_a_quiet_gyros_bends_are_held_at_the_quiet_threshold() {
+    let (bases, profiles) = (crate::battery::simulated_bases(20.0), crate::battery::profiles());
+    let log = crate::battery::case_log(&bases, &profiles, "sim-highway-mems-4 / bias +0.5").unwrap();
+    let ne = |p: &PipelineParams| {
+        let r = run(&log, p).unwrap().result.unwrap();
+        (r.NE_psi_pipeline_deg_per_min, r.NE_psi_raw_deg_per_min)
+    };
+    let (pipeline, raw) = ne(&PipelineParams::default());
+    assert!(pipeline <= 1.1 * raw, "pipeline {pipeline}, raw {raw}");
+    let (at_move, _) = ne(&PipelineParams { blend_move_quiet_dps: 0.0, ..PipelineParams::default() });
+    assert!(at_move > 1.5 * raw, "with the quiet threshold off {at_move}, raw {raw}");
+}
+
 /// A simulated highway drive of `minutes` (seed `seed`) with `errors` in its gyro: the
 /// pipeline's and raw integration's NE_psi, deg/min.
 fn highway_pipeline_and_raw(minutes: f64, seed: u64, errors: crate::sim::errors::GyroErrors) -> (f64, f64) {
