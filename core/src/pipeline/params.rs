@@ -83,7 +83,8 @@ pub struct PipelineParams {
     /// warm-up term) is further than this from where the last stop (or the experts' start)
     /// left it, the heading moves by Table-III HDR's move alone: a settled bias that the road
     /// alone moves that far is long bends read as straight road (`blend.rs`, `fallback.rs`),
-    /// deg/s; 0 = never. Without a stationary lead-in a move that outlasts `road_window_s` is
+    /// deg/s; 0 = never (after a lead-in on a quiet gyro, `blend_move_quiet_dps` instead).
+    /// Without a stationary lead-in a move that outlasts `road_window_s` is
     /// taken as the gyro's until the next stop, unless it is coming back faster than the
     /// bank's fastest walk over half that window (a bend leaving it). Chosen on the training
     /// cases and the independent generator's draw 0 (docs/pipeline.md).

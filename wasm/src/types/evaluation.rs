@@ -88,7 +88,8 @@ export interface PipelineOptions {
   blend_walk_dps_per_sqrt_s?: number;
   /** While the bank's settled bias (less its warm-up term) is further than this from where
    * the last stop left it, the heading moves by Table-III HDR's move (its bias held near the
-   * bank's): long bends read as straight road, deg/s (0.3); 0 = never. Without a stationary
+   * bank's): long bends read as straight road, deg/s (0.3; after a lead-in on a quiet gyro
+   * `blend_move_quiet_dps`); 0 = never. Without a stationary
    * lead-in a move that outlasts `road_window_s` is taken as the gyro's, unless it is
    * coming back (a bend leaving the window). */
   blend_move_dps?: number;
