@@ -184,7 +184,7 @@ mod tests {
     /// keeps 0.3 too.
     #[test]
     fn after_a_lead_in_a_quiet_gyros_threshold_is_the_quiet_one() {
-        let p = super::super::PipelineParams::default();
+        let p = crate::pipeline::PipelineParams::default();
         for (lead_in_seen, quiet, quiet_dps, held) in
             [(true, true, 0.15, true), (true, false, 0.15, false), (false, true, 0.15, false), (true, true, 0.0, false)]
         {

@@ -3,8 +3,8 @@
 //! (the causal E[heading | evidence so far], as a zero-velocity update corrects an INS;
 //! dated by the straight blocks since the last stop, `dating.rs`). Beyond the paper.
 
-use super::super::dating;
 use super::Pipeline;
+use crate::pipeline::dating;
 
 impl Pipeline {
     /// Variance of the heading's error from the bias (deg^2), with weights `w`: each
@@ -57,8 +57,8 @@ impl Pipeline {
 
 #[cfg(test)]
 mod tests {
-    use super::super::super::params::PipelineParams;
     use super::*;
+    use crate::pipeline::PipelineParams;
 
     /// No lead-in, a gyro reading a constant 2 deg/s on a straight road: a bias the bank had
     /// no evidence of (prior 0 +- 2.5). Until it knows the bias (three sigma within Table

@@ -46,9 +46,9 @@ impl Pipeline {
 
 #[cfg(test)]
 mod tests {
-    use super::super::super::model::Model;
-    use super::super::super::params::PipelineParams;
     use super::*;
+    use crate::pipeline::model::Model;
+    use crate::pipeline::PipelineParams;
 
     /// A lead-in stop at the start reads 3 deg/s (noise 0.05): with the start bias 0 +- 0.5,
     /// every hypothesis takes 3 x 0.25 / (0.25 + 0.0025) = 2.970297 as its bias, and none
