@@ -2,6 +2,9 @@
 //! Prints one simulated battery case's bias over time: the truth (the same drive with an
 //! ideal gyro subtracted), the pipeline (causal, smoothed) and HDR's drift estimate.
 //! `cargo run --release --example case_trace -- BASE PROFILE` (BASE as `gyrodrift battery` names it).
+//! `ERR='{"bias_dps":0.15,"warmup_dps":0.86,"warmup_tau_s":300}'` replaces the profile's
+//! errors (JSON, the keys of `sim::GyroErrors`), so a probe drive's `# description:` with
+//! `cfg:SCENARIO:MINUTES:SEED` traces with its truth.
 use gyrodrift::pipeline::{PipelineParams, PipelineTrace};
 use gyrodrift::{battery, eval::Prepared, hdr, preprocess::block_average_1hz, sim, Column};
 fn main() {
@@ -20,7 +23,10 @@ fn main() {
         let cfg = sim::DriveConfig { scenario: parts[1].parse().unwrap(), minutes: 20.0, seed: parts[3].parse().unwrap() };
         (cfg, base.log)
     };
-    let prof = battery::profiles().into_iter().find(|p| p.name == a[2]).expect("profile");
+    let mut prof = battery::profiles().into_iter().find(|p| p.name == a[2]).expect("profile");
+    if let Ok(j) = std::env::var("ERR") {
+        prof.errors = serde_json::from_str(&j).expect("ERR: gyro errors as JSON");
+    }
     // Same seed, same road: an ideal gyro gives the true rate.
     let ideal = sim::GyroSpec::ideal();
     let truth = sim::drive::simulate_drive_with(&cfg, &ideal);
