@@ -6,6 +6,12 @@ them is a scoring set (docs/battery.md says which sets are looked at only).
 
     python3 docs/experiments/training-probes.py [target/release/gyrodrift] [OUT_DIR]
 
+BASELINE=DIR (an earlier run's OUT_DIR) also lists what moved against it: the battery's
+training cases and the format and warm-up probes' logs whose pipeline NE_psi moved by more
+than 5 % (and 0.005 deg/min), marking those that crossed a count's line (within 1.25x + 0.05,
+worse than 2x + 0.05, worse than raw by any amount). With ONLY= (empty) nothing runs and
+OUT_DIR is compared as it is.
+
 Each line is what the session rows of docs/pipeline.md's tried table quote: within 1.25x +
 0.05 / worse than 2x + 0.05 / worse than raw, the mean pipeline NE_psi (deg/min) and the
 worst ratio to the best other method. Environment variables reach the CLI unchanged, so a
@@ -14,6 +20,7 @@ runs a subset (names: battery format warm generator noise realisations). The bat
 is kept as OUT_DIR/battery-training.json for a case-by-case diff. About a minute and a half on two
 cores.
 """
+import csv
 import json
 import os
 import re
@@ -106,6 +113,47 @@ def realisations():
     return "; ".join(out)
 
 
+def moved(before, after, raw, best):
+    """A line for one case whose pipeline NE_psi moved, with the count lines it crossed."""
+    crossed = [name for name, line in [("1.25x", 1.25 * best + 0.05), ("2x", 2 * best + 0.05), ("raw", raw)]
+               if (before > line) != (after > line)]
+    mark = f"  crosses {', '.join(crossed)}" if crossed else ""
+    return f"{before:8.3f} -> {after:8.3f}  (raw {raw:.3f}, best other {best:.3f}){mark}"
+
+
+def changed(before, after):
+    return abs(after - before) > 0.05 * before + 0.005
+
+
+def compare(base):
+    """What moved against an earlier run's OUT_DIR (BASELINE), case by case."""
+    lines = []
+    old_json, new_json = base / "battery-training.json", OUT / "battery-training.json"
+    if old_json.is_file() and new_json.is_file():
+        old, new = json.loads(old_json.read_text()), json.loads(new_json.read_text())
+        p = new["methods"].index("pipeline")
+        before = {(c["base"], c["profile"]): c for c in old["cases"]}
+        for c in new["cases"]:
+            b = before.get((c["base"], c["profile"]))
+            if b and changed(b["ne_psi"][p], c["ne_psi"][p]):
+                best = min(v for i, v in enumerate(c["ne_psi"]) if i not in (p, new["methods"].index("smoothed")))
+                lines.append(f"battery  {c['base']} / {c['profile']:<34} " + moved(b["ne_psi"][p], c["ne_psi"][p], c["ne_psi"][0], best))
+    for kind in ["formats", "warm"]:
+        for rows_csv in sorted(OUT.glob(f"{kind}-*/rows.csv")):
+            old_csv = base / rows_csv.parent.name / "rows.csv"
+            if not old_csv.is_file():
+                continue
+            key = lambda r: Path(r["file"]).name
+            ne = lambda r, m: float(r[f"ne_psi_{m}_deg_per_min"] or "nan")
+            before = {key(r): r for r in csv.DictReader(old_csv.open())}
+            for r in csv.DictReader(rows_csv.open()):
+                b = before.get(key(r))
+                if b and changed(ne(b, "pipeline"), ne(r, "pipeline")):
+                    best = min(ne(r, m) for m in ["raw", "hdr", "fusion_offset", "zaru"])
+                    lines.append(f"{rows_csv.parent.name:<11}{key(r):<30} " + moved(ne(b, "pipeline"), ne(r, "pipeline"), ne(r, "raw"), best))
+    return lines
+
+
 def main():
     OUT.mkdir(parents=True, exist_ok=True)
     probes = {"battery": battery, "format": format_probe, "warm": warm_probe, "generator": generator, "noise": noise,
@@ -113,6 +161,10 @@ def main():
     only = os.environ.get("ONLY", " ".join(probes)).split()
     for name in only:
         print(f"{name:<12} {probes[name]()}", flush=True)
+    if os.environ.get("BASELINE"):
+        lines = compare(Path(os.environ["BASELINE"]).resolve())
+        print(f"moved against {os.environ['BASELINE']}: {len(lines)}")
+        print("\n".join(lines))
 
 
 if __name__ == "__main__":
