@@ -8,7 +8,7 @@ them is a scoring set (docs/battery.md says which sets are looked at only).
 
 BASELINE=DIR (an earlier run's OUT_DIR) also lists what moved against it: the battery's
 training cases and the format and warm-up probes' logs whose pipeline NE_psi moved by more
-than 5 % (and 0.005 deg/min), marking those that crossed a count's line (within 1.25x + 0.05,
+than 5 % + 0.005 deg/min, marking those that crossed a count's line (within 1.25x + 0.05,
 worse than 2x + 0.05, worse than raw by any amount). With ONLY= (empty) nothing runs and
 OUT_DIR is compared as it is.
 
@@ -122,6 +122,7 @@ def moved(before, after, raw, best):
 
 
 def changed(before, after):
+    """Moved by more than 5 % + 0.005 deg/min."""
     return abs(after - before) > 0.05 * before + 0.005
 
 
