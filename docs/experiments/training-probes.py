@@ -28,6 +28,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from goals import lines
+
 CLI = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else "target/release/gyrodrift")
 OUT = Path(sys.argv[2] if len(sys.argv) > 2 else "target/training-probes").resolve()
 HERE = Path(__file__).resolve().parent
@@ -115,8 +117,8 @@ def realisations():
 
 def moved(before, after, raw, best):
     """A line for one case whose pipeline NE_psi moved, with the count lines it crossed."""
-    crossed = [name for name, line in [("1.25x", 1.25 * best + 0.05), ("2x", 2 * best + 0.05), ("raw", raw)]
-               if (before > line) != (after > line)]
+    within, over = lines(best)
+    crossed = [name for name, line in [("1.25x", within), ("2x", over), ("raw", raw)] if (before > line) != (after > line)]
     mark = f"  crosses {', '.join(crossed)}" if crossed else ""
     return f"{before:8.3f} -> {after:8.3f}  (raw {raw:.3f}, best other {best:.3f}){mark}"
 
