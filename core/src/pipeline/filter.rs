@@ -26,7 +26,7 @@
 //! lead-in: `filter/warm.rs`.
 
 use super::evidence::Evidence;
-use super::model::{log_likelihood, Model, State, H_ROAD, H_STOP};
+use super::model::{bounded_influence_noise, log_likelihood, Model, State, H_ROAD, H_STOP};
 use super::params::{PipelineParams, N_MODELS};
 use super::records::Records;
 use super::smoother;
@@ -103,11 +103,20 @@ pub struct Pipeline {
     /// The still flags come from the gyro alone (`Blocks::source`; the stream sets it per
     /// block): see [`Pipeline::update`].
     pub gyro_stills: bool,
+    /// Road evidence taken at face value, every block a Gaussian update (the offline
+    /// smoother's passes, `smoother.rs`); the causal bank bounds a far block's step.
+    #[cfg_attr(feature = "snapshot", serde(skip))]
+    pub(super) gaussian_road: bool,
 }
 
 /// Innovations (in standard deviations of a hypothesis' prediction) beyond which a still
 /// block judged by the gyro alone does not move that hypothesis: the step guard's 4.
 const GYRO_STILL_GATE: f64 = 4.0;
+
+/// Innovations (in standard deviations of a hypothesis' prediction) beyond which a straight
+/// block, once the bias is acquired, moves that hypothesis only as far as one at this bound
+/// would (`model::bounded_influence_noise`): the same 4.
+const ROAD_BOUND_SIGMA: f64 = GYRO_STILL_GATE;
 
 impl Pipeline {
     /// Starts from a bias estimate and its standard deviation; blocks stamped before
@@ -166,6 +175,7 @@ impl Pipeline {
             warm_up_sized: false,
             lead_trend: LineSums::default(),
             warming: false,
+            gaussian_road: false,
             gyro_stills: false,
         })
     }
@@ -401,10 +411,18 @@ impl Pipeline {
 
     /// Straight-road evidence (rate = b + c, block noise on top); weighs the hypotheses.
     /// `correct_integral`: it also corrects the bias integrals (while acquiring, `update`).
+    /// Once the bias is acquired, a block beyond [`ROAD_BOUND_SIGMA`] of a hypothesis'
+    /// prediction moves it only as far as a block at that bound would: a bend that fills
+    /// the road window is read as straight for a few blocks, tens of sigma off, and each of
+    /// them moved a narrow-road hypothesis' bias by 0.1-0.3 deg/s (docs/pipeline.md). While
+    /// acquiring, every block counts in full, as it must to learn a bias it had no evidence of.
     fn road_update(&mut self, rate_dps: f64, correct_integral: bool) {
         let r = self.p.block_sigma_dps * self.p.block_sigma_dps;
+        let bounded = !correct_integral && !self.gaussian_road;
         for m in &mut self.models {
-            let (nu, s) = m.update(H_ROAD, rate_dps, r, correct_integral);
+            let (nu, s) = m.innovation(H_ROAD, rate_dps, r);
+            let r_step = if bounded { bounded_influence_noise(nu, s, r, ROAD_BOUND_SIGMA) } else { r };
+            m.update(H_ROAD, rate_dps, r_step, correct_integral);
             m.logw += log_likelihood(nu, s, self.p.huber_k);
         }
     }

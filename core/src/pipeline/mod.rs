@@ -137,7 +137,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     }
     // The smoothed mode is held to the bank's causal heading at stops; the trace then takes
     // the blended heading and bias (`blend.rs`), and the smoothed mode is blended alike.
-    tr.bias_smoothed_dps = smoother::smoothed_bias(blocks, params, lead_in_end_s, &f, &tr)?;
+    tr.bias_smoothed_dps = smoother::smoothed_bias(blocks, params, lead_in_end_s, &tr)?;
     for (i, o) in blended.iter().enumerate() {
         (tr.heading_deg[i], tr.bias_dps[i]) = (o.heading_deg, o.bias_dps);
     }

@@ -92,6 +92,12 @@ impl Model {
         (self.x[0] + self.x[1], self.p[(0, 0)] + self.p[(0, 1)] + self.p[(1, 0)] + self.p[(1, 1)])
     }
 
+    /// The innovation of a scalar measurement z = h x + noise(r), and its variance, before
+    /// any update.
+    pub(super) fn innovation(&self, h: RowVector3<f64>, z: f64, r: f64) -> (f64, f64) {
+        (z - (h * self.x)[0], (h * (self.p * h.transpose()))[0] + r)
+    }
+
     /// Scalar measurement z = h x + noise(r); returns the innovation and its variance.
     /// `correct_integral`: the evidence also corrects the bias integral (stops); otherwise
     /// the integral keeps its mean and only its covariance with `x` follows the update.
@@ -116,6 +122,22 @@ impl Model {
     }
 }
 
+/// The measurement noise that gives an innovation `nu` (of variance `s`, measurement noise
+/// `r` in it) beyond `k` sigma the step an innovation at `k` sigma would take: `r` grown so
+/// the gain times `nu` is the Gaussian gain times `k` sigma (Huber's M-estimate step, as
+/// iteratively reweighted least squares weighs a residual by k / |z|). Within `k` sigma, `r`.
+/// A block of a bend read as straight road, tens of sigma off, then moves a hypothesis no
+/// further than one at `k` sigma; unlike a gate, a large bias is still followed, a bounded
+/// step a block.
+pub(super) fn bounded_influence_noise(nu: f64, s: f64, r: f64, k: f64) -> f64 {
+    let z = nu.abs() / s.sqrt();
+    if z > k {
+        s * z / k - (s - r)
+    } else {
+        r
+    }
+}
+
 /// Log likelihood of an innovation `nu` of variance `s`, Gaussian within `k` sigma and with
 /// Huber's linear tails beyond (Huber 1964): what weighs the hypotheses, so one surprising
 /// block (a long curve read as straight) cannot hand the whole bank to one of them.
@@ -128,6 +150,29 @@ pub(super) fn log_likelihood(nu: f64, s: f64, k: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Variance 4 (sigma 2) of which the measurement's 1, k = 3: an innovation of 12 (z 6)
+    /// gets noise 4 x 6 / 3 - 3 = 5, so its gain is 1 / (3 + 5) against the Gaussian's 1 / 4:
+    /// the step 12 / 8 = 1.5, as the Gaussian's for an innovation at 3 sigma, 6 / 4. Within
+    /// 3 sigma (nu 5, z 2.5) the noise stays 1.
+    #[test]
+    fn a_far_innovation_steps_as_one_at_k_sigma_hand_worked() {
+        assert_eq!(bounded_influence_noise(12.0, 4.0, 1.0, 3.0), 5.0);
+        assert_eq!(bounded_influence_noise(-12.0, 4.0, 1.0, 3.0), 5.0);
+        assert_eq!(bounded_influence_noise(5.0, 4.0, 1.0, 3.0), 1.0);
+        // Through a model: the bias steps as far for 12 as the Gaussian update does for 6.
+        let h = RowVector3::new(1.0, 0.0, 0.0);
+        let mut far = Model::with_dynamics(0.0, 0.0, f64::INFINITY);
+        far.p = Matrix3::from_diagonal(&Vector3::new(3.0, 0.0, 0.0));
+        let mut at_k = far;
+        assert_eq!(far.innovation(h, 12.0, 1.0), (12.0, 4.0));
+        far.update(h, 12.0, bounded_influence_noise(12.0, 4.0, 1.0, 3.0), false);
+        at_k.update(h, 6.0, 1.0, false);
+        assert!((far.x[0] - 4.5).abs() < 1e-12 && (at_k.x[0] - 4.5).abs() < 1e-12, "{} {}", far.x[0], at_k.x[0]);
+        // Its variance falls less than a Gaussian update at 3 sigma would take it (3 x 5 / 8
+        // against 3 x 1 / 4): the far block told less.
+        assert!((far.p[(0, 0)] - 15.0 / 8.0).abs() < 1e-12 && (at_k.p[(0, 0)] - 0.75).abs() < 1e-12);
+    }
 
     /// Within k sigma the Gaussian's -z^2/2; beyond, -(2 k |z| - k^2) / 2, continuous at k.
     /// Variance 4 (sigma 2), k = 3: nu 2 (z 1) gives -1/2 - ln(8 pi)/2; nu 10 (z 5) gives

@@ -277,3 +277,41 @@ fn the_blend_guard_keeps_its_first_name_as_an_alias() {
     assert_eq!((by("blend_sigmas"), by("hdr_blend_sigmas")), (3.0, 3.0));
     assert_eq!(PipelineParams::default().blend_sigmas, 2.0);
 }
+
+#[test]
+fn a_bend_read_as_straight_moves_a_known_bias_a_bounded_step() {
+    // One hypothesis with a narrow road (0.06 deg/s): a 20 s lead-in at 0.2 deg/s, a
+    // straight road at that bias, then a 2.6 deg/s bend of 40 s. Once the bend fills most
+    // of the 60 s road window its rate is the window's dominant one and its blocks pass as
+    // straight, 30 sigma from the hypothesis. Taken at face value each moves the bias by
+    // its gain times 2.4 deg/s; bounded, by its gain times 4 sigma of the prediction.
+    let narrow = PipelineParams { road_sigma_dps: 0.06, ..one_model() };
+    let run = |gaussian_road: bool| {
+        let mut f = Pipeline::new(narrow, 0.0, 0.5, 20.0).unwrap();
+        f.gaussian_road = gaussian_road;
+        let (mut worst, mut steps): (f64, Vec<f64>) = (0.0, Vec::new());
+        for t in 0..300 {
+            let (rate, still) = match t {
+                0..20 => (0.2, true),
+                100..140 => (2.6, false),
+                _ => (0.2 + 0.02 * ((t % 5) as f64 - 2.0), false),
+            };
+            let (b, p) = f.bias();
+            let o = f.update(t as f64 + 1.0, rate, still).unwrap();
+            if o.straight && rate > 1.0 {
+                // The bound: gain P / S times 4 sqrt(S), S = P + road + block noise + walk.
+                let s = p + 0.06 * 0.06 + 0.05 * 0.05;
+                steps.push((f.bias().0 - b) / (4.0 * p / s.sqrt()));
+            }
+            worst = worst.max((f.bias().0 - 0.2).abs());
+        }
+        (worst, steps)
+    };
+    let (face_value, face_steps) = run(true);
+    let (bounded, steps) = run(false);
+    assert_eq!(steps.len(), 10, "the bend's last 10 blocks pass as straight: {steps:?}");
+    assert!(face_steps[0] > 5.0, "at face value the first takes 7 bounds: {face_steps:?}");
+    // (the bound's P is the one before the block's prediction, a little smaller)
+    assert!(steps.iter().all(|&k| k > 0.5 && k <= 1.0), "each within the bound, none refused: {steps:?}");
+    assert!(bounded < 0.6 * face_value, "worst bias error {bounded} against {face_value}");
+}
