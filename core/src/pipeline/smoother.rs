@@ -1,5 +1,6 @@
-//! The offline smoothed mode (non-causal: it uses the whole log): a second pass over the
-//! blocks with only the hypotheses that held the most weight in the first, recorded;
+//! The offline smoothed mode (non-causal: it uses the whole log): a pass of the whole bank
+//! with every block at face value, then one over the blocks with only the hypotheses that
+//! held the most weight in it, recorded;
 //! Rauch-Tung-Striebel smoothing of each, mixed by their weights at each block; the result
 //! held to the causal heading at stops and bounded like the causal bias.
 
