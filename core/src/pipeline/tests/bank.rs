@@ -299,7 +299,8 @@ fn a_bend_read_as_straight_moves_a_known_bias_a_bounded_step() {
             let (b, p) = f.bias();
             let o = f.update(t as f64 + 1.0, rate, still).unwrap();
             if o.straight && rate > 1.0 {
-                // The bound: gain P / S times 4 sqrt(S), S = P + road + block noise + walk.
+                // The bound, near enough: gain P / S times 4 sqrt(S), S taken as P + the road
+                // state's stationary variance + the block noise (the prediction adds a little).
                 let s = p + 0.06 * 0.06 + 0.05 * 0.05;
                 steps.push((f.bias().0 - b) / (4.0 * p / s.sqrt()));
             }
@@ -311,7 +312,7 @@ fn a_bend_read_as_straight_moves_a_known_bias_a_bounded_step() {
     let (bounded, steps) = run(false);
     assert_eq!(steps.len(), 10, "the bend's last 10 blocks pass as straight: {steps:?}");
     assert!(face_steps[0] > 5.0, "at face value the first takes 7 bounds: {face_steps:?}");
-    // (the bound's P is the one before the block's prediction, a little smaller)
+    // (each a little under 1: the bound above is a little wider than the filter's own)
     assert!(steps.iter().all(|&k| k > 0.5 && k <= 1.0), "each within the bound, none refused: {steps:?}");
     assert!(bounded < 0.6 * face_value, "worst bias error {bounded} against {face_value}");
 }
