@@ -29,10 +29,14 @@ pub(super) fn smoothed_bias(blocks: &Blocks, params: PipelineParams, lead_in_end
         g.gaussian_road = true;
         Ok(g)
     };
+    let run = |g: &mut Pipeline| -> Result<()> {
+        for i in 0..blocks.len() {
+            g.update(tr.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
+        }
+        Ok(())
+    };
     let mut first = gaussian()?;
-    for i in 0..blocks.len() {
-        first.update(tr.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
-    }
+    run(&mut first)?;
     let mut order: Vec<usize> = (0..N_MODELS).collect();
     let sums = first.weight_sums();
     // Unstable with the index as tie-break: the stable sort's order, without a stable-sort
@@ -42,9 +46,7 @@ pub(super) fn smoothed_bias(blocks: &Blocks, params: PipelineParams, lead_in_end
     let mut g = gaussian()?;
     g.restrict(&order);
     g.record((0..order.len()).collect(), blocks.len());
-    for i in 0..blocks.len() {
-        g.update(tr.time_s[i], blocks.rate_dps[i], blocks.still[i])?;
-    }
+    run(&mut g)?;
     let mut bias = g.smoothed_bias();
     hold_to_stops(tr, &blocks.rate_dps, &mut bias);
     // Bounded like the causal bias: the hold shifts a span by whatever the causal heading
