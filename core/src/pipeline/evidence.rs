@@ -16,6 +16,10 @@ pub(super) struct Evidence {
     pending: VecDeque<(f64, f64)>,
     pub(super) stop: StopStats,
     window: VecDeque<(f64, f64)>,
+    /// The window's rates in order (`f64::total_cmp`), kept as blocks come and go, so the
+    /// mode needs no sort per block; empty until rebuilt, as after a resumed snapshot.
+    #[cfg_attr(feature = "snapshot", serde(skip))]
+    sorted: Vec<f64>,
     /// The declared lead-in's last block rate, evidence or not (None before it).
     lead_last_dps: Option<f64>,
     /// The turn-on bias, the centre of the biases accepted: the lead-in's, or where there
@@ -130,9 +134,18 @@ impl Evidence {
     /// rate of the recent moving blocks, and that rate is plausible as a bias (within
     /// max_bias_dps of the turn-on bias).
     pub(super) fn is_straight(&mut self, p: &PipelineParams, time_s: f64, rate_dps: f64) -> bool {
+        if self.sorted.len() != self.window.len() {
+            self.sorted = self.window.iter().map(|w| w.1).collect();
+            self.sorted.sort_by(f64::total_cmp);
+        }
         self.window.push_back((time_s, rate_dps));
-        while self.window.front().is_some_and(|&(t, _)| time_s - t > p.road_window_s) {
+        let at = self.sorted.partition_point(|v| v.total_cmp(&rate_dps).is_lt());
+        self.sorted.insert(at, rate_dps);
+        while let Some(&(_, r)) = self.window.front().filter(|&&(t, _)| time_s - t > p.road_window_s) {
             self.window.pop_front();
+            if let Ok(i) = self.sorted.binary_search_by(|v| v.total_cmp(&r)) {
+                self.sorted.remove(i);
+            }
         }
         if self.window.len() < 5 {
             return false;
@@ -150,10 +163,9 @@ impl Evidence {
     /// straight), and the smallest non-zero step between them: the gyro's quantisation
     /// when a block holds one row (infinite steps count as 1 deg/s).
     fn window_mode_and_step(&self) -> (f64, f64) {
-        let mut r: Vec<f64> = self.window.iter().map(|w| w.1).collect();
-        r.sort_by(f64::total_cmp);
+        let r = &self.sorted;
         let step = r.windows(2).map(|w| w[1] - w[0]).filter(|&d| d > 1e-6).fold(1.0, f64::min);
-        (half_sample_mode(&mut r), step)
+        (half_sample_mode_of_sorted(r), step)
     }
 }
 
@@ -194,11 +206,16 @@ impl StopStats {
 /// (a quantised gyro's lattice makes many) are not resolved to the lowest: the search goes
 /// on within their span, or, where that span is the whole sample, ends at their mean centre.
 pub fn half_sample_mode(x: &mut [f64]) -> f64 {
+    x.sort_by(f64::total_cmp);
+    half_sample_mode_of_sorted(x)
+}
+
+/// [`half_sample_mode`] of a sample already in order (`f64::total_cmp`).
+fn half_sample_mode_of_sorted(x: &[f64]) -> f64 {
     // Widths within this are equal (deg/s): a constant added to a lattice rounds its
     // differences apart by 1e-16, and the mode must move with the constant, not jump.
     const TIE: f64 = 1e-9;
-    x.sort_by(f64::total_cmp);
-    let mut s = &x[..];
+    let mut s = x;
     while s.len() > 3 {
         let h = s.len().div_ceil(2);
         let width = |i: usize| s[i + h - 1] - s[i];
@@ -226,5 +243,33 @@ pub fn half_sample_mode(x: &mut [f64]) -> f64 {
         }
         2 => (s[0] + s[1]) / 2.0,
         _ => s[0],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The kept order is the window's, sorted, as blocks come and go: a quantised gyro's
+    /// repeated rates (0.0 and -0.0 among them) and a gap longer than the window, and after
+    /// the order is lost (a resumed snapshot keeps none) it is rebuilt.
+    #[test]
+    fn the_kept_order_is_the_window_sorted_as_blocks_come_and_go() {
+        let p = PipelineParams::default();
+        let mut e = Evidence::default();
+        let mut t = 0.0;
+        for i in 0..400u32 {
+            t += if i == 200 { 2.0 * p.road_window_s } else { 1.0 };
+            let rate = [0.0, -0.0, 0.1, 0.1, -0.2, 0.3, 0.1][(i as usize * 5) % 7] + f64::from(i % 3) * 0.1;
+            if i == 300 {
+                e.sorted.clear();
+            }
+            e.is_straight(&p, t, rate);
+            let mut want: Vec<f64> = e.window.iter().map(|w| w.1).collect();
+            want.sort_by(f64::total_cmp);
+            let same = want.len() == e.sorted.len() && want.iter().zip(&e.sorted).all(|(a, b)| a.to_bits() == b.to_bits());
+            assert!(same, "block {i}: {:?} against {want:?}", e.sorted);
+        }
+        assert_eq!(e.window.len(), 61, "the blocks of the last 60 s, both ends kept");
     }
 }

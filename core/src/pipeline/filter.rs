@@ -26,13 +26,14 @@
 //! lead-in: `filter/warm.rs`.
 
 use super::evidence::Evidence;
-use super::model::{bounded_influence_noise, log_likelihood, Model, State, H_ROAD, H_STOP};
+use super::model::{bounded_influence_noise, log_likelihood, warm_decay, Model, State, H_ROAD, H_STOP};
 use super::params::{PipelineParams, N_MODELS};
 use super::records::Records;
 use super::smoother;
 use crate::error::{Error, Result};
 use crate::line::LineSums;
 use nalgebra::{Matrix3, Vector3};
+use std::borrow::Cow;
 
 mod heading;
 mod warm;
@@ -107,6 +108,10 @@ pub struct Pipeline {
     /// smoother's passes, `smoother.rs`); the causal bank bounds a far block's step.
     #[cfg_attr(feature = "snapshot", serde(skip))]
     pub(super) gaussian_road: bool,
+    /// The log weights normalised, kept from the block that last changed them (each block
+    /// reads them several times); empty until then, as after a resumed snapshot.
+    #[cfg_attr(feature = "snapshot", serde(skip))]
+    weights: Vec<f64>,
 }
 
 /// Innovations (in standard deviations of a hypothesis' prediction) beyond which a still
@@ -155,7 +160,7 @@ impl Pipeline {
                 }
             })
             .collect();
-        Ok(Pipeline {
+        let mut bank = Pipeline {
             p: params,
             models,
             last_time_s: None,
@@ -177,7 +182,10 @@ impl Pipeline {
             warming: false,
             gaussian_road: false,
             gyro_stills: false,
-        })
+            weights: Vec::new(),
+        };
+        bank.reweigh();
+        Ok(bank)
     }
 
     /// Where the declared stationary lead-in ends (absolute time, s).
@@ -197,6 +205,7 @@ impl Pipeline {
         self.models = hypotheses.iter().filter(|&&i| i < self.models.len()).map(|&i| self.models[i]).collect();
         self.weight_sum = vec![0.0; self.models.len()];
         self.recorded.clear();
+        self.reweigh();
     }
 
     /// The whole bank, unrestricted and recording nothing (a live stream's): what a
@@ -238,10 +247,24 @@ impl Pipeline {
 
     /// Normalised hypothesis weights.
     pub fn weights(&self) -> Vec<f64> {
+        self.current_weights().into_owned()
+    }
+
+    /// The normalised weights: those kept if current, else computed from the log weights.
+    fn current_weights(&self) -> Cow<'_, [f64]> {
+        if self.weights.len() == self.models.len() {
+            return Cow::Borrowed(&self.weights);
+        }
         let m = self.models.iter().map(|m| m.logw).fold(f64::NEG_INFINITY, f64::max);
         let e: Vec<f64> = self.models.iter().map(|x| libm::exp(x.logw - m)).collect();
         let s: f64 = e.iter().sum();
-        e.into_iter().map(|v| v / s).collect()
+        Cow::Owned(e.into_iter().map(|v| v / s).collect())
+    }
+
+    /// Keeps the normalised weights of the log weights as they now are (after any change).
+    fn reweigh(&mut self) {
+        self.weights.clear();
+        self.weights = self.current_weights().into_owned();
     }
 
     /// The bank's bias estimate and variance (moment-matched mixture), the estimate projected
@@ -249,9 +272,9 @@ impl Pipeline {
     /// extrapolate beyond any evidence (10 deg/s from stops of at most 5, found by the
     /// property test), which no gyro it accepts has.
     pub fn bias(&self) -> (f64, f64) {
-        let w = self.weights();
-        let b: f64 = self.models.iter().zip(&w).map(|(m, wi)| wi * m.bias().0).sum();
-        let p: f64 = self.models.iter().zip(&w).map(|(m, wi)| wi * (m.bias().1 + (m.bias().0 - b).powi(2))).sum();
+        let w = self.current_weights();
+        let b: f64 = self.models.iter().zip(w.iter()).map(|(m, wi)| wi * m.bias().0).sum();
+        let p: f64 = self.models.iter().zip(w.iter()).map(|(m, wi)| wi * (m.bias().1 + (m.bias().0 - b).powi(2))).sum();
         (self.p.bounded_bias_dps(b, self.evidence.centre_dps), p)
     }
 
@@ -263,7 +286,7 @@ impl Pipeline {
         if self.warming {
             return f64::NAN;
         }
-        self.models.iter().zip(self.weights()).map(|(m, wi)| wi * m.x[0]).sum()
+        self.models.iter().zip(self.current_weights().iter()).map(|(m, wi)| wi * m.x[0]).sum()
     }
 
     /// One block: its end time, mean raw rate, and whether the vehicle stood. With
@@ -290,8 +313,11 @@ impl Pipeline {
         // Predict: each hypothesis' random walk and the road rate; weights forget toward equal.
         let lam = libm::exp(-dt / self.p.forget_s);
         let a = libm::exp(-dt / self.p.road_corr_s);
+        // The bank holds a few warm-up times: each one's decay computed once per block.
+        let decays = self.p.warm_taus_s().map(|tau| (tau, warm_decay(tau, dt)));
         for m in self.models.iter_mut() {
-            m.predict(dt, a);
+            let decay = decays.iter().find(|d| d.0 == m.warm_tau_s).map_or_else(|| warm_decay(m.warm_tau_s, dt), |d| d.1);
+            m.predict_with(dt, Vector3::new(1.0, decay, a));
             if m.logw.is_finite() {
                 m.logw *= lam;
             }
@@ -330,7 +356,8 @@ impl Pipeline {
         if straight {
             self.road_update(rate_dps, !self.acquired);
         }
-        let w = self.weights();
+        self.reweigh();
+        let w = self.weights.clone();
         if !h_road.is_empty() {
             self.heading_deg -= self.integral_change(&h_road, &w);
         }

@@ -41,6 +41,15 @@ fn flush_tiny(values: &mut [f64]) {
     }
 }
 
+/// The warm-up term's decay over dt (1 without a warm-up term, `tau_s` infinite).
+pub(super) fn warm_decay(tau_s: f64, dt: f64) -> f64 {
+    if tau_s.is_finite() {
+        libm::exp(-dt / tau_s)
+    } else {
+        1.0
+    }
+}
+
 pub(super) const H_STOP: RowVector3<f64> = RowVector3::new(1.0, 1.0, 0.0);
 pub(super) const H_ROAD: RowVector3<f64> = RowVector3::new(1.0, 1.0, 1.0);
 
@@ -63,23 +72,27 @@ impl Model {
 
     /// Diagonal of the transition over dt (road factor `a`).
     pub(super) fn transition(&self, dt: f64, a: f64) -> Vector3<f64> {
-        let w = if self.warm_tau_s.is_finite() { libm::exp(-dt / self.warm_tau_s) } else { 1.0 };
-        Vector3::new(1.0, w, a)
+        Vector3::new(1.0, warm_decay(self.warm_tau_s, dt), a)
     }
 
     /// Predict over dt: bias random walk, warm-up decay, road rate Gauss-Markov.
     pub(super) fn predict(&mut self, dt: f64, a: f64) {
+        self.predict_with(dt, self.transition(dt, a));
+    }
+
+    /// [`Model::predict`] with the transition's diagonal `f` given (the bank computes each
+    /// warm-up decay once per block, not once per hypothesis).
+    pub(super) fn predict_with(&mut self, dt: f64, f: Vector3<f64>) {
         // The integral takes the bias before the block (as the heading integrates it).
         let pb = self.p.row(0) + self.p.row(1);
         self.p_hh += dt * (2.0 * (self.p_hx[0] + self.p_hx[1]) + dt * (pb[0] + pb[1]));
         self.h += dt * (self.x[0] + self.x[1]);
         self.p_hx += dt * pb.transpose();
-        let f = self.transition(dt, a);
         self.p_hx.component_mul_assign(&f);
         self.x.component_mul_assign(&f);
         self.p = Matrix3::from_fn(|i, j| self.p[(i, j)] * f[i] * f[j]);
         self.p[(0, 0)] += self.walk2 * dt;
-        self.p[(2, 2)] += self.road_var * (1.0 - a * a);
+        self.p[(2, 2)] += self.road_var * (1.0 - f[2] * f[2]);
         // A warm-up term decays without end: after a day or two its state and covariance
         // reach subnormal numbers, on which every operation is many times slower (a 5-day
         // log ran 4x slower per block than an hour's). Values this small are zero.
