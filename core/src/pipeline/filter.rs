@@ -26,7 +26,7 @@
 //! lead-in: `filter/warm.rs`.
 
 use super::evidence::Evidence;
-use super::model::{bounded_influence_noise, log_likelihood, warm_decay, Model, State, H_ROAD, H_STOP};
+use super::model::{log_likelihood, warm_decay, Model, State, H_ROAD, H_STOP};
 use super::params::{PipelineParams, N_MODELS};
 use super::records::Records;
 use super::smoother;
@@ -445,11 +445,9 @@ impl Pipeline {
     /// acquiring, every block counts in full, as it must to learn a bias it had no evidence of.
     fn road_update(&mut self, rate_dps: f64, correct_integral: bool) {
         let r = self.p.block_sigma_dps * self.p.block_sigma_dps;
-        let bounded = !correct_integral && !self.gaussian_road;
+        let bound_sigma = if correct_integral || self.gaussian_road { f64::INFINITY } else { ROAD_BOUND_SIGMA };
         for m in &mut self.models {
-            let (nu, s) = m.innovation(H_ROAD, rate_dps, r);
-            let r_step = if bounded { bounded_influence_noise(nu, s, r, ROAD_BOUND_SIGMA) } else { r };
-            m.update(H_ROAD, rate_dps, r_step, correct_integral);
+            let (nu, s) = m.update_bounded(H_ROAD, rate_dps, r, bound_sigma, correct_integral);
             m.logw += log_likelihood(nu, s, self.p.huber_k);
         }
     }

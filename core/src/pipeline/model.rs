@@ -105,23 +105,26 @@ impl Model {
         (self.x[0] + self.x[1], self.p[(0, 0)] + self.p[(0, 1)] + self.p[(1, 0)] + self.p[(1, 1)])
     }
 
-    /// The innovation of a scalar measurement z = h x + noise(r), and its variance, before
-    /// any update.
-    pub(super) fn innovation(&self, h: RowVector3<f64>, z: f64, r: f64) -> (f64, f64) {
-        (z - (h * self.x)[0], (h * (self.p * h.transpose()))[0] + r)
-    }
-
     /// Scalar measurement z = h x + noise(r); returns the innovation and its variance.
     /// `correct_integral`: the evidence also corrects the bias integral (stops); otherwise
     /// the integral keeps its mean and only its covariance with `x` follows the update.
     pub(super) fn update(&mut self, h: RowVector3<f64>, z: f64, r: f64, correct_integral: bool) -> (f64, f64) {
+        self.update_bounded(h, z, r, f64::INFINITY, correct_integral)
+    }
+
+    /// [`Model::update`] whose step is bounded beyond `bound_sigma` sigma of the prediction
+    /// ([`bounded_influence_noise`]; infinite: the Gaussian update). Returns the innovation
+    /// and its variance at face value (noise `r`), what weighs the hypothesis.
+    pub(super) fn update_bounded(&mut self, h: RowVector3<f64>, z: f64, r: f64, bound_sigma: f64, correct_integral: bool) -> (f64, f64) {
         let ph = self.p * h.transpose();
-        let s = (h * ph)[0] + r;
+        let hph = (h * ph)[0];
         let nu = z - (h * self.x)[0];
-        let k = ph / s;
+        let s = hph + r;
+        let s_step = hph + bounded_influence_noise(nu, s, r, bound_sigma);
+        let k = ph / s_step;
         let hp = (h * self.p_hx)[0];
         if correct_integral {
-            let k_h = hp / s;
+            let k_h = hp / s_step;
             self.h += k_h * nu;
             self.p_hh -= k_h * hp;
             self.p_hx -= k_h * ph;
@@ -178,8 +181,10 @@ mod tests {
         let mut far = Model::with_dynamics(0.0, 0.0, f64::INFINITY);
         far.p = Matrix3::from_diagonal(&Vector3::new(3.0, 0.0, 0.0));
         let mut at_k = far;
-        assert_eq!(far.innovation(h, 12.0, 1.0), (12.0, 4.0));
-        far.update(h, 12.0, bounded_influence_noise(12.0, 4.0, 1.0, 3.0), false);
+        let mut by_noise = far;
+        assert_eq!(far.update_bounded(h, 12.0, 1.0, 3.0, false), (12.0, 4.0), "the innovation at face value");
+        by_noise.update(h, 12.0, bounded_influence_noise(12.0, 4.0, 1.0, 3.0), false);
+        assert_eq!((far.x, far.p), (by_noise.x, by_noise.p), "the same as the update with the grown noise");
         at_k.update(h, 6.0, 1.0, false);
         assert!((far.x[0] - 4.5).abs() < 1e-12 && (at_k.x[0] - 4.5).abs() < 1e-12, "{} {}", far.x[0], at_k.x[0]);
         // Its variance falls less than a Gaussian update at 3 sigma would take it (3 x 5 / 8
