@@ -253,18 +253,23 @@ impl Pipeline {
     /// The normalised weights: those kept if current, else computed from the log weights.
     fn current_weights(&self) -> Cow<'_, [f64]> {
         if self.weights.len() == self.models.len() {
-            return Cow::Borrowed(&self.weights);
+            Cow::Borrowed(&self.weights)
+        } else {
+            Cow::Owned(self.normalised_weights())
         }
+    }
+
+    /// The log weights normalised, computed.
+    fn normalised_weights(&self) -> Vec<f64> {
         let m = self.models.iter().map(|m| m.logw).fold(f64::NEG_INFINITY, f64::max);
         let e: Vec<f64> = self.models.iter().map(|x| libm::exp(x.logw - m)).collect();
         let s: f64 = e.iter().sum();
-        Cow::Owned(e.into_iter().map(|v| v / s).collect())
+        e.into_iter().map(|v| v / s).collect()
     }
 
     /// Keeps the normalised weights of the log weights as they now are (after any change).
     fn reweigh(&mut self) {
-        self.weights.clear();
-        self.weights = self.current_weights().into_owned();
+        self.weights = self.normalised_weights();
     }
 
     /// The bank's bias estimate and variance (moment-matched mixture), the estimate projected
