@@ -130,7 +130,7 @@ fn trace_csv(a: &[String]) {
         let o = f.update(prep.blocks.time_s[i], prep.blocks.rate_dps[i], prep.blocks.still[i]).unwrap();
         if i % step == 0 {
             println!(
-                "{:7.0} w {:?} r {:?} still {} stop {} straight {} rate {:8.3} inj {:7.4} pipe {:7.4} +- {:6.4} smooth {:7.4} hdr {:7.4}",
+                "{:7.0} w {:?} r {:?} still {} stop {} straight {} rate {:8.3} inj {:7.4} pipe {:7.4} +- {:6.4} bank {:7.4} smooth {:7.4} hdr {:7.4}",
                 tr.time_s[i] - tr.time_s[0],
                 (0..5).map(|k| (f.weights()[k * 9..k * 9 + 9].iter().sum::<f64>() * 100.0).round()).collect::<Vec<_>>(),
                 (0..3)
@@ -143,6 +143,7 @@ fn trace_csv(a: &[String]) {
                 inj.get(i).copied().unwrap_or(f64::NAN),
                 tr.bias_dps[i],
                 tr.bias_sigma_dps[i],
+                o.bias_dps,
                 tr.bias_smoothed_dps[i],
                 drift[i] + h.eps0_dps
             );
