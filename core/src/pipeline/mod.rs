@@ -123,6 +123,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     let clock = blocks.time_s.iter().map(|&t| clock_s(t, blocks.origin_s)).collect();
     let mut tr = PipelineTrace { time_s: clock, final_bias_dps: f64::NAN, final_bias_sigma_dps: f64::NAN, ..Default::default() };
     let (mut blend, mut blended) = (blend::Blend::of(&params), Vec::with_capacity(n));
+    let mut bend_evidence = Vec::with_capacity(n);
     for i in 0..n {
         let (t, rate) = (tr.time_s[i], blocks.rate_dps[i]);
         let settled_dps = f.settled_bias_dps();
@@ -133,6 +134,7 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
         tr.bias_sigma_dps.push(o.bias_sigma_dps);
         tr.stop.push(o.stop);
         (tr.final_bias_dps, tr.final_bias_sigma_dps) = (o.bias_dps, o.bias_sigma_dps);
+        bend_evidence.push((settled_dps, f.quiet()));
         blended.push(blend.update(t >= f.lead_in_end_s(), t, rate, o, settled_dps, f.quiet())?);
     }
     // The smoothed mode is held to the bank's causal heading at stops; the trace then takes
@@ -141,16 +143,24 @@ pub fn run_blocks(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64) -
     for (i, o) in blended.iter().enumerate() {
         (tr.heading_deg[i], tr.bias_dps[i]) = (o.heading_deg, o.bias_dps);
     }
-    blend_smoothed(blocks, params, f.lead_in_end_s(), &mut tr)?;
+    blend_smoothed(blocks, params, f.lead_in_end_s(), &mut tr, &bend_evidence)?;
     tr.time_s.clone_from(&blocks.time_s);
     Ok(tr)
 }
 
 /// The smoothed heading: the smoothed bias integrated, blended with the experts as the
 /// causal heading is (guarded by the bank's causal bias sigma, the smoother keeping none,
-/// grown between the bank's stops as the causal guard is; the bank's stops pass whole).
-/// Sets `heading_smoothed_deg` and the bias it integrated.
-fn blend_smoothed(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64, tr: &mut PipelineTrace) -> Result<()> {
+/// grown between the bank's stops as the causal guard is; the bank's stops pass whole),
+/// the bend fallback included: `bend_evidence` is the causal bank's settled bias and
+/// quiet flag per block, as the causal blend had them (a bend the bank read as road is in
+/// the smoothed bias too). Sets `heading_smoothed_deg` and the bias it integrated.
+fn blend_smoothed(
+    blocks: &Blocks,
+    params: PipelineParams,
+    lead_in_end_s: f64,
+    tr: &mut PipelineTrace,
+    bend_evidence: &[(f64, bool)],
+) -> Result<()> {
     let mut blend = blend::Blend::of(&params);
     let mut h = 0.0;
     for i in 0..blocks.len() {
@@ -167,8 +177,8 @@ fn blend_smoothed(blocks: &Blocks, params: PipelineParams, lead_in_end_s: f64, t
             straight: false,
             reopened: false,
         };
-        // The fallback is the causal bank's guard; the smoothed bias sees the whole log.
-        let o = blend.update(t >= lead_in_end_s, t, rate, smoothed, f64::NAN, false)?;
+        let (settled_dps, quiet) = bend_evidence[i];
+        let o = blend.update(t >= lead_in_end_s, t, rate, smoothed, settled_dps, quiet)?;
         tr.heading_smoothed_deg.push(o.heading_deg);
         tr.bias_smoothed_dps[i] = o.bias_dps;
     }

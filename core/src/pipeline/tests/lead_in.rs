@@ -230,9 +230,26 @@ fn long_bend_blocks() -> crate::still::Blocks {
 /// The long bend's heading error at the end, from block 20 (the bend turns 56 deg), with
 /// the fallback at `move_dps` after a lead-in of `lead_in_s`.
 fn bend_error_deg(blocks: &crate::still::Blocks, move_dps: f64, lead_in_s: f64) -> f64 {
+    bend_errors_deg(blocks, move_dps, lead_in_s).0
+}
+
+/// The long bend's heading errors at the end, causal and smoothed (`bend_error_deg`).
+fn bend_errors_deg(blocks: &crate::still::Blocks, move_dps: f64, lead_in_s: f64) -> (f64, f64) {
     let tr = run_blocks(blocks, PipelineParams { blend_move_dps: move_dps, ..PipelineParams::default() }, lead_in_s).unwrap();
-    let (first, last) = (tr.heading_deg[20], *tr.heading_deg.last().unwrap());
-    last - first - 56.0
+    let error = |h: &[f64]| h[h.len() - 1] - h[20] - 56.0;
+    (error(&tr.heading_deg), error(&tr.heading_smoothed_deg))
+}
+
+/// The smoothed mode is blended as the causal heading is, the bend fallback included (the
+/// causal bank's settled bias says when a bend is read as road): the smoothed bias, taken
+/// from the same straight-road evidence, has the bend in it too: its final heading error
+/// -36.8 deg without the fallback, -22.5 with it (until the sixty-first session the
+/// smoothed blend had no fallback).
+#[test]
+fn after_a_lead_in_a_long_bend_is_not_taken_as_bias_smoothed() {
+    let blocks = long_bend_blocks();
+    let (with, without) = (bend_errors_deg(&blocks, 0.3, 20.0).1, bend_errors_deg(&blocks, 0.0, 20.0).1);
+    assert!(without < -30.0 && with > -25.0 && with < 0.0, "with {with}, without {without}");
 }
 
 /// On the long bend the bank's road window fills with the bend and its bias is dragged
