@@ -125,6 +125,20 @@ pub struct GyrodometryTrace {
     pub used_gyro: Vec<bool>,
 }
 
+impl GyrodometryTrace {
+    /// The series of the wasm `runGyrodometry` and Python's `run_gyrodometry`.
+    pub fn columns(&self) -> [(&'static str, crate::series::Column<'_>); 5] {
+        use crate::series::{values, Column};
+        [
+            ("time_s", values(&self.time_s)),
+            ("heading_odo_deg", values(&self.heading_odo_deg)),
+            ("heading_gyro_deg", values(&self.heading_gyro_deg)),
+            ("heading_gyrodometry_deg", values(&self.heading_gyrodometry_deg)),
+            ("used_gyro", Column::Flags(&self.used_gyro)),
+        ]
+    }
+}
+
 /// The Result keys of methods.md for `gyrodometry`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[allow(non_snake_case)]

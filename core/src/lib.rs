@@ -43,6 +43,7 @@ pub mod peers;
 pub mod pipeline;
 pub mod preprocess;
 pub mod report;
+pub mod series;
 pub mod sim;
 #[cfg(feature = "snapshot")]
 pub mod snapshot;

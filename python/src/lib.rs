@@ -116,18 +116,14 @@ pub(crate) fn values(a: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
     Ok(a.as_array().iter().copied().collect())
 }
 
-/// A dict of named numpy arrays.
-pub(crate) fn series<'py>(py: Python<'py>, items: Vec<(&str, Vec<f64>)>) -> PyResult<Bound<'py, PyDict>> {
+/// A core trace's `columns()` as a dict of float64 arrays, flags as 1.0 / 0.0 as the CLI's
+/// trace CSV writes them.
+pub(crate) fn columns<'py>(py: Python<'py>, cols: &[(&str, gyrodrift::series::Column<'_>)]) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    for (k, v) in items {
-        d.set_item(k, array(py, v))?;
+    for (k, c) in cols {
+        d.set_item(k, array(py, c.to_f64s().into_owned()))?;
     }
     Ok(d)
-}
-
-/// Booleans as a float array (1.0 / 0.0), as the CLI's trace CSV writes them.
-pub(crate) fn flags(v: &[bool]) -> Vec<f64> {
-    v.iter().map(|&b| f64::from(u8::from(b))).collect()
 }
 
 /// The version of the core these bindings carry.

@@ -2,7 +2,7 @@
 //! variants add the per-sample series as float64 arrays for plotting.
 
 use crate::log::{read_path, PyLog};
-use crate::{array, flags, from_py, result_dict, series, settings, to_py, value_err};
+use crate::{array, columns, from_py, result_dict, settings, to_py, value_err};
 use gyrodrift as g;
 use gyrodrift::hdr::HdrOptions;
 use gyrodrift::pipeline::PipelineParams;
@@ -48,22 +48,7 @@ fn run_hdr<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, PyAny
     let d = run_dict(py, &run.result)?;
     d.set_item("eps0_dps", run.eps0_dps)?;
     d.set_item("summary", crate::to_py(py, &serde_json::to_value(run.summary(log.log.duration_min())).map_err(value_err)?)?)?;
-    let drift = run.trace.drift_estimate_dps();
-    let t = run.trace;
-    let trace = series(
-        py,
-        vec![
-            ("time_s", t.time_s),
-            ("heading_raw_deg", t.heading_raw_deg),
-            ("heading_hdr_deg", t.heading_hdr_deg),
-            ("rate_raw_dps", t.rate_raw_dps),
-            ("rate_corrected_dps", t.rate_corrected_dps),
-            ("i_dps", t.i_dps),
-            ("drift_estimate_dps", drift),
-            ("turn_switch", flags(&t.turn_switch)),
-            ("attenuation", t.attenuation),
-        ],
-    )?;
+    let trace = columns(py, &run.trace.columns())?;
     d.set_item("trace", trace)?;
     Ok(d)
 }
@@ -89,20 +74,7 @@ fn run_pipeline<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'py, 
     let d = run_dict(py, &run.result)?;
     d.set_item("still_source", crate::to_py(py, &serde_json::to_value(run.still_source).map_err(value_err)?)?)?;
     d.set_item("summary", crate::to_py(py, &serde_json::to_value(run.summary(log.log.duration_min())).map_err(value_err)?)?)?;
-    let t = run.trace;
-    let trace = series(
-        py,
-        vec![
-            ("time_s", t.time_s),
-            ("heading_deg", t.heading_deg),
-            ("heading_sigma_deg", t.heading_sigma_deg),
-            ("heading_smoothed_deg", t.heading_smoothed_deg),
-            ("bias_dps", t.bias_dps),
-            ("bias_sigma_dps", t.bias_sigma_dps),
-            ("bias_smoothed_dps", t.bias_smoothed_dps),
-            ("stop", flags(&t.stop)),
-        ],
-    )?;
+    let trace = columns(py, &run.trace.columns())?;
     d.set_item("trace", trace)?;
     Ok(d)
 }
@@ -141,17 +113,7 @@ fn run_gyrodometry<'py>(py: Python<'py>, log: &PyLog, settings: Option<&Bound<'p
     let run = py.detach(|| g::gyrodometry::run(&log.log, &o)).map_err(value_err)?;
     let d = run_dict(py, &run.result)?;
     d.set_item("eps0_dps", run.eps0_dps)?;
-    let t = run.trace;
-    let trace = series(
-        py,
-        vec![
-            ("time_s", t.time_s),
-            ("heading_odo_deg", t.heading_odo_deg),
-            ("heading_gyro_deg", t.heading_gyro_deg),
-            ("heading_gyrodometry_deg", t.heading_gyrodometry_deg),
-            ("used_gyro", flags(&t.used_gyro)),
-        ],
-    )?;
+    let trace = columns(py, &run.trace.columns())?;
     d.set_item("trace", trace)?;
     Ok(d)
 }

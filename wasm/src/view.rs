@@ -51,6 +51,22 @@ pub(crate) fn reduced(idx: Option<&[usize]>, v: &[f64]) -> JsValue {
     }
 }
 
+/// A core trace's `columns()` as a JS object: Float64Array values, Uint8Array flags, each
+/// reduced to the samples `idx` keeps when given (a chart's view).
+pub(crate) fn columns_object(cols: &[(&str, gyrodrift::series::Column<'_>)], idx: Option<&[usize]>) -> JsResult<Object> {
+    use gyrodrift::series::Column;
+    let out = Object::new();
+    for (name, c) in cols {
+        let v = match (c, idx) {
+            (Column::Values(v), _) => reduced(idx, v),
+            (Column::Flags(f), Some(i)) => bools(&i.iter().map(|&k| f[k]).collect::<Vec<_>>()),
+            (Column::Flags(f), None) => bools(f),
+        };
+        set(&out, name, &v)?;
+    }
+    Ok(out)
+}
+
 /// Series sharing one x reduced for drawing in a view: `{ x, ys }` holding, per pixel
 /// column, the first and last sample and each series' extremes (core's
 /// `decimate::shared_indices`), so a page re-draws a cached 2 M-sample trace cheaply.

@@ -124,7 +124,9 @@ impl HdrTrace {
         self.i_dps.iter().map(|i| -i).collect()
     }
 
-    /// Writes the per-sample trace CSV of methods.md: time_s, heading_raw_deg, heading_hdr_deg.
+    /// Writes the per-sample trace CSV of methods.md: time_s, heading_raw_deg, heading_hdr_deg
+    /// (the first three of [`HdrTrace::columns`], a test holds them equal; written directly,
+    /// as the spec's fixed format: the generic writer would add 0.3 KB to the page's module).
     pub fn write_csv<W: std::io::Write>(&self, out: W) -> Result<()> {
         use std::io::Write as _;
         let mut out = std::io::BufWriter::new(out);
@@ -134,6 +136,23 @@ impl HdrTrace {
         }
         out.flush()?;
         Ok(())
+    }
+
+    /// Every series of the wasm `runHdr` and Python's `run_hdr`: methods.md's trace CSV
+    /// first, then the rates, the drift estimate -I, the turn switch and the attenuation.
+    pub fn columns(&self) -> [(&'static str, crate::series::Column<'_>); 9] {
+        use crate::series::{values, Column};
+        [
+            ("time_s", values(&self.time_s)),
+            ("heading_raw_deg", values(&self.heading_raw_deg)),
+            ("heading_hdr_deg", values(&self.heading_hdr_deg)),
+            ("rate_raw_dps", values(&self.rate_raw_dps)),
+            ("rate_corrected_dps", values(&self.rate_corrected_dps)),
+            ("i_dps", values(&self.i_dps)),
+            ("drift_estimate_dps", Column::Values(self.drift_estimate_dps().into())),
+            ("turn_switch", Column::Flags(&self.turn_switch)),
+            ("attenuation", values(&self.attenuation)),
+        ]
     }
 }
 

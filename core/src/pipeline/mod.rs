@@ -55,28 +55,25 @@ pub struct PipelineTrace {
 }
 
 impl PipelineTrace {
+    /// The trace CSV's columns, the CLI's, the wasm `runPipeline`'s and Python's.
+    pub fn columns(&self) -> [(&'static str, crate::series::Column<'_>); 8] {
+        use crate::series::{values, Column};
+        [
+            ("time_s", values(&self.time_s)),
+            ("heading_deg", values(&self.heading_deg)),
+            ("heading_sigma_deg", values(&self.heading_sigma_deg)),
+            ("heading_smoothed_deg", values(&self.heading_smoothed_deg)),
+            ("bias_dps", values(&self.bias_dps)),
+            ("bias_sigma_dps", values(&self.bias_sigma_dps)),
+            ("bias_smoothed_dps", values(&self.bias_smoothed_dps)),
+            ("stop", Column::Flags(&self.stop)),
+        ]
+    }
+
     /// Writes the per-block trace as CSV: the causal heading and its sigma, the smoothed
     /// heading (non-causal), the bias (causal, its sigma, smoothed) and the stop flag (0/1).
     pub fn write_csv<W: std::io::Write>(&self, out: W) -> Result<()> {
-        use std::io::Write as _;
-        let mut out = std::io::BufWriter::new(out);
-        writeln!(out, "time_s,heading_deg,heading_sigma_deg,heading_smoothed_deg,bias_dps,bias_sigma_dps,bias_smoothed_dps,stop")?;
-        for i in 0..self.time_s.len() {
-            writeln!(
-                out,
-                "{},{},{},{},{},{},{},{}",
-                self.time_s[i],
-                self.heading_deg[i],
-                self.heading_sigma_deg[i],
-                self.heading_smoothed_deg[i],
-                self.bias_dps[i],
-                self.bias_sigma_dps[i],
-                self.bias_smoothed_dps[i],
-                u8::from(self.stop[i])
-            )?;
-        }
-        out.flush()?;
-        Ok(())
+        crate::series::write_csv(&self.columns(), out)
     }
 
     /// Time whose stop evidence was used, s.

@@ -19,6 +19,9 @@ pub fn prepare_hdr(log: &Log, #[wasm_bindgen(unchecked_param_type = "HdrOptions"
     log.hdr_prepared(&opts).map(|_| ()).map_err(err)
 }
 
+/// The series the dashboard's HDR view draws: a view's reduction keeps their shapes.
+const HDR_DRAWN: [&str; 5] = ["heading_raw_deg", "heading_hdr_deg", "rate_corrected_dps", "drift_estimate_dps", "turn_switch"];
+
 /// HDR with its per-sample series (Float64Array) for plotting: `{ result, error, eps0_dps, trace }`;
 /// `result` is null and `error` says why when the log has no usable reference.
 #[wasm_bindgen(js_name = runHdr, unchecked_return_type = "HdrRun")]
@@ -33,30 +36,14 @@ pub fn run_hdr(
     let run = hdr::run_prepared(&log.log, &prepared, &opts).map_err(err)?;
     let out = run_object(&run.result, run.eps0_dps)?;
     let t = &run.trace;
-    let drift = t.drift_estimate_dps();
-    let switch: Vec<f64> = t.turn_switch.iter().map(|&b| b as u8 as f64).collect();
+    let cols = t.columns();
     // With a view, every series keeps only the samples that draw the same (metrics are
-    // computed on all of them first).
-    let idx =
-        view.as_ref().map(|v| v.indices(&t.time_s, &[&t.heading_raw_deg, &t.heading_hdr_deg, &t.rate_corrected_dps, &drift, &switch]));
-    let r = |v: &[f64]| reduced(idx.as_deref(), v);
-    let trace = object_of(&[
-        ("time_s", r(&t.time_s)),
-        ("heading_raw_deg", r(&t.heading_raw_deg)),
-        ("heading_hdr_deg", r(&t.heading_hdr_deg)),
-        ("rate_raw_dps", r(&t.rate_raw_dps)),
-        ("rate_corrected_dps", r(&t.rate_corrected_dps)),
-        ("i_dps", r(&t.i_dps)),
-        ("drift_estimate_dps", r(&drift)),
-        (
-            "turn_switch",
-            match &idx {
-                Some(i) => bools(&i.iter().map(|&k| t.turn_switch[k]).collect::<Vec<_>>()),
-                None => bools(&t.turn_switch),
-            },
-        ),
-        ("attenuation", r(&t.attenuation)),
-    ])?;
+    // computed on all of them first): those of the series the HDR view draws.
+    let idx = view.as_ref().map(|v| {
+        let drawn: Vec<_> = cols.iter().filter(|(n, _)| HDR_DRAWN.contains(n)).map(|(_, c)| c.to_f64s()).collect();
+        v.indices(&t.time_s, &drawn.iter().map(|c| &**c).collect::<Vec<_>>())
+    });
+    let trace = columns_object(&cols, idx.as_deref())?;
     set(&out, "trace", &trace)?;
     let against = prepared.reference.as_ref().ok().and_then(|rf| Some((rf, run.errors_against(rf)?)));
     let (reference, errors) = match against {

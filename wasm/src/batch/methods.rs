@@ -17,13 +17,7 @@ pub fn run_gyrodometry(log: &Log, #[wasm_bindgen(unchecked_param_type = "Gyrodom
     let run = gyrodometry::run(&log.log, &opts).map_err(err)?;
     let out = run_object(&run.result, run.eps0_dps)?;
     let t = &run.trace;
-    let trace = object_of(&[
-        ("time_s", f64s(&t.time_s)),
-        ("heading_odo_deg", f64s(&t.heading_odo_deg)),
-        ("heading_gyro_deg", f64s(&t.heading_gyro_deg)),
-        ("heading_gyrodometry_deg", f64s(&t.heading_gyrodometry_deg)),
-        ("used_gyro", bools(&t.used_gyro)),
-    ])?;
+    let trace = columns_object(&t.columns(), None)?;
     set(&out, "trace", &trace)?;
     Ok(out.into())
 }

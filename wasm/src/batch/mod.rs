@@ -3,7 +3,7 @@
 
 pub(crate) use crate::convert::*;
 pub(crate) use crate::log::Log;
-pub(crate) use crate::view::{reduced, View};
+pub(crate) use crate::view::{columns_object, reduced, View};
 pub(crate) use crate::JsResult;
 pub(crate) use gyrodrift::hdr::{self, HdrOptions, HdrParams};
 pub(crate) use gyrodrift::{allan, calibration, gyrodometry, report, sim, tune, DriveLog};

@@ -21,16 +21,7 @@ pub fn run_pipeline(log: &Log, #[wasm_bindgen(unchecked_param_type = "PipelineOp
     set(&out, "still_source", &to_js(&run.still_source)?)?;
     set(&out, "summary", &to_js(&run.summary(log.log.duration_min()))?)?;
     let t = &run.trace;
-    let trace = object_of(&[
-        ("time_s", f64s(&t.time_s)),
-        ("heading_deg", f64s(&t.heading_deg)),
-        ("heading_sigma_deg", f64s(&t.heading_sigma_deg)),
-        ("heading_smoothed_deg", f64s(&t.heading_smoothed_deg)),
-        ("bias_dps", f64s(&t.bias_dps)),
-        ("bias_sigma_dps", f64s(&t.bias_sigma_dps)),
-        ("bias_smoothed_dps", f64s(&t.bias_smoothed_dps)),
-        ("stop", bools(&t.stop)),
-    ])?;
+    let trace = columns_object(&t.columns(), None)?;
     set(&out, "trace", &trace)?;
     let errors = match run.errors(&log.log) {
         Some(e) => series(&[("time_s", &e.time_s), ("pipeline_deg", &e.errors_deg[0]), ("smoothed_deg", &e.errors_deg[1])])?.into(),
