@@ -25,7 +25,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 ARGS = sys.argv[1:]
-CLI = ARGS.pop(0) if ARGS and not Path(ARGS[0]).is_dir() else str(ROOT / "target/release/gyrodrift")
+CLI = str(Path(ARGS.pop(0)).resolve()) if ARGS and not Path(ARGS[0]).is_dir() else str(ROOT / "target/release/gyrodrift")
 PROBES = Path(ARGS.pop(0))
 VARIANTS = ARGS or ["base"]
 CAUSAL = ["raw", "hdr_table_iii", "hdr_tuned", "fusion_offset", "zaru", "pipeline"]
