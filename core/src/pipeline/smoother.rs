@@ -12,7 +12,8 @@ use crate::error::Result;
 use crate::still::Blocks;
 
 /// How many hypotheses the offline smoother follows (those with the most weight over the
-/// log): recording all of them would cost memory on long logs for no gain.
+/// log). Following all of them costs 15x the records' memory and trades: better on the
+/// simulated drives, worse on the recorded ones (docs/pipeline.md, sixty-third session).
 pub const N_SMOOTHED: usize = 3;
 
 /// The smoothed bias per block, held to the causal trace `tr` (its stops and heading; its
