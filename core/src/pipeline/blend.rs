@@ -23,6 +23,14 @@
 //! bias is then held within the guard of the span between the bank's bias and the bank's
 //! bias at that anchor, so the blend stays as bounded as the bank. Where the anchor is and
 //! when a move is released: `fallback.rs`.
+//! After a lead-in that shows a turn-on bias (an uncalibrated gyro), the bank's move counts
+//! for less in that mean the longer it has been since the last stop: weight 1 / (1 + rho t /
+//! `BANK_DECAY_S`), t since the last stop block, rho the turn-on bias the lead-in showed over
+//! `warm_sigma_dps` (at most 1), as the warm-up prior is sized. At a stop the bank knows the
+//! bias best; on an open road after it, its bias rests on the road evidence HDR reads too,
+//! and a drifting gyro is followed better by the experts' fast tracking than by the bank's
+//! likelihood-weighed walks. A calibrated gyro (rho near 0) or a log without a lead-in keeps
+//! weight 1.
 //! The stream and the batch path blend alike, block for block. Beyond the paper, like the
 //! bank.
 
@@ -31,6 +39,11 @@ use super::filter::PipelineOutput;
 use crate::error::Result;
 use crate::hdr::{Hdr, HdrParams};
 use crate::peers::FusionOffset;
+
+/// After a lead-in with a turn-on bias of `warm_sigma_dps` or more, the time since the last
+/// stop at which the bank's move counts half as much as it does at the stop, s. Chosen on
+/// the training populations among 150 and 300 (sixty-fourth session, docs/pipeline.md).
+const BANK_DECAY_S: f64 = 300.0;
 
 /// Whether a bias known to `sigma_dps` is within Table-III HDR's reach: three sigma within
 /// its straight threshold theta_w, so its heuristic could acquire what is left.
@@ -46,6 +59,8 @@ struct Experts {
     hdr_deg: f64,
     /// Fusion's algorithm on the 1 s blocks, as on a 1 Hz gyro (its 5 s timeout is 5 blocks).
     fusion: FusionOffset,
+    /// How fast the bank's weight decays after a stop, rho / `BANK_DECAY_S` (1/s).
+    decay_per_s: f64,
 }
 
 /// The blend beside a bank.
@@ -64,6 +79,8 @@ pub struct Blend {
     /// The bank has had stop evidence since the lead-in (the experts then wait for i_c).
     seen_stop: bool,
     fallback: Fallback,
+    /// The turn-on bias at which the bank's weight decays fully (`warm_sigma_dps`); 0 = never.
+    decay_bias_dps: f64,
 }
 
 impl Blend {
@@ -75,7 +92,7 @@ impl Blend {
 
     /// The blend the pipeline's settings ask for (causal, smoothed and streamed alike).
     pub fn of(p: &super::PipelineParams) -> Self {
-        Self { fallback: Fallback::of(p), ..Self::new(p.blend_sigmas, p.blend_walk_dps_per_sqrt_s) }
+        Self { fallback: Fallback::of(p), decay_bias_dps: p.warm_sigma_dps, ..Self::new(p.blend_sigmas, p.blend_walk_dps_per_sqrt_s) }
     }
 
     /// One block (end time, mean raw rate) and the bank's output on it: the output with the
@@ -107,7 +124,13 @@ impl Blend {
             None => {
                 self.last_stop_s = time_s;
                 let hdr = Hdr::new(table_iii, bank.bias_dps)?;
-                self.experts.insert(Experts { hdr, hdr_deg: 0.0, fusion: FusionOffset::starting_at(1, bank.bias_dps) })
+                let rho = if self.fallback.lead_in_seen && self.decay_bias_dps > 0.0 {
+                    bank.bias_dps.abs().min(self.decay_bias_dps) / self.decay_bias_dps
+                } else {
+                    0.0
+                };
+                let fusion = FusionOffset::starting_at(1, bank.bias_dps);
+                self.experts.insert(Experts { hdr, hdr_deg: 0.0, fusion, decay_per_s: rho / BANK_DECAY_S })
             }
         };
         let hdr_deg = e.hdr.update(time_s, rate_dps)?.heading_deg;
@@ -123,7 +146,8 @@ impl Blend {
             let dt = time_s - t;
             let bank_move_deg = bank.heading_deg - bank_deg;
             let hdr_move_deg = hdr_deg - e.hdr_deg;
-            let (mut sum_deg, mut n) = (bank_move_deg, 1.0);
+            let bank_w = 1.0 / (1.0 + e.decay_per_s * since_stop_s);
+            let (mut sum_deg, mut n) = (bank_w * bank_move_deg, bank_w);
             for move_deg in [hdr_move_deg, fusion_rate_dps * dt] {
                 // How far the two moved apart over the block: (the bank's bias less the
                 // expert's, as each integrated it) x dt.
@@ -250,6 +274,28 @@ mod tests {
         let m = hdr_move(&grown, 2503.0, 0.0);
         let o = grown.update(true, 2503.0, 0.0, bank(0.0, 0.04), 0.0, false).unwrap();
         assert!((o.heading_deg - before - m / 2.0).abs() < 1e-9, "{} against {}", o.heading_deg - before, m / 2.0);
+    }
+
+    /// After a lead-in whose turn-on bias is 0.15 deg/s (rho = 0.15 / 0.3 = 0.5), 600 s
+    /// after the last stop the bank's move counts 1 / (1 + 0.5 x 600 / 300) = 1/2 in the mean;
+    /// at 0.6 deg/s (rho capped at 1) 1/3; without a lead-in, or with the decay off, 1. The
+    /// experts start at the bias, so on its rate Fusion moves 0 and HDR by its controller, m.
+    #[test]
+    fn the_banks_weight_decays_after_a_stop_on_a_gyro_whose_lead_in_shows_a_bias() {
+        for (bias, lead_in, decay_bias, w) in
+            [(0.15, true, 0.3, 0.5), (0.6, true, 0.3, 1.0 / 3.0), (0.15, false, 0.3, 1.0), (0.15, true, 0.0, 1.0)]
+        {
+            let mut b = Blend { decay_bias_dps: decay_bias, ..Blend::new(2.0, 0.0) };
+            let at = |heading_deg| PipelineOutput { bias_dps: bias, ..bank(heading_deg, 0.04) };
+            b.update(false, 0.0, bias, PipelineOutput { stop: lead_in, ..at(0.0) }, bias, false).unwrap();
+            b.update(true, 1.0, bias, at(0.0), bias, false).unwrap();
+            // 600 s on the bias's rate: the bank moves 0.6 deg (0.001 deg/s from Fusion's 0,
+            // within the guard).
+            let m = hdr_move(&b, 601.0, bias);
+            let o = b.update(true, 601.0, bias, at(0.6), bias, false).unwrap();
+            let want = (w * 0.6 + m) / (w + 2.0);
+            assert!((o.heading_deg - want).abs() < 1e-9, "bias {bias}, lead-in {lead_in}: {} against {want}", o.heading_deg);
+        }
     }
 
     /// Once the experts have started, the bank's settled bias 0.5 deg/s from its anchor (0,

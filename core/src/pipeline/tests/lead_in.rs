@@ -331,7 +331,11 @@ fn without_a_lead_in_a_move_coming_back_is_held_as_a_bend() {
 /// constant +0.5 deg/s that its lead-in shows. Its sized warm-up prior reads the highway's
 /// long bends as a warm-up, and with the fallback at 0.3 deg/s the pipeline had 0.650
 /// deg/min against raw integration's 0.346; held at the quiet threshold after the lead-in
-/// it is 0.343, no worse than raw.
+/// it was 0.343, no worse than raw. Since the sixty-fourth session the bank's weight in the
+/// blend decays after a stop on a gyro whose lead-in shows a turn-on bias (`blend.rs`), and
+/// nothing in a 20 s lead-in tells this constant bias from a CRS03's that drifts: the
+/// experts' reading of the bends costs it 0.407 (1.18x raw), the trade for the drifting
+/// gyros' gain (docs/pipeline.md, tried table). Held to 1.25x raw here.
 #[test]
 fn after_a_lead_in_a_quiet_gyros_bends_are_held_at_the_quiet_threshold() {
     let (bases, profiles) = (crate::battery::simulated_bases(20.0), crate::battery::profiles());
@@ -341,7 +345,7 @@ fn after_a_lead_in_a_quiet_gyros_bends_are_held_at_the_quiet_threshold() {
         (r.NE_psi_pipeline_deg_per_min, r.NE_psi_raw_deg_per_min)
     };
     let (pipeline, raw) = ne(&PipelineParams::default());
-    assert!(pipeline <= 1.1 * raw, "pipeline {pipeline}, raw {raw}");
+    assert!(pipeline <= 1.25 * raw, "pipeline {pipeline}, raw {raw}");
     let (at_move, _) = ne(&PipelineParams { blend_move_quiet_dps: 0.0, ..PipelineParams::default() });
     assert!(at_move > 1.5 * raw, "with the quiet threshold off {at_move}, raw {raw}");
 }
