@@ -15,31 +15,22 @@ OUT_DIR holds the realisations as `training-probes.py` writes them (realisation-
 .../test; written here when missing). The realisations are training populations (the
 tried table's rows quote them); this script chooses nothing.
 """
-import json
 import os
-import subprocess
 import sys
 from collections import defaultdict
 from pathlib import Path
+
+from realisations import rows as realisation_rows
 
 CLI = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else "target/release/gyrodrift")
 OUT = Path(sys.argv[2] if len(sys.argv) > 2 else "target/training-probes").resolve()
 METHODS = ["raw", "hdr_table_iii", "fusion_offset", "zaru", "pipeline", "pipeline_smoothed"]
 LABELS = ["raw", "HDR", "Fusion", "ZARU", "pipeline", "smoothed"]
-ROOT = Path(__file__).resolve().parent.parent.parent
 
 
 def rows(part):
     """Every drive of one set over the 16 realisations: (name, {method: NE_psi})."""
-    out = []
-    for k in range(16):
-        folder = OUT / f"realisation-{k}"
-        if not (folder / part).is_dir():
-            subprocess.run([CLI, "samples", "--out", str(folder), "--realisation", str(k)], cwd=ROOT, check=True, capture_output=True)
-        logs = sorted(str(p) for p in (folder / part).glob("*.csv"))
-        text = subprocess.run([CLI, "report", "--compare", "--json", *logs], cwd=ROOT, check=True, capture_output=True, text=True).stdout
-        out += [(r["name"], r) for r in json.loads(text)["rows"]]
-    return out
+    return [(r["name"], r) for r in realisation_rows(CLI, OUT, part)]
 
 
 def mean(values):

@@ -29,6 +29,7 @@ import sys
 from pathlib import Path
 
 from goals import lines
+from realisations import rows as realisation_rows
 
 CLI = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else "target/release/gyrodrift")
 OUT = Path(sys.argv[2] if len(sys.argv) > 2 else "target/training-probes").resolve()
@@ -101,17 +102,10 @@ def noise():
 def realisations():
     out = []
     for part in ["train", "test"]:
-        pipeline, hdr = [], []
-        for k in range(16):
-            folder = OUT / f"realisation-{k}"
-            if not (folder / part).is_dir():
-                run([CLI, "samples", "--out", str(folder), "--realisation", str(k)])
-            logs = sorted(str(p) for p in (folder / part).glob("*.csv"))
-            for row in json.loads(run([CLI, "report", "--compare", "--json", *logs]))["rows"]:
-                pipeline.append(row["pipeline"])
-                hdr.append(row["hdr_table_iii"])
-        n = len(pipeline)
-        out.append(f"{part} {sum(pipeline) / n:.3f} (HDR {sum(hdr) / n:.3f}, {n} drives)")
+        drives = realisation_rows(CLI, OUT, part)
+        n = len(drives)
+        pipeline, hdr = sum(r["pipeline"] for r in drives), sum(r["hdr_table_iii"] for r in drives)
+        out.append(f"{part} {pipeline / n:.3f} (HDR {hdr / n:.3f}, {n} drives)")
     return "; ".join(out)
 
 

@@ -26,7 +26,7 @@
 //! After a lead-in that shows a turn-on bias (an uncalibrated gyro), the bank's move counts
 //! for less in that mean the longer it has been since the last stop: weight 1 / (1 + rho t /
 //! `BANK_DECAY_S`), t since the last stop block, rho the turn-on bias the lead-in showed over
-//! `warm_sigma_dps` (at most 1), as the warm-up prior is sized. At a stop the bank knows the
+//! `warm_sigma_dps` (at most 1), the warm-up prior's rho without its variance term. At a stop the bank knows the
 //! bias best; on an open road after it, its bias rests on the road evidence HDR reads too,
 //! and a drifting gyro is followed better by the experts' fast tracking than by the bank's
 //! likelihood-weighed walks. A calibrated gyro (rho near 0) or a log without a lead-in keeps
